@@ -1,0 +1,27 @@
+"""floatmoor: time-domain simulation of floating structures and their mooring lines.
+
+The public API::
+
+    import floatmoor as fm
+    case = fm.load_case("cases/lindahl/lindahl_r0.20_T1.25.toml", ["motion.period=3.5"])
+    result = fm.run_forced_motion(case)
+    result.dataset["fairlead_tension"]
+
+    sol = fm.solve_catenary(anchor, fairlead, length, EA, w, friction_coefficient=0.3,
+                            seabed_z=-3.0)
+"""
+
+from floatmoor._version import __version__
+from floatmoor.case.load import load_case
+from floatmoor.case.schema import Case
+from floatmoor.errors import CaseError, FloatmoorError, SolverError
+from floatmoor.io.netcdf import read_dataset, write_dataset
+from floatmoor.mooring.catenary import CatenarySolution, catenary_profile, solve_catenary
+from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.simulation.forced import RunResult, run_forced_motion
+
+__all__ = [
+    "__version__", "load_case", "Case", "CaseError", "FloatmoorError", "SolverError",
+    "read_dataset", "write_dataset", "CatenarySolution", "catenary_profile", "solve_catenary",
+    "QuasiStaticLine", "RunResult", "run_forced_motion",
+]

@@ -1,0 +1,314 @@
+"""Load a TOML case file into a validated :class:`~floatmoor.case.schema.Case`.
+
+Loading is strict. Unknown keys, missing keys, wrong types, non-finite numbers and unphysical
+values each raise one :class:`~floatmoor.errors.CaseError` that names the file, the key path,
+what was expected and what was found. ``--set`` overrides are applied to the parsed table first
+and validated like the file's own values.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from pathlib import Path as FilePath
+from typing import Any, Sequence
+
+import numpy as np
+
+from floatmoor.case.overrides import apply_overrides
+from floatmoor.case.reader import ReadContext, TableReader
+from floatmoor.case.schema import (
+    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, Case, CircularMotion, Environment,
+    HarmonicMotion, Line, LineType, Motion, QuasiStaticSettings, Seabed, Simulation, TableMotion,
+)
+from floatmoor.errors import CaseError
+from floatmoor.motion import fairlead_path, horizontal_direction
+
+__all__ = ["load_case", "parse_case", "MAX_STATIC_STRAIN", "SEABED_TOLERANCE"]
+
+#: A line whose anchor-to-fairlead distance needs more than this strain is "too short".
+#: Chain breaks near 1 % strain, polyester near 15 %, nylon near 25-30 %: no mooring material
+#: survives 30 %, so a larger required strain means the geometry in the case is wrong.
+MAX_STATIC_STRAIN = 0.30
+#: How far below the seabed an end may be and still count as on it [m]: TOML decimal input
+#: such as -3.0 against a depth of 3.0 is exact, so this only absorbs round-off of sums.
+SEABED_TOLERANCE = 1e-9
+#: Newton tolerance of the quasi-static catenary, relative to the line length [-]. The
+#: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
+DEFAULT_CATENARY_TOLERANCE = 1e-12
+DEFAULT_CATENARY_MAX_ITERATIONS = 100
+#: Sampling of the prescribed motion when checking the fairlead stays reachable [-].
+_MOTION_CHECK_SAMPLES_PER_PERIOD = 72
+
+
+def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
+    """Read, override and validate a case file.
+
+    Parameters
+    ----------
+    path
+        The TOML case file.
+    overrides
+        ``path.to.key=VALUE`` assignments, VALUE a TOML value (see
+        :mod:`floatmoor.case.overrides`).
+
+    Raises
+    ------
+    CaseError
+        For any problem with the file or the overrides.
+    """
+    source = str(path)
+    try:
+        text = FilePath(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise CaseError(source, "", "a readable case file", "no such file") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise CaseError(source, "", "a readable UTF-8 case file", str(err)) from None
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise CaseError(source, "", "valid TOML", f"a syntax error ({err})") from None
+    return parse_case(raw, source=source, text=text, overrides=tuple(overrides),
+                      base_dir=FilePath(path).parent)
+
+
+def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
+               overrides: tuple[str, ...] = (), base_dir: FilePath | None = None) -> Case:
+    """Validate a parsed case table (``raw`` is not modified)."""
+    raw = copy.deepcopy(raw)
+    context = ReadContext(source, apply_overrides(raw, overrides, source))
+    root = TableReader(raw, (), context)
+    title = root.string("title")
+    description = root.string("description", default="")
+
+    environment = _environment(root.table("environment"))
+    seabed = _seabed(root.table("seabed"))
+    line_types = {name: _line_type(name, reader) for name, reader in root.named_tables("line_types")}
+    lines = tuple(_line(reader, line_types) for reader in root.tables("lines"))
+    simulation = _simulation(root.table("simulation"))
+    motion = _motion(root.table("motion"), base_dir or FilePath("."), simulation) \
+        if root.has("motion") else None
+    root.finish()
+
+    case = Case(title=title, source=source, text=text, overrides=overrides,
+                environment=environment, seabed=seabed, line_types=line_types, lines=lines,
+                motion=motion, simulation=simulation, description=description)
+    _check_lines(case, context)
+    _check_motion(case, context)
+    return case
+
+
+# -- tables -----------------------------------------------------------------------------------
+
+def _environment(t: TableReader) -> Environment:
+    env = Environment(
+        water_density=t.number("water_density", unit="kg/m^3", gt=0.0),
+        water_depth=t.number("water_depth", unit="m", gt=0.0),
+        gravity=t.number("gravity", unit="m/s^2", gt=0.0),
+    )
+    t.finish()
+    return env
+
+
+def _seabed(t: TableReader) -> Seabed:
+    seabed = Seabed(
+        stiffness=t.number("stiffness", unit="Pa/m", gt=0.0),
+        damping_ratio=t.number("damping_ratio", unit="-", ge=0.0),
+        friction_coefficient=t.number("friction_coefficient", unit="-", ge=0.0),
+        slip_speed=t.number("slip_speed", unit="m/s", gt=0.0),
+    )
+    t.finish()
+    return seabed
+
+
+def _line_type(name: str, t: TableReader) -> LineType:
+    line_type = LineType(
+        name=name,
+        mass_per_length=t.number("mass_per_length", unit="kg/m", gt=0.0),
+        axial_stiffness=t.number("axial_stiffness", unit="N", gt=0.0),
+        diameter=t.number("diameter", unit="m", gt=0.0),
+        material_density=t.number("material_density", unit="kg/m^3", gt=0.0),
+        normal_drag_coefficient=t.number("normal_drag_coefficient", unit="-", ge=0.0),
+        tangential_drag_coefficient=t.number("tangential_drag_coefficient", unit="-", ge=0.0),
+        added_mass_coefficient=t.number("added_mass_coefficient", unit="-", ge=0.0),
+        tangential_added_mass_coefficient=t.number("tangential_added_mass_coefficient", unit="-",
+                                                   ge=0.0, default=0.0),
+        internal_damping_ratio=t.number("internal_damping_ratio", unit="-", ge=0.0, default=0.0),
+    )
+    t.finish()
+    return line_type
+
+
+def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
+    name = t.string("name")
+    type_name = t.string("type")
+    if type_name not in line_types:
+        raise t.error("type", "the name of a [line_types.NAME] table ("
+                      + ", ".join(f'"{n}"' for n in line_types) + ")", type_name)
+    length = t.number("length", unit="m", gt=0.0)
+    anchor = t.vector("anchor", size=3, unit="m")
+    fairlead = t.vector("fairlead", size=3, unit="m")
+    model = t.string("model", choices=LINE_MODELS)
+    if model not in AVAILABLE_LINE_MODELS:
+        raise t.error("model", "one of " + ", ".join(f'"{m}"' for m in AVAILABLE_LINE_MODELS)
+                      + f' (the "{model}" model is not available in this version)', model)
+    qs = t.table("quasi_static", required=False)
+    settings = QuasiStaticSettings(
+        tolerance=qs.number("tolerance", unit="-", gt=0.0, le=1e-6,
+                            default=DEFAULT_CATENARY_TOLERANCE),
+        max_iterations=qs.integer("max_iterations", ge=1, le=10_000,
+                                  default=DEFAULT_CATENARY_MAX_ITERATIONS),
+        seabed_friction=qs.boolean("seabed_friction", default=True),
+    )
+    qs.finish()
+    t.finish()
+    return Line(name=name, line_type=line_types[type_name], length=length, anchor=anchor,
+                fairlead=fairlead, model=model, quasi_static=settings)
+
+
+def _simulation(t: TableReader) -> Simulation:
+    duration = t.number("duration", unit="s", gt=0.0)
+    interval = t.number("output_interval", unit="s", gt=0.0)
+    if interval > duration:
+        raise t.error("output_interval", f"a number <= simulation.duration ({duration:g} s) [s]",
+                      interval)
+    t.finish()
+    return Simulation(duration=duration, output_interval=interval)
+
+
+def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:
+    kind = t.string("kind", choices=("circular", "harmonic", "table"))
+    motion: Motion
+    if kind == "circular":
+        period = t.number("period", unit="s", gt=0.0)
+        motion = CircularMotion(
+            radius=t.number("radius", unit="m", gt=0.0),
+            period=period,
+            sense=t.string("sense", choices=CIRCULAR_SENSES),
+            phase=math.radians(t.number("phase_deg", unit="deg", default=0.0)),
+            ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=period),
+        )
+    elif kind == "harmonic":
+        amplitude = t.vector("amplitude", size=3, unit="m", ge=0.0)
+        if not any(amplitude):
+            raise t.error("amplitude", "at least one non-zero amplitude [m]", list(amplitude))
+        period = t.number_or_vector("period", size=3, unit="s", gt=0.0)
+        phase_deg = t.number_or_vector("phase_deg", size=3, unit="deg", default=(0.0, 0.0, 0.0))
+        longest = max(p for a, p in zip(amplitude, period) if a > 0.0)
+        motion = HarmonicMotion(
+            amplitude=amplitude, period=period,
+            phase=tuple(math.radians(p) for p in phase_deg),  # type: ignore[arg-type]
+            ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=longest),
+        )
+    else:
+        file_name = t.string("file")
+        time, disp = _read_motion_table(t, base_dir / file_name)
+        motion = TableMotion(file=str(base_dir / file_name), time=time, displacement=disp,
+                             ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=0.0))
+        if time[-1] < simulation.duration:
+            raise t.context.error(("simulation", "duration"),
+                                  f"a duration <= the end of the motion table {file_name} "
+                                  f"({time[-1]:g} s) [s]", f"{simulation.duration!r}")
+    if motion.ramp_duration >= simulation.duration:
+        raise t.error("ramp_duration", "a ramp shorter than simulation.duration "
+                      f"({simulation.duration:g} s) [s]", motion.ramp_duration)
+    t.finish()
+    return motion
+
+
+def _read_motion_table(t: TableReader, path: FilePath) -> tuple[np.ndarray, np.ndarray]:
+    """Read a ``time, x, y, z`` CSV of displacements [s, m]."""
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except OSError:
+        raise t.error("file", "a readable CSV file with columns time, x, y, z",
+                      f"no readable file {path}") from None
+    rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
+    header = [h.strip() for h in rows[0].split(",")] if rows else []
+    if header != ["time", "x", "y", "z"]:
+        raise t.error("file", f"{path}: a header line 'time,x,y,z'",
+                      _found(f"'{rows[0] if rows else ''}'"))
+    data = []
+    for number, row in enumerate(rows[1:], start=2):
+        try:
+            values = [float(v) for v in row.split(",")]
+        except ValueError:
+            values = []
+        if len(values) != 4 or not all(math.isfinite(v) for v in values):
+            raise t.error("file", f"{path}: data row {number} with 4 finite numbers",
+                          _found(f"'{row}'"))
+        data.append(values)
+    array = np.array(data, dtype=float).reshape(-1, 4)
+    if len(array) < 2 or np.any(np.diff(array[:, 0]) <= 0.0) or array[0, 0] > 0.0:
+        raise t.error("file", f"{path}: at least 2 rows with strictly increasing time from <= 0 s",
+                      _found(f"{len(array)} rows, times {array[:, 0].min(initial=np.nan):g} "
+                             f"to {array[:, 0].max(initial=np.nan):g} s"))
+    return array[:, 0].copy(), array[:, 1:].copy()
+
+
+def _found(text: str) -> Any:
+    from floatmoor.case.reader import _Found
+
+    return _Found(text)
+
+
+# -- cross checks -----------------------------------------------------------------------------
+
+def _check_lines(case: Case, context: ReadContext) -> None:
+    names: set[str] = set()
+    seabed_z = case.environment.seabed_z
+    for i, line in enumerate(case.lines):
+        path = ("lines", i)
+        if line.name in names:
+            raise context.error(path + ("name",), "a name no other line has", f'"{line.name}" again')
+        names.add(line.name)
+        for end in ("anchor", "fairlead"):
+            z = getattr(line, end)[2]
+            if z < seabed_z - SEABED_TOLERANCE:
+                raise context.error(path + (end,), f"a point on or above the seabed (z >= "
+                                    f"{seabed_z:g} m)", f"z = {z!r} m")
+        needed = line.span / line.length - 1.0
+        if needed > MAX_STATIC_STRAIN:
+            raise context.error(path + ("length",),
+                                f"a length that reaches the fairlead {line.span:.6g} m away "
+                                f"without more than {MAX_STATIC_STRAIN:.0%} strain [m]",
+                                f"{line.length!r} (needs {needed:.1%} strain)")
+        if line.model == "quasi-static" and \
+                line.line_type.material_density <= case.environment.water_density:
+            raise context.error(("line_types", line.line_type.name, "material_density"),
+                                f"a density > water_density ({case.environment.water_density:g}"
+                                f" kg/m^3): the quasi-static catenary of line '{line.name}' "
+                                "needs a line that sinks",
+                                f"{line.line_type.material_density!r}")
+
+
+def _check_motion(case: Case, context: ReadContext) -> None:
+    motion = case.motion
+    if motion is None:
+        return
+    for i, line in enumerate(case.lines):
+        if isinstance(motion, CircularMotion) and horizontal_direction(line) is None:
+            raise context.error(("motion", "kind"), "a motion other than circular: line "
+                                f"'{line.name}' is vertical, so it has no vertical plane",
+                                '"circular"')
+    # The moving fairlead must stay above the seabed and within reach of every line.
+    period = motion.cycle_period or case.simulation.output_interval * 10
+    n = int(min(200_000, max(1000, case.simulation.duration / period
+                             * _MOTION_CHECK_SAMPLES_PER_PERIOD)))
+    t = np.linspace(0.0, case.simulation.duration, n)
+    key = ("motion", "radius" if isinstance(motion, CircularMotion) else
+           "amplitude" if isinstance(motion, HarmonicMotion) else "file")
+    for line in case.lines:
+        path = fairlead_path(motion, line, t)
+        lowest = float(path[:, 2].min())
+        if lowest < case.environment.seabed_z - SEABED_TOLERANCE:
+            raise context.error(key, f"a motion that keeps the fairlead of line '{line.name}' "
+                                f"above the seabed (z >= {case.environment.seabed_z:g} m)",
+                                f"a fairlead reaching z = {lowest:.6g} m")
+        span = float(np.linalg.norm(path - np.asarray(line.anchor), axis=1).max())
+        needed = span / line.length - 1.0
+        if needed > MAX_STATIC_STRAIN:
+            raise context.error(key, f"a motion that keeps the fairlead of line '{line.name}' "
+                                f"within reach (at most {MAX_STATIC_STRAIN:.0%} strain)",
+                                f"a fairlead {span:.6g} m from its anchor ({needed:.1%} strain)")

@@ -1,0 +1,290 @@
+"""Strict, path-aware reading of a parsed TOML table.
+
+:class:`TableReader` wraps one table of the raw case dictionary. Each accessor reads one key,
+checks its type and range, and raises :class:`~floatmoor.errors.CaseError` naming the file,
+the key path, what was expected and what was found. :meth:`TableReader.finish` rejects the
+keys nobody asked for, so a misspelt key is an error rather than a silently ignored value.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Iterator
+
+from floatmoor.errors import CaseError
+
+__all__ = ["Path", "ReadContext", "TableReader", "MISSING", "describe_value", "format_path"]
+
+Path = tuple[str | int, ...]
+
+
+class _Missing:
+    def __repr__(self) -> str:
+        return "MISSING"
+
+
+MISSING: Any = _Missing()
+
+
+def format_path(path: Path) -> str:
+    """``('lines', 0, 'anchor')`` -> ``lines[0].anchor``."""
+    text = ""
+    for part in path:
+        if isinstance(part, int):
+            text += f"[{part}]"
+        else:
+            text += ("." if text else "") + part
+    return text
+
+
+def describe_value(value: Any) -> str:
+    """A short TOML-like rendering of ``value`` for error messages."""
+    if value is MISSING:
+        return "nothing (the key is missing)"
+    if isinstance(value, bool):
+        return f"the boolean {'true' if value else 'false'}"
+    if isinstance(value, str):
+        return f'the string "{value}"'
+    if isinstance(value, (int, float)):
+        return f"{value!r}"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        items = ", ".join(_short(v) for v in value[:6])
+        more = ", ..." if len(value) > 6 else ""
+        return f"an array of {len(value)} [{items}{more}]"
+    return f"a {type(value).__name__}"
+
+
+def _short(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, dict):
+        return "{...}"
+    if isinstance(value, list):
+        return "[...]"
+    return repr(value)
+
+
+@dataclass
+class ReadContext:
+    """Where the values come from: the file, and the key paths set on the command line.
+
+    Parameters
+    ----------
+    source
+        The case file path as the user gave it.
+    overrides
+        Key path -> the ``--set`` text that set it; an error at or below such a path names it.
+    """
+
+    source: str
+    overrides: dict[Path, str] = field(default_factory=dict)
+
+    def origin(self, path: Path) -> str:
+        """The source to name for an error at ``path``."""
+        for length in range(len(path), 0, -1):
+            text = self.overrides.get(path[:length])
+            if text is not None:
+                return f"{self.source} (--set {text})"
+        return self.source
+
+    def error(self, path: Path, expected: str, found: str) -> CaseError:
+        """Build the error for ``path``."""
+        return CaseError(self.origin(path), format_path(path), expected, found)
+
+
+def _bound_text(gt: float | None, ge: float | None, lt: float | None, le: float | None) -> str:
+    parts = []
+    if gt is not None:
+        parts.append(f"> {gt:g}")
+    if ge is not None:
+        parts.append(f">= {ge:g}")
+    if lt is not None:
+        parts.append(f"< {lt:g}")
+    if le is not None:
+        parts.append(f"<= {le:g}")
+    return " and ".join(parts)
+
+
+def _number_text(kind: str, unit: str, gt: float | None, ge: float | None, lt: float | None,
+                 le: float | None) -> str:
+    bounds = _bound_text(gt, ge, lt, le)
+    text = kind + (f" {bounds}" if bounds else "")
+    return text + (f" [{unit}]" if unit else "")
+
+
+class TableReader:
+    """Reads the keys of one table, with range checks, and remembers which were read.
+
+    Parameters
+    ----------
+    data
+        The raw table.
+    path
+        Its key path in the case.
+    context
+        The :class:`ReadContext` for error messages.
+    """
+
+    def __init__(self, data: dict[str, Any], path: Path, context: ReadContext) -> None:
+        self.data = data
+        self.path = path
+        self.context = context
+        self._read: set[str] = set()
+
+    # -- generic -------------------------------------------------------------------------------
+    def error(self, key: str | int | Path, expected: str, found: Any) -> CaseError:
+        """An error at ``key`` of this table; ``found`` is a raw value or a preformatted str."""
+        sub = key if isinstance(key, tuple) else (key,)
+        text = found if isinstance(found, _Found) else describe_value(found)
+        return self.context.error(self.path + sub, expected, str(text))
+
+    def has(self, key: str) -> bool:
+        """Whether ``key`` is present."""
+        return key in self.data
+
+    def _get(self, key: str, default: Any, expected: str) -> Any:
+        self._read.add(key)
+        if key in self.data:
+            return self.data[key]
+        if default is MISSING:
+            raise self.error(key, expected, MISSING)
+        return default
+
+    # -- scalars -------------------------------------------------------------------------------
+    def number(self, key: str, *, unit: str, gt: float | None = None, ge: float | None = None,
+               lt: float | None = None, le: float | None = None, default: Any = MISSING) -> float:
+        """A finite number (TOML integer or float) within the given bounds."""
+        expected = _number_text("a finite number", unit, gt, ge, lt, le)
+        value = self._get(key, default, expected)
+        if value is default and default is not MISSING:
+            return value
+        return self._check_number(key, value, expected, gt, ge, lt, le)
+
+    def _check_number(self, key: str | Path, value: Any, expected: str, gt: float | None,
+                      ge: float | None, lt: float | None, le: float | None) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(key, expected, value)
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.error(key, expected, value)
+        if ((gt is not None and not value > gt) or (ge is not None and not value >= ge)
+                or (lt is not None and not value < lt) or (le is not None and not value <= le)):
+            raise self.error(key, expected, value)
+        return value
+
+    def integer(self, key: str, *, ge: int | None = None, le: int | None = None,
+                default: Any = MISSING) -> int:
+        """A TOML integer within the given bounds."""
+        expected = _number_text("an integer", "", None, ge, None, le)
+        value = self._get(key, default, expected)
+        if value is default and default is not MISSING:
+            return value
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.error(key, expected, value)
+        if (ge is not None and value < ge) or (le is not None and value > le):
+            raise self.error(key, expected, value)
+        return value
+
+    def string(self, key: str, *, choices: tuple[str, ...] | None = None,
+               default: Any = MISSING) -> str:
+        """A string, optionally one of ``choices``."""
+        if choices:
+            expected = "one of " + ", ".join(f'"{c}"' for c in choices)
+        else:
+            expected = "a non-empty string"
+        value = self._get(key, default, expected)
+        if value is default and default is not MISSING:
+            return value
+        if not isinstance(value, str) or not value.strip():
+            raise self.error(key, expected, value)
+        if choices and value not in choices:
+            raise self.error(key, expected, value)
+        return value
+
+    def boolean(self, key: str, *, default: Any = MISSING) -> bool:
+        """A TOML boolean (``true`` / ``false``)."""
+        expected = "a boolean (true or false)"
+        value = self._get(key, default, expected)
+        if not isinstance(value, bool):
+            raise self.error(key, expected, value)
+        return value
+
+    def vector(self, key: str, *, size: int, unit: str, gt: float | None = None,
+               ge: float | None = None, default: Any = MISSING) -> tuple[float, ...]:
+        """An array of ``size`` finite numbers."""
+        bounds = _bound_text(gt, ge, None, None)
+        expected = (f"an array of {size} finite numbers" + (f" {bounds}" if bounds else "")
+                    + (f" [{unit}]" if unit else ""))
+        value = self._get(key, default, expected)
+        if value is default and default is not MISSING:
+            return tuple(value)
+        if not isinstance(value, list) or len(value) != size:
+            raise self.error(key, expected, value)
+        for i, item in enumerate(value):
+            if isinstance(item, bool) or not isinstance(item, (int, float)) or not math.isfinite(item):
+                raise self.error((key, i), expected.replace(f"an array of {size} finite numbers",
+                                                            "a finite number"), item)
+            if (gt is not None and not item > gt) or (ge is not None and not item >= ge):
+                raise self.error((key, i), "a finite number " + bounds, item)
+        return tuple(float(v) for v in value)
+
+    def number_or_vector(self, key: str, *, size: int, unit: str, gt: float | None = None,
+                         ge: float | None = None, default: Any = MISSING) -> tuple[float, ...]:
+        """One number (used for every component) or an array of ``size`` numbers."""
+        value = self.data.get(key, MISSING)
+        if isinstance(value, list):
+            return self.vector(key, size=size, unit=unit, gt=gt, ge=ge)
+        bounds = _bound_text(gt, ge, None, None)
+        expected = (f"a finite number {bounds} or an array of {size} of them".replace("  ", " ")
+                    + (f" [{unit}]" if unit else ""))
+        raw = self._get(key, default, expected)
+        if raw is default and default is not MISSING:
+            return tuple(raw)
+        return (self._check_number(key, raw, expected, gt, ge, None, None),) * size
+
+    # -- tables --------------------------------------------------------------------------------
+    def table(self, key: str, *, required: bool = True) -> "TableReader":
+        """A sub-table; an absent optional one reads as empty."""
+        value = self._get(key, MISSING if required else {}, "a table")
+        if not isinstance(value, dict):
+            raise self.error(key, "a table", value)
+        return TableReader(value, self.path + (key,), self.context)
+
+    def tables(self, key: str, *, min_items: int = 1) -> Iterator["TableReader"]:
+        """The entries of an array of tables (``[[key]]``)."""
+        expected = f"an array of tables ([[{key}]]) with at least {min_items} entry"
+        value = self._get(key, MISSING, expected)
+        if not isinstance(value, list) or len(value) < min_items:
+            raise self.error(key, expected, value)
+        for i, item in enumerate(value):
+            if not isinstance(item, dict):
+                raise self.error((key, i), "a table", item)
+            yield TableReader(item, self.path + (key, i), self.context)
+
+    def named_tables(self, key: str) -> Iterator[tuple[str, "TableReader"]]:
+        """The sub-tables of a table of named tables (``[key.NAME]``)."""
+        parent = self.table(key)
+        if not parent.data:
+            raise self.error(key, f"at least one [{key}.NAME] table", "an empty table")
+        for name, item in parent.data.items():
+            parent._read.add(name)
+            if not isinstance(item, dict):
+                raise parent.error(name, "a table", item)
+            yield name, TableReader(item, parent.path + (name,), self.context)
+
+    def finish(self) -> None:
+        """Reject keys that no accessor read."""
+        for key in self.data:
+            if key not in self._read:
+                known = ", ".join(sorted(self._read)) or "none"
+                raise self.error(key, f"one of the known keys ({known})",
+                                 _Found(f"the unknown key '{key}'"))
+
+
+class _Found(str):
+    """A preformatted 'found' text."""

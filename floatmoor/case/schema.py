@@ -1,0 +1,206 @@
+"""The validated contents of a case file: frozen dataclasses, SI units, angles in radians.
+
+A :class:`Case` is built only by :func:`floatmoor.case.load.load_case`, which checks every
+value; the objects here can therefore be trusted by the models.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = [
+    "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
+    "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
+    "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES",
+]
+
+#: Every line model name a case file may give (``lines[].model``).
+LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
+#: The models this version implements.
+AVAILABLE_LINE_MODELS = ("quasi-static",)
+#: Rotation senses of circular motion, defined by where the end moves at the top of the circle.
+CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")
+
+
+@dataclass(frozen=True)
+class Environment:
+    """Water and gravity. Still water at z = 0, flat seabed at z = -water_depth."""
+
+    water_density: float  #: [kg/m^3]
+    water_depth: float  #: [m]
+    gravity: float  #: [m/s^2]
+
+    @property
+    def seabed_z(self) -> float:
+        """Elevation of the seabed [m]."""
+        return -self.water_depth
+
+
+@dataclass(frozen=True)
+class Seabed:
+    """Seabed contact (gpc paper eq. 7): normal spring-damper and smoothed Coulomb friction."""
+
+    stiffness: float  #: normal stiffness per unit contact area [Pa/m]
+    damping_ratio: float  #: of the normal contact [-]
+    friction_coefficient: float  #: Coulomb, also the quasi-static catenary's C_B [-]
+    slip_speed: float  #: speed at which full friction is reached [m/s]
+
+
+@dataclass(frozen=True)
+class LineType:
+    """Properties of a line material (physics.md section 1)."""
+
+    name: str
+    mass_per_length: float  #: dry mass per unstretched length [kg/m]
+    axial_stiffness: float  #: EA [N]
+    diameter: float  #: the one the drag coefficients refer to [m]
+    material_density: float  #: [kg/m^3]
+    normal_drag_coefficient: float  #: C_dn [-]
+    tangential_drag_coefficient: float  #: C_dt [-]
+    added_mass_coefficient: float  #: C_a, on the material area m/rho_c [-]
+    tangential_added_mass_coefficient: float  #: [-]
+    internal_damping_ratio: float  #: axial damping ratio [-]
+
+    def weight_in_water(self, environment: Environment) -> float:
+        """Submerged weight per unstretched length, m g (1 - rho_w / rho_c) [N/m]."""
+        return (self.mass_per_length * environment.gravity
+                * (1.0 - environment.water_density / self.material_density))
+
+    @property
+    def axial_wave_speed(self) -> float:
+        """Longitudinal (snap) wave celerity sqrt(EA / m) [m/s]."""
+        return float(np.sqrt(self.axial_stiffness / self.mass_per_length))
+
+
+@dataclass(frozen=True)
+class QuasiStaticSettings:
+    """Numerics of the quasi-static catenary (``[lines.quasi_static]``)."""
+
+    tolerance: float  #: Newton stops when the end-point mismatch is below tolerance * L [-]
+    max_iterations: int
+    seabed_friction: bool  #: apply seabed friction on the resting length
+
+
+@dataclass(frozen=True)
+class Line:
+    """One mooring line; ``fairlead`` is the mean position in a forced-motion run."""
+
+    name: str
+    line_type: LineType
+    length: float  #: unstretched [m]
+    anchor: tuple[float, float, float]  #: [m]
+    fairlead: tuple[float, float, float]  #: [m]
+    model: str
+    quasi_static: QuasiStaticSettings
+
+    @property
+    def span(self) -> float:
+        """Straight distance from anchor to fairlead [m]."""
+        return float(np.linalg.norm(np.subtract(self.fairlead, self.anchor)))
+
+
+@dataclass(frozen=True)
+class CircularMotion:
+    """Fairlead moved on a circle in the vertical plane of each line.
+
+    With phase angle phi = 2 pi t / period + phase (phi = 0 at the top of the circle), the
+    displacement is r (s sin(phi) e_h + cos(phi) e_z), where e_h points horizontally away from the
+    anchor and s = +1 for ``away-from-anchor-at-top`` (the end moves away from the anchor at the
+    top), -1 for ``toward-anchor-at-top``.
+    """
+
+    radius: float  #: [m]
+    period: float  #: [s]
+    sense: str
+    phase: float  #: [rad], 0 = top of the circle at t = 0
+    ramp_duration: float  #: [s]
+    kind: str = "circular"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """Period of the motion [s]."""
+        return self.period
+
+
+@dataclass(frozen=True)
+class HarmonicMotion:
+    """Independent harmonic motion per global axis: a_i sin(2 pi t / T_i + phase_i)."""
+
+    amplitude: tuple[float, float, float]  #: [m]
+    period: tuple[float, float, float]  #: [s]
+    phase: tuple[float, float, float]  #: [rad]
+    ramp_duration: float  #: [s]
+    kind: str = "harmonic"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """Common period of the moving axes [s], or None when they differ."""
+        periods = {p for a, p in zip(self.amplitude, self.period) if a != 0.0}
+        if len(periods) == 1:
+            return periods.pop()
+        return None
+
+
+@dataclass(frozen=True)
+class TableMotion:
+    """Displacement time history from a CSV file (columns ``time, x, y, z``), linearly
+    interpolated."""
+
+    file: str  #: resolved path of the CSV file
+    time: NDArray[np.float64] = field(repr=False)  #: [s]
+    displacement: NDArray[np.float64] = field(repr=False)  #: (n, 3) [m]
+    ramp_duration: float = 0.0  #: [s]
+    kind: str = "table"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """A table has no declared period."""
+        return None
+
+
+Motion = CircularMotion | HarmonicMotion | TableMotion
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """Time span and output sampling."""
+
+    duration: float  #: [s]
+    output_interval: float  #: [s]
+
+
+@dataclass(frozen=True)
+class Case:
+    """A validated case.
+
+    Attributes
+    ----------
+    source
+        Path of the case file.
+    text
+        The case file's text, as read.
+    overrides
+        The ``--set`` assignments applied, in order.
+    motion
+        The prescribed fairlead motion, or None for fixed fairleads.
+    """
+
+    title: str
+    source: str
+    text: str
+    overrides: tuple[str, ...]
+    environment: Environment
+    seabed: Seabed
+    line_types: dict[str, LineType]
+    lines: tuple[Line, ...]
+    motion: Motion | None
+    simulation: Simulation
+    description: str = ""
+
+    @property
+    def line_names(self) -> list[str]:
+        """Names of the lines, in file order."""
+        return [line.name for line in self.lines]

@@ -1,0 +1,163 @@
+"""The ``floatmoor`` command line.
+
+``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
+runs it. Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
+exits with status 2, without a traceback and without writing output. A run that fails (no valid
+line state) or is interrupted writes its partial results and exits with 1 or 130.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from floatmoor._version import __version__
+from floatmoor.case.load import load_case
+from floatmoor.case.schema import Case
+from floatmoor.errors import CaseError, FloatmoorError, SolverError
+
+__all__ = ["main"]
+
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="floatmoor", description=(
+        "Time-domain simulation of floating structures and their mooring lines."))
+    parser.add_argument("--version", action="version", version=f"floatmoor {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    def add_case(p: argparse.ArgumentParser) -> None:
+        p.add_argument("case", help="TOML case file")
+        p.add_argument("--set", dest="overrides", action="append", default=[],
+                       metavar="KEY=VALUE", help="override a key, VALUE written as a TOML value "
+                       "(e.g. --set motion.period=3.5, --set 'lines.chain.model=\"quasi-static\"')")
+
+    check = sub.add_parser("check", help="validate a case and print derived quantities")
+    add_case(check)
+    run = sub.add_parser("run", help="run a case")
+    add_case(run)
+    run.add_argument("-o", "--output", metavar="OUT.nc",
+                     help="netCDF result file (default: the case name with .nc, here)")
+    run.add_argument("--plot", metavar="OUT.png", help="plot the tension histories")
+    run.add_argument("--json", action="store_true",
+                     help="print the summary as JSON on standard output")
+    run.add_argument("--quiet", action="store_true", help="no progress reports")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``floatmoor`` command; returns the exit status."""
+    args = _parser().parse_args(argv)
+    try:
+        if args.command == "check":
+            return _check(args)
+        return _run(args)
+    except CaseError as err:
+        print(f"floatmoor: error: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+
+
+def _check(args: argparse.Namespace) -> int:
+    case = load_case(args.case, args.overrides)
+    print(f"{args.case}: valid case \"{case.title}\"")
+    print(_describe(case))
+    return EXIT_OK
+
+
+def _describe(case: Case) -> str:
+    """Derived quantities: weights, wave speeds, static tensions at the mean position."""
+    from floatmoor.simulation.forced import build_line_models
+
+    rows = [f"  {'line':<14}{'model':<14}{'length':>9}{'span':>9}{'w [N/m]':>10}"
+            f"{'c_axial':>10}{'T_fair':>11}{'T_anch':>11}{'on seabed':>11}"]
+    for line, model in zip(case.lines, build_line_models(case)):
+        try:
+            sol = model.solve(np.asarray(line.fairlead))
+            static = (f"{sol.fairlead_tension:>11.5g}{sol.anchor_tension:>11.5g}"
+                      f"{sol.laid_length:>11.4g}")
+        except SolverError as err:
+            static = f"  static solution failed: {err}"
+        rows.append(f"  {line.name:<14}{line.model:<14}{line.length:>9.4g}{line.span:>9.4g}"
+                    f"{line.line_type.weight_in_water(case.environment):>10.4g}"
+                    f"{line.line_type.axial_wave_speed:>10.4g}{static}")
+    rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
+    if case.motion is not None:
+        rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
+                    f"duration {case.simulation.duration:g} s, output every "
+                    f"{case.simulation.output_interval:g} s")
+    return "\n".join(rows)
+
+
+def _output_path(args: argparse.Namespace, case: Case) -> Path:
+    path = Path(args.output) if args.output else Path(Path(case.source).stem + ".nc")
+    if not path.parent.is_dir():
+        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{path}'")
+    if path.is_dir():
+        raise CaseError("-o/--output", "", "a file name", f"the folder '{path}'")
+    return path
+
+
+def _run(args: argparse.Namespace) -> int:
+    from floatmoor.plot import SUPPORTED_FORMATS
+    from floatmoor.post.summary import format_summary, run_summary
+    from floatmoor.simulation.forced import run_forced_motion
+    from floatmoor.ui.progress import ProgressReporter
+
+    case = load_case(args.case, args.overrides)
+    output = _output_path(args, case)
+    if args.plot is not None:
+        plot = Path(args.plot)
+        if plot.suffix.lower() not in SUPPORTED_FORMATS or not plot.parent.is_dir():
+            raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
+                            + ") in an existing folder", f"'{plot}'")
+
+    progress = None if args.quiet else ProgressReporter(case.simulation.duration)
+    try:
+        result = run_forced_motion(case, output=output, progress=progress)
+    except SolverError as err:
+        _close(progress)
+        print(f"floatmoor: run failed: {err}\n  partial results written to {output}",
+              file=sys.stderr)
+        return EXIT_FAILED
+    except KeyboardInterrupt:
+        _close(progress)
+        print(f"floatmoor: interrupted; partial results written to {output}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    _close(progress)
+
+    summary = run_summary(case, result.dataset)
+    summary.update(output=str(output), wall_time_s=result.wall_time_s,
+                   simulated_time_s=result.simulated_time_s)
+    if args.plot is not None:
+        from floatmoor.plot import plot_tensions
+
+        ramp = case.motion.ramp_duration if case.motion is not None else 0.0
+        plot_tensions(result.dataset, args.plot, ramp_duration=ramp)
+        summary["plot"] = str(args.plot)
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(format_summary(summary))
+        print(f"simulated {result.simulated_time_s:.6g} s in {result.wall_time_s:.3g} s of wall "
+              f"time; results in {output}" + (f", plot in {args.plot}" if args.plot else ""))
+    return EXIT_OK
+
+
+def _close(progress: object) -> None:
+    if progress is not None:
+        progress.close()  # type: ignore[attr-defined]
+
+
+def run() -> None:  # pragma: no cover - console-script shim
+    """Console-script entry: exit with :func:`main`'s status."""
+    try:
+        sys.exit(main())
+    except FloatmoorError as err:
+        print(f"floatmoor: error: {err}", file=sys.stderr)
+        sys.exit(EXIT_FAILED)

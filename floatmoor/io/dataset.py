@@ -1,0 +1,79 @@
+"""Assembly of result datasets: labelled variables, units and provenance.
+
+Dimensions: ``line`` (names, with the line model as a ``model`` coordinate), ``time`` [s] and
+``component`` (x, y, z). Attributes: the title, the case file's path and text, the ``--set``
+overrides, the floatmoor and numba versions, the creation time (ISO 8601, UTC) and the run
+status (``complete``, ``interrupted ...`` or ``failed: ...``).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+from typing import Mapping
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from floatmoor._numba import numba_info
+from floatmoor._version import __version__
+from floatmoor.case.schema import Case
+from floatmoor.io.variables import attributes
+
+__all__ = ["build_result_dataset", "COMPONENTS"]
+
+COMPONENTS = ("x", "y", "z")
+
+_DIMS = {
+    1: ("line",),
+    2: ("line", "time"),
+    3: ("line", "time", "component"),
+}
+
+
+def build_result_dataset(case: Case, time: NDArray[np.float64],
+                         variables: Mapping[str, NDArray[np.floating]], *, status: str,
+                         extra_attrs: Mapping[str, str | float | int] | None = None) -> xr.Dataset:
+    """Label the arrays of a run.
+
+    Parameters
+    ----------
+    case
+        The case that was run.
+    time
+        Output times [s], shape (n,).
+    variables
+        Name (a key of :data:`~floatmoor.io.variables.VARIABLE_ATTRIBUTES`) -> array of shape
+        (line, time) or (line, time, component), already cut to ``n`` samples.
+    status
+        ``"complete"``, or how the run ended early.
+    extra_attrs
+        More dataset attributes (e.g. wall time).
+    """
+    coords = {
+        "time": ("time", np.asarray(time, dtype=float), attributes("time")),
+        "line": ("line", np.array(case.line_names, dtype=str), attributes("line")),
+        "component": ("component", np.array(COMPONENTS, dtype=str), attributes("component")),
+        "model": ("line", np.array([ln.model for ln in case.lines], dtype=str),
+                  attributes("model")),
+    }
+    data_vars = {}
+    for name, array in variables.items():
+        values = np.asarray(array)
+        if values.dtype.kind == "i":
+            values = values.astype(np.int32)  # netCDF-3 has no 64-bit integers
+        data_vars[name] = (_DIMS[values.ndim], values, attributes(name))
+    attrs: dict[str, str | float | int] = {
+        "title": case.title,
+        "case_file": case.source,
+        "case_toml": case.text,
+        "case_overrides": "\n".join(case.overrides) if case.overrides else "none",
+        "floatmoor_version": __version__,
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "status": status,
+        "Conventions": "CF-1.8",
+    }
+    attrs.update(numba_info())
+    if extra_attrs:
+        attrs.update(extra_attrs)
+    return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)

@@ -1,0 +1,48 @@
+"""Writing and reading result datasets as netCDF.
+
+Files are netCDF-3 (64-bit offset) written with xarray's ``scipy`` engine, the one engine that
+floatmoor's own dependencies provide, so every installation can read every file. Writes are
+atomic: the dataset goes to a temporary file beside the target, which then replaces it, so a
+reader (or an interrupted run) never sees a half-written file.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import xarray as xr
+
+__all__ = ["write_dataset", "read_dataset", "NETCDF_ENGINE", "NETCDF_FORMAT"]
+
+NETCDF_ENGINE = "scipy"
+NETCDF_FORMAT = "NETCDF3_64BIT"
+
+
+def write_dataset(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
+    """Write ``dataset`` to ``path`` atomically.
+
+    Parameters
+    ----------
+    dataset
+        Real-valued dataset (netCDF-3 stores no complex numbers and no 64-bit integers).
+    path
+        Target file; its folder must exist.
+    """
+    target = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
+    os.close(fd)
+    try:
+        dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT)
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def read_dataset(path: str | os.PathLike[str]) -> xr.Dataset:
+    """Read a result dataset fully into memory (the file is closed on return)."""
+    with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
+        return ds.load()

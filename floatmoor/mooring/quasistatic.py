@@ -1,0 +1,102 @@
+"""The quasi-static line model: an elastic catenary in equilibrium at every instant.
+
+The line has no memory beyond the Newton warm start: its fairlead and anchor forces are those
+of the static elastic catenary with seabed contact (and optional seabed friction) for the
+current fairlead position (physics.md section 3). It neglects line inertia and drag, which is
+why it underestimates dynamic tension (quasi-dynamic paper, section 5).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.case.schema import Environment, Line, Seabed
+from floatmoor.errors import SolverError
+from floatmoor.mooring._catenary_kernels import N_OUT_3D
+from floatmoor.mooring._quasistatic_kernels import quasi_static_series
+from floatmoor.mooring.catenary import CatenarySolution, describe_failure, solve_catenary
+
+__all__ = ["QuasiStaticLine"]
+
+
+class QuasiStaticLine:
+    """A mooring line modelled as a quasi-static elastic catenary.
+
+    Parameters
+    ----------
+    line
+        The line's definition.
+    environment
+        Water density and depth, gravity.
+    seabed
+        Its friction coefficient acts on the resting length when
+        ``line.quasi_static.seabed_friction`` is true.
+    """
+
+    model = "quasi-static"
+
+    def __init__(self, line: Line, environment: Environment, seabed: Seabed) -> None:
+        self.line = line
+        self.name = line.name
+        self.anchor = np.asarray(line.anchor, dtype=float)
+        self.length = line.length
+        self.axial_stiffness = line.line_type.axial_stiffness
+        self.weight = line.line_type.weight_in_water(environment)
+        self.friction = seabed.friction_coefficient if line.quasi_static.seabed_friction else 0.0
+        self.seabed_z = environment.seabed_z
+        self.tolerance = line.quasi_static.tolerance
+        self.max_iterations = line.quasi_static.max_iterations
+        self._warm = np.full(2, np.nan)
+        self._work = np.zeros(N_OUT_3D)
+        self._failure = np.zeros(2, dtype=np.int64)
+        #: Index in the last path where the solve failed, -1 if it did not.
+        self.failed_index = -1
+
+    def solve(self, fairlead: NDArray[np.float64]) -> CatenarySolution:
+        """Static solution for one fairlead position (warm-started, updates the warm start)."""
+        guess = None if not np.all(np.isfinite(self._warm)) else (self._warm[0], self._warm[1])
+        solution = solve_catenary(self.anchor, np.asarray(fairlead, dtype=float), self.length,
+                                  self.axial_stiffness, self.weight, self.friction,
+                                  seabed_z=self.seabed_z, initial_guess=guess,
+                                  tol=self.tolerance, max_iter=self.max_iterations)
+        self._warm[:] = (solution.horizontal_tension, solution.fairlead_vertical_tension)
+        return solution
+
+    def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
+                   fairlead_force: NDArray[np.float64], anchor_force: NDArray[np.float64],
+                   laid_length: NDArray[np.float64], iterations: NDArray[np.float64]) -> None:
+        """Solve along a fairlead path, writing into the given arrays.
+
+        Parameters
+        ----------
+        time
+            Times of the path [s], shape (n,), used in error messages.
+        path
+            Fairlead positions [m], shape (n, 3).
+        fairlead_force, anchor_force
+            Outputs [N], shape (n, 3).
+        laid_length, iterations
+            Outputs, shape (n,).
+
+        Raises
+        ------
+        SolverError
+            Naming the line, the time and why the catenary has no solution there; the outputs
+            before that time are valid.
+        """
+        index = quasi_static_series(self.anchor, np.ascontiguousarray(path), self.length,
+                                    self.axial_stiffness, self.weight, self.friction,
+                                    self.seabed_z, self.tolerance, self.max_iterations,
+                                    self._warm, self._work, fairlead_force, anchor_force,
+                                    laid_length, iterations, self._failure)
+        self.failed_index = index
+        if index >= 0:
+            status = int(self._failure[1])
+            point = path[index]
+            span = np.subtract(point, self.anchor)
+            reason = describe_failure(status, float(np.hypot(span[0], span[1])), float(span[2]),
+                                      self.length, self.axial_stiffness, self.weight)
+            raise SolverError(f"line '{self.name}' (quasi-static): fairlead force at t = "
+                              f"{time[index]:.6g} s, fairlead at {np.array2string(point, precision=6)}"
+                              f" m: {reason}")

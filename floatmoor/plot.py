@@ -1,0 +1,50 @@
+"""Plots of result datasets (matplotlib is imported only when a plot is asked for)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import xarray as xr
+
+__all__ = ["plot_tensions", "SUPPORTED_FORMATS"]
+
+#: File formats the Agg-based backends write.
+SUPPORTED_FORMATS = (".png", ".pdf", ".svg")
+
+
+def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float = 0.0) -> None:
+    """Fairlead and anchor tension histories of every line, one panel per line.
+
+    Parameters
+    ----------
+    dataset
+        A result dataset.
+    path
+        Image file (.png, .pdf or .svg).
+    ramp_duration
+        The motion ramp, shaded [s].
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    lines = list(dataset["line"].values)
+    fig, axes = plt.subplots(len(lines), 1, figsize=(9.0, 2.8 * len(lines) + 0.6), sharex=True,
+                             squeeze=False)
+    time = dataset["time"].values
+    for ax, name in zip(axes[:, 0], lines):
+        ax.plot(time, dataset["fairlead_tension"].sel(line=name), lw=1.0, label="fairlead")
+        ax.plot(time, dataset["anchor_tension"].sel(line=name), lw=1.0, label="anchor")
+        if ramp_duration > 0.0:
+            ax.axvspan(0.0, ramp_duration, color="0.9", label="ramp")
+        model = str(dataset["model"].sel(line=name).values)
+        ax.set_ylabel("tension [N]")
+        ax.set_title(f"line {name} ({model})", fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(loc="upper right", fontsize=8)
+    axes[-1, 0].set_xlabel("time [s]")
+    fig.suptitle(str(dataset.attrs.get("title", "")), fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

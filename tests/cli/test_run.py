@@ -1,0 +1,115 @@
+"""``floatmoor run`` and ``check`` end to end: output file, attributes, summary, plot,
+progress, and the partial file left by an interrupted or failed run."""
+
+from __future__ import annotations
+
+import io
+import json
+
+import numpy as np
+import pytest
+
+import floatmoor
+from floatmoor.cli import main
+from floatmoor.errors import SolverError
+from floatmoor.io.netcdf import read_dataset
+from floatmoor.io.variables import VARIABLE_ATTRIBUTES
+from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.simulation import forced
+from floatmoor.ui.progress import ProgressReporter
+from tests.conftest import LINDAHL_CASE
+
+SHORT = ["--set", "simulation.duration=5.0"]  # ramp 2.5 s + 2 cycles of 1.25 s
+
+
+def test_run_writes_labelled_dataset_summary_and_plot(tmp_path, capsys):
+    out, png = tmp_path / "lindahl.nc", tmp_path / "lindahl.png"
+    status = main(["run", str(LINDAHL_CASE), *SHORT, "-o", str(out), "--plot", str(png),
+                   "--json", "--quiet"])
+    assert status == 0
+    summary = json.loads(capsys.readouterr().out)
+    stats = summary["lines"]["chain"]["fairlead_tension_N"]
+    assert stats["n_cycles"] == 2 and stats["window_start"] == 2.5
+    assert stats["min"] <= stats["mean"] <= stats["max"]
+    assert stats["mean_cycle_max"] == pytest.approx(stats["max"], rel=1e-3)  # periodic QS
+    assert summary["simulated_time_s"] == pytest.approx(5.0)
+    assert summary["wall_time_s"] > 0.0
+
+    ds = read_dataset(out)
+    assert ds.sizes["time"] == 2001 and list(ds["line"].values) == ["chain"]
+    for name in list(ds.data_vars) + list(ds.coords):
+        assert ds[name].attrs["units"] == VARIABLE_ATTRIBUTES[name]["units"], name
+        assert ds[name].attrs["long_name"], name
+    assert ds.attrs["case_toml"] == LINDAHL_CASE.read_text()
+    assert ds.attrs["case_overrides"] == "simulation.duration=5.0"
+    assert ds.attrs["floatmoor_version"] == floatmoor.__version__
+    assert ds.attrs["created"].endswith("+00:00") and ds.attrs["status"] == "complete"
+    np.testing.assert_allclose(ds["fairlead_tension"],
+                               np.linalg.norm(ds["fairlead_force"].values, axis=-1))
+    for name in ds.data_vars:
+        assert np.all(np.isfinite(ds[name].values))
+    assert png.stat().st_size > 10_000 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_text_summary_and_check(tmp_path, capsys):
+    assert main(["run", str(LINDAHL_CASE), *SHORT, "-o", str(tmp_path / "a.nc"), "--quiet"]) == 0
+    text = capsys.readouterr().out
+    assert "chain" in text and "quasi-static" in text and "cycle max" in text
+    assert main(["check", str(LINDAHL_CASE)]) == 0
+    text = capsys.readouterr().out
+    assert "valid case" in text and "chain" in text
+
+
+def test_interrupted_run_leaves_valid_partial_file(tmp_path, capsys, monkeypatch):
+    calls = []
+
+    def interrupt(self, simulated):
+        calls.append(simulated)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(ProgressReporter, "__call__", interrupt)
+    out = tmp_path / "partial.nc"
+    assert main(["run", str(LINDAHL_CASE), "-o", str(out)]) == 130
+    assert "interrupted" in capsys.readouterr().err
+    ds = read_dataset(out)
+    assert ds.attrs["status"].startswith("interrupted")
+    assert ds.sizes["time"] == 2 * forced.CHUNK_SAMPLES
+    assert all(np.all(np.isfinite(ds[v].values)) for v in ds.data_vars)
+
+
+def test_failed_run_names_line_time_quantity_and_keeps_partial(tmp_path, capsys, monkeypatch):
+    original = QuasiStaticLine.solve_path
+
+    def failing(self, time, path, *arrays):
+        stop = int(np.searchsorted(time, 7.0))
+        if stop < time.size:
+            original(self, time[:stop], path[:stop], *(a[:stop] for a in arrays))
+            for a in arrays:
+                a[stop:] = np.nan  # what a diverging model would leave behind
+            self.failed_index = stop
+            raise SolverError(f"line '{self.name}' (quasi-static): fairlead force at "
+                              f"t = {time[stop]:.6g} s: no solution")
+        original(self, time, path, *arrays)
+
+    monkeypatch.setattr(QuasiStaticLine, "solve_path", failing)
+    out = tmp_path / "failed.nc"
+    assert main(["run", str(LINDAHL_CASE), "-o", str(out), "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert "line 'chain'" in err and "t = 7 s" in err and "fairlead force" in err
+    ds = read_dataset(out)
+    assert ds.attrs["status"].startswith("failed")
+    assert ds["time"].values[-1] < 7.0
+    assert all(np.all(np.isfinite(ds[v].values)) for v in ds.data_vars)
+
+
+def test_progress_reports_on_long_runs():
+    stream = io.StringIO()
+    reporter = ProgressReporter(10.0, stream=stream, delay=0.0, interval=0.0)
+    reporter(2.5)
+    reporter(5.0)
+    lines = stream.getvalue().splitlines()
+    assert len(lines) == 2 and "t = 5 / 10 s (50%)" in lines[1]
+    quiet = io.StringIO()
+    ProgressReporter(10.0, stream=quiet, delay=60.0)(5.0)  # short runs stay silent
+    assert quiet.getvalue() == ""

@@ -1,0 +1,30 @@
+"""Shared test configuration: strict floating point, a non-interactive matplotlib, paths."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+
+REPO = Path(__file__).resolve().parents[1]
+CASES = REPO / "cases"
+LINDAHL_CASE = CASES / "lindahl" / "lindahl_r0.20_T1.25.toml"
+REFERENCE = REPO.parent / "shared" / "reference"
+
+
+@pytest.fixture(autouse=True)
+def _strict_floating_point():
+    """Turn floating-point trouble (overflow, invalid, division by zero) into errors."""
+    old = np.seterr(all="raise", under="ignore")
+    yield
+    np.seterr(**old)
+
+
+@pytest.fixture
+def rng() -> np.random.Generator:
+    """A seeded random generator, so failures reproduce."""
+    return np.random.default_rng(20261122)

@@ -1,0 +1,94 @@
+"""Loading valid case files: values, defaults, unit conversion, overrides."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from floatmoor.case.load import load_case
+from floatmoor.case.schema import CircularMotion, HarmonicMotion, TableMotion
+from floatmoor.errors import CaseError
+from tests.conftest import LINDAHL_CASE
+
+
+def test_lindahl_case_values():
+    case = load_case(LINDAHL_CASE)
+    assert case.environment.water_depth == 3.0
+    assert case.environment.seabed_z == -3.0
+    (line,) = case.lines
+    assert line.name == "chain" and line.model == "quasi-static"
+    assert line.anchor == (0.0, 0.0, -3.0) and line.fairlead == (32.554, 0.0, 0.3)
+    assert line.line_type.tangential_added_mass_coefficient == 0.0  # default
+    # wave celerity sqrt(EA/m) about 350 m/s (cases.md case A)
+    assert line.line_type.axial_wave_speed == pytest.approx(349.64, abs=0.01)
+    # submerged weight m g (1 - rho_w/rho_c)
+    assert line.line_type.weight_in_water(case.environment) == pytest.approx(
+        0.0818 * 9.81 * (1 - 1000 / 7800), rel=1e-14)
+    assert isinstance(case.motion, CircularMotion)
+    assert case.motion.cycle_period == 1.25
+    assert "Lindahl" in case.text and case.overrides == ()
+
+
+def test_overrides_by_name_index_and_new_subtable():
+    case = load_case(LINDAHL_CASE, [
+        "motion.period=3.5", "lines.chain.length=33.5", "lines.0.anchor=[0.1, 0.0, -3.0]",
+        "lines.chain.quasi_static.tolerance=1e-10", "motion.phase_deg=90.0",
+    ])
+    assert case.motion.period == 3.5
+    assert case.lines[0].length == 33.5 and case.lines[0].anchor == (0.1, 0.0, -3.0)
+    assert case.lines[0].quasi_static.tolerance == 1e-10
+    assert case.motion.phase == pytest.approx(math.pi / 2)  # degrees in, radians inside
+    assert case.overrides[0] == "motion.period=3.5"
+
+
+def test_override_replacing_the_motion_table(tmp_path):
+    case = load_case(LINDAHL_CASE, [
+        'motion={kind = "harmonic", amplitude = [0.1, 0.0, 0.05], period = 2.0}'])
+    assert isinstance(case.motion, HarmonicMotion)
+    assert case.motion.period == (2.0, 2.0, 2.0) and case.motion.cycle_period == 2.0
+    assert case.motion.ramp_duration == 2.0  # default: the longest moving period
+
+
+def test_case_without_motion_is_static():
+    text = LINDAHL_CASE.read_text()
+    start, end = text.index("[motion]"), text.index("[simulation]")
+    from floatmoor.case.load import parse_case
+    import tomllib
+
+    case = parse_case(tomllib.loads(text[:start] + text[end:]), source="inline")
+    assert case.motion is None
+
+
+def test_table_motion_from_csv(tmp_path):
+    csv = tmp_path / "motion.csv"
+    csv.write_text("# surge and heave\ntime,x,y,z\n0.0,0,0,0\n10.0,0.5,0,-0.1\n20.0,0,0,0\n")
+    case_file = tmp_path / "case.toml"
+    text = LINDAHL_CASE.read_text()
+    start, end = text.index("[motion]"), text.index("[simulation]")
+    case_file.write_text(text[:start] + '[motion]\nkind = "table"\nfile = "motion.csv"\n\n'
+                         + text[end:])
+    case = load_case(case_file)
+    assert isinstance(case.motion, TableMotion)
+    np.testing.assert_array_equal(case.motion.time, [0.0, 10.0, 20.0])
+    np.testing.assert_array_equal(case.motion.displacement[1], [0.5, 0.0, -0.1])
+    # a table shorter than the run is an error naming simulation.duration
+    with pytest.raises(CaseError) as info:
+        load_case(case_file, ["simulation.duration=25.0"])
+    assert info.value.key == "simulation.duration"
+    # a malformed row names the CSV file and the row
+    csv.write_text("time,x,y,z\n0.0,0,0,0\n10.0,abc,0,0\n")
+    with pytest.raises(CaseError) as info:
+        load_case(case_file)
+    assert info.value.key == "motion.file" and "row 3" in info.value.expected
+
+
+def test_loading_does_not_mutate_input():
+    import tomllib
+    from floatmoor.case.load import parse_case
+
+    raw = tomllib.loads(LINDAHL_CASE.read_text())
+    before = repr(raw)
+    parse_case(raw, source="inline", overrides=("motion.period=2.0",))
+    assert repr(raw) == before
