@@ -42,7 +42,7 @@ def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float
         ax.set_ylabel("tension [N]")
         ax.set_title(f"line {name} ({model})", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.005, 1.0), fontsize=8)
     axes[-1, 0].set_xlabel("time [s]")
     fig.suptitle(str(dataset.attrs.get("title", "")), fontsize=11)
     fig.tight_layout()

@@ -55,12 +55,12 @@ class QuasiStaticLine:
 
     def solve(self, fairlead: NDArray[np.float64]) -> CatenarySolution:
         """Static solution for one fairlead position (warm-started, updates the warm start)."""
-        guess = None if not np.all(np.isfinite(self._warm)) else (self._warm[0], self._warm[1])
+        guess = (self._warm[0], self._warm[1]) if np.all(np.isfinite(self._warm)) else None
         solution = solve_catenary(self.anchor, np.asarray(fairlead, dtype=float), self.length,
                                   self.axial_stiffness, self.weight, self.friction,
                                   seabed_z=self.seabed_z, initial_guess=guess,
                                   tol=self.tolerance, max_iter=self.max_iterations)
-        self._warm[:] = (solution.horizontal_tension, solution.fairlead_vertical_tension)
+        self._warm[:] = solution.warm_start  # upper-end (HF, VF), whichever end is which
         return solution
 
     def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
