@@ -1,45 +1,11 @@
-"""Numba kernels of the quasi-static elastic catenary with seabed contact and friction.
+"""Numba solvers of the quasi-static elastic catenary with seabed contact and friction.
 
-The equations are the classic elastic catenary (Irvine 1981, *Cable Structures*) with the
-resting length and Coulomb seabed friction of the FAST v7 catenary (Jonkman 2007,
-NREL/TP-500-41958), exactly as written in ``style.md`` 5.1 item 1, which this module quotes
-below. They are solved for the fairlead tension components (HF, VF) given the fairlead position
-relative to the anchor.
-
-Symbols (SI units)
-------------------
-======  =============================================================================  ======
-XF      horizontal distance from the anchor (end A) to the fairlead (end B)            m
-ZF      height of the fairlead above the anchor                                        m
-L       unstretched line length                                                        m
-EA      axial stiffness                                                                N
-W       submerged weight per unstretched length (> 0; buoyant lines are rejected)      N/m
-CB      seabed (Coulomb) friction coefficient                                          -
-H, HF   horizontal tension (constant along the suspended part)                         N
-VF      vertical tension at the fairlead, > 0 when the line pulls the fairlead down    N
-HA, VA  anchor force components: towards the fairlead / upward positive               N
-LB      unstretched length resting on the seabed                                       m
-s       unstretched arc length from the anchor                                         m
-======  =============================================================================  ======
-
-Equations (anchor at the origin, V(s) = VA + W s the vertical tension along a free span):
-
-* fully suspended, VA = VF - W L (style.md 5.1 item 1, first pair)::
-
-      X = (H/W) [asinh(VF/H) - asinh(VA/H)] + H L / EA
-      Z = (H/W) [sqrt(1 + (VF/H)^2) - sqrt(1 + (VA/H)^2)] + (VF L - W L^2 / 2) / EA
-
-* touchdown (seabed at the anchor, VF < W L), LB = L - VF/W (style.md 5.1 item 1, second
-  pair and friction term)::
-
-      X = LB + (H/W) asinh(VF/H) + H L / EA
-          + (CB W / 2EA) [-LB^2 + (LB - H/(CB W)) max(LB - H/(CB W), 0)]
-      Z = (H/W) [sqrt(1 + (VF/H)^2) - 1] + VF^2 / (2 EA W)
-      HA = max(H - CB W LB, 0),  VA = 0
-
-The kernels never evaluate these in the forms above: differences of nearly equal terms are
-rewritten without cancellation (see :func:`_asinh_diff` and :func:`_eval_suspended`), which keeps
-the equations exact to a few ulps of L for taut, nearly vertical and nearly slack lines alike.
+This module holds the status codes (``CAT_*``), profile codes (``PROFILE_*``), the layouts of the
+``out`` arrays, the tolerances and the solvers: :func:`catenary_solve` (2-D) and
+:func:`catenary_solve_3d` find the fairlead tension components (HF, VF) given the fairlead
+position relative to the anchor. The equations they solve, with their symbols, are stated and
+evaluated in :mod:`floatmoor.mooring._catenary_equations`; the line profile of a solution is
+computed by :mod:`floatmoor.mooring._catenary_profile`.
 
 Numerical method (:func:`catenary_solve`): the degenerate limits (line entirely on the seabed,
 slack line hanging vertically onto the seabed, exactly vertical line) are solved in closed form.
@@ -59,6 +25,7 @@ from __future__ import annotations
 import math
 
 from floatmoor._numba import jit
+from floatmoor.mooring._catenary_equations import _asinh_diff, _eval, _eval_touchdown
 
 # --------------------------------------------------------------------------- status codes
 CAT_OK = 0
@@ -124,107 +91,6 @@ MAX_LOG_STEP = 4.6
 MAX_BACKTRACK = 40
 MAX_BRACKET_ITER = 200
 EPS = 2.220446049250313e-16
-
-
-# =========================================================================== closed-form pieces
-@jit(error_model="numpy")
-def _asinh_diff(Vt, Vb, H, dV):
-    """asinh(Vt/H) - asinh(Vb/H) with dV = Vt - Vb > 0 supplied exactly.
-
-    For Vt, Vb of one sign the difference is asinh(D) with
-    D = sinh(asinh(a) - asinh(b)) = a sqrt(1+b^2) - b sqrt(1+a^2) = dV (Vt+Vb) / (Vt hb + Vb ha),
-    ha = hypot(H, Vt), hb = hypot(H, Vb): free of cancellation for taut lines. Of opposite signs
-    the two terms add and the direct form is exact (it needs H > 0).
-    """
-    if Vt * Vb >= 0.0:
-        ha = math.hypot(H, Vt)
-        hb = math.hypot(H, Vb)
-        den = Vt * hb + Vb * ha
-        if den == 0.0:
-            return 0.0
-        return math.asinh(dV * (Vt + Vb) / den)
-    return math.asinh(Vt / H) - math.asinh(Vb / H)
-
-
-@jit(error_model="numpy")
-def _eval_suspended(H, V, L, EA, W):
-    """X, Z and the Jacobian of the fully suspended line (elastic catenary, Irvine), H > 0.
-
-    Returns (X, Z, dX/dH, dX/dV, dZ/dH, dZ/dV, LB=0).
-    """
-    WL = W * L
-    VA = V - WL
-    ha = math.hypot(H, V)
-    hb = math.hypot(H, VA)
-    asd = _asinh_diff(V, VA, H, WL)
-    # g = a/sqrt(1+a^2) - b/sqrt(1+b^2) = V/ha - VA/hb, without cancellation when of one sign:
-    # V hb - VA ha = H^2 (V^2 - VA^2) / (V hb + VA ha)
-    if V * VA >= 0.0:
-        den = V * hb + VA * ha
-        g = H * H * WL * (V + VA) / (den * ha * hb) if den != 0.0 else 0.0
-    else:
-        g = V / ha - VA / hb
-    X = H / W * asd + H * L / EA
-    # (H/W)(sqrt(1+a^2) - sqrt(1+b^2)) = (ha - hb)/W = L (V + VA) / (ha + hb)
-    Z = L * (V + VA) / (ha + hb) + L * (V + VA) / (2.0 * EA)
-    XH = (asd - g) / W + L / EA
-    # (H/W)(1/ha - 1/hb), with hb - ha = -W L (V + VA) / (ha + hb); symmetric: dX/dV = dZ/dH
-    XV = -H * L * (V + VA) / (ha * hb * (ha + hb))
-    ZV = g / W + L / EA
-    return X, Z, XH, XV, XV, ZV, 0.0
-
-
-@jit(error_model="numpy")
-def _seabed_stretch(H, LB, EA, W, CB):
-    """Elastic stretch of the resting length and its partials (the friction term of style.md 5.1).
-
-    Tension along the resting part drops from H at touchdown by CB W per unit length towards
-    the anchor, floored at zero: T(s) = max(H - CB W (LB - s), 0).
-    Returns (stretch, d/dH, d/dLB).
-    """
-    fr = CB * W * LB
-    if fr <= H:  # anchor tension HA = H - CB W LB >= 0 (always so without friction)
-        return (H - 0.5 * fr) * LB / EA, LB / EA, (H - fr) / EA
-    # tension vanishes at xB = LB - H/(CB W) > 0: stretch = integral of the linear part
-    return H * H / (2.0 * CB * W * EA), H / (CB * W * EA), 0.0
-
-
-@jit(error_model="numpy")
-def _eval_touchdown(H, V, L, EA, W, CB):
-    """X, Z and Jacobian of the line partly resting on the seabed (touchdown, Jonkman 2007).
-
-    0 <= V < W L, H > 0. Returns (X, Z, dX/dH, dX/dV, dZ/dH, dZ/dV, LB).
-    """
-    Ls = V / W  # suspended unstretched length
-    LB = L - Ls
-    ha = math.hypot(H, V)
-    a = V / H
-    asv = math.asinh(a)
-    sb, sbH, sbLB = _seabed_stretch(H, LB, EA, W, CB)
-    X = LB + sb + H / W * asv + H * Ls / EA
-    # (H/W)(sqrt(1 + a^2) - 1) = (ha - H)/W = V^2 / (W (ha + H))
-    c = V * V / (W * (ha + H))
-    Z = c + V * Ls / (2.0 * EA)
-    # (1/W)(asinh(a) - a/sqrt(1+a^2)) + Ls/EA + d(stretch)/dH
-    XH = (asv - V / ha) / W + Ls / EA + sbH
-    # dLB/dV = -1/W;  -1/W + (1/W)/sqrt(1+a^2) = -(ha - H)/(W ha) = -c/ha
-    cz = c / ha
-    XV = -cz + H / (W * EA) - sbLB / W
-    ZH = -cz
-    ZV = V / (W * ha) + V / (W * EA)
-    return X, Z, XH, XV, ZH, ZV, LB
-
-
-@jit(error_model="numpy")
-def _eval(H, V, L, EA, W, CB, seabed):
-    """Dispatch on the profile type: touchdown when the anchor rests on the seabed and VF < W L.
-
-    Both branches agree in value and first derivatives at VF = W L (VA = 0, LB = 0), so the
-    Newton iteration may cross between them.
-    """
-    if seabed != 0 and V < W * L:
-        return _eval_touchdown(H, V, L, EA, W, CB)
-    return _eval_suspended(H, V, L, EA, W)
 
 
 # =========================================================================== closed-form limits
@@ -768,88 +634,6 @@ def catenary_solve_3d(anchor, fairlead, L, EA, W, CB, seabed_z, HF0, VF0, tol, m
     return CAT_OK
 
 
-# =========================================================================== profiles
-@jit(error_model="numpy")
-def _profile_point(s, XF, L, EA, W, CB, seabed, H, V):
-    """Position (x, z) relative to end A and effective tension at unstretched arc length s."""
-    WL = W * L
-    if seabed != 0 and V < WL:
-        LB = L - V / W
-        if not (H > 0.0):
-            # slack: the resting part is not straight; spread it evenly up to below the fairlead
-            if s <= LB:
-                return (XF * s / LB if LB > 0.0 else 0.0), 0.0, 0.0
-            sig = s - LB
-            return XF, sig + W * sig * sig / (2.0 * EA), W * sig
-        if s <= LB:
-            fr = CB * W * LB
-            if fr <= H:
-                T = H - CB * W * (LB - s)
-                x = s + ((H - fr) * s + 0.5 * CB * W * s * s) / EA
-            else:
-                xB = LB - H / (CB * W)
-                if s <= xB:
-                    T = 0.0
-                    x = s
-                else:
-                    T = CB * W * (s - xB)
-                    x = s + 0.5 * CB * W * (s - xB) * (s - xB) / EA
-            return x, 0.0, T
-        sig = s - LB
-        Vs = W * sig
-        hs = math.hypot(H, Vs)
-        sb = _seabed_stretch(H, LB, EA, W, CB)[0]
-        x = LB + sb + H / W * math.asinh(Vs / H) + H * sig / EA
-        z = Vs * Vs / (W * (hs + H)) + Vs * sig / (2.0 * EA)
-        return x, z, hs
-    # free span from A: V(s) = VA + W s (the suspended equations at arc length s)
-    VA = V - WL
-    Vs = VA + W * s
-    ha = math.hypot(H, Vs)
-    hb = math.hypot(H, VA)
-    x = H / W * _asinh_diff(Vs, VA, H, W * s) + H * s / EA if H > 0.0 else 0.0
-    den = ha + hb
-    zg = s * (Vs + VA) / den if den > 0.0 else 0.0
-    z = zg + (VA * s + 0.5 * W * s * s) / EA
-    return x, z, ha
-
-
-@jit(error_model="numpy")
-def catenary_profile(XF, ZF, L, EA, W, CB, seabed, HF, VF, s, x_out, z_out, T_out):
-    """Positions (x from A, z relative to A) and effective tension at arc lengths ``s``.
-
-    ``HF``, ``VF``: a solution of :func:`catenary_solve` for the same inputs.
-    """
-    for i in range(s.shape[0]):
-        x, z, T = _profile_point(s[i], XF, L, EA, W, CB, seabed, HF, VF)
-        x_out[i] = x
-        z_out[i] = z
-        T_out[i] = T
-
-
-@jit(error_model="numpy")
-def catenary_profile_3d(anchor, fairlead, L, EA, W, CB, seabed_z, HF, VF, s, pos_out, T_out):
-    """Global positions (n, 3) and effective tension at arc lengths ``s`` from ``anchor``.
-
-    ``HF``, ``VF``: ``out[I3_HF]``, ``out[I3_VF]`` of :func:`catenary_solve_3d` (upper end).
-    NaN when the geometry is invalid.
-    """
-    st, swapped, seabed, XF, ZF, ux, uy, lx, ly, lz = _plane_setup(anchor, fairlead, L, seabed_z)
-    for i in range(s.shape[0]):
-        if st != CAT_OK:
-            pos_out[i, 0] = math.nan
-            pos_out[i, 1] = math.nan
-            pos_out[i, 2] = math.nan
-            T_out[i] = math.nan
-            continue
-        si = L - s[i] if swapped else s[i]
-        x, z, T = _profile_point(si, XF, L, EA, W, CB, seabed, HF, VF)
-        pos_out[i, 0] = lx + x * ux
-        pos_out[i, 1] = ly + x * uy
-        pos_out[i, 2] = lz + z
-        T_out[i] = T
-
-
 __all__ = [
     "CAT_OK", "CAT_NOT_CONVERGED", "CAT_INVALID_INPUT", "CAT_BELOW_SEABED",
     "CAT_SAG_BELOW_SEABED",
@@ -860,5 +644,5 @@ __all__ = [
     "I3_FAIRLEAD_FORCE", "I3_ANCHOR_FORCE", "I3_HF", "I3_VF", "I3_HA", "I3_VA", "I3_LB",
     "I3_ITER", "I3_RESID", "I3_STIFFNESS", "I3_PROFILE", "I3_SWAPPED", "N_OUT_3D",
     "SEABED_CONTACT_TOL",
-    "catenary_solve", "catenary_solve_3d", "catenary_profile", "catenary_profile_3d",
+    "catenary_solve", "catenary_solve_3d",
 ]

@@ -3,7 +3,8 @@
 A mooring line of unstretched length L hangs between an anchor and a fairlead under its own
 submerged weight. Its shape and end forces follow the elastic catenary of Irvine (1981) with
 the resting length and seabed friction of Jonkman (2007), as written in ``style.md`` 5.1 item 1
-(see :mod:`floatmoor.mooring._catenary_kernels` for the equations and the solver). This module
+(see :mod:`floatmoor.mooring._catenary_equations` for the equations and
+:mod:`floatmoor.mooring._catenary_kernels` for the solver). This module
 wraps the compiled kernels for use from Python: it validates shapes, raises
 :class:`~floatmoor.errors.SolverError` with the reason on failure, and returns a
 :class:`CatenarySolution`. Time loops should call the kernels directly.
@@ -41,6 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.errors import SolverError
 from floatmoor.mooring import _catenary_kernels as _k
+from floatmoor.mooring import _catenary_profile as _p
 
 __all__ = [
     "DEFAULT_TOL", "DEFAULT_MAX_ITER", "STATUS_MESSAGES", "PROFILE_NAMES", "CatenarySolution",
@@ -285,7 +287,7 @@ def catenary_profile(
     positions = np.empty((s.size, 3))
     tensions = np.empty(s.size)
     hf, vf = solution.warm_start
-    _k.catenary_profile_3d(a, f, float(length), float(axial_stiffness), float(weight_per_length),
+    _p.catenary_profile_3d(a, f, float(length), float(axial_stiffness), float(weight_per_length),
                            float(friction_coefficient), float(seabed_z), hf, vf, s, positions,
                            tensions)
     return positions, tensions

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from floatmoor.mooring import _catenary_kernels as k
+from floatmoor.mooring import _catenary_profile as p
 from tests.oracles import catenary_numpy as oracle
 
 #: Both codes solve the same equations, the kernel to TOL and the oracle to machine precision
@@ -142,7 +143,7 @@ def test_profile_matches_oracle(solved):
         s = np.linspace(0.0, line.L, 13)
         s[1] = 1e-9 * line.L  # just off the anchor
         x, z, T = np.empty(13), np.empty(13), np.empty(13)
-        k.catenary_profile(line.XF, line.ZF, line.L, line.EA, line.W, line.CB, int(line.seabed),
+        p.catenary_profile(line.XF, line.ZF, line.L, line.EA, line.W, line.CB, int(line.seabed),
                            out[k.I_HF], out[k.I_VF], s, x, z, T)
         xr, zr, Tr = oracle.profile(line, ref, s)
         Tf = math.hypot(ref.HF, ref.VF)
@@ -205,9 +206,9 @@ def test_3d_kernel_is_the_2d_solution_in_the_line_plane(solved):
         s = np.linspace(0.0, line.L, 7)
         pos, T3 = np.empty((7, 3)), np.empty(7)
         x, z, T2 = np.empty(7), np.empty(7), np.empty(7)
-        k.catenary_profile_3d(anchor, fairlead, line.L, line.EA, line.W, line.CB, seabed_z,
+        p.catenary_profile_3d(anchor, fairlead, line.L, line.EA, line.W, line.CB, seabed_z,
                               out3[k.I3_HF], out3[k.I3_VF], s, pos, T3)
-        k.catenary_profile(XF, float(span[2]), line.L, line.EA, line.W, line.CB,
+        p.catenary_profile(XF, float(span[2]), line.L, line.EA, line.W, line.CB,
                            int(line.seabed), H, V, s, x, z, T2)
         expect = anchor + x[:, None] * u + z[:, None] * np.array([0.0, 0.0, 1.0])
         assert np.max(np.abs(pos - expect)) <= 1e-13 * (line.L + np.max(np.abs(anchor)))

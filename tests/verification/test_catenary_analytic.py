@@ -14,6 +14,7 @@ import pytest
 
 from floatmoor.errors import SolverError
 from floatmoor.mooring import _catenary_kernels as k
+from floatmoor.mooring import _catenary_profile as p
 from floatmoor.mooring.catenary import (
     STATUS_MESSAGES, catenary_profile, describe_failure, solve_catenary,
 )
@@ -132,7 +133,7 @@ def test_vertical_hanging_line_stretches_by_w_l2_over_2ea():
     # profile: T(s) = P + W s, z(s) = s + (P s + W s^2 / 2) / EA
     s = np.linspace(0.0, L, 9)
     x, z, T = np.empty(9), np.empty(9), np.empty(9)
-    k.catenary_profile(0.0, L + stretch + P * L / EA, L, EA, W, 0.0, 0, out[k.I_HF], out[k.I_VF],
+    p.catenary_profile(0.0, L + stretch + P * L / EA, L, EA, W, 0.0, 0, out[k.I_HF], out[k.I_VF],
                        s, x, z, T)
     np.testing.assert_allclose(T, P + W * s, rtol=HANGING_RTOL)
     np.testing.assert_allclose(z, s + (P * s + W * s**2 / 2) / EA, rtol=HANGING_RTOL, atol=1e-12)
