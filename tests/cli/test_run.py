@@ -113,3 +113,22 @@ def test_progress_reports_on_long_runs():
     quiet = io.StringIO()
     ProgressReporter(10.0, stream=quiet, delay=60.0)(5.0)  # short runs stay silent
     assert quiet.getvalue() == ""
+
+
+def test_results_are_written_as_the_run_goes(tmp_path):
+    """With a zero flush interval the file on disk holds every completed chunk mid-run."""
+    from floatmoor.case.load import load_case
+
+    out = tmp_path / "growing.nc"
+    seen = []
+
+    def look(simulated):
+        ds = read_dataset(out)
+        seen.append((ds.sizes["time"], ds.attrs["status"]))
+
+    case = load_case(LINDAHL_CASE)
+    result = forced.run_forced_motion(case, output=out, progress=look, flush_interval=0.0)
+    assert [n for n, _ in seen] == [forced.CHUNK_SAMPLES * (i + 1) for i in range(len(seen) - 1)] \
+        + [result.dataset.sizes["time"]]
+    assert all(status.startswith("running") for _, status in seen)
+    assert read_dataset(out).attrs["status"] == "complete"
