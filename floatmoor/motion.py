@@ -13,7 +13,8 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import CircularMotion, HarmonicMotion, Line, Motion, TableMotion
 
-__all__ = ["ramp", "horizontal_direction", "displacement", "fairlead_path"]
+__all__ = ["ramp", "ramp_rate", "horizontal_direction", "motion_state", "displacement",
+           "fairlead_path", "fairlead_state"]
 
 
 def ramp(t: NDArray[np.float64], duration: float) -> NDArray[np.float64]:
@@ -34,9 +35,18 @@ def horizontal_direction(line: Line) -> NDArray[np.float64] | None:
     return np.array([d[0] / norm, d[1] / norm, 0.0])
 
 
-def displacement(motion: Motion, t: NDArray[np.float64],
-                 direction: NDArray[np.float64] | None) -> NDArray[np.float64]:
-    """Ramped displacement of a fairlead at times ``t``.
+def ramp_rate(t: NDArray[np.float64], duration: float) -> NDArray[np.float64]:
+    """Time derivative of :func:`ramp` [1/s]."""
+    t = np.asarray(t, dtype=float)
+    if duration <= 0.0:
+        return np.zeros_like(t)
+    inside = (t > 0.0) & (t < duration)
+    return np.where(inside, 0.5 * np.pi / duration * np.sin(np.pi * t / duration), 0.0)
+
+
+def motion_state(motion: Motion, t: NDArray[np.float64], direction: NDArray[np.float64] | None
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Ramped displacement and its time derivative at times ``t``.
 
     Parameters
     ----------
@@ -49,35 +59,57 @@ def displacement(motion: Motion, t: NDArray[np.float64],
 
     Returns
     -------
-    ndarray
-        Displacements [m], shape (n, 3).
+    (ndarray, ndarray)
+        Displacements [m] and velocities [m/s], shape (n, 3) each.
     """
     t = np.asarray(t, dtype=float)
-    out = np.zeros((t.size, 3))
+    d = np.zeros((t.size, 3))
+    dd = np.zeros((t.size, 3))
     if isinstance(motion, CircularMotion):
         if direction is None:
             raise ValueError("circular motion needs a line with a horizontal span")
-        phi = 2.0 * np.pi * t / motion.period + motion.phase
+        omega = 2.0 * np.pi / motion.period
+        phi = omega * t + motion.phase
         sense = 1.0 if motion.sense == "away-from-anchor-at-top" else -1.0
-        horizontal = sense * motion.radius * np.sin(phi)
-        out[:, :] = horizontal[:, None] * direction[None, :]
-        out[:, 2] += motion.radius * np.cos(phi)
+        d[:, :] = (sense * motion.radius * np.sin(phi))[:, None] * direction[None, :]
+        d[:, 2] += motion.radius * np.cos(phi)
+        dd[:, :] = (sense * motion.radius * omega * np.cos(phi))[:, None] * direction[None, :]
+        dd[:, 2] -= motion.radius * omega * np.sin(phi)
     elif isinstance(motion, HarmonicMotion):
         for axis in range(3):
-            out[:, axis] = motion.amplitude[axis] * np.sin(
-                2.0 * np.pi * t / motion.period[axis] + motion.phase[axis])
+            omega = 2.0 * np.pi / motion.period[axis]
+            phase = omega * t + motion.phase[axis]
+            d[:, axis] = motion.amplitude[axis] * np.sin(phase)
+            dd[:, axis] = motion.amplitude[axis] * omega * np.cos(phase)
     elif isinstance(motion, TableMotion):
+        slopes = np.diff(motion.displacement, axis=0) / np.diff(motion.time)[:, None]
+        index = np.clip(np.searchsorted(motion.time, t, side="right") - 1, 0, len(slopes) - 1)
         for axis in range(3):
-            out[:, axis] = np.interp(t, motion.time, motion.displacement[:, axis])
+            d[:, axis] = np.interp(t, motion.time, motion.displacement[:, axis])
+            dd[:, axis] = slopes[index, axis]
     else:  # pragma: no cover - the loader admits no other kind
         raise TypeError(f"unknown motion {motion!r}")
-    out *= ramp(t, motion.ramp_duration)[:, None]
-    return out
+    r = ramp(t, motion.ramp_duration)[:, None]
+    dr = ramp_rate(t, motion.ramp_duration)[:, None]
+    return r * d, r * dd + dr * d
+
+
+def displacement(motion: Motion, t: NDArray[np.float64],
+                 direction: NDArray[np.float64] | None) -> NDArray[np.float64]:
+    """Ramped displacement of a fairlead at times ``t`` [m], shape (n, 3)."""
+    return motion_state(motion, t, direction)[0]
+
+
+def fairlead_state(motion: Motion | None, line: Line, t: NDArray[np.float64]
+                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Fairlead positions [m] and velocities [m/s] of ``line`` at times ``t``, (n, 3) each."""
+    base = np.broadcast_to(np.asarray(line.fairlead, dtype=float), (np.size(t), 3)).copy()
+    if motion is None:
+        return base, np.zeros_like(base)
+    d, dd = motion_state(motion, t, horizontal_direction(line))
+    return base + d, dd
 
 
 def fairlead_path(motion: Motion | None, line: Line, t: NDArray[np.float64]) -> NDArray[np.float64]:
     """Fairlead positions of ``line`` at times ``t`` [m], shape (n, 3)."""
-    base = np.broadcast_to(np.asarray(line.fairlead, dtype=float), (np.size(t), 3)).copy()
-    if motion is None:
-        return base
-    return base + displacement(motion, t, horizontal_direction(line))
+    return fairlead_state(motion, line, t)[0]

@@ -19,8 +19,9 @@ import numpy as np
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import ReadContext, TableReader
 from floatmoor.case.schema import (
-    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, Case, CircularMotion, Environment,
-    HarmonicMotion, Line, LineType, Motion, QuasiStaticSettings, Seabed, Simulation, TableMotion,
+    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, SEABED_CONTACT_METHODS, Case,
+    CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
+    QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
 from floatmoor.errors import CaseError
 from floatmoor.motion import fairlead_path, horizontal_direction
@@ -38,6 +39,13 @@ SEABED_TOLERANCE = 1e-9
 #: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
 DEFAULT_CATENARY_TOLERANCE = 1e-12
 DEFAULT_CATENARY_MAX_ITERATIONS = 100
+#: Default DG discretisation: MooDy reproduced the Lindahl chain with 10 elements of order 5
+#: (chain-experiment paper; cases.md case A).
+DEFAULT_DG_ELEMENTS = 10
+DEFAULT_DG_ORDER = 5
+#: Default CFL number of SSP-RK3 on the smallest LGL node spacing; stable up to about 1 on
+#: the tests here, 0.5 leaves room for added mass and drag.
+DEFAULT_DG_CFL = 0.5
 #: Sampling of the prescribed motion when checking the fairlead stays reachable [-].
 _MOTION_CHECK_SAMPLES_PER_PERIOD = 72
 
@@ -106,6 +114,8 @@ def _environment(t: TableReader) -> Environment:
         water_density=t.number("water_density", unit="kg/m^3", gt=0.0),
         water_depth=t.number("water_depth", unit="m", gt=0.0),
         gravity=t.number("gravity", unit="m/s^2", gt=0.0),
+        current_velocity=t.vector("current_velocity", size=3, unit="m/s",
+                                  default=(0.0, 0.0, 0.0)),  # type: ignore[arg-type]
     )
     t.finish()
     return env
@@ -162,9 +172,20 @@ def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
         seabed_friction=qs.boolean("seabed_friction", default=True),
     )
     qs.finish()
+    dg = t.table("dynamic", required=False)
+    dynamic = DynamicSettings(
+        elements=dg.integer("elements", ge=1, le=10_000, default=DEFAULT_DG_ELEMENTS),
+        order=dg.integer("order", ge=1, le=8, default=DEFAULT_DG_ORDER),
+        cfl=dg.number("cfl", unit="-", gt=0.0, le=1.5, default=DEFAULT_DG_CFL),
+        max_time_step=dg.number("max_time_step", unit="s", gt=0.0, default=None),
+        slack_filter=dg.boolean("slack_filter", default=True),
+        seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
+                                 default="implicit"),
+    )
+    dg.finish()
     t.finish()
     return Line(name=name, line_type=line_types[type_name], length=length, anchor=anchor,
-                fairlead=fairlead, model=model, quasi_static=settings)
+                fairlead=fairlead, model=model, quasi_static=settings, dynamic=dynamic)
 
 
 def _simulation(t: TableReader) -> Simulation:
@@ -173,8 +194,13 @@ def _simulation(t: TableReader) -> Simulation:
     if interval > duration:
         raise t.error("output_interval", f"a number <= simulation.duration ({duration:g} s) [s]",
                       interval)
+    shape = t.number("shape_output_interval", unit="s", gt=0.0, default=None)
+    if shape is not None and (shape < interval or abs(shape / interval - round(shape / interval))
+                              > 1e-6 * shape / interval):
+        raise t.error("shape_output_interval", "a multiple of simulation.output_interval "
+                      f"({interval:g} s) [s]", shape)
     t.finish()
-    return Simulation(duration=duration, output_interval=interval)
+    return Simulation(duration=duration, output_interval=interval, shape_output_interval=shape)
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:

@@ -14,13 +14,15 @@ from numpy.typing import NDArray
 __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
-    "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES",
+    "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "SEABED_CONTACT_METHODS",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
 LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 #: The models this version implements.
-AVAILABLE_LINE_MODELS = ("quasi-static",)
+AVAILABLE_LINE_MODELS = ("quasi-static", "dynamic")
+#: Treatments of the seabed's normal spring-damper in the dynamic model.
+SEABED_CONTACT_METHODS = ("implicit", "explicit")
 #: Rotation senses of circular motion, defined by where the end moves at the top of the circle.
 CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")
 
@@ -32,6 +34,7 @@ class Environment:
     water_density: float  #: [kg/m^3]
     water_depth: float  #: [m]
     gravity: float  #: [m/s^2]
+    current_velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)  #: steady, uniform [m/s]
 
     @property
     def seabed_z(self) -> float:
@@ -85,6 +88,18 @@ class QuasiStaticSettings:
 
 
 @dataclass(frozen=True)
+class DynamicSettings:
+    """Numerics of the discontinuous Galerkin cable (``[lines.dynamic]``)."""
+
+    elements: int  #: number of elements
+    order: int  #: polynomial order p (1 to 8)
+    cfl: float  #: time step / (smallest node spacing / longitudinal wave speed) [-]
+    max_time_step: float | None  #: user cap on the time step [s]
+    slack_filter: bool  #: modal filter on elements in compression
+    seabed_contact: str  #: "implicit" or "explicit" normal spring-damper
+
+
+@dataclass(frozen=True)
 class Line:
     """One mooring line; ``fairlead`` is the mean position in a forced-motion run."""
 
@@ -95,6 +110,7 @@ class Line:
     fairlead: tuple[float, float, float]  #: [m]
     model: str
     quasi_static: QuasiStaticSettings
+    dynamic: DynamicSettings
 
     @property
     def span(self) -> float:
@@ -170,6 +186,7 @@ class Simulation:
 
     duration: float  #: [s]
     output_interval: float  #: [s]
+    shape_output_interval: float | None = None  #: line shape sampling [s], None = no shapes
 
 
 @dataclass(frozen=True)

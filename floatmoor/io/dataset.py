@@ -33,6 +33,7 @@ _DIMS = {
 
 def build_result_dataset(case: Case, time: NDArray[np.float64],
                          variables: Mapping[str, NDArray[np.floating]], *, status: str,
+                         shapes: Mapping[str, NDArray[np.floating]] | None = None,
                          extra_attrs: Mapping[str, str | float | int] | None = None) -> xr.Dataset:
     """Label the arrays of a run.
 
@@ -47,6 +48,9 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
         (line, time) or (line, time, component), already cut to ``n`` samples.
     status
         ``"complete"``, or how the run ended early.
+    shapes
+        Optional line shapes: ``shape_time`` (m,), ``arc_length`` (line, node),
+        ``shape_position`` (line, m, node, component), ``shape_tension`` (line, m, node).
     extra_attrs
         More dataset attributes (e.g. wall time).
     """
@@ -63,6 +67,13 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
         if values.dtype.kind == "i":
             values = values.astype(np.int32)  # netCDF-3 has no 64-bit integers
         data_vars[name] = (_DIMS[values.ndim], values, attributes(name))
+    if shapes is not None:
+        coords["shape_time"] = ("shape_time", shapes["shape_time"], attributes("shape_time"))
+        coords["arc_length"] = (("line", "node"), shapes["arc_length"], attributes("arc_length"))
+        data_vars["shape_position"] = (("line", "shape_time", "node", "component"),
+                                       shapes["shape_position"], attributes("shape_position"))
+        data_vars["shape_tension"] = (("line", "shape_time", "node"), shapes["shape_tension"],
+                                      attributes("shape_tension"))
     attrs: dict[str, str | float | int] = {
         "title": case.title,
         "case_file": case.source,

@@ -15,7 +15,9 @@ from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.errors import SolverError
 from floatmoor.mooring._catenary_kernels import N_OUT_3D
 from floatmoor.mooring._quasistatic_kernels import quasi_static_series
-from floatmoor.mooring.catenary import CatenarySolution, describe_failure, solve_catenary
+from floatmoor.mooring.catenary import (
+    CatenarySolution, catenary_profile, describe_failure, solve_catenary,
+)
 
 __all__ = ["QuasiStaticLine"]
 
@@ -52,6 +54,20 @@ class QuasiStaticLine:
         self._failure = np.zeros(2, dtype=np.int64)
         #: Index in the last path where the solve failed, -1 if it did not.
         self.failed_index = -1
+
+    @classmethod
+    def from_case(cls, line: Line, environment: Environment, seabed: Seabed) -> "QuasiStaticLine":
+        """The quasi-static model of a case's line."""
+        return cls(line, environment, seabed)
+
+    def profile(self, fairlead: NDArray[np.float64], arc_lengths: NDArray[np.float64]
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Node positions (n, 3) [m] and tensions (n,) [N] of the static line."""
+        solution = self.solve(fairlead)
+        return catenary_profile(self.anchor, np.asarray(fairlead, dtype=float), self.length,
+                                self.axial_stiffness, self.weight, self.friction,
+                                seabed_z=self.seabed_z, arc_lengths=arc_lengths,
+                                solution=solution)
 
     def solve(self, fairlead: NDArray[np.float64]) -> CatenarySolution:
         """Static solution for one fairlead position (warm-started, updates the warm start)."""

@@ -15,7 +15,8 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Simulation
 from floatmoor.errors import SolverError
-from floatmoor.motion import fairlead_path
+from floatmoor.motion import fairlead_state
+from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
@@ -25,7 +26,8 @@ __all__ = ["RunResult", "run_forced_motion", "output_times", "build_line_models"
 #: the per-chunk Python overhead negligible, small enough to report progress every ~0.1 s.
 CHUNK_SAMPLES = 2000
 
-_MODELS = {"quasi-static": QuasiStaticLine}
+LineModel = QuasiStaticLine | DynamicLine
+_MODELS = {"quasi-static": QuasiStaticLine.from_case, "dynamic": DynamicLine.from_case}
 
 
 @dataclass(frozen=True)
@@ -44,9 +46,17 @@ def output_times(simulation: Simulation) -> NDArray[np.float64]:
     return np.arange(n) * simulation.output_interval
 
 
-def build_line_models(case: Case) -> list[QuasiStaticLine]:
+def build_line_models(case: Case) -> list[LineModel]:
     """One model object per line, as the case chooses."""
     return [_MODELS[line.model](line, case.environment, case.seabed) for line in case.lines]
+
+
+def shape_stride(case: Case) -> int:
+    """Output samples between line-shape samples (0: no shapes)."""
+    interval = case.simulation.shape_output_interval
+    if interval is None:
+        return 0
+    return max(1, int(round(interval / case.simulation.output_interval)))
 
 
 def run_forced_motion(case: Case, *, output: str | Path | None = None,
@@ -74,7 +84,10 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     """
     times = output_times(case.simulation)
     models = build_line_models(case)
-    recorder = Recorder(case, times, output, flush_interval)
+    stride = shape_stride(case)
+    recorder = Recorder(case, times, output, flush_interval,
+                        shape_nodes=[_node_arc_lengths(m) for m in models] if stride else None,
+                        shape_stride=stride)
     start_wall = _time.perf_counter()
     try:
         for start in range(0, times.size, CHUNK_SAMPLES):
@@ -94,26 +107,55 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
                      simulated_time_s=recorder.simulated_time)
 
 
-def _solve_chunk(case: Case, models: list[QuasiStaticLine], recorder: Recorder, start: int,
+def _node_arc_lengths(model: LineModel) -> NDArray[np.float64]:
+    """Arc lengths at which a line's shape is recorded [m]."""
+    if isinstance(model, DynamicLine):
+        return model.arc_length
+    return np.linspace(0.0, model.length, 51)
+
+
+def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start: int,
                  stop: int) -> None:
-    """Solve samples [start, stop) of every line; on failure keep what every line completed."""
+    """Solve samples [start, stop) of every line; on failure keep what every line completed.
+
+    With shape output, each line is solved in segments ending at the shape samples, whose
+    node positions and tensions are then taken from the model's state.
+    """
     t = recorder.time[start:stop]
     failure: SolverError | None = None
     limit = stop
+    series = recorder.series
+    stride = recorder.shape_stride
     for i, (line, model) in enumerate(zip(case.lines, models)):
         if limit <= start:
             break
-        n = limit - start
-        path = fairlead_path(case.motion, line, t[:n])
-        recorder.series["fairlead_position"][i, start:limit] = path
-        try:
-            model.solve_path(t[:n], path, recorder.series["fairlead_force"][i, start:limit],
-                             recorder.series["anchor_force"][i, start:limit],
-                             recorder.series["laid_length"][i, start:limit],
-                             recorder.series["solver_iterations"][i, start:limit])
-        except SolverError as err:
-            failure = failure or err
-            limit = start + model.failed_index
+        path, velocity = fairlead_state(case.motion, line, t[:limit - start])
+        series["fairlead_position"][i, start:limit] = path
+        cuts = {start, limit}
+        if stride:
+            cuts.update(k + 1 for k in range(start, limit) if k % stride == 0)
+        bounds = sorted(cuts)
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            outputs = (series["fairlead_force"][i, a:b], series["anchor_force"][i, a:b],
+                       series["laid_length"][i, a:b], series["solver_iterations"][i, a:b])
+            seg = slice(a - start, b - start)
+            try:
+                if isinstance(model, DynamicLine):
+                    model.solve_path(t[seg], path[seg], velocity[seg], *outputs)
+                else:
+                    model.solve_path(t[seg], path[seg], *outputs)
+            except SolverError as err:
+                failure = failure or err
+                limit = a + model.failed_index
+                break
+            if stride and (b - 1) % stride == 0:
+                if isinstance(model, DynamicLine):
+                    recorder.store_shape(i, (b - 1) // stride, model.r.reshape(-1, 3),
+                                         model.tension())
+                else:
+                    positions, tension = model.profile(path[b - 1 - start],
+                                                       recorder.shape_arc_length[i])
+                    recorder.store_shape(i, (b - 1) // stride, positions, tension)
     recorder.advance(limit)
     if failure is not None:
         raise failure

@@ -53,7 +53,9 @@ class Recorder:
     """
 
     def __init__(self, case: Case, time: NDArray[np.float64], path: str | Path | None = None,
-                 flush_interval: float = FLUSH_INTERVAL_S) -> None:
+                 flush_interval: float = FLUSH_INTERVAL_S, *,
+                 shape_nodes: list[NDArray[np.float64]] | None = None,
+                 shape_stride: int = 0) -> None:
         self.case = case
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
@@ -64,6 +66,17 @@ class Recorder:
             for name, size in _SERIES
         }
         self.n_done = 0
+        # line shapes every shape_stride samples, on each line's nodes; lines with fewer
+        # nodes than the longest repeat their last node so every line shares the node axis
+        self.shape_stride = shape_stride if shape_nodes else 0
+        if self.shape_stride:
+            n_nodes = max(len(s) for s in shape_nodes)
+            self.shape_arc_length = [np.asarray(s, dtype=float) for s in shape_nodes]
+            self.shape_arc = np.array([np.pad(s, (0, n_nodes - len(s)), mode="edge")
+                                       for s in self.shape_arc_length])
+            n_shapes = (n_time - 1) // self.shape_stride + 1
+            self.shape_position = np.zeros((n_lines, n_shapes, n_nodes, 3))
+            self.shape_tension = np.zeros((n_lines, n_shapes, n_nodes))
         self._last_flush = _time.perf_counter()
         self._start = _time.perf_counter()
 
@@ -86,6 +99,15 @@ class Recorder:
         if self.path is not None and _time.perf_counter() - self._last_flush > self.flush_interval:
             self.write(status=f"running: partial results up to t = {self.simulated_time:.6g} s")
 
+    def store_shape(self, line: int, index: int, positions: NDArray[np.float64],
+                    tension: NDArray[np.float64]) -> None:
+        """Store the shape of ``line`` at shape sample ``index``."""
+        n = len(positions)
+        self.shape_position[line, index, :n] = positions
+        self.shape_position[line, index, n:] = positions[-1]
+        self.shape_tension[line, index, :n] = tension
+        self.shape_tension[line, index, n:] = tension[-1]
+
     @property
     def simulated_time(self) -> float:
         """Time of the last complete sample [s] (0 before the first)."""
@@ -99,7 +121,15 @@ class Recorder:
         variables["anchor_tension"] = np.linalg.norm(variables["anchor_force"], axis=-1)
         variables["solver_iterations"] = variables["solver_iterations"].astype(np.int32)
         wall = _time.perf_counter() - self._start
+        shapes = None
+        if self.shape_stride:
+            m = (n - 1) // self.shape_stride + 1 if n else 0
+            shapes = {"shape_time": self.time[:n:self.shape_stride][:m],
+                      "arc_length": self.shape_arc,
+                      "shape_position": self.shape_position[:, :m],
+                      "shape_tension": self.shape_tension[:, :m]}
         return build_result_dataset(self.case, self.time[:n], variables, status=status,
+                                    shapes=shapes,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
 

@@ -1,0 +1,425 @@
+"""Numba kernels of the discontinuous Galerkin (DG) cable (physics.md sections 1 and 2).
+
+Semi-discretisation (nodal DG on LGL nodes, strong form, Hesthaven & Warburton 2008):
+
+* unknowns per node: position r and velocity v (the cable equation as a first-order system);
+* tangent q = dr/ds from r with central traces r* = {r} between elements and the prescribed
+  anchor / fairlead positions at the ends (the local-DG auxiliary variable of MooDy);
+* axial force N = T(eps) q / |q|, eps = |q| - 1, T = EA eps (+ c_int d(eps)/dt) for eps > 0 and
+  0 in compression (bilinear, physics.md section 1);
+* momentum flux: local Lax-Friedrichs, N* = {N} + (Z / 2) (v+ - v-) with the axial impedance
+  Z = sqrt(EA m_t) = m_t c (c the fastest, longitudinal wave speed); at the ends the exterior
+  velocity mirrors the prescribed one, N* = N + Z (v - v_bc) at the anchor and
+  N* = N + Z (v_bc - v) at the fairlead;
+* (M_eff) dv/dt = dN/ds + f, with dN/ds the DG divergence, f the weight and buoyancy (buoyancy,
+  drag and added mass only below z = 0), Morison drag on the velocity relative to a steady
+  current, seabed friction, and M_eff = (m + m_at) t t^T + (m + m_an)(I - t t^T) the mass with
+  Morison added mass (tangential, normal);
+* seabed normal spring-damper (gpc paper eq. 7): explicitly in the right-hand side, or (default)
+  implicitly: after each SSP-RK3 step, nodes below the seabed take a backward-Euler step of
+  the spring-damper, z1 = z* + dt (v1 - v*), v1 = v* - dt (k (z1 - z_b) + c min(v1, 0)) / m_z,
+  which is unconditionally stable, so the axial-wave CFL condition sets the time step;
+* slack control: the bending-free cable equation is ill-posed in compression, so elements with
+  a node in compression (eps < 0) get an exponential modal filter on r and v after each step
+  (reference.py); taut elements are never filtered, so smooth solutions keep their order.
+
+Time integration: SSP-RK3 (Shu & Osher 1988). The fairlead position and velocity inside an
+interval come from the cubic Hermite interpolant of their values at its ends.
+
+Parameters travel in one float64 array ``prm`` indexed by the ``P_*`` constants.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatmoor._numba import jit
+
+__all__ = ["N_PRM", "dg_rhs", "dg_tension_field", "dg_run_path", "hermite"]
+
+# -- parameter layout -----------------------------------------------------------------------
+P_M = 0  #: mass per unstretched length [kg/m]
+P_EA = 1  #: axial stiffness [N]
+P_D = 2  #: drag diameter [m]
+P_AC = 3  #: material area m / rho_c [m^2]
+P_RHO_W = 4  #: water density [kg/m^3]
+P_G = 5  #: gravity [m/s^2]
+P_CDN = 6
+P_CDT = 7
+P_MAN = 8  #: normal added mass per length when submerged, C_a rho_w A_c [kg/m]
+P_MAT = 9  #: tangential added mass per length when submerged [kg/m]
+P_CINT = 10  #: internal damping coefficient [N s]
+P_WSUB = 11  #: submerged weight per length, for seabed friction [N/m]
+P_ZB = 12  #: seabed elevation [m]
+P_KB = 13  #: seabed stiffness per length per penetration [N/m^2]
+P_CB = 14  #: seabed damping coefficient per length [N s/m^2]
+P_MU = 15  #: seabed friction coefficient
+P_VC = 16  #: slip speed [m/s]
+P_UX = 17  #: current velocity [m/s], 3 entries
+P_H = 20  #: element length [m]
+P_IMPLICIT_CONTACT = 21  #: 1.0 for the implicit seabed spring-damper
+P_FILTER = 22  #: 1.0 to filter slack elements
+P_C = 23  #: longitudinal wave speed sqrt(EA / m) [m/s]
+N_PRM = 24
+
+# -- statuses of dg_run_path ----------------------------------------------------------------
+DG_OK = 0
+DG_NOT_FINITE = 1
+DG_VELOCITY = 2  #: a node moves faster than the longitudinal wave speed
+DG_STRAIN = 3  #: strain beyond MAX_STRAIN
+
+#: A cable stretched to twice its length has failed long before; such a strain means the
+#: solution has gone unstable, not that the line is loaded.
+MAX_STRAIN = 1.0
+
+_ZERO3 = np.zeros(3)  # the anchor's velocity (read-only constant inside the kernels)
+
+
+@jit
+def hermite(t0: float, t1: float, p0: np.ndarray, v0: np.ndarray, p1: np.ndarray,
+            v1: np.ndarray, t: float, pos: np.ndarray, vel: np.ndarray) -> None:
+    """Cubic Hermite interpolation of position and its derivative on [t0, t1]."""
+    dt = t1 - t0
+    x = (t - t0) / dt if dt > 0.0 else 1.0
+    x2 = x * x
+    x3 = x2 * x
+    h00 = 2.0 * x3 - 3.0 * x2 + 1.0
+    h10 = x3 - 2.0 * x2 + x
+    h01 = -2.0 * x3 + 3.0 * x2
+    h11 = x3 - x2
+    d00 = (6.0 * x2 - 6.0 * x) / dt if dt > 0.0 else 0.0
+    d10 = 3.0 * x2 - 4.0 * x + 1.0
+    d01 = -d00
+    d11 = 3.0 * x2 - 2.0 * x
+    for c in range(3):
+        pos[c] = h00 * p0[c] + h10 * dt * v0[c] + h01 * p1[c] + h11 * dt * v1[c]
+        vel[c] = d00 * p0[c] + d10 * v0[c] + d01 * p1[c] + d11 * v1[c]
+
+
+@jit
+def _gradient(u: np.ndarray, left: np.ndarray, right: np.ndarray, D: np.ndarray,
+              LIFT: np.ndarray, jac: float, faces: np.ndarray, out: np.ndarray) -> None:
+    """DG derivative d/ds of nodal field u (K, Np, 3) with central interior traces and the
+    given end values (strong form)."""
+    K, Np = u.shape[0], u.shape[1]
+    for c in range(3):
+        faces[0, c] = left[c]
+        faces[K, c] = right[c]
+    for k in range(1, K):
+        for c in range(3):
+            faces[k, c] = 0.5 * (u[k - 1, Np - 1, c] + u[k, 0, c])
+    for k in range(K):
+        for c in range(3):
+            jl = faces[k, c] - u[k, 0, c]
+            jr = faces[k + 1, c] - u[k, Np - 1, c]
+            for i in range(Np):
+                acc = 0.0
+                for j in range(Np):
+                    acc += D[i, j] * u[k, j, c]
+                out[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+
+
+@jit
+def dg_tension_field(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
+                     fvel: np.ndarray, prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray,
+                     q: np.ndarray, qt: np.ndarray, N: np.ndarray, Nstar: np.ndarray,
+                     faces: np.ndarray, slack: np.ndarray) -> None:
+    """Tangent q, axial force N at the nodes and the Lax-Friedrichs face fluxes N*.
+
+    ``slack[k]`` is set to 1.0 when element k has a node in compression.
+    """
+    K, Np = r.shape[0], r.shape[1]
+    jac = 2.0 / prm[P_H]
+    EA = prm[P_EA]
+    cint = prm[P_CINT]
+    _gradient(r, anchor, fpos, D, LIFT, jac, faces, q)
+    if cint > 0.0:
+        _gradient(v, _ZERO3, fvel, D, LIFT, jac, faces, qt)
+    for k in range(K):
+        slack[k] = 0.0
+        for i in range(Np):
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            eps = ql - 1.0
+            T = 0.0
+            if eps > 0.0:
+                T = EA * eps
+                if cint > 0.0:
+                    deps = (q[k, i, 0] * qt[k, i, 0] + q[k, i, 1] * qt[k, i, 1]
+                            + q[k, i, 2] * qt[k, i, 2]) / ql
+                    T += cint * deps
+                    if T < 0.0:
+                        T = 0.0
+            else:
+                slack[k] = 1.0
+            scale = T / ql if ql > 0.0 else 0.0
+            for c in range(3):
+                N[k, i, c] = scale * q[k, i, c]
+    # Lax-Friedrichs fluxes with the axial impedance Z = m_t c
+    m = prm[P_M]
+    c_wave = prm[P_C]
+    for f in range(K + 1):
+        if f == 0:
+            sub = 1.0 if r[0, 0, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[P_MAT]) * c_wave
+            for c in range(3):
+                Nstar[0, c] = N[0, 0, c] + Z * v[0, 0, c]
+        elif f == K:
+            sub = 1.0 if r[K - 1, Np - 1, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[P_MAT]) * c_wave
+            for c in range(3):
+                Nstar[K, c] = N[K - 1, Np - 1, c] + Z * (fvel[c] - v[K - 1, Np - 1, c])
+        else:
+            sub = 1.0 if r[f, 0, 2] + r[f - 1, Np - 1, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[P_MAT]) * c_wave
+            for c in range(3):
+                Nstar[f, c] = (0.5 * (N[f - 1, Np - 1, c] + N[f, 0, c])
+                               + 0.5 * Z * (v[f, 0, c] - v[f - 1, Np - 1, c]))
+
+
+@jit
+def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
+           fvel: np.ndarray, prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray, q: np.ndarray,
+           qt: np.ndarray, N: np.ndarray, Nstar: np.ndarray, faces: np.ndarray,
+           slack: np.ndarray, dv: np.ndarray) -> None:
+    """Acceleration dv/dt of every node (dr/dt = v needs no computation)."""
+    dg_tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack)
+    K, Np = r.shape[0], r.shape[1]
+    jac = 2.0 / prm[P_H]
+    m = prm[P_M]
+    g = prm[P_G]
+    rho_w = prm[P_RHO_W]
+    buoyancy = rho_w * prm[P_AC] * g
+    drag = 0.5 * rho_w * prm[P_D]
+    cdn, cdt = prm[P_CDN], prm[P_CDT]
+    zb = prm[P_ZB]
+    explicit_contact = prm[P_IMPLICIT_CONTACT] == 0.0
+    friction = prm[P_MU] * prm[P_WSUB]
+    vc = prm[P_VC]
+    for k in range(K):
+        for c in range(3):
+            # surface terms of the divergence, per component
+            jl = Nstar[k, c] - N[k, 0, c]
+            jr = Nstar[k + 1, c] - N[k, Np - 1, c]
+            for i in range(Np):
+                acc = 0.0
+                for j in range(Np):
+                    acc += D[i, j] * N[k, j, c]
+                dv[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+        for i in range(Np):
+            fx = dv[k, i, 0]
+            fy = dv[k, i, 1]
+            fz = dv[k, i, 2] - m * g
+            z = r[k, i, 2]
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            tx, ty, tz = 0.0, 0.0, 0.0
+            if ql > 0.0:
+                tx, ty, tz = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
+            submerged = z < 0.0
+            if submerged:
+                fz += buoyancy
+                # Morison drag on the velocity relative to the current, with sqrt(1 + eps)
+                vrx = prm[P_UX] - v[k, i, 0]
+                vry = prm[P_UX + 1] - v[k, i, 1]
+                vrz = prm[P_UX + 2] - v[k, i, 2]
+                vt = vrx * tx + vry * ty + vrz * tz
+                vnx, vny, vnz = vrx - vt * tx, vry - vt * ty, vrz - vt * tz
+                vn = math.sqrt(vnx * vnx + vny * vny + vnz * vnz)
+                scale = drag * math.sqrt(ql)
+                fx += scale * (cdt * abs(vt) * vt * tx + cdn * vn * vnx)
+                fy += scale * (cdt * abs(vt) * vt * ty + cdn * vn * vny)
+                fz += scale * (cdt * abs(vt) * vt * tz + cdn * vn * vnz)
+            if z < zb:
+                # Coulomb friction, ramped in up to the slip speed (physics.md section 1)
+                vx, vy = v[k, i, 0], v[k, i, 1]
+                speed = math.sqrt(vx * vx + vy * vy)
+                if speed > 0.0:
+                    mag = friction * math.sin(0.5 * math.pi * speed / max(vc, speed))
+                    fx -= mag * vx / speed
+                    fy -= mag * vy / speed
+                if explicit_contact:
+                    fz += -prm[P_KB] * (z - zb) - prm[P_CB] * min(v[k, i, 2], 0.0)
+            # invert the added-mass-augmented mass
+            mn = m + (prm[P_MAN] if submerged else 0.0)
+            mt = m + (prm[P_MAT] if submerged else 0.0)
+            ft = fx * tx + fy * ty + fz * tz
+            dv[k, i, 0] = (fx - ft * tx) / mn + ft * tx / mt
+            dv[k, i, 1] = (fy - ft * ty) / mn + ft * ty / mt
+            dv[k, i, 2] = (fz - ft * tz) / mn + ft * tz / mt
+
+
+@jit
+def _implicit_contact(r: np.ndarray, v: np.ndarray, prm: np.ndarray, dt: float) -> None:
+    """Backward-Euler seabed spring-damper for nodes below the seabed after a step."""
+    K, Np = r.shape[0], r.shape[1]
+    zb, kb, cb = prm[P_ZB], prm[P_KB], prm[P_CB]
+    mz = prm[P_M] + prm[P_MAN]
+    for k in range(K):
+        for i in range(Np):
+            z = r[k, i, 2]
+            if z >= zb:
+                continue
+            vs = v[k, i, 2]
+            # z1 = z + dt (v1 - vs); m v1 = m vs - dt (kb (z1 - zb) + cb min(v1, 0))
+            num = mz * vs - dt * kb * (z - dt * vs - zb)
+            v1 = num / (mz + dt * cb + dt * dt * kb)
+            if v1 >= 0.0:
+                v1 = num / (mz + dt * dt * kb)
+            r[k, i, 2] = z + dt * (v1 - vs)
+            v[k, i, 2] = v1
+
+
+@jit
+def _filter_slack(u: np.ndarray, F: np.ndarray, slack: np.ndarray, tmp: np.ndarray) -> None:
+    K, Np = u.shape[0], u.shape[1]
+    for k in range(K):
+        if slack[k] == 0.0:
+            continue
+        for c in range(3):
+            for i in range(Np):
+                acc = 0.0
+                for j in range(Np):
+                    acc += F[i, j] * u[k, j, c]
+                tmp[i] = acc
+            for i in range(Np):
+                u[k, i, c] = tmp[i]
+
+
+@jit
+def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, work3, q, qt,
+                  N, Nstar, faces, slack, fpos, fvel, tmp):
+    """One SSP-RK3 step of (r, v) from t to t + dt, then contact and slack filtering."""
+    r1, v1, r2, v2, a = work3[0], work3[1], work3[2], work3[3], work3[4]
+    K, Np = r.shape[0], r.shape[1]
+    # stage 1
+    hermite(t0, t1, p0, w0, p1, w1, t, fpos, fvel)
+    dg_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    for k in range(K):
+        for i in range(Np):
+            for c in range(3):
+                r1[k, i, c] = r[k, i, c] + dt * v[k, i, c]
+                v1[k, i, c] = v[k, i, c] + dt * a[k, i, c]
+    # stage 2
+    hermite(t0, t1, p0, w0, p1, w1, t + dt, fpos, fvel)
+    dg_rhs(r1, v1, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    for k in range(K):
+        for i in range(Np):
+            for c in range(3):
+                r2[k, i, c] = 0.75 * r[k, i, c] + 0.25 * (r1[k, i, c] + dt * v1[k, i, c])
+                v2[k, i, c] = 0.75 * v[k, i, c] + 0.25 * (v1[k, i, c] + dt * a[k, i, c])
+    # stage 3
+    hermite(t0, t1, p0, w0, p1, w1, t + 0.5 * dt, fpos, fvel)
+    dg_rhs(r2, v2, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    third, two_thirds = 1.0 / 3.0, 2.0 / 3.0
+    for k in range(K):
+        for i in range(Np):
+            for c in range(3):
+                r[k, i, c] = third * r[k, i, c] + two_thirds * (r2[k, i, c] + dt * v2[k, i, c])
+                v[k, i, c] = third * v[k, i, c] + two_thirds * (v2[k, i, c] + dt * a[k, i, c])
+    if prm[P_IMPLICIT_CONTACT] != 0.0:
+        _implicit_contact(r, v, prm, dt)
+    if prm[P_FILTER] != 0.0:
+        _filter_slack(v, F, slack, tmp)
+
+
+@jit
+def _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, weights,
+            fair_out, anch_out):
+    """End forces at the current state; returns the laid length [m]."""
+    dg_tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack)
+    K, Np = r.shape[0], r.shape[1]
+    for c in range(3):
+        fair_out[c] = -Nstar[K, c]
+        anch_out[c] = Nstar[0, c]
+    laid = 0.0
+    threshold = prm[P_ZB] + 0.1 * prm[P_D]
+    for k in range(K):
+        for i in range(Np):
+            if r[k, i, 2] <= threshold:
+                laid += 0.5 * prm[P_H] * weights[i]
+    return laid
+
+
+@jit
+def _check(r, v, q, prm, where):
+    """Status of the state; ``where`` gets (element, node) of the first problem."""
+    K, Np = r.shape[0], r.shape[1]
+    vmax = prm[P_C]
+    for k in range(K):
+        for i in range(Np):
+            s = 0.0
+            for c in range(3):
+                s += r[k, i, c] + v[k, i, c]
+            if not math.isfinite(s):
+                where[0], where[1] = k, i
+                return DG_NOT_FINITE
+            speed = math.sqrt(v[k, i, 0] ** 2 + v[k, i, 1] ** 2 + v[k, i, 2] ** 2)
+            if speed > vmax:
+                where[0], where[1] = k, i
+                return DG_VELOCITY
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            if ql - 1.0 > MAX_STRAIN:
+                where[0], where[1] = k, i
+                return DG_STRAIN
+    return DG_OK
+
+
+@jit
+def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt_max,
+                fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, work3, q,
+                qt, N, Nstar, faces, slack, fpos, fvel, tmp, where):
+    """Advance the line along a fairlead path and record its end forces at every sample.
+
+    ``time`` (n,), ``path`` and ``velocity`` (n, 3) give the fairlead at the output times;
+    the state (r, v) must be the one at ``time[0]``. Sample 0 is recorded from it, then each
+    interval is split into equal steps no longer than ``dt_max``. Every ``shape_every``-th
+    sample (if > 0) the node positions and tensions go to ``shape_r``/``shape_t``.
+
+    Returns
+    -------
+    (status, index)
+        ``DG_OK`` and n, or the first failing status and the sample where it occurred
+        (``where`` holds the element and node).
+    """
+    n = time.shape[0]
+    K, Np = r.shape[0], r.shape[1]
+    for c in range(3):
+        fpos[c] = path[0, c]
+        fvel[c] = velocity[0, c]
+    laid[0] = _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                      weights, fair_force[0], anch_force[0])
+    steps[0] = 0.0
+    n_shape = 0
+    for s in range(n):
+        if shape_every > 0 and s % shape_every == 0:
+            # N holds the axial force of the state at sample s (from its _record)
+            for k in range(K):
+                for i in range(Np):
+                    node = k * Np + i
+                    nrm = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2 + N[k, i, 2] ** 2)
+                    shape_t[n_shape, node] = nrm
+                    for c in range(3):
+                        shape_r[n_shape, node, c] = r[k, i, c]
+            n_shape += 1
+        if s == n - 1:
+            break
+        t0, t1 = time[s], time[s + 1]
+        n_sub = int(math.ceil((t1 - t0) / dt_max * (1.0 - 1e-12)))
+        if n_sub < 1:
+            n_sub = 1
+        dt = (t1 - t0) / n_sub
+        for j in range(n_sub):
+            _ssp_rk3_step(r, v, t0 + j * dt, dt, t0, t1, path[s], velocity[s], path[s + 1],
+                          velocity[s + 1], anchor, prm, D, LIFT, F, work3, q, qt, N, Nstar,
+                          faces, slack, fpos, fvel, tmp)
+        for c in range(3):
+            fpos[c] = path[s + 1, c]
+            fvel[c] = velocity[s + 1, c]
+        laid[s + 1] = _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                              slack, weights, fair_force[s + 1], anch_force[s + 1])
+        steps[s + 1] = n_sub
+        status = _check(r, v, q, prm, where)
+        if status != DG_OK:
+            return status, s + 1
+    return DG_OK, n

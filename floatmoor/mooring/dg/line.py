@@ -1,0 +1,373 @@
+"""The dynamic line model: a discontinuous Galerkin cable (physics.md sections 1 and 2).
+
+:class:`DynamicLine` owns the DG state of one line (node positions and velocities), starts it
+from the quasi-static catenary, and advances it with the fairlead driven by a prescribed
+position and velocity. Forced-motion runs call :meth:`DynamicLine.solve_path`; a floater
+will call :meth:`DynamicLine.advance` once per rigid-body step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.case.schema import DynamicSettings, Environment, Line, Seabed
+from floatmoor.errors import SolverError
+from floatmoor.mooring.catenary import catenary_profile, solve_catenary
+from floatmoor.mooring.dg import _kernels as _k
+from floatmoor.mooring.dg.reference import ReferenceElement, reference_element
+
+__all__ = ["CableProperties", "DynamicLine", "DynamicLineState"]
+
+_STATUS_TEXT = {
+    _k.DG_NOT_FINITE: "the position or velocity is not finite",
+    _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
+    _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
+}
+
+
+@dataclass(frozen=True)
+class CableProperties:
+    """Physical properties of a line and its surroundings, SI units.
+
+    Built from a case with :meth:`from_case`; tests may build one directly (e.g. with
+    ``water_density = 0`` for a line in vacuum, or ``seabed_z = -inf`` for no seabed).
+    """
+
+    length: float  #: unstretched [m]
+    mass_per_length: float  #: [kg/m]
+    axial_stiffness: float  #: EA [N]
+    diameter: float  #: drag diameter, also the seabed contact width [m]
+    material_density: float  #: [kg/m^3]
+    normal_drag_coefficient: float = 0.0
+    tangential_drag_coefficient: float = 0.0
+    added_mass_coefficient: float = 0.0  #: normal, on the material area
+    tangential_added_mass_coefficient: float = 0.0
+    internal_damping: float = 0.0  #: c_int in T = EA eps + c_int d(eps)/dt [N s]
+    water_density: float = 1000.0  #: [kg/m^3]
+    gravity: float = 9.81  #: [m/s^2]
+    current_velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)  #: [m/s]
+    seabed_z: float = -math.inf  #: [m]
+    seabed_stiffness: float = 0.0  #: per unit contact area [Pa/m]
+    seabed_damping_ratio: float = 0.0
+    friction_coefficient: float = 0.0
+    slip_speed: float = 0.01  #: [m/s]
+
+    @classmethod
+    def from_case(cls, line: Line, environment: Environment, seabed: Seabed) -> "CableProperties":
+        """The properties of a case's line.
+
+        The internal damping ratio zeta is that of the line's first longitudinal mode
+        (fixed-fixed, omega_1 = pi c / L) for the Kelvin-Voigt law T = EA eps + c_int eps_t,
+        zeta_n = c_int omega_n / (2 EA), so c_int = 2 zeta L sqrt(EA m) / pi: a property of
+        the line, independent of the discretisation.
+        """
+        lt = line.line_type
+        c_int = (2.0 * lt.internal_damping_ratio * line.length
+                 * math.sqrt(lt.axial_stiffness * lt.mass_per_length) / math.pi)
+        return cls(length=line.length, mass_per_length=lt.mass_per_length,
+                   axial_stiffness=lt.axial_stiffness, diameter=lt.diameter,
+                   material_density=lt.material_density,
+                   normal_drag_coefficient=lt.normal_drag_coefficient,
+                   tangential_drag_coefficient=lt.tangential_drag_coefficient,
+                   added_mass_coefficient=lt.added_mass_coefficient,
+                   tangential_added_mass_coefficient=lt.tangential_added_mass_coefficient,
+                   internal_damping=c_int, water_density=environment.water_density,
+                   gravity=environment.gravity, current_velocity=environment.current_velocity,
+                   seabed_z=environment.seabed_z, seabed_stiffness=seabed.stiffness,
+                   seabed_damping_ratio=seabed.damping_ratio,
+                   friction_coefficient=seabed.friction_coefficient,
+                   slip_speed=seabed.slip_speed)
+
+    @property
+    def material_area(self) -> float:
+        """A_c = m / rho_c [m^2]."""
+        return self.mass_per_length / self.material_density
+
+    @property
+    def wave_speed(self) -> float:
+        """Longitudinal wave speed sqrt(EA / m) [m/s]."""
+        return math.sqrt(self.axial_stiffness / self.mass_per_length)
+
+    @property
+    def submerged_weight(self) -> float:
+        """m g (1 - rho_w / rho_c) [N/m]."""
+        return self.mass_per_length * self.gravity * (1.0 - self.water_density
+                                                      / self.material_density)
+
+    def packed(self, settings: DynamicSettings, element_length: float) -> NDArray[np.float64]:
+        """The kernels' parameter vector."""
+        prm = np.zeros(_k.N_PRM)
+        m = self.mass_per_length
+        kb = self.seabed_stiffness * self.diameter  # per m of line: contact width = d
+        prm[_k.P_M] = m
+        prm[_k.P_EA] = self.axial_stiffness
+        prm[_k.P_D] = self.diameter
+        prm[_k.P_AC] = self.material_area
+        prm[_k.P_RHO_W] = self.water_density
+        prm[_k.P_G] = self.gravity
+        prm[_k.P_CDN] = self.normal_drag_coefficient
+        prm[_k.P_CDT] = self.tangential_drag_coefficient
+        prm[_k.P_MAN] = self.added_mass_coefficient * self.water_density * self.material_area
+        prm[_k.P_MAT] = (self.tangential_added_mass_coefficient * self.water_density
+                         * self.material_area)
+        prm[_k.P_CINT] = self.internal_damping
+        prm[_k.P_WSUB] = abs(self.submerged_weight)
+        prm[_k.P_ZB] = self.seabed_z if math.isfinite(self.seabed_z) else -1e300
+        prm[_k.P_KB] = kb
+        prm[_k.P_CB] = 2.0 * self.seabed_damping_ratio * math.sqrt(m * kb)
+        prm[_k.P_MU] = self.friction_coefficient
+        prm[_k.P_VC] = self.slip_speed
+        prm[_k.P_UX:_k.P_UX + 3] = self.current_velocity
+        prm[_k.P_H] = element_length
+        prm[_k.P_IMPLICIT_CONTACT] = 1.0 if settings.seabed_contact == "implicit" else 0.0
+        prm[_k.P_FILTER] = 1.0 if settings.slack_filter else 0.0
+        prm[_k.P_C] = self.wave_speed
+        return prm
+
+
+@dataclass(frozen=True)
+class DynamicLineState:
+    """A saved state: time, node positions and velocities, fairlead position and velocity."""
+
+    time: float
+    positions: NDArray[np.float64]
+    velocities: NDArray[np.float64]
+    fairlead: NDArray[np.float64]
+    fairlead_velocity: NDArray[np.float64]
+
+
+class DynamicLine:
+    """A mooring line solved by the DG cable model.
+
+    Parameters
+    ----------
+    properties
+        Physical properties.
+    settings
+        Discretisation (elements, order, CFL, filter, seabed contact treatment).
+    anchor, fairlead
+        End positions [m]; the line starts at rest in the quasi-static catenary between them
+        (frictionless, the equilibrium of the dynamic model, whose ramped Coulomb friction
+        holds nothing at rest), unless ``initial_positions`` (nodes, 3) are given.
+    name
+        Named in error messages.
+    """
+
+    model = "dynamic"
+
+    def __init__(self, properties: CableProperties, settings: DynamicSettings,
+                 anchor: NDArray[np.float64], fairlead: NDArray[np.float64], *,
+                 name: str = "line", initial_positions: NDArray[np.float64] | None = None,
+                 time: float = 0.0) -> None:
+        self.properties = properties
+        self.settings = settings
+        self.name = name
+        self.anchor = np.array(anchor, dtype=float)
+        K, p = settings.elements, settings.order
+        self.element: ReferenceElement = reference_element(p)
+        self.element_length = properties.length / K
+        self.prm = properties.packed(settings, self.element_length)
+        s = (np.arange(K)[:, None] + 0.5 * (self.element.nodes[None, :] + 1.0)) * self.element_length
+        self.arc_length = s.reshape(-1)  #: unstretched arc length of every node [m]
+        self.r = np.zeros((K, p + 1, 3))
+        self.v = np.zeros((K, p + 1, 3))
+        if initial_positions is None:
+            initial_positions = self._catenary_positions(np.asarray(fairlead, dtype=float))
+        self.r[:] = np.asarray(initial_positions, dtype=float).reshape(K, p + 1, 3)
+        self.time = float(time)
+        self.fairlead = np.array(fairlead, dtype=float)
+        self.fairlead_velocity = np.zeros(3)
+        self.time_step = self._time_step()
+        self._work = _Workspace(K, p + 1)
+        #: sample index of the last failure in :meth:`solve_path`, -1 if none
+        self.failed_index = -1
+
+    @classmethod
+    def from_case(cls, line: Line, environment: Environment, seabed: Seabed) -> "DynamicLine":
+        """The dynamic model of a case's line, at rest in its mean position."""
+        return cls(CableProperties.from_case(line, environment, seabed), line.dynamic,
+                   np.asarray(line.anchor), np.asarray(line.fairlead), name=line.name)
+
+    # -- set-up --------------------------------------------------------------------------------
+    def _catenary_positions(self, fairlead: NDArray[np.float64]) -> NDArray[np.float64]:
+        pr = self.properties
+        weight = pr.submerged_weight
+        if weight <= 0.0:  # in vacuum or buoyant: start from the straight line
+            return self.anchor + np.outer(self.arc_length / pr.length, fairlead - self.anchor)
+        sol = solve_catenary(self.anchor, fairlead, pr.length, pr.axial_stiffness, weight,
+                             0.0, seabed_z=pr.seabed_z)
+        positions, _ = catenary_profile(self.anchor, fairlead, pr.length, pr.axial_stiffness,
+                                        weight, 0.0, seabed_z=pr.seabed_z,
+                                        arc_lengths=self.arc_length, solution=sol)
+        return positions
+
+    def _time_step(self) -> float:
+        """Largest stable step: the CFL condition of the longitudinal wave, the explicit
+        contact and the internal-damping diffusion where they apply, and the user's cap."""
+        st, pr = self.settings, self.properties
+        dx = 0.5 * self.element_length * self.element.min_spacing
+        dt = st.cfl * dx / pr.wave_speed
+        if st.seabed_contact == "explicit" and self.prm[_k.P_KB] > 0.0:
+            omega = math.sqrt(self.prm[_k.P_KB] / pr.mass_per_length)
+            # SSP-RK3 is stable to |lambda dt| ~ 2.5 on the negative real axis; a damped
+            # oscillator of ratio xi has its fastest eigenvalue near omega (xi + sqrt(xi^2 + 1))
+            xi = pr.seabed_damping_ratio
+            dt = min(dt, st.cfl * 2.5 / (omega * (xi + math.sqrt(xi * xi + 1.0))))
+        if pr.internal_damping > 0.0:
+            dt = min(dt, st.cfl * 0.5 * dx * dx * pr.mass_per_length / pr.internal_damping)
+        if st.max_time_step is not None:
+            dt = min(dt, st.max_time_step)
+        return dt
+
+    # -- stepping ------------------------------------------------------------------------------
+    def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
+                   velocity: NDArray[np.float64], fairlead_force: NDArray[np.float64],
+                   anchor_force: NDArray[np.float64], laid_length: NDArray[np.float64],
+                   steps: NDArray[np.float64], *, shape_every: int = 0,
+                   shape_positions: NDArray[np.float64] | None = None,
+                   shape_tension: NDArray[np.float64] | None = None) -> None:
+        """Advance along a fairlead path, recording the end forces at every sample.
+
+        Parameters
+        ----------
+        time
+            Sample times [s], increasing, with ``time[0] >= self.time``. When
+            ``time[0] == self.time`` sample 0 is the current state.
+        path, velocity
+            Fairlead positions [m] and velocities [m/s] at the samples, shape (n, 3).
+        fairlead_force, anchor_force
+            Outputs: forces exerted by the line on its fairlead and anchor [N], (n, 3).
+        laid_length
+            Output: length resting on the seabed [m], (n,).
+        steps
+            Output: time steps taken to reach each sample, (n,).
+        shape_every, shape_positions, shape_tension
+            Every ``shape_every``-th sample, the node positions (m, nodes, 3) and tensions
+            (m, nodes) are written.
+
+        Raises
+        ------
+        SolverError
+            When the solution goes unstable, naming the line, the time and the quantity;
+            the outputs before that sample are valid.
+        """
+        time = np.asarray(time, dtype=float)
+        prepend = time[0] > self.time
+        if prepend:
+            time = np.concatenate(([self.time], time))
+            path = np.concatenate((self.fairlead[None, :], path))
+            velocity = np.concatenate((self.fairlead_velocity[None, :], velocity))
+        n = time.size
+        w = self._work
+        ff, af = np.zeros((n, 3)), np.zeros((n, 3))
+        lb, st = np.zeros(n), np.zeros(n)
+        if shape_every > 0 and shape_positions is not None and shape_tension is not None:
+            sr, sten = shape_positions, shape_tension
+            if prepend:  # the shapes count samples of the caller's time axis
+                raise ValueError("shape output needs time[0] == the line's time")
+        else:
+            shape_every, sr, sten = 0, np.zeros((1, 1, 3)), np.zeros((1, 1))
+        status, index = _k.dg_run_path(
+            self.r, self.v, time, np.ascontiguousarray(path), np.ascontiguousarray(velocity),
+            self.anchor, self.prm, self.element.differentiation, self.element.lift,
+            self.element.filter, self.element.weights, self.time_step, ff, af, lb, st,
+            shape_every, sr, sten, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack,
+            w.fpos, w.fvel, w.tmp, w.where)
+        first = 1 if prepend else 0
+        done = index if status != _k.DG_OK else n
+        fairlead_force[:done - first] = ff[first:done]
+        anchor_force[:done - first] = af[first:done]
+        laid_length[:done - first] = lb[first:done]
+        steps[:done - first] = st[first:done]
+        if status != _k.DG_OK:
+            self.failed_index = index - first
+            k, i = int(w.where[0]), int(w.where[1])
+            s = self.arc_length[k * (self.settings.order + 1) + i]
+            raise SolverError(f"line '{self.name}' (dynamic): {_STATUS_TEXT[status]} at arc "
+                              f"length s = {s:.4g} m, t = {time[index]:.6g} s; the solution "
+                              f"went unstable (time step {self.time_step:.3g} s)")
+        self.failed_index = -1
+        self.time = float(time[-1])
+        self.fairlead = np.array(path[-1], dtype=float)
+        self.fairlead_velocity = np.array(velocity[-1], dtype=float)
+
+    def advance(self, t1: float, fairlead: NDArray[np.float64],
+                fairlead_velocity: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Advance from the current time to ``t1``, the fairlead moving (cubic Hermite) from
+        its current position and velocity to ``fairlead`` and ``fairlead_velocity``.
+
+        Returns
+        -------
+        ndarray
+            The force the line exerts on the fairlead at ``t1`` [N], shape (3,).
+        """
+        ff, af = np.zeros((1, 3)), np.zeros((1, 3))
+        self.solve_path(np.array([t1]), np.asarray(fairlead, dtype=float)[None, :],
+                        np.asarray(fairlead_velocity, dtype=float)[None, :], ff, af,
+                        np.zeros(1), np.zeros(1))
+        return ff[0]
+
+    # -- state ---------------------------------------------------------------------------------
+    def get_state(self) -> DynamicLineState:
+        """A copy of the current state."""
+        return DynamicLineState(self.time, self.r.copy(), self.v.copy(), self.fairlead.copy(),
+                                self.fairlead_velocity.copy())
+
+    def set_state(self, state: DynamicLineState) -> None:
+        """Restore a state saved by :meth:`get_state`."""
+        self.time = state.time
+        self.r[:] = state.positions
+        self.v[:] = state.velocities
+        self.fairlead[:] = state.fairlead
+        self.fairlead_velocity[:] = state.fairlead_velocity
+
+    def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces the line exerts on its fairlead and anchor in the current state [N]."""
+        w = self._work
+        ff, af = np.zeros(3), np.zeros(3)
+        _k._record(self.r, self.v, self.anchor, self.fairlead, self.fairlead_velocity, self.prm,
+                   self.element.differentiation, self.element.lift, w.q, w.qt, w.N, w.Nstar,
+                   w.faces, w.slack, self.element.weights, ff, af)
+        return ff, af
+
+    def tension(self) -> NDArray[np.float64]:
+        """Effective tension at every node in the current state [N], (nodes,)."""
+        self.end_forces()
+        return np.linalg.norm(self._work.N, axis=-1).reshape(-1)
+
+    def energy(self) -> dict[str, float]:
+        """Kinetic, strain and gravitational energy of the line [J] (the latter with the
+        submerged weight below z = 0), integrated with the element quadrature."""
+        self.end_forces()
+        pr = self.properties
+        wq = np.tile(self.element.weights * 0.5 * self.element_length, self.settings.elements)
+        v2 = np.sum(self.v.reshape(-1, 3) ** 2, axis=1)
+        q = np.linalg.norm(self._work.q.reshape(-1, 3), axis=1)
+        eps = np.maximum(q - 1.0, 0.0)
+        z = self.r.reshape(-1, 3)[:, 2]
+        weight = pr.mass_per_length * pr.gravity * np.where(
+            z < 0.0, 1.0 - pr.water_density / pr.material_density, 1.0)
+        return {"kinetic": float(0.5 * pr.mass_per_length * np.sum(wq * v2)),
+                "strain": float(0.5 * pr.axial_stiffness * np.sum(wq * eps ** 2)),
+                "gravity": float(np.sum(wq * weight * z))}
+
+
+class _Workspace:
+    """Preallocated arrays of the kernels (no allocation inside the time loop)."""
+
+    def __init__(self, K: int, Np: int) -> None:
+        self.stages = np.zeros((5, K, Np, 3))
+        self.q = np.zeros((K, Np, 3))
+        self.qt = np.zeros((K, Np, 3))
+        self.N = np.zeros((K, Np, 3))
+        self.Nstar = np.zeros((K + 1, 3))
+        self.faces = np.zeros((K + 1, 3))
+        self.slack = np.zeros(K)
+        self.fpos = np.zeros(3)
+        self.fvel = np.zeros(3)
+        self.tmp = np.zeros(max(Np, 6))
+        self.where = np.zeros(2, dtype=np.int64)
