@@ -93,7 +93,7 @@ class DynamicSettings:
 
     elements: int  #: number of elements
     order: int  #: polynomial order p (1 to 8)
-    cfl: float  #: time step / (smallest node spacing / longitudinal wave speed) [-]
+    cfl: float  #: time step as a fraction of the linear SSP-RK3 stability limit [-]
     max_time_step: float | None  #: user cap on the time step [s]
     slack_filter: bool  #: modal filter on elements in compression
     seabed_contact: str  #: "implicit" or "explicit" normal spring-damper

@@ -18,7 +18,7 @@ from floatmoor.case.schema import DynamicSettings, Environment, Line, Seabed
 from floatmoor.errors import SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
-from floatmoor.mooring.dg.reference import ReferenceElement, reference_element
+from floatmoor.mooring.dg.reference import STABLE_STEP_FACTOR, ReferenceElement, reference_element
 
 __all__ = ["CableProperties", "DynamicLine", "DynamicLineState"]
 
@@ -206,11 +206,12 @@ class DynamicLine:
         return positions
 
     def _time_step(self) -> float:
-        """Largest stable step: the CFL condition of the longitudinal wave, the explicit
-        contact and the internal-damping diffusion where they apply, and the user's cap."""
+        """The time step: ``cfl`` times the SSP-RK3 stability limit of the longitudinal wave
+        (``STABLE_STEP_FACTOR``), of the explicit contact and of the internal-damping
+        diffusion where they apply, capped by the user's ``max_time_step``."""
         st, pr = self.settings, self.properties
         dx = 0.5 * self.element_length * self.element.min_spacing
-        dt = st.cfl * dx / pr.wave_speed
+        dt = st.cfl * STABLE_STEP_FACTOR[st.order] * self.element_length / pr.wave_speed
         if st.seabed_contact == "explicit" and self.prm[_k.P_KB] > 0.0:
             omega = math.sqrt(self.prm[_k.P_KB] / pr.mass_per_length)
             # SSP-RK3 is stable to |lambda dt| ~ 2.5 on the negative real axis; a damped

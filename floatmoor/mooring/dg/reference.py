@@ -20,7 +20,16 @@ import numpy as np
 from numpy.polynomial import legendre as npl
 from numpy.typing import NDArray
 
-__all__ = ["ReferenceElement", "lgl_nodes", "legendre_vandermonde", "reference_element"]
+__all__ = ["ReferenceElement", "lgl_nodes", "legendre_vandermonde", "reference_element",
+           "STABLE_STEP_FACTOR"]
+
+#: Largest stable SSP-RK3 step of the linearised scheme, dt_max = factor * h / c, for order p.
+#: From the eigenvalues of the semi-discrete operator of a taut line's longitudinal waves
+#: (central position traces, Lax-Friedrichs flux, fixed ends, 8 elements): the largest dt
+#: keeping every lambda dt inside the RK3 stability region |1 + z + z^2/2 + z^3/6| <= 1.
+#: ``tests/unit/test_mooring_dg_stability.py`` recomputes them. They fall like ~0.7 / (2p + 1).
+STABLE_STEP_FACTOR = {1: 0.4188, 2: 0.2122, 3: 0.1312, 4: 0.0903, 5: 0.0645, 6: 0.0485,
+                      7: 0.0377, 8: 0.0302}
 
 
 def lgl_nodes(p: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
