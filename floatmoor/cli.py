@@ -71,14 +71,18 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def _describe(case: Case) -> str:
-    """Derived quantities: weights, wave speeds, static tensions at the mean position."""
-    from floatmoor.simulation.forced import build_line_models
+    """Derived quantities: weights, wave speeds, static tensions at the mean position, and the
+    discretisation and time step of dynamic lines."""
+    from floatmoor.mooring.dg.line import DynamicLine
+    from floatmoor.mooring.quasistatic import QuasiStaticLine
 
     rows = [f"  {'line':<14}{'model':<14}{'length':>9}{'span':>9}{'w [N/m]':>10}"
             f"{'c_axial':>10}{'T_fair':>11}{'T_anch':>11}{'on seabed':>11}"]
-    for line, model in zip(case.lines, build_line_models(case)):
+    notes = []
+    for line in case.lines:
         try:
-            sol = model.solve(np.asarray(line.fairlead))
+            sol = QuasiStaticLine.from_case(line, case.environment, case.seabed).solve(
+                np.asarray(line.fairlead))
             static = (f"{sol.fairlead_tension:>11.5g}{sol.anchor_tension:>11.5g}"
                       f"{sol.laid_length:>11.4g}")
         except SolverError as err:
@@ -86,7 +90,14 @@ def _describe(case: Case) -> str:
         rows.append(f"  {line.name:<14}{line.model:<14}{line.length:>9.4g}{line.span:>9.4g}"
                     f"{line.line_type.weight_in_water(case.environment):>10.4g}"
                     f"{line.line_type.axial_wave_speed:>10.4g}{static}")
+        if line.model == "dynamic":
+            dg = DynamicLine.from_case(line, case.environment, case.seabed)
+            st = line.dynamic
+            notes.append(f"  {line.name}: {st.elements} elements of order {st.order} "
+                         f"({st.elements * (st.order + 1)} nodes), time step {dg.time_step:.3g} s "
+                         f"(cfl {st.cfl:g}), seabed contact {st.seabed_contact}")
     rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
+    rows.extend(notes)
     if case.motion is not None:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "

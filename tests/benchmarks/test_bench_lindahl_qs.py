@@ -30,7 +30,7 @@ def _best_of(func, repeats=5):
 
 def test_lindahl_quasi_static_run_against_moorpy():
     catenary = pytest.importorskip("moorpy.Catenary").catenary
-    case = load_case(LINDAHL_CASE)
+    case = load_case(LINDAHL_CASE, ['lines.chain.model="quasi-static"'])
     run_forced_motion(case)  # compile / load the cache
     ours = _best_of(lambda: run_forced_motion(case))
 

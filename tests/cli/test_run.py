@@ -19,7 +19,8 @@ from floatmoor.simulation import forced
 from floatmoor.ui.progress import ProgressReporter
 from tests.conftest import LINDAHL_CASE
 
-SHORT = ["--set", "simulation.duration=5.0"]  # ramp 2.5 s + 2 cycles of 1.25 s
+QS = ["--set", 'lines.chain.model="quasi-static"']
+SHORT = ["--set", "simulation.duration=5.0", *QS]  # ramp 2.5 s + 2 cycles of 1.25 s
 
 
 def test_run_writes_labelled_dataset_summary_and_plot(tmp_path, capsys):
@@ -41,7 +42,7 @@ def test_run_writes_labelled_dataset_summary_and_plot(tmp_path, capsys):
         assert ds[name].attrs["units"] == VARIABLE_ATTRIBUTES[name]["units"], name
         assert ds[name].attrs["long_name"], name
     assert ds.attrs["case_toml"] == LINDAHL_CASE.read_text()
-    assert ds.attrs["case_overrides"] == "simulation.duration=5.0"
+    assert ds.attrs["case_overrides"] == 'simulation.duration=5.0\nlines.chain.model="quasi-static"'
     assert ds.attrs["floatmoor_version"] == floatmoor.__version__
     assert ds.attrs["created"].endswith("+00:00") and ds.attrs["status"] == "complete"
     np.testing.assert_allclose(ds["fairlead_tension"],
@@ -70,7 +71,7 @@ def test_interrupted_run_leaves_valid_partial_file(tmp_path, capsys, monkeypatch
 
     monkeypatch.setattr(ProgressReporter, "__call__", interrupt)
     out = tmp_path / "partial.nc"
-    assert main(["run", str(LINDAHL_CASE), "-o", str(out)]) == 130
+    assert main(["run", str(LINDAHL_CASE), "-o", str(out), *QS]) == 130
     assert "interrupted" in capsys.readouterr().err
     ds = read_dataset(out)
     assert ds.attrs["status"].startswith("interrupted")
@@ -94,7 +95,7 @@ def test_failed_run_names_line_time_quantity_and_keeps_partial(tmp_path, capsys,
 
     monkeypatch.setattr(QuasiStaticLine, "solve_path", failing)
     out = tmp_path / "failed.nc"
-    assert main(["run", str(LINDAHL_CASE), "-o", str(out), "--quiet"]) == 1
+    assert main(["run", str(LINDAHL_CASE), "-o", str(out), "--quiet", *QS]) == 1
     err = capsys.readouterr().err
     assert "line 'chain'" in err and "t = 7 s" in err and "fairlead force" in err
     ds = read_dataset(out)
@@ -126,7 +127,7 @@ def test_results_are_written_as_the_run_goes(tmp_path):
         ds = read_dataset(out)
         seen.append((ds.sizes["time"], ds.attrs["status"]))
 
-    case = load_case(LINDAHL_CASE)
+    case = load_case(LINDAHL_CASE, [QS[1]])
     result = forced.run_forced_motion(case, output=out, progress=look, flush_interval=0.0)
     assert [n for n, _ in seen] == [forced.CHUNK_SAMPLES * (i + 1) for i in range(len(seen) - 1)] \
         + [result.dataset.sizes["time"]]

@@ -22,7 +22,7 @@ MOORPY_RTOL = 1e-6
 ])
 def test_lindahl_path_tensions_match_moorpy(overrides):
     catenary = pytest.importorskip("moorpy.Catenary").catenary
-    case = load_case(LINDAHL_CASE, overrides + ["simulation.duration=5.0",
+    case = load_case(LINDAHL_CASE, overrides + ['lines.chain.model="quasi-static"', "simulation.duration=5.0",
                                                 "simulation.output_interval=0.01"])
     ds = run_forced_motion(case).dataset.sel(line="chain")
     line = case.lines[0]

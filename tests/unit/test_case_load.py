@@ -18,7 +18,8 @@ def test_lindahl_case_values():
     assert case.environment.water_depth == 3.0
     assert case.environment.seabed_z == -3.0
     (line,) = case.lines
-    assert line.name == "chain" and line.model == "quasi-static"
+    assert line.name == "chain" and line.model == "dynamic"
+    assert line.dynamic.elements == 10 and line.dynamic.order == 5
     assert line.anchor == (0.0, 0.0, -3.0) and line.fairlead == (32.554, 0.0, 0.3)
     assert line.line_type.tangential_added_mass_coefficient == 0.0  # default
     # wave celerity sqrt(EA/m) about 350 m/s (cases.md case A)
