@@ -3,12 +3,16 @@
 Semi-discretisation (nodal DG on LGL nodes, strong form, Hesthaven & Warburton 2008):
 
 * unknowns per node: position r and velocity v (the cable equation as a first-order system);
-* tangent q = dr/ds from r with central traces r* = {r} between elements and the prescribed
-  anchor / fairlead positions at the ends (the local-DG auxiliary variable of MooDy);
+* tangent q = dr/ds from r with the trace r* taken from the anchor side of each interface and
+  the prescribed anchor / fairlead positions at the ends (the local-DG auxiliary variable of
+  MooDy, with alternating fluxes: central traces lose an order at odd p);
 * axial force N = T(eps) q / |q|, eps = |q| - 1, T = EA eps (+ c_int d(eps)/dt) for eps > 0 and
   0 in compression (bilinear, physics.md section 1);
-* momentum flux: local Lax-Friedrichs, N* = {N} + (Z / 2) (v+ - v-) with the axial impedance
-  Z = sqrt(EA m_t) = m_t c (c the fastest, longitudinal wave speed); at the ends the exterior
+* momentum flux: N from the fairlead side (alternating with r*, which makes the interface terms
+  conserve energy, Chou, Shu & Xing 2014) plus the local Lax-Friedrichs penalty:
+  N* = N+ + (Z / 2) (v+ - v-), with the axial impedance
+  Z = m_t c (m_t the tangential mass, c = sqrt(EA / m) the fastest, longitudinal wave speed,
+  which bounds the local one); at the ends the exterior
   velocity mirrors the prescribed one, N* = N + Z (v - v_bc) at the anchor and
   N* = N + Z (v_bc - v) at the fairlead;
 * (M_eff) dv/dt = dN/ds + f, with dN/ds the DG divergence, f the weight and buoyancy (buoyancy,
@@ -20,11 +24,13 @@ Semi-discretisation (nodal DG on LGL nodes, strong form, Hesthaven & Warburton 2
   the spring-damper, z1 = z* + dt (v1 - v*), v1 = v* - dt (k (z1 - z_b) + c min(v1, 0)) / m_z,
   which is unconditionally stable, so the axial-wave CFL condition sets the time step;
 * slack control: the bending-free cable equation is ill-posed in compression, so elements with
-  a node in compression (eps < 0) get an exponential modal filter on r and v after each step
-  (reference.py); taut elements are never filtered, so smooth solutions keep their order.
+  a node in compression (eps < 0, flagged in the last stage) get an exponential modal filter on
+  their velocities after each step (reference.py): a contraction of the kinetic energy, so it
+  only dissipates; taut elements are never filtered, so smooth solutions keep their order.
 
-Time integration: SSP-RK3 (Shu & Osher 1988). The fairlead position and velocity inside an
-interval come from the cubic Hermite interpolant of their values at its ends.
+Time integration: SSP-RK3 (Shu & Osher 1988) with stage-consistent boundary data. The fairlead
+position and velocity inside an interval come from the cubic Hermite interpolant of their
+values at its ends.
 
 Parameters travel in one float64 array ``prm`` indexed by the ``P_*`` constants.
 """
@@ -99,17 +105,40 @@ def hermite(t0: float, t1: float, p0: np.ndarray, v0: np.ndarray, p1: np.ndarray
 
 
 @jit
+def _hermite_derivatives(t0: float, t1: float, p0: np.ndarray, v0: np.ndarray, p1: np.ndarray,
+                         v1: np.ndarray, t: float, out: np.ndarray) -> None:
+    """Position and its first three time derivatives of the cubic Hermite curve at t;
+    ``out`` is (4, 3)."""
+    dt = t1 - t0
+    x = (t - t0) / dt
+    x2 = x * x
+    basis = (
+        (2.0 * x2 * x - 3.0 * x2 + 1.0, dt * (x2 * x - 2.0 * x2 + x), -2.0 * x2 * x + 3.0 * x2,
+         dt * (x2 * x - x2)),
+        ((6.0 * x2 - 6.0 * x) / dt, 3.0 * x2 - 4.0 * x + 1.0, (-6.0 * x2 + 6.0 * x) / dt,
+         3.0 * x2 - 2.0 * x),
+        ((12.0 * x - 6.0) / (dt * dt), (6.0 * x - 4.0) / dt, (-12.0 * x + 6.0) / (dt * dt),
+         (6.0 * x - 2.0) / dt),
+        (12.0 / (dt * dt * dt), 6.0 / (dt * dt), -12.0 / (dt * dt * dt), 6.0 / (dt * dt)),
+    )
+    for d in range(4):  # rows: the basis of p0, v0, p1, v1 and its time derivatives
+        b = basis[d]
+        for c in range(3):
+            out[d, c] = b[0] * p0[c] + b[1] * v0[c] + b[2] * p1[c] + b[3] * v1[c]
+
+
+@jit
 def _gradient(u: np.ndarray, left: np.ndarray, right: np.ndarray, D: np.ndarray,
               LIFT: np.ndarray, jac: float, faces: np.ndarray, out: np.ndarray) -> None:
-    """DG derivative d/ds of nodal field u (K, Np, 3) with central interior traces and the
-    given end values (strong form)."""
+    """DG derivative d/ds of nodal field u (K, Np, 3) with interior traces from the anchor
+    side (alternating flux) and the given end values (strong form)."""
     K, Np = u.shape[0], u.shape[1]
     for c in range(3):
         faces[0, c] = left[c]
         faces[K, c] = right[c]
     for k in range(1, K):
         for c in range(3):
-            faces[k, c] = 0.5 * (u[k - 1, Np - 1, c] + u[k, 0, c])
+            faces[k, c] = u[k - 1, Np - 1, c]  # alternating flux: the trace from the anchor side
     for k in range(K):
         for c in range(3):
             jl = faces[k, c] - u[k, 0, c]
@@ -174,8 +203,7 @@ def dg_tension_field(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.
             sub = 1.0 if r[f, 0, 2] + r[f - 1, Np - 1, 2] < 0.0 else 0.0
             Z = (m + sub * prm[P_MAT]) * c_wave
             for c in range(3):
-                Nstar[f, c] = (0.5 * (N[f - 1, Np - 1, c] + N[f, 0, c])
-                               + 0.5 * Z * (v[f, 0, c] - v[f - 1, Np - 1, c]))
+                Nstar[f, c] = N[f, 0, c] + 0.5 * Z * (v[f, 0, c] - v[f - 1, Np - 1, c])
 
 
 @jit
@@ -288,28 +316,40 @@ def _filter_slack(u: np.ndarray, F: np.ndarray, slack: np.ndarray, tmp: np.ndarr
 
 @jit
 def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, work3, q, qt,
-                  N, Nstar, faces, slack, fpos, fvel, tmp):
+                  N, Nstar, faces, slack, fpos, fvel, tmp, bcd):
     """One SSP-RK3 step of (r, v) from t to t + dt, then contact and slack filtering."""
     r1, v1, r2, v2, a = work3[0], work3[1], work3[2], work3[3], work3[4]
     K, Np = r.shape[0], r.shape[1]
-    # stage 1
-    hermite(t0, t1, p0, w0, p1, w1, t, fpos, fvel)
+    # Stage-consistent fairlead data (Carpenter, Gottlieb, Abarbanel & Don 1995): the SSP-RK3
+    # stages approximate u(t + dt) to first and u(t + dt/2) to second order, so they take the
+    # matching Taylor polynomials of the boundary data, not its exact values, which would
+    # reduce the accuracy of the end force to first order.
+    g = bcd
+    _hermite_derivatives(t0, t1, p0, w0, p1, w1, t, g)
+    # stage 1: data at t
+    for c in range(3):
+        fpos[c] = g[0, c]
+        fvel[c] = g[1, c]
     dg_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
                 r1[k, i, c] = r[k, i, c] + dt * v[k, i, c]
                 v1[k, i, c] = v[k, i, c] + dt * a[k, i, c]
-    # stage 2
-    hermite(t0, t1, p0, w0, p1, w1, t + dt, fpos, fvel)
+    # stage 2: g + dt g'
+    for c in range(3):
+        fpos[c] = g[0, c] + dt * g[1, c]
+        fvel[c] = g[1, c] + dt * g[2, c]
     dg_rhs(r1, v1, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
                 r2[k, i, c] = 0.75 * r[k, i, c] + 0.25 * (r1[k, i, c] + dt * v1[k, i, c])
                 v2[k, i, c] = 0.75 * v[k, i, c] + 0.25 * (v1[k, i, c] + dt * a[k, i, c])
-    # stage 3
-    hermite(t0, t1, p0, w0, p1, w1, t + 0.5 * dt, fpos, fvel)
+    # stage 3: g + dt/2 g' + dt^2/4 g''
+    for c in range(3):
+        fpos[c] = g[0, c] + 0.5 * dt * g[1, c] + 0.25 * dt * dt * g[2, c]
+        fvel[c] = g[1, c] + 0.5 * dt * g[2, c] + 0.25 * dt * dt * g[3, c]
     dg_rhs(r2, v2, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
     third, two_thirds = 1.0 / 3.0, 2.0 / 3.0
     for k in range(K):
@@ -368,7 +408,7 @@ def _check(r, v, q, prm, where):
 @jit
 def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt_max,
                 fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, work3, q,
-                qt, N, Nstar, faces, slack, fpos, fvel, tmp, where):
+                qt, N, Nstar, faces, slack, fpos, fvel, tmp, bcd, where):
     """Advance the line along a fairlead path and record its end forces at every sample.
 
     ``time`` (n,), ``path`` and ``velocity`` (n, 3) give the fairlead at the output times;
@@ -412,7 +452,7 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
         for j in range(n_sub):
             _ssp_rk3_step(r, v, t0 + j * dt, dt, t0, t1, path[s], velocity[s], path[s + 1],
                           velocity[s + 1], anchor, prm, D, LIFT, F, work3, q, qt, N, Nstar,
-                          faces, slack, fpos, fvel, tmp)
+                          faces, slack, fpos, fvel, tmp, bcd)
         for c in range(3):
             fpos[c] = path[s + 1, c]
             fvel[c] = velocity[s + 1, c]

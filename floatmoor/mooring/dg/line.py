@@ -277,7 +277,7 @@ class DynamicLine:
             self.anchor, self.prm, self.element.differentiation, self.element.lift,
             self.element.filter, self.element.weights, self.time_step, ff, af, lb, st,
             shape_every, sr, sten, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack,
-            w.fpos, w.fvel, w.tmp, w.where)
+            w.fpos, w.fvel, w.tmp, w.boundary, w.where)
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         fairlead_force[:done - first] = ff[first:done]
@@ -362,6 +362,7 @@ class _Workspace:
 
     def __init__(self, K: int, Np: int) -> None:
         self.stages = np.zeros((5, K, Np, 3))
+        self.boundary = np.zeros((4, 3))  # fairlead position and 3 derivatives
         self.q = np.zeros((K, Np, 3))
         self.qt = np.zeros((K, Np, 3))
         self.N = np.zeros((K, Np, 3))

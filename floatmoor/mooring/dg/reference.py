@@ -25,11 +25,11 @@ __all__ = ["ReferenceElement", "lgl_nodes", "legendre_vandermonde", "reference_e
 
 #: Largest stable SSP-RK3 step of the linearised scheme, dt_max = factor * h / c, for order p.
 #: From the eigenvalues of the semi-discrete operator of a taut line's longitudinal waves
-#: (central position traces, Lax-Friedrichs flux, fixed ends, 8 elements): the largest dt
+#: (alternating traces with the Lax-Friedrichs penalty, fixed ends, 8 elements): the largest dt
 #: keeping every lambda dt inside the RK3 stability region |1 + z + z^2/2 + z^3/6| <= 1.
-#: ``tests/unit/test_mooring_dg_stability.py`` recomputes them. They fall like ~0.7 / (2p + 1).
-STABLE_STEP_FACTOR = {1: 0.4188, 2: 0.2122, 3: 0.1312, 4: 0.0903, 5: 0.0645, 6: 0.0485,
-                      7: 0.0377, 8: 0.0302}
+#: ``tests/unit/test_mooring_dg_stability.py`` recomputes them (5 significant digits). They fall like ~0.6 / (2p + 1).
+STABLE_STEP_FACTOR = {1: 0.42547, 2: 0.21063, 3: 0.12383, 4: 0.080103,
+                      5: 0.056071, 6: 0.041434, 7: 0.031859, 8: 0.025255}
 
 
 def lgl_nodes(p: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
