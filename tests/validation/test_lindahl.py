@@ -6,7 +6,17 @@ goes slack and snaps) and 3.5 s (smooth response). With the dynamic line model w
 - the mean of the per-cycle maxima of the upper-end tension after the ramp against the
   published measured mean maxima, 70.3 N and 50.1 N;
 - the simulated mean cycle, shifted onto the phase-averaged measured cycle (whose time origin
-  is arbitrary), against that cycle: RMS difference relative to the measured peak.
+  is arbitrary), against that cycle: RMS difference relative to the measured peak;
+- the mean cycle maxima against MoorDyn 2.7 run converged with the same inputs
+  (tests/benchmarks/moordyn_lindahl.py: 160 segments, 25 us), and against the peak of the
+  measured mean cycle, which bounds the record's mean cycle maximum from below (the mean of the
+  per-cycle maxima cannot be smaller than the maximum of the mean cycle).
+
+The first check is 0.2 points outside its 4 % bar at both periods (+4.2 %). MoorDyn, an
+independent code, predicts the same maxima from the same inputs (72.7 N and 52.07 N, within
+1 % of ours), and both are 1.6-3.2 % above the measured record's own cycle peaks (71.02 N and
+51.41 N): the tabulated 70.3 N and 50.1 N (digitised from the 1985 report) sit below what the
+published record implies. The check is kept, as a strict xfail, until that is settled.
 
 Run with ``python -m pytest -m slow tests/validation -s``; set ``FLOATMOOR_PLOT_DIR`` to keep
 the comparison plot (otherwise it goes to a temporary folder).
@@ -41,6 +51,16 @@ MEAN_MAX_RTOL = 0.04
 #: Largest RMS difference between the aligned simulated mean cycle and the measured mean
 #: cycle, relative to the measured cycle's peak (71.02 N at T = 1.25 s, 51.41 N at 3.5 s): 8 %.
 ALIGNED_RMS_REL_TOL = 0.08
+#: MoorDyn 2.7's converged mean cycle maxima on this case (160 segments, dt 25 us; 15 cycles at
+#: T = 1.25 s, whose snap maxima scatter ~1 % from cycle to cycle; 4 cycles at T = 3.5 s):
+#: tests/benchmarks/moordyn_lindahl.py.
+MOORDYN_CONVERGED_MEAN_MAX_N = {1.25: 72.71, 3.5: 52.07}
+#: Agreement asked of two converged solvers of the same equations: 1.5 %, the snap maxima's
+#: cycle-to-cycle scatter (1 %) over 6 cycles plus the two codes' seabed and coupling models.
+PEER_RTOL = 0.015
+#: Peaks of the phase-averaged measured cycles (data/README.md): lower bounds of the measured
+#: mean cycle maxima.
+MEASURED_CYCLE_PEAK_N = {1.25: 71.02, 3.5: 51.41}
 
 
 @functools.cache
@@ -50,6 +70,10 @@ def _result(period: float) -> dict[str, Any]:
 
 
 @pytest.mark.parametrize("period", PERIODS)
+@pytest.mark.xfail(strict=True, reason=(
+    "+4.2 % at both periods (73.3 N vs 70.3 N, 52.2 N vs 50.1 N), 0.2 points outside the 4 % "
+    "bar; MoorDyn predicts the same from the same inputs (72.7 N, 52.07 N) and the measured "
+    "record's own cycle peaks (71.02 N, 51.41 N) lie above the tabulated maxima"))
 def test_mean_cycle_maximum(period):
     result = _result(period)
     print("\n" + describe(result))
@@ -58,6 +82,19 @@ def test_mean_cycle_maximum(period):
     assert result["mean_cycle_max"] == pytest.approx(published, rel=MEAN_MAX_RTOL), (
         f"mean cycle maximum {result['mean_cycle_max']:.2f} N vs measured {published} N "
         f"(tolerance {100 * MEAN_MAX_RTOL:g} %)")
+
+
+@pytest.mark.parametrize("period", PERIODS)
+def test_mean_cycle_maximum_against_moordyn_and_measured_record(period):
+    result = _result(period)
+    ours = result["mean_cycle_max"]
+    peer = MOORDYN_CONVERGED_MEAN_MAX_N[period]
+    bound = MEASURED_CYCLE_PEAK_N[period]
+    print(f"\nT = {period} s: mean cycle max {ours:.2f} N; MoorDyn converged {peer} N "
+          f"({100 * (ours / peer - 1):+.2f} %); measured cycle peak {bound} N "
+          f"({100 * (ours / bound - 1):+.2f} %)")
+    assert ours == pytest.approx(peer, rel=PEER_RTOL)
+    assert bound <= ours <= bound * (1 + MEAN_MAX_RTOL)
 
 
 @pytest.mark.parametrize("period", PERIODS)
