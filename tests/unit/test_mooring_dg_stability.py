@@ -75,7 +75,7 @@ def _taut_line(p: int, cfl: float) -> DynamicLine:
                             gravity=0.0)
     settings = DynamicSettings(elements=6, order=p, cfl=cfl, max_time_step=None,
                                slack_filter=False, seabed_contact="implicit")
-    line = DynamicLine(props, settings, np.zeros(3), np.array([10.1, 0.0, 0.0]))
+    line = DynamicLine(props, settings, np.zeros(3), np.array([10.1, 0.0, 0.0]), name="x")
     rng = np.random.default_rng(p)
     line.v[..., 0] = 1e-3 * rng.standard_normal(line.v.shape[:2])  # excite every mode
     return line
@@ -95,7 +95,13 @@ def test_kernel_is_stable_below_and_unstable_above_the_limit(p):
         try:
             line.solve_path(time, fair, np.zeros_like(fair), *out)
             results[cfl] = float(np.abs(line.v).max())
-        except SolverError:  # the instability check stopped it
+        except SolverError as err:  # the instability check stopped it, and says where
+            message = str(err)
+            assert "line 'x' (dynamic)" in message and "t = " in message
+            assert "arc length s = " in message and ("velocity" in message or "moves" in message
+                                                     or "strain" in message or "finite" in message)
+            assert 0 < line.failed_index <= n
+            assert np.all(np.isfinite(out[0][:line.failed_index]))
             results[cfl] = math.inf
     print(f"p = {p}: max |v| after 400 steps {results}")
     assert results[0.95] < 1e-2
