@@ -30,7 +30,10 @@ def test_quick_start_has_two_commands_and_ci_runs_the_test_one():
 
 def test_validation_rows_name_existing_tests():
     section = README.split("## Validation", 1)[1].split("\n## ", 1)[0]
-    rows = [r for r in section.splitlines() if r.startswith("| ") and "---" not in r][1:]
+    lines = section.strip().splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("| "))
+    end = next((i for i in range(start, len(lines)) if not lines[i].startswith("|")), len(lines))
+    rows = [r for r in lines[start:end] if "---" not in r][1:]  # the validation table
     assert len(rows) >= 8
     for row in rows:
         test_ids = re.findall(r"`(tests/[^`:]+::[^`]+)`", row)

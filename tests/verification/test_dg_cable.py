@@ -226,10 +226,9 @@ def check_h_convergence(p: int, Ks: list[int], quantities=("fairlead", "anchor",
 
 @pytest.mark.parametrize("p", [2, 3])
 def test_h_convergence_axial_standing_wave(p: int) -> None:
-    """h-refinement K = 4, 8, 16 at fixed p against the exact solution: the end forces and
-    the mid-line position converge at order p + 1/2 or better (observed: fairlead 4.05,
-    anchor 2.89, mid-line 4.26 at p = 2; 3.94, 4.56, 5.20 at p = 3). The L2 errors of the
-    position and velocity fields are printed (p = 3: 2.92 and 3.41; see the xfail below)."""
+    """h-refinement K = 4, 8, 16 at fixed p against the exact solution: the end forces, the
+    mid-line position and the L2 errors of the position and velocity fields converge at order
+    p + 1/2 or better (the fitted slopes are printed)."""
     print()
     check_h_convergence(p, [4, 8, 16])
 
@@ -239,18 +238,15 @@ def test_h_convergence_axial_standing_wave(p: int) -> None:
 def test_h_convergence_axial_standing_wave_high_order(p: int, Ks: list[int]) -> None:
     """As above at p = 4 (observed 4.9-5.7) and p = 5 (observed 5.5-6.7 on K = 2, 4, 8; at
     K = 16 the errors reach the 2e-9 floor of the time step). The velocity field is printed
-    (5.1 and 5.3); the position field at p = 5 converges at 4.6 (see the xfail below)."""
+    (5.1 and 5.3); see below for the position field at odd p."""
     print()
     check_h_convergence(p, Ks)
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason=(
-    "position field at odd p converges at order p, not p + 1/2: measured L2 slope 3.08 at "
-    "p = 3 (K = 8, 16, 32) and 4.55 at p = 5 (K = 2, 4, 8); the tangent uses central "
-    "traces (LDG with a central flux loses an order at odd p); even p, the end forces, the "
-    "mid-line and the velocity are fine"))
 def test_h_convergence_position_field_odd_order() -> None:
+    """Regression: with central traces for the tangent the position field lost an order at odd
+    p (slope 3.08 at p = 3, 4.55 at p = 5); alternating traces restore p + 1/2 or better."""
     print()
     errs = [axial_standing_wave(K, 3) for K in (8, 16, 32)]
     slope = fit_slope([L / 8, L / 16, L / 32], [e["L2 r"] for e in errs])
