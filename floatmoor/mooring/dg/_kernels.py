@@ -128,6 +128,23 @@ def _hermite_derivatives(t0: float, t1: float, p0: np.ndarray, v0: np.ndarray, p
 
 
 @jit
+def _strong_derivative(u: np.ndarray, faces: np.ndarray, D: np.ndarray, LIFT: np.ndarray,
+                       jac: float, out: np.ndarray) -> None:
+    """Strong-form DG derivative of nodal field u (K, Np, 3) given its face values (K + 1, 3):
+    du/ds = jac (D u + M^-1 [e_p (u*_right - u_p) - e_0 (u*_left - u_0)])."""
+    K, Np = u.shape[0], u.shape[1]
+    for k in range(K):
+        for c in range(3):
+            jl = faces[k, c] - u[k, 0, c]
+            jr = faces[k + 1, c] - u[k, Np - 1, c]
+            for i in range(Np):
+                acc = 0.0
+                for j in range(Np):
+                    acc += D[i, j] * u[k, j, c]
+                out[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+
+
+@jit
 def _gradient(u: np.ndarray, left: np.ndarray, right: np.ndarray, D: np.ndarray,
               LIFT: np.ndarray, jac: float, faces: np.ndarray, out: np.ndarray) -> None:
     """DG derivative d/ds of nodal field u (K, Np, 3) with interior traces from the anchor
@@ -139,15 +156,7 @@ def _gradient(u: np.ndarray, left: np.ndarray, right: np.ndarray, D: np.ndarray,
     for k in range(1, K):
         for c in range(3):
             faces[k, c] = u[k - 1, Np - 1, c]  # alternating flux: the trace from the anchor side
-    for k in range(K):
-        for c in range(3):
-            jl = faces[k, c] - u[k, 0, c]
-            jr = faces[k + 1, c] - u[k, Np - 1, c]
-            for i in range(Np):
-                acc = 0.0
-                for j in range(Np):
-                    acc += D[i, j] * u[k, j, c]
-                out[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+    _strong_derivative(u, faces, D, LIFT, jac, out)
 
 
 @jit
@@ -225,16 +234,8 @@ def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
     explicit_contact = prm[P_IMPLICIT_CONTACT] == 0.0
     friction = prm[P_MU] * prm[P_WSUB]
     vc = prm[P_VC]
+    _strong_derivative(N, Nstar, D, LIFT, jac, dv)  # dN/ds, the fluxes as face values
     for k in range(K):
-        for c in range(3):
-            # surface terms of the divergence, per component
-            jl = Nstar[k, c] - N[k, 0, c]
-            jr = Nstar[k + 1, c] - N[k, Np - 1, c]
-            for i in range(Np):
-                acc = 0.0
-                for j in range(Np):
-                    acc += D[i, j] * N[k, j, c]
-                dv[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
         for i in range(Np):
             fx = dv[k, i, 0]
             fy = dv[k, i, 1]
