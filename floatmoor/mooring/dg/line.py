@@ -19,6 +19,7 @@ from floatmoor.errors import SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg.reference import STABLE_STEP_FACTOR, ReferenceElement, reference_element
+from floatmoor.mooring.dg.stability import stable_step_factor
 
 __all__ = ["CableProperties", "DynamicLine", "DynamicLineState"]
 
@@ -207,19 +208,23 @@ class DynamicLine:
 
     def _time_step(self) -> float:
         """The time step: ``cfl`` times the SSP-RK3 stability limit of the longitudinal wave
-        (``STABLE_STEP_FACTOR``), of the explicit contact and of the internal-damping
-        diffusion where they apply, capped by the user's ``max_time_step``."""
+        (``STABLE_STEP_FACTOR``; with internal damping, from the spectrum of the damped scheme,
+        stability.py) and of the explicit contact where it applies, capped by the user's
+        ``max_time_step``."""
         st, pr = self.settings, self.properties
-        dx = 0.5 * self.element_length * self.element.min_spacing
-        dt = st.cfl * STABLE_STEP_FACTOR[st.order] * self.element_length / pr.wave_speed
+        h, c = self.element_length, pr.wave_speed
+        if pr.internal_damping > 0.0:
+            nu = pr.internal_damping / (pr.mass_per_length * c * h)
+            factor = stable_step_factor(st.order, nu)
+        else:
+            factor = STABLE_STEP_FACTOR[st.order]
+        dt = st.cfl * factor * h / c
         if st.seabed_contact == "explicit" and self.prm[_k.P_KB] > 0.0:
             omega = math.sqrt(self.prm[_k.P_KB] / pr.mass_per_length)
             # SSP-RK3 is stable to |lambda dt| ~ 2.5 on the negative real axis; a damped
             # oscillator of ratio xi has its fastest eigenvalue near omega (xi + sqrt(xi^2 + 1))
             xi = pr.seabed_damping_ratio
             dt = min(dt, st.cfl * 2.5 / (omega * (xi + math.sqrt(xi * xi + 1.0))))
-        if pr.internal_damping > 0.0:
-            dt = min(dt, st.cfl * 0.5 * dx * dx * pr.mass_per_length / pr.internal_damping)
         if st.max_time_step is not None:
             dt = min(dt, st.max_time_step)
         return dt
