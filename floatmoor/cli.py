@@ -48,6 +48,21 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--json", action="store_true",
                      help="print the summary as JSON on standard output")
     run.add_argument("--quiet", action="store_true", help="no progress reports")
+    sweep = sub.add_parser("sweep", help="run a case over a grid (or zip) of key values")
+    add_case(sweep)
+    sweep.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
+                       help="sweep a key over TOML values; several --grid span a product")
+    sweep.add_argument("--zip", dest="zipped", action="append", default=[],
+                       metavar="KEY=V1,V2,...", help="keys varied together (equal lengths)")
+    sweep.add_argument("-o", "--output", metavar="OUT.nc",
+                       help="campaign dataset (default: the case name with _campaign.nc); "
+                       "re-running with the same file resumes")
+    sweep.add_argument("--workers", type=int, default=1, help="local worker processes")
+    sweep.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run on this Dask distributed scheduler (tcp://host:8786)")
+    sweep.add_argument("--timeseries", action="store_true",
+                       help="also keep every run's fairlead tension history")
+    sweep.add_argument("--quiet", action="store_true", help="no progress reports")
     return parser
 
 
@@ -57,6 +72,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "check":
             return _check(args)
+        if args.command == "sweep":
+            return _sweep(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -157,6 +174,39 @@ def _run(args: argparse.Namespace) -> int:
         print(format_summary(summary))
         print(f"simulated {result.simulated_time_s:.6g} s in {result.wall_time_s:.3g} s of wall "
               f"time; results in {output}" + (f", plot in {args.plot}" if args.plot else ""))
+    return EXIT_OK
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from floatmoor.campaign.design import design_from_options
+    from floatmoor.campaign.runner import run_campaign
+
+    case = load_case(args.case, args.overrides)
+    design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
+    output = Path(args.output) if args.output else Path(Path(case.source).stem + "_campaign.nc")
+    if not output.parent.is_dir():
+        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{output}'")
+    if args.workers < 1:
+        raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+
+    def progress(done: int, total: int, left: float) -> None:
+        if not args.quiet:
+            eta = "" if left != left else f", ~{left:.0f} s left"
+            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
+
+    try:
+        ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
+                          workers=args.workers, scheduler=args.scheduler,
+                          timeseries=args.timeseries, progress=progress)
+    except KeyboardInterrupt:
+        print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    failed = [(str(s)) for s in ds["status"].values.flat if str(s).startswith("failed")]
+    print(f"{ds.attrs['runs_complete']} of {ds['status'].size} runs complete, {len(failed)} "
+          f"failed; results in {output}")
+    for message in failed[:5]:
+        print(f"  {message}")
     return EXIT_OK
 
 
