@@ -17,7 +17,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from floatmoor.case.overrides import apply_overrides
-from floatmoor.case.reader import ReadContext, TableReader
+from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, SEABED_CONTACT_METHODS, Case,
     CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
@@ -98,11 +98,13 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     simulation = _simulation(root.table("simulation"))
     motion = _motion(root.table("motion"), base_dir or FilePath("."), simulation) \
         if root.has("motion") else None
+    campaign = _campaign(root.table("campaign")) if root.has("campaign") else None
     root.finish()
 
     case = Case(title=title, source=source, text=text, overrides=overrides,
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
-                motion=motion, simulation=simulation, description=description)
+                motion=motion, simulation=simulation, description=description,
+                campaign=campaign)
     _check_lines(case, context)
     _check_motion(case, context)
     return case
@@ -242,6 +244,26 @@ def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motio
                       f"({simulation.duration:g} s) [s]", motion.ramp_duration)
     t.finish()
     return motion
+
+
+def _campaign(t: TableReader) -> dict[str, dict[str, list[Any]]]:
+    """``[campaign.grid]`` / ``[campaign.zip]``: quoted dotted keys -> arrays of values, e.g.
+    ``"motion.period" = [1.25, 3.5]``. The keys are checked when the campaign's runs are."""
+    out: dict[str, dict[str, list[Any]]] = {}
+    for kind in ("grid", "zip"):
+        table = t.table(kind, required=False)
+        for key in list(table.data):
+            table._read.add(key)
+            values = table.data[key]
+            if not isinstance(values, list) or not values:
+                raise table.error(key, "a non-empty array of values to sweep", values)
+        out[kind] = dict(table.data)
+        table.finish()
+    if not out["grid"] and not out["zip"]:
+        raise t.error("grid", "at least one swept key in [campaign.grid] or [campaign.zip]",
+                      MISSING)
+    t.finish()
+    return out
 
 
 def _read_motion_table(t: TableReader, path: FilePath) -> tuple[np.ndarray, np.ndarray]:

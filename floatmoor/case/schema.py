@@ -7,6 +7,7 @@ value; the objects here can therefore be trusted by the models.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -216,6 +217,8 @@ class Case:
     motion: Motion | None
     simulation: Simulation
     description: str = ""
+    #: ``{"grid": {key: [values]}, "zip": {key: [values]}}`` from ``[campaign]``, or None
+    campaign: dict[str, dict[str, list[Any]]] | None = None
 
     @property
     def line_names(self) -> list[str]:

@@ -133,3 +133,21 @@ def test_sweep_command(tmp_path, capsys):
     assert main(["sweep", str(LINDAHL_CASE), "--grid", "motion.radius=0.1,-1.0", "-o",
                  str(bad), "--quiet"]) == 2
     assert "motion.radius" in capsys.readouterr().err and not bad.exists()
+
+
+def test_campaign_table_in_the_case_file(tmp_path, capsys):
+    case = tmp_path / "lindahl_campaign.toml"
+    case.write_text(LINDAHL_CASE.read_text() + '\n[campaign.grid]\n"motion.radius" = [0.1, 0.2]\n'
+                    '\n[campaign.zip]\n"motion.period" = [1.25, 2.5]\n'
+                    '"motion.ramp_duration" = [2.5, 5.0]\n')
+    out = tmp_path / "table.nc"
+    argv = ["sweep", str(case), "--set", BASE[0], "--set", "simulation.duration=7.5", "-o",
+            str(out), "--quiet"]
+    assert main(argv) == 0
+    ds = read_dataset(out)
+    assert ds.sizes["motion.radius"] == 2 and ds.sizes["motion.period"] == 2
+    np.testing.assert_array_equal(ds["motion.ramp_duration"].values, [2.5, 5.0])
+    # a --grid on the command line replaces the table's axis of the same key
+    assert main([*argv[:-3], "--grid", "motion.radius=0.15", "-o", str(tmp_path / "b.nc"),
+                 "--quiet"]) == 0
+    assert read_dataset(tmp_path / "b.nc").sizes["motion.radius"] == 1
