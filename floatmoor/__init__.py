@@ -17,11 +17,12 @@ from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.io.netcdf import read_dataset, write_dataset
 from floatmoor.mooring.catenary import CatenarySolution, catenary_profile, solve_catenary
+from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.simulation.forced import RunResult, run_forced_motion
 
 __all__ = [
     "__version__", "load_case", "Case", "CaseError", "FloatmoorError", "SolverError",
     "read_dataset", "write_dataset", "CatenarySolution", "catenary_profile", "solve_catenary",
-    "QuasiStaticLine", "RunResult", "run_forced_motion",
+    "QuasiStaticLine", "QuasiDynamicLine", "RunResult", "run_forced_motion",
 ]

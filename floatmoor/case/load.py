@@ -21,7 +21,7 @@ from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, SEABED_CONTACT_METHODS, Case,
     CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
-    QuasiStaticSettings, Seabed, Simulation, TableMotion,
+    QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
 from floatmoor.errors import CaseError
 from floatmoor.motion import fairlead_path, horizontal_direction
@@ -47,6 +47,12 @@ DEFAULT_DG_ORDER = 5
 #: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
 #: drag, contact) and was stable on the whole Lindahl robustness grid.
 DEFAULT_DG_CFL = 0.8
+#: Default Simpson stations of the quasi-dynamic model over the suspended length: the 31
+#: integration points of the quasi-dynamic paper's verification study (its Table 3).
+DEFAULT_QD_INTEGRATION_POINTS = 31
+MAX_QD_INTEGRATION_POINTS = 10_001
+#: Line models whose static catenary needs a line that sinks.
+_CATENARY_MODELS = ("quasi-static", "quasi-dynamic")
 #: Sampling of the prescribed motion when checking the fairlead stays reachable [-].
 _MOTION_CHECK_SAMPLES_PER_PERIOD = 72
 
@@ -186,9 +192,22 @@ def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
                                  default="implicit"),
     )
     dg.finish()
+    qd = t.table("quasi_dynamic", required=False)
+    points = qd.integer("integration_points", ge=3, le=MAX_QD_INTEGRATION_POINTS,
+                        default=DEFAULT_QD_INTEGRATION_POINTS)
+    if points % 2 == 0:
+        raise qd.error("integration_points", f"an odd integer >= 3 and <= "
+                       f"{MAX_QD_INTEGRATION_POINTS} (the composite Simpson rule needs an even "
+                       "number of intervals)", points)
+    quasi_dynamic = QuasiDynamicSettings(
+        integration_points=points,
+        max_time_step=qd.number("max_time_step", unit="s", gt=0.0, default=None),
+    )
+    qd.finish()
     t.finish()
     return Line(name=name, line_type=line_types[type_name], length=length, anchor=anchor,
-                fairlead=fairlead, model=model, quasi_static=settings, dynamic=dynamic)
+                fairlead=fairlead, model=model, quasi_static=settings, dynamic=dynamic,
+                quasi_dynamic=quasi_dynamic)
 
 
 def _simulation(t: TableReader) -> Simulation:
@@ -323,11 +342,11 @@ def _check_lines(case: Case, context: ReadContext) -> None:
                                 f"a length that reaches the fairlead {line.span:.6g} m away "
                                 f"without more than {MAX_STATIC_STRAIN:.0%} strain [m]",
                                 f"{line.length!r} (needs {needed:.1%} strain)")
-        if line.model == "quasi-static" and \
+        if line.model in _CATENARY_MODELS and \
                 line.line_type.material_density <= case.environment.water_density:
             raise context.error(("line_types", line.line_type.name, "material_density"),
                                 f"a density > water_density ({case.environment.water_density:g}"
-                                f" kg/m^3): the quasi-static catenary of line '{line.name}' "
+                                f" kg/m^3): the {line.model} catenary of line '{line.name}' "
                                 "needs a line that sinks",
                                 f"{line.line_type.material_density!r}")
 

@@ -16,12 +16,13 @@ __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
     "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "SEABED_CONTACT_METHODS",
+    "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
 LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 #: The models this version implements.
-AVAILABLE_LINE_MODELS = ("quasi-static", "dynamic")
+AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 #: Treatments of the seabed's normal spring-damper in the dynamic model.
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
 #: Rotation senses of circular motion, defined by where the end moves at the top of the circle.
@@ -101,6 +102,21 @@ class DynamicSettings:
 
 
 @dataclass(frozen=True)
+class QuasiDynamicSettings:
+    """Numerics of the quasi-dynamic line (``[lines.quasi_dynamic]``).
+
+    Its static catenary is the quasi-static model's, set by ``[lines.quasi_static]``.
+    """
+
+    integration_points: int = 31  #: odd number of Simpson stations over the suspended length
+    max_time_step: float | None = None  #: cap on the step of the backward differences [s]
+
+
+#: The settings of a line whose case file has no ``[lines.quasi_dynamic]`` table.
+DEFAULT_QUASI_DYNAMIC = QuasiDynamicSettings()
+
+
+@dataclass(frozen=True)
 class Line:
     """One mooring line; ``fairlead`` is the mean position in a forced-motion run."""
 
@@ -112,6 +128,7 @@ class Line:
     model: str
     quasi_static: QuasiStaticSettings
     dynamic: DynamicSettings
+    quasi_dynamic: QuasiDynamicSettings = DEFAULT_QUASI_DYNAMIC
 
     @property
     def span(self) -> float:

@@ -21,8 +21,8 @@ VARIABLE_ATTRIBUTES: dict[str, dict[str, str]] = {
     "anchor_force": {"long_name": "force exerted by the line on the anchor", "units": "N"},
     "fairlead_position": {"long_name": "fairlead position", "units": "m"},
     "laid_length": {"long_name": "unstretched line length resting on the seabed", "units": "m"},
-    "solver_iterations": {"long_name": "Newton iterations (quasi-static) or time steps "
-                          "(dynamic) per output sample", "units": "1"},
+    "solver_iterations": {"long_name": "Newton iterations (quasi-static, quasi-dynamic) or "
+                          "time steps (dynamic) per output sample", "units": "1"},
     # line shapes at the coarser shape interval
     "shape_time": {"long_name": "time of the line-shape samples", "units": "s"},
     "arc_length": {"long_name": "unstretched arc length from the anchor", "units": "m"},
