@@ -1,9 +1,11 @@
 """The ``floatmoor`` command line.
 
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
-runs it. Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
-exits with status 2, without a traceback and without writing output. A run that fails (no valid
-line state) or is interrupted writes its partial results and exits with 1 or 130.
+runs it; ``floatmoor study qd-verification -o DIR`` runs the quasi-dynamic verification study
+(cases.md case B). Bad input (a malformed case, a bad ``--set`` or output path) prints one
+message and exits with status 2, without a traceback and without writing output. A run that
+fails (no valid line state) or is interrupted writes its partial results and exits with 1 or
+130.
 """
 
 from __future__ import annotations
@@ -63,6 +65,15 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("--timeseries", action="store_true",
                        help="also keep every run's fairlead tension history")
     sweep.add_argument("--quiet", action="store_true", help="no progress reports")
+    study = sub.add_parser("study", help="run a built-in study (results, summary and figures)")
+    study.add_argument("name", choices=["qd-verification"],
+                       help="qd-verification: quasi-dynamic verification, cases.md case B")
+    study.add_argument("-o", "--output", metavar="DIR", required=True,
+                       help="output folder (created if its parent exists)")
+    study.add_argument("--workers", type=int, default=1, help="local worker processes")
+    study.add_argument("--quick", action="store_true",
+                       help="reduced subset (one amplitude, two accelerations per configuration)")
+    study.add_argument("--quiet", action="store_true", help="no progress reports")
     return parser
 
 
@@ -74,6 +85,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _check(args)
         if args.command == "sweep":
             return _sweep(args)
+        if args.command == "study":
+            return _study(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -207,6 +220,28 @@ def _sweep(args: argparse.Namespace) -> int:
           f"failed; results in {output}")
     for message in failed[:5]:
         print(f"  {message}")
+    return EXIT_OK
+
+
+def _study(args: argparse.Namespace) -> int:
+    from floatmoor.studies import qd_verification
+
+    output = Path(args.output)
+    if output.exists() and not output.is_dir():
+        raise CaseError("-o/--output", "", "a folder", f"the file '{output}'")
+    if not output.parent.is_dir():
+        raise CaseError("-o/--output", "", "a folder in an existing folder", f"'{output}'")
+    if args.workers < 1:
+        raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+
+    def progress(done: int, total: int) -> None:
+        if not args.quiet:
+            print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
+
+    ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
+                                   progress=progress)
+    print(qd_verification.summary(ds))
+    print(f"results in {output}")
     return EXIT_OK
 
 

@@ -1,0 +1,129 @@
+"""The quasi-dynamic verification study (cases.md case B; quasi-dynamic paper section 4).
+
+The error measures of eqs. (6) to (9) on synthetic signals with known values, the study's
+``--quick`` subset through the command line, and (slow) the full 180-run study against the
+paper's findings.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from floatmoor.cli import main
+from floatmoor.studies import qd_verification as qdv
+
+#: Full study: the paper found RMSE_QD < 20 % in 84 % of its 180 runs and RMSE_S < 20 % in 18 %.
+#: Asserted with margin: QD in at least 80 %, QS in at most 30 %.
+QD_UNDER_20_MIN = 0.80
+QS_UNDER_20_MAX = 0.30
+
+
+def test_error_measures_on_synthetic_signals():
+    """Eqs. (6) to (9) on sinusoids with closed-form answers over exactly one period."""
+    n = 400
+    t = np.arange(n) * (1.0 / n)  # one period, uniform samples
+    t_s0 = 10.0
+    dyn = 10.0 + 2.0 * np.sin(2 * np.pi * t)
+    # constant offset 0.5 N: RMSE = 0.5 / 10
+    assert qdv.rmse(dyn, dyn - 0.5, t_s0) == pytest.approx(0.05, rel=1e-12)
+    # sinusoidal difference of amplitude 1 N: RMSE = 1 / sqrt(2) / 10 (mean of sin^2 = 1/2)
+    model = dyn + np.cos(2 * np.pi * t)
+    assert qdv.rmse(dyn, model, t_s0) == pytest.approx(np.sqrt(0.5) / 10.0, rel=1e-12)
+    # peaks: model = 10 + 1.5 sin: min 8.5 against 8 -> 0.5 / 10; max 11.5 against 12 -> 0.5 / 12
+    model = 10.0 + 1.5 * np.sin(2 * np.pi * t)
+    assert qdv.e_tmin(dyn, model, t_s0) == pytest.approx(0.05, rel=1e-12)
+    assert qdv.e_tmax(dyn, model) == pytest.approx(0.5 / 12.0, rel=1e-12)
+    assert qdv.rmse(dyn, dyn, t_s0) == 0.0
+    # last cycle: T / dt samples ending at t_end
+    time = np.arange(0, 7001) * 0.0025
+    mask = qdv.last_cycle(time, 2.5)
+    assert mask.sum() == 1000 and mask[-1] and not mask[-1001]
+
+
+def test_periods_follow_eq_5_and_table_4():
+    """alpha = w^2 Z_m / g: C22 A3 alpha 0.3 gives the period of s2_d2.toml."""
+    spec = qdv.RunSpec("C22", 2, 2)
+    assert spec.z_m == 0.0606
+    assert spec.period == pytest.approx(0.901615, abs=1e-6)
+    assert len(qdv.design()) == 180 and len(qdv.design(quick=True)) == 12
+    for config in qdv.CONFIGS:
+        assert qdv.case_path(config).is_file()
+
+
+def test_quick_study_through_the_command_line(tmp_path, capsys):
+    """``floatmoor study qd-verification --quick``: 6 configurations x A1 x alpha 0.3, 0.6, a
+    complete dataset, the summary and the figures; on this subset the quasi-dynamic model is
+    closer to the dynamic one than the quasi-static in most runs."""
+    status = main(["study", "qd-verification", "-o", str(tmp_path / "out"), "--quick",
+                   "--quiet"])
+    printed = capsys.readouterr().out
+    assert status == 0
+    assert "RMSE_QD" in printed
+    ds = xr.load_dataset(tmp_path / "out" / "qd_verification.nc")
+    assert dict(ds.sizes) == {"config": 6, "amplitude": 1, "alpha": 2, "model": 3,
+                              "phase": qdv.PHASE_POINTS}
+    assert ds.attrs["failed_runs"] == 0
+    for name in ("rmse_qd", "rmse_s", "e_tmin", "e_tmax"):
+        assert np.all(np.isfinite(ds[name].values)) and ds[name].attrs["units"] == "1"
+    assert np.mean(ds["rmse_qd"].values < ds["rmse_s"].values) >= 0.75
+    text = (tmp_path / "out" / "summary.txt").read_text()
+    assert "48%" in text and "84%" in text
+    for png in ("fig6_cycles_A4.png", "fig7_rmse.png", "fig8_peaks.png"):
+        assert (tmp_path / "out" / png).stat().st_size > 1000
+
+
+def test_study_rejects_a_file_as_output_folder(tmp_path, capsys):
+    target = tmp_path / "file.txt"
+    target.write_text("x")
+    assert main(["study", "qd-verification", "-o", str(target), "--quick"]) == 2
+    assert main(["study", "qd-verification", "-o", str(tmp_path / "o"), "--workers", "0"]) == 2
+
+
+@pytest.fixture(scope="module")
+def full_study(tmp_path_factory):
+    """All 180 runs x 3 models (about 8 min with 2 workers on the development machine)."""
+    ds = qdv.run_study(tmp_path_factory.mktemp("qd_full"), workers=2)
+    print(qdv.summary(ds))
+    return ds
+
+
+@pytest.mark.slow
+def test_full_study_quasi_dynamic_beats_quasi_static(full_study):
+    """Asserted (all held on the development machine, numbers observed in brackets):
+    no failed run; RMSE_QD < 20 % in at least 80 % of the runs (86 %; paper 84 %); the mean
+    RMSE_QD below the mean RMSE_S for every shape, amplitude and alpha; the mean RMSE_QD over
+    each alpha increasing from 0.1 to 0.6 (4.3 % to 20.2 %); the mean RMSE_QD over each
+    amplitude increasing from A2 to A5 (9.1 %, 12.8 %, 13.5 %, 14.7 %)."""
+    ds = full_study
+    assert ds.attrs["failed_runs"] == 0
+    assert qdv.fractions(ds)["rmse_qd"][1] >= QD_UNDER_20_MIN
+    for dim in ("config", "amplitude", "alpha"):
+        others = [d for d in ("config", "amplitude", "alpha") if d != dim]
+        assert np.all(ds["rmse_qd"].mean(others).values < ds["rmse_s"].mean(others).values)
+    assert np.all(np.diff(ds["rmse_qd"].mean(("config", "amplitude")).values) > 0.0)
+    assert np.all(np.diff(ds["rmse_qd"].mean(("config", "alpha")).values[1:]) > 0.0)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="observed RMSE_S < 20 % in 31 % of the runs (paper 18 %)")
+def test_full_study_quasi_static_rarely_within_20_percent(full_study):
+    """RMSE_S < 20 % in at most 30 % of the runs."""
+    assert qdv.fractions(full_study)["rmse_s"][1] <= QS_UNDER_20_MAX
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="observed mean RMSE_QD S1 12.3 %, S2 9.4 %, S3 14.4 %: "
+                   "the dynamic tension of S3 carries a large high-frequency ripple")
+def test_full_study_errors_grow_from_s3_to_s1(full_study):
+    """Paper: the lowest errors for S3, then S2, then S1 (mean RMSE_QD per shape)."""
+    by_shape = [m for _, m, _ in qdv.shape_means(full_study)]
+    assert by_shape[2] < by_shape[1] < by_shape[0]
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="observed mean RMSE_QD A1 10.0 % > A2 9.1 %")
+def test_full_study_errors_grow_with_amplitude_from_a1(full_study):
+    """Paper: errors grow with the amplitude (mean RMSE_QD over each amplitude, A1 to A5)."""
+    assert np.all(np.diff(full_study["rmse_qd"].mean(("config", "alpha")).values) > 0.0)
