@@ -62,6 +62,7 @@ from floatmoor.mooring import _quasidynamic_kernels as _k
 from floatmoor.mooring._catenary_kernels import N_OUT_3D
 from floatmoor.mooring._catenary_profile import catenary_profile_3d
 from floatmoor.mooring.catenary import describe_failure, solve_catenary
+from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["QuasiDynamicLine", "QuasiDynamicLineState", "SHAPE_NODES"]
 
@@ -84,7 +85,7 @@ class QuasiDynamicLineState:
     chain: NDArray[np.float64]
 
 
-class QuasiDynamicLine:
+class QuasiDynamicLine(PathStepper):
     """A mooring line modelled with the quasi-dynamic factor on the static catenary.
 
     Parameters
@@ -252,22 +253,6 @@ class QuasiDynamicLine:
         self.time = float(time[-1])
         self.fairlead[:] = path[-1]
         self.fairlead_velocity[:] = velocity[-1]
-
-    def advance(self, t1: float, fairlead: NDArray[np.float64],
-                fairlead_velocity: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Step from the current time to ``t1`` with the fairlead at ``fairlead`` (moving with
-        ``fairlead_velocity``, used only between sub-steps).
-
-        Returns
-        -------
-        ndarray
-            The force the line exerts on the fairlead at ``t1`` [N], shape (3,).
-        """
-        ff, af = np.zeros((1, 3)), np.zeros((1, 3))
-        self.solve_path(np.array([float(t1)]), np.asarray(fairlead, dtype=float)[None, :],
-                        np.asarray(fairlead_velocity, dtype=float)[None, :], ff, af,
-                        np.zeros(1), np.zeros(1))
-        return ff[0]
 
     # -- state ---------------------------------------------------------------------------------
     def get_state(self) -> QuasiDynamicLineState:

@@ -20,6 +20,7 @@ from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg.reference import STABLE_STEP_FACTOR, ReferenceElement, reference_element
 from floatmoor.mooring.dg.stability import stable_step_factor
+from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["CableProperties", "DynamicLine", "DynamicLineState"]
 
@@ -141,7 +142,7 @@ class DynamicLineState:
     fairlead_velocity: NDArray[np.float64]
 
 
-class DynamicLine:
+class DynamicLine(PathStepper):
     """A mooring line solved by the DG cable model.
 
     Parameters
@@ -300,22 +301,6 @@ class DynamicLine:
         self.time = float(time[-1])
         self.fairlead = np.array(path[-1], dtype=float)
         self.fairlead_velocity = np.array(velocity[-1], dtype=float)
-
-    def advance(self, t1: float, fairlead: NDArray[np.float64],
-                fairlead_velocity: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Advance from the current time to ``t1``, the fairlead moving (cubic Hermite) from
-        its current position and velocity to ``fairlead`` and ``fairlead_velocity``.
-
-        Returns
-        -------
-        ndarray
-            The force the line exerts on the fairlead at ``t1`` [N], shape (3,).
-        """
-        ff, af = np.zeros((1, 3)), np.zeros((1, 3))
-        self.solve_path(np.array([t1]), np.asarray(fairlead, dtype=float)[None, :],
-                        np.asarray(fairlead_velocity, dtype=float)[None, :], ff, af,
-                        np.zeros(1), np.zeros(1))
-        return ff[0]
 
     # -- state ---------------------------------------------------------------------------------
     def get_state(self) -> DynamicLineState:

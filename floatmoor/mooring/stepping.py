@@ -1,0 +1,42 @@
+"""The step API shared by the line models with memory (dynamic, quasi-dynamic).
+
+A floater advances each line once per rigid-body step with :meth:`PathStepper.advance`; the
+models implement ``solve_path`` (a whole fairlead path at once), and ``advance`` is that path
+with one sample.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["PathStepper"]
+
+
+class PathStepper(ABC):
+    """Base of line models advanced along a prescribed fairlead path."""
+
+    @abstractmethod
+    def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
+                   velocity: NDArray[np.float64], fairlead_force: NDArray[np.float64],
+                   anchor_force: NDArray[np.float64], laid_length: NDArray[np.float64],
+                   steps: NDArray[np.float64]) -> None:
+        """Advance along the path, writing the outputs at every sample."""
+
+    def advance(self, t1: float, fairlead: NDArray[np.float64],
+                fairlead_velocity: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Advance from the current time to ``t1``, the fairlead moving (cubic Hermite) from
+        its current position and velocity to ``fairlead`` and ``fairlead_velocity``.
+
+        Returns
+        -------
+        ndarray
+            The force the line exerts on the fairlead at ``t1`` [N], shape (3,).
+        """
+        ff, af = np.zeros((1, 3)), np.zeros((1, 3))
+        self.solve_path(np.array([float(t1)]), np.asarray(fairlead, dtype=float)[None, :],
+                        np.asarray(fairlead_velocity, dtype=float)[None, :], ff, af,
+                        np.zeros(1), np.zeros(1))
+        return ff[0]
