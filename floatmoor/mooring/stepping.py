@@ -2,7 +2,8 @@
 
 A floater advances each line once per rigid-body step with :meth:`PathStepper.advance`; the
 models implement ``solve_path`` (a whole fairlead path at once), and ``advance`` is that path
-with one sample.
+with one sample. Forced-motion runs pass these models the fairlead velocity, and record their
+shape from their current state (``r``, ``tension()`` at ``arc_length``).
 """
 
 from __future__ import annotations

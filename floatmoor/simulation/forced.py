@@ -19,6 +19,7 @@ from floatmoor.motion import fairlead_state
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
 __all__ = ["RunResult", "run_forced_motion", "output_times", "build_line_models"]
@@ -30,9 +31,6 @@ CHUNK_SAMPLES = 2000
 LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
 _MODELS = {"quasi-static": QuasiStaticLine.from_case,
            "quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
-#: Models with a state stepped in time: they take the fairlead velocity, and their shape is
-#: that of their current state (``r``, ``tension()`` at ``arc_length``).
-_STEPPED = (DynamicLine, QuasiDynamicLine)
 
 
 @dataclass(frozen=True)
@@ -114,7 +112,7 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
 
 def _node_arc_lengths(model: LineModel) -> NDArray[np.float64]:
     """Arc lengths at which a line's shape is recorded [m]."""
-    if isinstance(model, _STEPPED):
+    if isinstance(model, PathStepper):
         return model.arc_length
     return np.linspace(0.0, model.length, 51)
 
@@ -145,7 +143,7 @@ def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start:
                        series["laid_length"][i, a:b], series["solver_iterations"][i, a:b])
             seg = slice(a - start, b - start)
             try:
-                if isinstance(model, _STEPPED):
+                if isinstance(model, PathStepper):
                     model.solve_path(t[seg], path[seg], velocity[seg], *outputs)
                 else:
                     model.solve_path(t[seg], path[seg], *outputs)
@@ -154,7 +152,7 @@ def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start:
                 limit = a + model.failed_index
                 break
             if stride and (b - 1) % stride == 0:
-                if isinstance(model, _STEPPED):
+                if isinstance(model, PathStepper):
                     recorder.store_shape(i, (b - 1) // stride, model.r.reshape(-1, 3),
                                          model.tension())
                 else:
