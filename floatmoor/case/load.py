@@ -190,6 +190,7 @@ def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
         slack_filter=dg.boolean("slack_filter", default=True),
         seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
                                  default="implicit"),
+        settle=dg.boolean("settle", default=True),
     )
     dg.finish()
     qd = t.table("quasi_dynamic", required=False)

@@ -99,6 +99,8 @@ class DynamicSettings:
     max_time_step: float | None  #: user cap on the time step [s]
     slack_filter: bool  #: modal filter on elements in compression
     seabed_contact: str  #: "implicit" or "explicit" normal spring-damper
+    #: relax the line to the static equilibrium of its discretisation before the run
+    settle: bool = True
 
 
 @dataclass(frozen=True)

@@ -186,8 +186,9 @@ def rhs(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *, D: Array
         c_int: float = 0.0, w_sub: float = 0.0, z_b: float = -1e300, k_b: float = 0.0,
         c_b: float = 0.0, mu: float = 0.0, v_c: float = 0.01,
         current: tuple[float, float, float] = (0.0, 0.0, 0.0),
-        explicit_contact: bool = False) -> tuple[Array, Fields]:
-    """Acceleration dv/dt of every node, and the fields it came from."""
+        explicit_contact: bool = False, relax: float = 0.0) -> tuple[Array, Fields]:
+    """Acceleration dv/dt of every node, and the fields it came from (``relax``: the settling
+    damping rate gamma, dv/dt -= gamma v)."""
     fl = tension_field(r, v, anchor, fpos, fvel, D=D, LIFT=LIFT, h=h, m=m, EA=EA, c_int=c_int,
                        m_at=m_at)
     q, N, Nstar = fl.q, fl.N, fl.Nstar
@@ -228,7 +229,7 @@ def rhs(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *, D: Array
     mn = m + np.where(wet, m_an, 0.0)
     mt = m + np.where(wet, m_at, 0.0)
     ft = np.sum(f * t, axis=-1)
-    a = (f - ft[..., None] * t) / mn[..., None] + (ft / mt)[..., None] * t
+    a = (f - ft[..., None] * t) / mn[..., None] + (ft / mt)[..., None] * t - relax * v
     return a, fl
 
 

@@ -290,6 +290,27 @@ def test_rhs_matches_oracle(label, kind, overrides, contact, p, rng) -> None:
     print(f"{label} p={p}: max relative error {worst:.1e}")
 
 
+@pytest.mark.parametrize("p", [2, 5])
+def test_rhs_settling_damping_matches_oracle(p, rng) -> None:
+    """The relaxation damping of DynamicLine.settle (P_RELAX): -gamma v on top of everything
+    else, in the kernel as in the oracle."""
+    K, gamma = 4, 37.0
+    pr = make_properties(dict(normal_drag_coefficient=2.0, added_mass_coefficient=1.0,
+                              seabed_z=-10.0, seabed_stiffness=1e3, friction_coefficient=0.4))
+    settings = DynamicSettings(elements=K, order=p, cfl=0.5, max_time_step=None,
+                               slack_filter=True, seabed_contact="explicit")
+    prm = pr.packed(settings, pr.length / K)
+    ref = reference_element(p)
+    r, v, anchor, fpos, fvel = make_state("seabed", K, p, pr.length, rng)
+    plain = kernel_rhs(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift)[0]
+    prm[k.P_RELAX] = gamma
+    damped = kernel_rhs(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift)[0]
+    ao, _ = oracle.rhs(r, v, anchor, fpos, fvel, D=ref.differentiation, LIFT=ref.lift,
+                       relax=gamma, **oracle_params(pr, K, "explicit"))
+    assert relerr(damped, ao) <= ORACLE_RTOL
+    assert relerr(damped - plain, -gamma * v) <= ORACLE_RTOL
+
+
 def test_rhs_cases_exercise_their_branches(rng) -> None:
     """The random states do reach the branches they are meant for."""
     p, K = 3, 4

@@ -68,7 +68,8 @@ P_H = 20  #: element length [m]
 P_IMPLICIT_CONTACT = 21  #: 1.0 for the implicit seabed spring-damper
 P_FILTER = 22  #: 1.0 to filter slack elements
 P_C = 23  #: longitudinal wave speed sqrt(EA / m) [m/s]
-N_PRM = 24
+P_RELAX = 24  #: relaxation damping rate gamma [1/s]: dv/dt gets -gamma v (settling only; 0)
+N_PRM = 25
 
 # -- statuses of dg_run_path ----------------------------------------------------------------
 DG_OK = 0
@@ -234,6 +235,7 @@ def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
     explicit_contact = prm[P_IMPLICIT_CONTACT] == 0.0
     friction = prm[P_MU] * prm[P_WSUB]
     vc = prm[P_VC]
+    relax = prm[P_RELAX]
     _strong_derivative(N, Nstar, D, LIFT, jac, dv)  # dN/ds, the fluxes as face values
     for k in range(K):
         for i in range(Np):
@@ -273,9 +275,9 @@ def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
             mn = m + (prm[P_MAN] if submerged else 0.0)
             mt = m + (prm[P_MAT] if submerged else 0.0)
             ft = fx * tx + fy * ty + fz * tz
-            dv[k, i, 0] = (fx - ft * tx) / mn + ft * tx / mt
-            dv[k, i, 1] = (fy - ft * ty) / mn + ft * ty / mt
-            dv[k, i, 2] = (fz - ft * tz) / mn + ft * tz / mt
+            dv[k, i, 0] = (fx - ft * tx) / mn + ft * tx / mt - relax * v[k, i, 0]
+            dv[k, i, 1] = (fy - ft * ty) / mn + ft * ty / mt - relax * v[k, i, 1]
+            dv[k, i, 2] = (fz - ft * tz) / mn + ft * tz / mt - relax * v[k, i, 2]
 
 
 @jit
