@@ -50,7 +50,7 @@ def test_settled_line_stays_at_rest_and_unsettled_one_rings() -> None:
     print(f"settled in {report.time:.2f} s simulated: ripple {ripple:.1e} of {mean:.5f} N")
     assert ripple <= SETTLED_RIPPLE_TOL
     sol = solve_catenary(ln.anchor, ln.fairlead, ln.length,
-                         case.line_types[ln.type].axial_stiffness,
+                         ln.line_type.axial_stiffness,
                          settled.properties.submerged_weight, 0.0,
                          seabed_z=case.environment.seabed_z)
     assert abs(mean / np.linalg.norm(sol.fairlead_force) - 1.0) <= STATIC_RTOL
