@@ -1,17 +1,20 @@
 """Numba kernels of the quasi-dynamic line model (quasi-dynamic paper section 3; physics.md 4).
 
-One step (:func:`qd_step`) for the fairlead position at time t_n, a time step dt after t_{n-1}:
+The line carries fixed stations ("nodes") at unstretched arc lengths s_j = L - j h from the
+anchor, j = 0 .. M - 1, spaced h apart from the fairlead end (``Q_H``: the suspended length
+at rest over ``integration_points - 1``, so that at rest the stations are the
+``integration_points`` Simpson points of the suspended part). One step (:func:`qd_step`) for the
+fairlead position at time t_n, a time step dt after t_{n-1}:
 
 1. the static elastic catenary for the current fairlead position (warm-started Newton,
    :func:`~floatmoor.mooring._catenary_kernels.catenary_solve_3d`): upper-end tension (H, V),
    laid length L_B and the static end forces; this is the static tension T_S of eq. (1);
-2. ``N`` Simpson stations sigma_j = L_B + j (L - L_B) / (N - 1), j = 0..N-1, spread over the
-   suspended part [s_0, l] of eq. (2) (unstretched arc length from the lower end, s_0 = L_B the
-   touchdown point of this step);
-3. the positions of the *material* points at these stations on the static catenaries of steps
-   n, n-1 and n-2, evaluated exactly at the same unstretched arc length (points that were on
-   the seabed at an earlier step sit on its resting part there), and their velocities and
-   accelerations by the backward differences of eq. (4):
+2. the suspended part [a, b] (in s: [L_B, L], or [0, L - L_B] when the fairlead is the lower
+   end), and the stations inside it; the positions of those material points on this step's
+   static line; their positions on the two previous steps' lines are those steps' own (kept
+   in ``X``, ``Z``, a ring of three levels, in each line's vertical plane), or, for stations
+   that were not evaluated then (they were resting, or not yet inside), evaluated now;
+3. velocities and accelerations by the backward differences of eq. (4):
    v_n = (r_n - r_{n-1}) / dt_n, v_{n-1} = (r_{n-1} - r_{n-2}) / dt_{n-1},
    a_n = (v_n - v_{n-1}) / ((dt_n + dt_{n-1}) / 2), which is eq. (4) for equal steps and keeps
    first-order accuracy for unequal ones; before the first step the line is at rest
@@ -22,29 +25,38 @@ One step (:func:`qd_step`) for the fairlead position at time t_n, a time step dt
    to the static tangent t (v - (v.t) t; for a line in its vertical plane this is eq. (3)'s
    (v.n) n), A_c = m / rho_c the material area (floatmoor's added-mass convention, also the
    dynamic model's);
-5. the quasi-dynamic factor of eq. (2), composite Simpson over the stations,
-   k_QD = int (f_w + f_HD - f_I).k ds / int f_w.k ds, clamped at k_QD >= 0 (slack);
-6. eq. (1): the upper-end force is k_QD times the static one. The lower end gets the force of
-   the same apparent-weight catenary: k_QD times the static force when no part rests on the
-   seabed (a catenary of weight k_QD W has the same shape and k_QD times the forces); with a
-   resting length L_B, the horizontal tension k_QD H at the touchdown point, reduced by the
-   seabed friction C_B W L_B of the resting part (which does not move), floored at zero.
+5. the quasi-dynamic factor of eq. (2), k_QD = int_a^b (f_w + f_HD - f_I).k ds / (-W (b - a)),
+   clamped at k_QD >= 0 (slack): composite Simpson over the stations inside [a, b] that lie
+   above the material points lifted off the seabed since the step before last (eq. (4)
+   differences those across the kink of their history, a layer |dL_B/dt| dt wide; an even
+   number of intervals, the lowest station left out if need be), and on the lower end panel,
+   from the touchdown point to the lowest station used (narrower than 2 h plus the layer), the
+   exact integral of the quadratic through the three lowest stations' densities: the smooth
+   suspended-side density, so the rule keeps Simpson's order (observed 3.8) while the
+   touchdown point moves; other end panels (the fairlead below the anchor, or fewer than three
+   stations) take the trapezoidal rule with the panel end's material point;
+6. eq. (1) at the upper end; the lower end gets the force of the same apparent-weight
+   catenary: k_QD times the static force when no part rests on the seabed (a catenary of
+   weight k_QD W has the same shape and k_QD times the forces); with a resting length L_B, the
+   horizontal tension k_QD H at the touchdown point, reduced by the seabed friction C_B W L_B
+   of the resting part (which does not move), floored at zero.
 
 The current (steady) and the water line are ignored, like by the static catenary, which gives
 the whole line its submerged weight: the hydrodynamic forces act along the whole suspended part.
 
-Cost: one catenary solve and 3 N profile points per step (eq. 4 needs three static lines at the
-same material points). To keep it near the quasi-static model's, the log in the catenary's
-asinh term is not evaluated 3 N times: log q = log q_r + log1p(q / q_r - 1), by a short series,
-from a reference q_r at the same station index, the previous step's for the current line
-(chained, and evaluated directly every ``CHAIN_STEPS`` steps) and the current line's for the
-two earlier ones; exact to round-off, with direct logs wherever the series does not apply. The
-loops over the stations have no branches, so that they vectorise.
+Cost: one catenary solve and one static profile at the stations per step (the fixed stations
+keep their earlier positions). The asinh term of the profile, sign(V) log q with
+q = (|V| + hypot(H, V)) / H, is evaluated as log q = log q_r + log1p(q / q_r - 1) by a short
+series from the same station's previous value (chained; directly every ``CHAIN_STEPS`` steps
+and wherever the series does not apply): exact to round-off, and the loops over the stations
+have no branches and write at most three arrays, none of which they read, so that they
+vectorise.
 
 Everything is preallocated; the kernels allocate nothing and report failure by status.
 Parameters travel in one float64 array ``prm`` indexed by the ``Q_*`` constants; the state of
-the line is ``hist`` (the last two static solutions), ``cur`` (the ``C_*`` entries) and
-``chain`` (the log references of the stations).
+the line is ``hist`` (the last two static solutions), ``cur`` (the ``C_*`` entries), ``X``
+and ``Z`` (station positions on the last three static lines) and two buffers of the stations'
+log references (``qa``, ``la``, ``qb``, ``lb``).
 """
 
 from __future__ import annotations
@@ -64,9 +76,10 @@ from floatmoor.mooring.dg._kernels import hermite
 
 __all__ = [
     "Q_L", "Q_EA", "Q_W", "Q_CB", "Q_ZB", "Q_TOL", "Q_MAXIT", "Q_M", "Q_DRAG", "Q_MA",
-    "Q_MAXDT", "Q_INV_W", "Q_INV_EA", "N_QPRM", "C_K", "C_FAIRLEAD_FORCE", "C_ANCHOR_FORCE",
-    "C_LB", "C_DT", "C_CHAIN", "N_CUR", "H_FAIRLEAD", "H_HF", "H_VF", "H_LB", "N_HIST",
-    "CHAIN_STEPS", "qd_step", "quasi_dynamic_series",
+    "Q_MAXDT", "Q_INV_W", "Q_INV_EA", "Q_H", "N_QPRM", "C_K", "C_FAIRLEAD_FORCE",
+    "C_ANCHOR_FORCE", "C_LB", "C_DT", "C_CHAIN", "C_SLOT", "C_LO", "C_HI", "C_REF", "N_CUR",
+    "H_FAIRLEAD", "H_HF", "H_VF", "H_LB", "N_HIST", "CHAIN_STEPS", "station_count",
+    "qd_step", "quasi_dynamic_series",
 ]
 
 # -- parameter layout -----------------------------------------------------------------------
@@ -83,16 +96,21 @@ Q_MA = 9  #: normal added mass per length C_a rho_w A_c [kg/m]
 Q_MAXDT = 10  #: largest step of the backward differences [s]; 0: one step per sample
 Q_INV_W = 11  #: 1 / W [m/N]
 Q_INV_EA = 12  #: 1 / EA [1/N]
-N_QPRM = 13
+Q_H = 13  #: station spacing h [m]
+N_QPRM = 14
 
-# -- layout of ``cur``: the outputs of the last step, and its time step ----------------------
+# -- layout of ``cur``: the outputs of the last step, and its bookkeeping ----------------------
 C_K = 0  #: k_QD
 C_FAIRLEAD_FORCE = 1  #: 3 entries [N]
 C_ANCHOR_FORCE = 4  #: 3 entries [N]
 C_LB = 7  #: laid length [m]
 C_DT = 8  #: length of the last step [s]; 0 when the line was at rest before
 C_CHAIN = 9  #: steps since the logs of the stations were last evaluated directly
-N_CUR = 10
+C_SLOT = 10  #: level of ``X``, ``Z`` holding the last step
+C_LO = 11  #: 3 entries: per level of ``X``, ``Z``, the first station evaluated (inclusive)
+C_HI = 14  #: 3 entries: per level, the last station evaluated (inclusive; < C_LO: none)
+C_REF = 17  #: 0: the latest log references are in (qa, la); 1: in (qb, lb)
+N_CUR = 18
 
 # -- layout of a row of ``hist`` (row 0: the last step, row 1: the one before) ---------------
 H_FAIRLEAD = 0  #: 3 entries [m]
@@ -108,6 +126,14 @@ _SERIES_LIMIT = 1e-2
 #: adds about an ulp, so the chain stays within ~sqrt(1024) = 32 ulps of log q (and this
 #: round-off is common to the three steps of a backward difference).
 CHAIN_STEPS = 1024
+#: Relative slack on station indices: a station within 1e-9 h of the touchdown point counts
+#: as on it (the stations sit exactly on the suspended part's ends at rest).
+_INDEX_SLACK = 1e-9
+
+
+def station_count(L: float, h: float) -> int:
+    """Number M of stations s_j = L - j h >= 0 (to round-off) on a line of length L."""
+    return int(math.floor(L / h * (1.0 + _INDEX_SLACK))) + 1
 
 
 @jit(error_model="numpy", inline="always")
@@ -118,48 +144,10 @@ def _log1p_small(e: float) -> float:
 
 
 @jit(error_model="numpy", inline="always")
-def _level_xz(anchor: np.ndarray, fx: float, fy: float, fz: float, prm: np.ndarray, H: float,
-              V: float, LB: float, s0: float, ds: float, jf: np.ndarray, mode: int,
-              ref: np.ndarray, sc: np.ndarray, x: np.ndarray, z: np.ndarray, row: int
-              ) -> tuple[float, float, float, float, float]:
-    """Positions at the unstretched arc lengths s0 + ds j from the anchor (j = ``jf`` = 0.0, 1.0,
-    ..., n - 1) on the static line solved with upper-end tension (H, V) and laid length L_B for
-    the fairlead at (fx, fy, fz), in its vertical plane: x along the plane and z up from its
-    lower end (written to ``x[row]``, ``z[row]``).
-
-    The equations are those of :func:`~floatmoor.mooring._catenary_profile._profile_point`,
-    with the vertical coordinate of the suspended part as (hypot(H, V(s)) - hypot(H, V_low)) / W
-    (plus stretch) instead of its cancellation-free quotient: its absolute error, a few ulps of
-    T / W, is that of the positions themselves. The catenary's asinh(V(s) / H) is
-    sign(V) log q, q = (|V| + hypot(H, V)) / H, and log q comes from a reference pair
-    (1/q_r, log q_r) per station in ``ref`` as log q = log q_r + log1p(q / q_r - 1), by series
-    when |q / q_r - 1| <= ``_SERIES_LIMIT`` and directly otherwise (an identity: any reference
-    whose log is right will do):
-
-    * ``mode`` 0 / 1: the current step, whose stations are all on the suspended part; its
-      (1/q, log q) replace the reference. Mode 0 evaluates every log directly, mode 1 chains
-      them from the reference left by the previous step (at its stations, close to these);
-    * ``mode`` 2: an earlier step, against the current one's reference, in a branch-free loop
-      that the compiler vectorises, then exact fix-ups of the stations that rest on the seabed
-      at that step or are too far from the reference.
-
-    ``sc[0]`` is scratch (the series arguments). Inlined (numba ``inline="always"``), and without
-    array views: a call with a dozen array arguments, or a view's reference counting, costs as
-    much as a short profile. The station index comes as floats (``jf``): AVX2 has no packed
-    conversion of the int64 loop index, which would stop the vectorisation.
-
-    Returns
-    -------
-    tuple
-        (lx, ly, lz, ux, uy): the lower end, and the horizontal unit vector from it to the
-        upper end; the global position is (lx + x ux, ly + x uy, lz + z).
-    """
-    L = prm[Q_L]
-    EA = prm[Q_EA]
-    W = prm[Q_W]
-    CB = prm[Q_CB]
-    n = jf.shape[0]
-    # the vertical plane (as _plane_setup, for a solved, hence valid, geometry)
+def _plane(anchor: np.ndarray, fx: float, fy: float, fz: float
+           ) -> tuple[bool, float, float, float, float, float, float]:
+    """The vertical plane of a static line: (swapped, lower end x, y, z, horizontal unit vector
+    to the upper end x, y, horizontal span)."""
     swapped = fz < anchor[2]
     if swapped:
         lx, ly, lz = fx, fy, fz
@@ -168,89 +156,136 @@ def _level_xz(anchor: np.ndarray, fx: float, fy: float, fz: float, prm: np.ndarr
         lx, ly, lz = anchor[0], anchor[1], anchor[2]
         dx, dy = fx - lx, fy - ly
     XF = math.sqrt(dx * dx + dy * dy)
-    inv_XF = 1.0 / XF if XF > 0.0 else 0.0
-    ux = dx * inv_XF if XF > 0.0 else 1.0
-    uy = dy * inv_XF
-    # arc length of station i from this line's lower end: A + B i
-    A = L - s0 if swapped else s0
-    B = -ds if swapped else ds
-    if not (H > 0.0):  # slack or vertical profile: the general point evaluator
-        seabed = 1 if abs(lz - prm[Q_ZB]) <= SEABED_CONTACT_TOL * L else 0
-        for i in range(n):
-            xi, zi, T = _profile_point(A + B * jf[i], XF, L, EA, W, CB, seabed, H, V)
-            x[row, i] = xi
-            z[row, i] = zi
-            if mode != 2:
-                ref[0, i] = 1.0
-                ref[1, i] = 0.0
-        return lx, ly, lz, ux, uy
-    inv_H = 1.0 / H
-    inv_W = prm[Q_INV_W]
-    inv_EA = prm[Q_INV_EA]
-    a = H * inv_W
-    # the suspended part starts at s_low (touchdown point or lower end) with tension
-    # (H, V_low): V(s) = V_low + W (s - s_low)
-    if LB > 0.0:
-        s_low = LB
-        V_low = 0.0
-        h_low = H
-        base = s_low + _seabed_stretch(H, s_low, EA, W, CB)[0]
-    else:
-        s_low = 0.0
-        V_low = V - W * L
-        h_low = math.sqrt(H * H + V_low * V_low)
-        base = -a * math.asinh(V_low * inv_H)
-    if mode == 0:
-        for i in range(n):
-            d = A + B * jf[i] - s_low
-            Vs = V_low + W * d
-            hs = math.sqrt(H * H + Vs * Vs)
-            qi = (abs(Vs) + hs) * inv_H
-            li = math.log(qi)
-            ref[0, i] = 1.0 / qi
-            ref[1, i] = li
-            x[row, i] = base + a * (li if Vs >= 0.0 else -li) + H * d * inv_EA
-            z[row, i] = (hs - h_low) * inv_W + 0.5 * (V_low + Vs) * d * inv_EA
-        return lx, ly, lz, ux, uy
-    for i in range(n):  # every station as suspended, log by the series (vectorised)
-        d = A + B * jf[i] - s_low
-        Vs = V_low + W * d
-        hs = math.sqrt(H * H + Vs * Vs)
-        qi = (abs(Vs) + hs) * inv_H
-        ei = qi * ref[0, i] - 1.0
-        li = ref[1, i] + _log1p_small(ei)
-        x[row, i] = base + a * (li if Vs >= 0.0 else -li) + H * d * inv_EA
-        z[row, i] = (hs - h_low) * inv_W + 0.5 * (V_low + Vs) * d * inv_EA
-        sc[0, i] = ei
-        if mode == 1:
-            ref[0, i] = 1.0 / qi
-            ref[1, i] = li
-    fr = CB * W * s_low
-    for i in range(n):  # fix-ups (a separate loop: a count of them in the one above, or any
-        # reduction, would stop its vectorisation and cost twice as much)
-        sig = A + B * jf[i]
-        d = sig - s_low
-        if d < 0.0 and mode == 2:  # resting on the seabed at this step (friction)
-            if fr <= H:
-                x[row, i] = sig + ((H - fr) * sig + 0.5 * CB * W * sig * sig) * inv_EA
-            else:
-                xB = s_low - H / (CB * W)
-                x[row, i] = sig if sig <= xB else \
-                    sig + 0.5 * CB * W * (sig - xB) * (sig - xB) * inv_EA
-            z[row, i] = 0.0
-        elif not (abs(sc[0, i]) <= _SERIES_LIMIT):
-            Vs = V_low + W * d
-            li = math.log((abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H)
-            x[row, i] = base + a * (li if Vs >= 0.0 else -li) + H * d * inv_EA
-            if mode == 1:
-                ref[1, i] = li
-    return lx, ly, lz, ux, uy
+    ux = dx / XF if XF > 0.0 else 1.0
+    uy = dy / XF if XF > 0.0 else 0.0
+    return swapped, lx, ly, lz, ux, uy, XF
+
+
+@jit(error_model="numpy")
+def _material_point(anchor: np.ndarray, fx: float, fy: float, fz: float, prm: np.ndarray,
+                    H: float, V: float, s: float) -> tuple[float, float, float]:
+    """The material point at unstretched arc length ``s`` from the anchor on the static line of
+    upper-end tension (H, V) with the fairlead at (fx, fy, fz): (x, z) in the line's vertical
+    plane from its lower end, and the vertical tension component there (0 on the resting part;
+    for the tangent). Any geometry: resting, suspended, slack or vertical profiles."""
+    L = prm[Q_L]
+    W = prm[Q_W]
+    swapped, lx, ly, lz, ux, uy, XF = _plane(anchor, fx, fy, fz)
+    seabed = 1 if abs(lz - prm[Q_ZB]) <= SEABED_CONTACT_TOL * L else 0
+    sig = L - s if swapped else s
+    x, z, _ = _profile_point(sig, XF, L, prm[Q_EA], W, prm[Q_CB], seabed, H, V)
+    Vs = V - W * (L - sig)
+    if seabed != 0 and V < W * L and Vs < 0.0:
+        Vs = 0.0  # on the resting part
+    return x, z, Vs
+
+
+@jit(error_model="numpy", inline="always")
+def _vertical_force(d01x: float, d01y: float, d01z: float, d12x: float, d12y: float,
+                    d12z: float, tx: float, ty: float, tz: float, inv_dt: float, inv_dtp: float,
+                    inv_den: float, W: float, m: float, drag: float, ma: float) -> float:
+    """Eq. (3), vertical: weight + Morison drag + added mass - inertia per unstretched length,
+    from the displacements r_n - r_{n-1} (d01) and r_{n-1} - r_{n-2} (d12) of a material point
+    (eq. (4)) and the static tangent (tx, ty, tz), unnormalised (its squared length divides the
+    projections)."""
+    v0 = d01x * inv_dt
+    v1 = d01y * inv_dt
+    v2 = d01z * inv_dt
+    a0 = (v0 - d12x * inv_dtp) * inv_den
+    a1 = (v1 - d12y * inv_dtp) * inv_den
+    a2 = (v2 - d12z * inv_dtp) * inv_den
+    inv_tt = 1.0 / max(tx * tx + ty * ty + tz * tz, 1e-300)
+    vt = (v0 * tx + v1 * ty + v2 * tz) * inv_tt
+    n0 = v0 - vt * tx
+    n1 = v1 - vt * ty
+    n2 = v2 - vt * tz
+    vn = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+    at = (a0 * tx + a1 * ty + a2 * tz) * inv_tt
+    return -W - drag * vn * n2 - ma * (a2 - at * tz) - m * a2
+
+
+@jit(error_model="numpy", inline="always")
+def _ensure_level(anchor: np.ndarray, prm: np.ndarray, hist: np.ndarray, row: int,
+                  cur: np.ndarray, slot: int, X: np.ndarray, Z: np.ndarray, lo: int,
+                  hi: int) -> None:
+    """Make stations lo..hi of level ``slot`` (the static line of ``hist[row]``) available:
+    those outside its evaluated range are evaluated now, and the range grows to cover them
+    (gaps filled, so that it stays contiguous)."""
+    L = prm[Q_L]
+    h = prm[Q_H]
+    have_lo = int(cur[C_LO + slot])
+    have_hi = int(cur[C_HI + slot])
+    if have_hi < have_lo:  # nothing evaluated at this level yet
+        have_lo = hi + 1
+        have_hi = hi
+    fx, fy, fz = hist[row, 0], hist[row, 1], hist[row, 2]
+    H, V = hist[row, H_HF], hist[row, H_VF]
+    for j in range(lo, have_lo):
+        X[slot, j], Z[slot, j], _ = _material_point(anchor, fx, fy, fz, prm, H, V, L - j * h)
+    for j in range(have_hi + 1, hi + 1):
+        X[slot, j], Z[slot, j], _ = _material_point(anchor, fx, fy, fz, prm, H, V, L - j * h)
+    cur[C_LO + slot] = min(lo, have_lo)
+    cur[C_HI + slot] = max(hi, have_hi)
+
+
+@jit(error_model="numpy")
+def _density_at(anchor: np.ndarray, fairlead: np.ndarray, prm: np.ndarray, hist: np.ndarray,
+                H: float, V: float, se: float, inv_dt: float, inv_dtp: float,
+                inv_den: float) -> float:
+    """Eq. (3) at the material point at arc length ``se`` from the anchor, its positions on
+    the three steps' static lines evaluated here."""
+    fx, fy, fz = fairlead[0], fairlead[1], fairlead[2]
+    x0, z0, Vs = _material_point(anchor, fx, fy, fz, prm, H, V, se)
+    x1, z1, _ = _material_point(anchor, hist[0, 0], hist[0, 1], hist[0, 2], prm,
+                                hist[0, H_HF], hist[0, H_VF], se)
+    x2, z2, _ = _material_point(anchor, hist[1, 0], hist[1, 1], hist[1, 2], prm,
+                                hist[1, H_HF], hist[1, H_VF], se)
+    _, l0x, l0y, l0z, u0x, u0y, _ = _plane(anchor, fx, fy, fz)
+    _, l1x, l1y, l1z, u1x, u1y, _ = _plane(anchor, hist[0, 0], hist[0, 1], hist[0, 2])
+    _, l2x, l2y, l2z, u2x, u2y, _ = _plane(anchor, hist[1, 0], hist[1, 1], hist[1, 2])
+    return _vertical_force((l0x + x0 * u0x) - (l1x + x1 * u1x), (l0y + x0 * u0y)
+                           - (l1y + x1 * u1y), (l0z + z0) - (l1z + z1),
+                           (l1x + x1 * u1x) - (l2x + x2 * u2x), (l1y + x1 * u1y)
+                           - (l2y + x2 * u2y), (l1z + z1) - (l2z + z2),
+                           H * u0x, H * u0y, Vs, inv_dt, inv_dtp, inv_den,
+                           prm[Q_W], prm[Q_M], prm[Q_DRAG], prm[Q_MA])
+
+
+@jit(error_model="numpy")
+def _end_panels(anchor: np.ndarray, fairlead: np.ndarray, prm: np.ndarray, hist: np.ndarray,
+                H: float, V: float, a: float, b: float, j_top: int, j_bot: int, n_grid: int,
+                lower_done: bool, F: np.ndarray, inv_dt: float, inv_dtp: float,
+                inv_den: float) -> float:
+    """Integral of the vertical force density over the end panels of the suspended part
+    [a, b]: the trapezoidal rule on [a, s_bot] (unless ``lower_done``) and [s_top, b]
+    (stations j_bot and j_top, whose densities are in ``F``; panels narrower than 2e-9 h are
+    dropped), or Simpson on [a, (a + b) / 2, b] when no station lies inside."""
+    L = prm[Q_L]
+    h = prm[Q_H]
+    if n_grid == 0:
+        fa = _density_at(anchor, fairlead, prm, hist, H, V, a, inv_dt, inv_dtp, inv_den)
+        fm = _density_at(anchor, fairlead, prm, hist, H, V, 0.5 * (a + b), inv_dt, inv_dtp,
+                         inv_den)
+        fb = _density_at(anchor, fairlead, prm, hist, H, V, b, inv_dt, inv_dtp, inv_den)
+        return (fa + 4.0 * fm + fb) * (b - a) / 6.0
+    tiny = 2.0 * _INDEX_SLACK * h
+    total = 0.0
+    wl = (L - j_bot * h) - a
+    if wl > tiny and not lower_done:
+        fa = _density_at(anchor, fairlead, prm, hist, H, V, a, inv_dt, inv_dtp, inv_den)
+        total += 0.5 * (fa + F[j_bot]) * wl
+    wu = b - (L - j_top * h)
+    if wu > tiny:
+        fb = _density_at(anchor, fairlead, prm, hist, H, V, b, inv_dt, inv_dtp, inv_den)
+        total += 0.5 * (fb + F[j_top]) * wu
+    return total
 
 
 @jit(error_model="numpy")
 def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray,
-            hist: np.ndarray, cur: np.ndarray, chain: np.ndarray, x: np.ndarray, z: np.ndarray,
-            scratch: np.ndarray, jf: np.ndarray, work: np.ndarray) -> int:
+            hist: np.ndarray, cur: np.ndarray, X: np.ndarray, Z: np.ndarray, qa: np.ndarray,
+            la: np.ndarray, qb: np.ndarray, lb: np.ndarray, E: np.ndarray, F: np.ndarray,
+            jf: np.ndarray, work: np.ndarray) -> int:
     """One quasi-dynamic step to the fairlead position ``fairlead``, ``dt`` after the last.
 
     Parameters
@@ -264,16 +299,18 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
     hist : float64[2, N_HIST]
         The static solutions of the last two steps (updated).
     cur : float64[N_CUR]
-        Outputs of the last step (``C_*``), overwritten with this step's.
-    chain : float64[2, N]
-        1/q and log q of the N stations of the last step (the reference of the logs; any pair
-        with log q right is valid, e.g. (1, 0)), overwritten with this step's.
-    x, z : float64[3, N]
-        Scratch: station positions in the planes of steps n, n-1, n-2 [m].
-    scratch : float64[2, N]
+        Outputs and bookkeeping of the last step (``C_*``), overwritten with this step's.
+    X, Z : float64[3, M]
+        Positions of the M stations in the vertical plane of the static lines of the last
+        three steps, from their lower ends (a ring of levels: ``cur[C_SLOT]`` is the last
+        step's, ``cur[C_LO/C_HI + level]`` the stations evaluated there).
+    qa, la, qb, lb : float64[M]
+        Two buffers of q and log q per station (the references of the logs; any pair with
+        log q right is valid, e.g. (1, 0)); ``cur[C_REF]`` tells which holds the latest.
+    E, F : float64[M]
         Scratch: series arguments, force densities.
-    jf : float64[N]
-        The station indices 0.0, 1.0, ..., N - 1 (constant).
+    jf : float64[M]
+        The station indices 0.0, 1.0, ..., M - 1 (constant).
     work : float64[N_OUT_3D]
         Output of the catenary solve of this step.
 
@@ -281,10 +318,17 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
     -------
     int
         ``CAT_OK``, or the catenary's failure status (the state is then unchanged).
+
+    Notes
+    -----
+    The hot loops write at most three arrays and none they read: the compiler then vectorises
+    them (with more output streams, or updates in place, it does not, and the step costs
+    about twice as much).
     """
     L = prm[Q_L]
     W = prm[Q_W]
     CB = prm[Q_CB]
+    h = prm[Q_H]
     status = catenary_solve_3d(anchor, fairlead, L, prm[Q_EA], W, CB, prm[Q_ZB],
                                hist[0, H_HF], hist[0, H_VF], prm[Q_TOL], int(prm[Q_MAXIT]), work)
     if status != CAT_OK:
@@ -292,75 +336,143 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
     H = work[I3_HF]
     V = work[I3_VF]
     LB = work[I3_LB]
-    swapped = work[I3_SWAPPED] != 0.0
-    n = chain.shape[1]
+    M = jf.shape[0]
+    last = int(cur[C_SLOT])
+    s0 = (last + 1) % 3  # this step's level
+    s1 = last  # the last step's
+    s2 = (last + 2) % 3  # the one before
+    cur[C_LO + s0] = 1.0  # nothing evaluated at this level yet
+    cur[C_HI + s0] = 0.0
+    fx, fy, fz = fairlead[0], fairlead[1], fairlead[2]
+    swapped, lx, ly, lz, ux, uy, _ = _plane(anchor, fx, fy, fz)
     Ls = L - LB
     k = 1.0
-    if not (Ls > 0.0):  # the whole line rests on the seabed: no suspended part, k_QD = 1
-        ux, uy = _plane_setup(anchor, fairlead, L, prm[Q_ZB])[5:7]
-    else:
-        # stations sigma_j = L_B + h j from the lower end; s0 + ds j from the anchor
-        h = Ls / (n - 1)
-        s0 = L - LB if swapped else LB
-        ds = -h if swapped else h
-        # the logs of this step: directly every CHAIN_STEPS steps, else chained
-        mode = 0 if cur[C_CHAIN] >= CHAIN_STEPS else 1
-        cur[C_CHAIN] = 0.0 if mode == 0 else cur[C_CHAIN] + 1.0
-        lx, ly, lz, ux, uy = _level_xz(anchor, fairlead[0], fairlead[1], fairlead[2], prm, H,
-                                       V, LB, s0, ds, jf, mode, chain, scratch, x, z, 0)
-        lx1, ly1, lz1, ux1, uy1 = _level_xz(anchor, hist[0, 0], hist[0, 1], hist[0, 2], prm,
-                                            hist[0, H_HF], hist[0, H_VF], hist[0, H_LB], s0,
-                                            ds, jf, 2, chain, scratch, x, z, 1)
-        lx2, ly2, lz2, ux2, uy2 = _level_xz(anchor, hist[1, 0], hist[1, 1], hist[1, 2], prm,
-                                            hist[1, H_HF], hist[1, H_VF], hist[1, H_LB], s0,
-                                            ds, jf, 2, chain, scratch, x, z, 2)
+    if Ls > 0.0:
+        # the suspended part [a, b] in arc length from the anchor
+        a = 0.0 if swapped else LB
+        b = Ls if swapped else L
+        # material points that lifted off the seabed since the step before last (between
+        # this touchdown point and the highest of the last two) were accelerated by eq. (4)
+        # across the kink of their history: the stations keep above that layer
+        lift = a if swapped else max(a, hist[0, H_LB], hist[1, H_LB])
+        j_top = max(int(math.ceil((L - b) / h - _INDEX_SLACK)), 0)
+        j_bot = min(int(math.floor((L - lift) / h + _INDEX_SLACK)), M - 1)
+        if j_bot > j_top and (j_bot - j_top) % 2 == 1:
+            j_bot -= 1  # an even number of Simpson intervals; the rest joins the end panel
+        n_grid = j_bot - j_top + 1 if j_bot >= j_top else 0
+        # -- this step's static positions of the stations j_top..j_bot ----------------------
+        X0 = X[s0]
+        Z0 = Z[s0]
+        if n_grid > 0 and H > 0.0 and not swapped:
+            inv_H = 1.0 / H
+            inv_W = prm[Q_INV_W]
+            inv_EA = prm[Q_INV_EA]
+            aa = H * inv_W
+            if LB > 0.0:
+                V_low = 0.0
+                h_low = H
+                base = LB + _seabed_stretch(H, LB, prm[Q_EA], W, CB)[0]
+            else:
+                V_low = V - W * L
+                h_low = math.sqrt(H * H + V_low * V_low)
+                base = -aa * math.asinh(V_low * inv_H)
+            # references: the latest buffer in, the other out
+            new_in_b = cur[C_REF] == 0.0
+            q_ref, l_ref = (qa, la) if new_in_b else (qb, lb)
+            q_new, l_new = (qb, lb) if new_in_b else (qa, la)
+            if cur[C_CHAIN] >= CHAIN_STEPS:  # refresh the references: every log directly
+                cur[C_CHAIN] = 0.0
+                for j in range(j_top, j_bot + 1):
+                    Vs = V - W * h * jf[j]
+                    qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
+                    q_ref[j] = qi
+                    l_ref[j] = math.log(qi)
+            else:
+                cur[C_CHAIN] += 1.0
+            for j in range(j_top, j_bot + 1):  # vectorised
+                Vs = V - W * h * jf[j]  # V(sigma) = V - W (L - sigma), L - sigma = j h
+                d = Ls - h * jf[j]  # sigma - s_low
+                hs = math.sqrt(H * H + Vs * Vs)
+                qi = (abs(Vs) + hs) * inv_H
+                ei = qi / q_ref[j] - 1.0
+                li = l_ref[j] + _log1p_small(ei)
+                X0[j] = base + aa * (li if Vs >= 0.0 else -li) + H * d * inv_EA
+                Z0[j] = (hs - h_low) * inv_W + 0.5 * (V_low + Vs) * d * inv_EA
+                E[j] = ei
+            for j in range(j_top, j_bot + 1):  # vectorised: the new references
+                q_new[j] = q_ref[j] * (1.0 + E[j])
+                l_new[j] = l_ref[j] + _log1p_small(E[j])
+            cur[C_REF] = 1.0 if new_in_b else 0.0
+            far = False
+            for j in range(j_top, j_bot + 1):
+                far = far or not (abs(E[j]) <= _SERIES_LIMIT)
+            if far:  # stations far from their reference (or not finite): direct logs
+                for j in range(j_top, j_bot + 1):
+                    if not (abs(E[j]) <= _SERIES_LIMIT):
+                        Vs = V - W * h * jf[j]
+                        d = Ls - h * jf[j]
+                        qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
+                        li = math.log(qi)
+                        X0[j] = base + aa * (li if Vs >= 0.0 else -li) + H * d * inv_EA
+                        q_new[j] = qi
+                        l_new[j] = li
+        else:  # slack or vertical profiles, or the fairlead below the anchor: general points
+            for j in range(j_top, j_bot + 1):
+                X0[j], Z0[j], _ = _material_point(anchor, fx, fy, fz, prm, H, V, L - j * h)
+        if n_grid > 0:
+            cur[C_LO + s0] = j_top
+            cur[C_HI + s0] = j_bot
+            _ensure_level(anchor, prm, hist, 0, cur, s1, X, Z, j_top, j_bot)
+            _ensure_level(anchor, prm, hist, 1, cur, s2, X, Z, j_top, j_bot)
+        # -- eq. (4) and eq. (3) at the stations ---------------------------------------------
         dtp = cur[C_DT]
         rest = not (dtp > 0.0)
         # inverses of the step lengths: the same quotients to an ulp, without divisions
         inv_dt = 1.0 / dt
         inv_dtp = 0.0 if rest else 1.0 / dtp
         inv_den = inv_dt if rest else 2.0 / (dt + dtp)
-        V0 = V - W * Ls  # V(sigma) = V0 + W h j at the stations
-        Wh = W * h
         m = prm[Q_M]
         drag = prm[Q_DRAG]
         ma = prm[Q_MA]
-        for j in range(n):  # branch-free: vectorised
-            # eq. (4): backward differences of the material point's static positions
-            d01x = (lx - lx1) + x[0, j] * ux - x[1, j] * ux1
-            d01y = (ly - ly1) + x[0, j] * uy - x[1, j] * uy1
-            d01z = (lz - lz1) + z[0, j] - z[1, j]
-            d12x = (lx1 - lx2) + x[1, j] * ux1 - x[2, j] * ux2
-            d12y = (ly1 - ly2) + x[1, j] * uy1 - x[2, j] * uy2
-            d12z = (lz1 - lz2) + z[1, j] - z[2, j]
-            v0 = d01x * inv_dt
-            v1 = d01y * inv_dt
-            v2 = d01z * inv_dt
-            a0 = (v0 - d12x * inv_dtp) * inv_den
-            a1 = (v1 - d12y * inv_dtp) * inv_den
-            a2 = (v2 - d12z * inv_dtp) * inv_den
-            # static unit tangent (H u, V(sigma)) / T, V(sigma) = V - W (L - sigma)
-            Vs = V0 + Wh * jf[j]
-            hs = math.sqrt(H * H + Vs * Vs)
-            inv_hs = 1.0 / hs if hs > 0.0 else 0.0
-            t0 = H * ux * inv_hs
-            t1 = H * uy * inv_hs
-            t2 = Vs * inv_hs if hs > 0.0 else 1.0
-            vt = v0 * t0 + v1 * t1 + v2 * t2
-            n0 = v0 - vt * t0
-            n1 = v1 - vt * t1
-            n2 = v2 - vt * t2
-            vn = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
-            at = a0 * t0 + a1 * t1 + a2 * t2
-            # eq. (3), vertical: weight + drag + added mass - inertia
-            scratch[1, j] = -W - drag * vn * n2 - ma * (a2 - at * t2) - m * a2
-        # eq. (2): composite Simpson over the suspended length (weights 1 4 2 ... 2 4 1)
-        total = scratch[1, 0] + scratch[1, n - 1]
-        for j in range(1, n - 1, 2):
-            total += 4.0 * scratch[1, j]
-        for j in range(2, n - 1, 2):
-            total += 2.0 * scratch[1, j]
-        k = total * h / (-3.0 * W * Ls)
+        _, l1x, l1y, l1z, u1x, u1y, _ = _plane(anchor, hist[0, 0], hist[0, 1], hist[0, 2])
+        _, l2x, l2y, l2z, u2x, u2y, _ = _plane(anchor, hist[1, 0], hist[1, 1], hist[1, 2])
+        X1, Z1, X2, Z2 = X[s1], Z[s1], X[s2], Z[s2]
+        Hx = H * ux
+        Hy = H * uy
+        # V(sigma) at station j: V - W j h, or with the fairlead below, V - W (L - j h)
+        Vt0 = V - W * L if swapped else V
+        Vt1 = W * h if swapped else -W * h
+        for j in range(j_top, j_bot + 1):  # vectorised
+            F[j] = _vertical_force(
+                (lx - l1x) + X0[j] * ux - X1[j] * u1x, (ly - l1y) + X0[j] * uy - X1[j] * u1y,
+                (lz - l1z) + Z0[j] - Z1[j], (l1x - l2x) + X1[j] * u1x - X2[j] * u2x,
+                (l1y - l2y) + X1[j] * u1y - X2[j] * u2y, (l1z - l2z) + Z1[j] - Z2[j],
+                Hx, Hy, Vt0 + Vt1 * jf[j], inv_dt, inv_dtp, inv_den, W, m, drag, ma)
+        # -- eq. (2): Simpson over the stations (weights 1 4 2 ... 2 4 1) --------------------
+        total = 0.0
+        if n_grid >= 3:
+            odd = 0.0
+            even = 0.0
+            for j in range(j_top + 1, j_bot, 2):
+                odd += F[j]
+            for j in range(j_top + 2, j_bot - 1, 2):
+                even += F[j]
+            total = (F[j_top] + F[j_bot] + 4.0 * odd + 2.0 * even) * h / 3.0
+        # -- the lower end panel [a, s_bot]: the quadratic through the three lowest stations
+        # (the smooth suspended-side density, exact for quadratics), integrated exactly ------
+        lower = n_grid >= 3
+        if lower:
+            w = ((L - j_bot * h) - a) / h  # panel width in stations
+            if w > 2.0 * _INDEX_SLACK:
+                w2 = w * w
+                w3 = w2 * w
+                total += h * (F[j_bot] * (w3 / 6.0 + 0.75 * w2 + w)
+                              - F[j_bot - 1] * (w3 / 3.0 + w2)
+                              + F[j_bot - 2] * (w3 / 6.0 + 0.25 * w2))
+        # -- other end panels: the trapezoidal rule with the panel end's material point -------
+        total += _end_panels(anchor, fairlead, prm, hist, H, V, a, b, j_top, j_bot, n_grid,
+                             lower, F, inv_dt, inv_dtp, inv_den)
+        k = total / (-W * Ls)
         if k < 0.0:  # slack
             k = 0.0
     # eq. (1) at the upper end; the apparent-weight catenary at the lower end
@@ -381,6 +493,7 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
     cur[C_K] = k
     cur[C_LB] = LB
     cur[C_DT] = dt
+    cur[C_SLOT] = s0
     for c in range(N_HIST):
         hist[1, c] = hist[0, c]
     for c in range(3):
@@ -394,8 +507,9 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
 @jit(error_model="numpy")
 def quasi_dynamic_series(anchor: np.ndarray, t_now: float, p_now: np.ndarray, v_now: np.ndarray,
                          time: np.ndarray, path: np.ndarray, velocity: np.ndarray,
-                         prm: np.ndarray, hist: np.ndarray, cur: np.ndarray, chain: np.ndarray,
-                         x: np.ndarray, z: np.ndarray, scratch: np.ndarray, jf: np.ndarray,
+                         prm: np.ndarray, hist: np.ndarray, cur: np.ndarray, X: np.ndarray,
+                         Z: np.ndarray, qa: np.ndarray, la: np.ndarray, qb: np.ndarray,
+                         lb: np.ndarray, E: np.ndarray, F: np.ndarray, jf: np.ndarray,
                          work: np.ndarray, fpos: np.ndarray, fvel: np.ndarray,
                          fairlead_force: np.ndarray, anchor_force: np.ndarray,
                          laid_length: np.ndarray, iterations: np.ndarray, factor: np.ndarray,
@@ -415,7 +529,7 @@ def quasi_dynamic_series(anchor: np.ndarray, t_now: float, p_now: np.ndarray, v_
         current state.
     path, velocity : float64[n, 3]
         Fairlead positions [m] and velocities [m/s] at the samples.
-    prm, hist, cur, chain, x, z, scratch, jf, work
+    prm, hist, cur, X, Z, qa, la, qb, lb, E, F, jf, work
         As :func:`qd_step`.
     fpos, fvel : float64[3]
         Scratch for the fairlead inside a sample interval.
@@ -456,11 +570,11 @@ def quasi_dynamic_series(anchor: np.ndarray, t_now: float, p_now: np.ndarray, v_
                     else:
                         hermite(t0, time[k], p_now, v_now, path[k], velocity[k], t0 + i * dt,
                                 fpos, fvel)
-                    status = qd_step(anchor, fpos, dt, prm, hist, cur, chain, x, z, scratch,
-                                     jf, work)
+                    status = qd_step(anchor, fpos, dt, prm, hist, cur, X, Z, qa, la, qb,
+                                     lb, E, F, jf, work)
                 else:
-                    status = qd_step(anchor, path[k], dt, prm, hist, cur, chain, x, z,
-                                     scratch, jf, work)
+                    status = qd_step(anchor, path[k], dt, prm, hist, cur, X, Z, qa, la,
+                                     qb, lb, E, F, jf, work)
                 if status != CAT_OK:
                     failure[0] = k
                     failure[1] = status

@@ -18,17 +18,21 @@ of the paper's verification).
 
 Model choices (the paper leaves them open; see :mod:`floatmoor.mooring._quasidynamic_kernels`):
 
-* **Stations.** ``integration_points`` (odd) Simpson stations spread evenly over the suspended
-  length of the current step, from the touchdown point s_0 = L_B (0 for a line free of the
-  seabed) to the fairlead, in unstretched arc length. Material points lifting off (or landing
-  on) the seabed at the moving touchdown point get an acceleration of about W (dL_B/dt)^2 / H
-  within |dL_B/dt| dt of it, which the station at the touchdown point samples on its seabed
-  side: the quadrature error is first order in the station spacing while the spacing exceeds
-  that width (about 1e-3 in k_QD with 31 stations on the verification chain of case B).
-* **Backward differences.** Of the *material* points at the stations: their positions at the two
-  previous steps are evaluated exactly on those steps' static catenaries at the same unstretched
-  arc length (on the resting part for points that were on the seabed then). Differences of the
-  moving stations themselves would add their sliding along the line as the touchdown point moves.
+* **Stations.** Fixed material stations ("nodes") at unstretched arc lengths s_j = L - j h
+  from the anchor, h = (suspended length at rest) / (``integration_points`` - 1): at rest,
+  ``integration_points`` (odd) of them span the suspended part, from the touchdown point (the
+  anchor for a line free of the seabed) to the fairlead. At each step composite Simpson runs
+  over the stations on the suspended part, and the panel between the moving touchdown point
+  and the lowest station used over the quadratic through the three lowest stations. Stations
+  inside the layer |dL_B/dt| dt above the touchdown point whose material points lifted off
+  the seabed within the last two steps (eq. (4) differences across the kink of their history
+  there) are left to that panel. The quadrature keeps Simpson's order as the touchdown point
+  moves: errors in k_QD of 1.1e-3, 7.8e-5 and 5.7e-6 with 21, 41 and 81 stations on the
+  verification chain of case B.
+* **Backward differences.** Of the *material* points at the stations: their positions on the
+  two previous steps' static catenaries at the same unstretched arc length, kept from those
+  steps (or evaluated on those lines, on the resting part for points that were on the seabed
+  then). Each step evaluates one static profile at the stations, not three.
 * **Time step.** One step per sample given (the output interval in a forced-motion run, or the
   interval of each :meth:`QuasiDynamicLine.advance`), or, with
   ``[lines.quasi_dynamic] max_time_step``, the fewest equal sub-steps no longer than it, the
@@ -74,15 +78,18 @@ SHAPE_NODES = 51
 @dataclass(frozen=True)
 class QuasiDynamicLineState:
     """A saved state: time, fairlead position and velocity, the static solutions of the last
-    two steps (``history``, rows of ``_quasidynamic_kernels.H_*``), the outputs of the last
-    step (``current``, entries ``C_*``) and the log terms of its stations (``chain``)."""
+    two steps (``history``, rows of ``_quasidynamic_kernels.H_*``), the outputs and bookkeeping
+    of the last step (``current``, entries ``C_*``), the log references of the stations
+    (``references``) and their in-plane positions on the last three static lines
+    (``positions``)."""
 
     time: float
     fairlead: NDArray[np.float64]
     fairlead_velocity: NDArray[np.float64]
     history: NDArray[np.float64]
     current: NDArray[np.float64]
-    chain: NDArray[np.float64]
+    references: NDArray[np.float64]
+    positions: NDArray[np.float64]
 
 
 class QuasiDynamicLine(PathStepper):
@@ -146,12 +153,6 @@ class QuasiDynamicLine(PathStepper):
         self.prm = prm
         #: unstretched arc lengths from the anchor of the shape points :attr:`r` [m]
         self.arc_length = np.linspace(0.0, line.length, SHAPE_NODES)
-        n = self.integration_points
-        self._x = np.zeros((3, n))
-        self._z = np.zeros((3, n))
-        self._scratch = np.zeros((2, n))
-        self._jf = np.arange(n, dtype=float)  # station indices, as floats
-        self.chain = np.zeros((2, n))
         self._work = np.zeros(N_OUT_3D)
         self._fpos = np.zeros(3)
         self._fvel = np.zeros(3)
@@ -161,7 +162,25 @@ class QuasiDynamicLine(PathStepper):
         self.time = float(time)
         self.fairlead = np.asarray(line.fairlead, dtype=float).copy()
         self.fairlead_velocity = np.zeros(3)
-        self._start_at_rest(self.fairlead)
+        start = self._static(self.fairlead)
+        # stations s_j = L - j h: at rest, integration_points of them span the suspended part
+        suspended = line.length - start.laid_length
+        if not suspended > 0.0:
+            suspended = line.length
+        self.station_spacing = suspended / (self.integration_points - 1)
+        prm[_k.Q_H] = self.station_spacing
+        m = _k.station_count(line.length, self.station_spacing)
+        #: unstretched arc lengths from the anchor of the stations [m]
+        self.stations = line.length - np.arange(m) * self.station_spacing
+        self._jf = np.arange(m, dtype=float)  # station indices, as floats
+        self._E = np.zeros(m)
+        self._F = np.zeros(m)
+        #: in-plane station positions (x, z) on the last three static lines
+        self.X = np.zeros((3, m))
+        self.Z = np.zeros((3, m))
+        #: two buffers of q and log q per station (the logs' references)
+        self.refs = np.zeros((4, m))
+        self._start_at_rest(self.fairlead, start)
         #: sample index of the last failure in :meth:`solve_path`, -1 if none
         self.failed_index = -1
 
@@ -171,11 +190,13 @@ class QuasiDynamicLine(PathStepper):
         """The quasi-dynamic model of a case's line, at rest in its mean position."""
         return cls(line, environment, seabed)
 
-    def _start_at_rest(self, fairlead: NDArray[np.float64]) -> None:
-        """The static line at ``fairlead``, at rest for all earlier time (k_QD = 1)."""
-        sol = solve_catenary(self.anchor, fairlead, self.length, self.axial_stiffness,
-                             self.weight, self.friction, seabed_z=self.seabed_z,
-                             tol=self.prm[_k.Q_TOL], max_iter=int(self.prm[_k.Q_MAXIT]))
+    def _static(self, fairlead: NDArray[np.float64]):
+        return solve_catenary(self.anchor, fairlead, self.length, self.axial_stiffness,
+                              self.weight, self.friction, seabed_z=self.seabed_z,
+                              tol=self.prm[_k.Q_TOL], max_iter=int(self.prm[_k.Q_MAXIT]))
+
+    def _start_at_rest(self, fairlead: NDArray[np.float64], sol) -> None:
+        """The static line ``sol`` at ``fairlead``, at rest for all earlier time (k_QD = 1)."""
         for row in range(2):
             self.hist[row, _k.H_FAIRLEAD:_k.H_FAIRLEAD + 3] = fairlead
             self.hist[row, _k.H_HF], self.hist[row, _k.H_VF] = sol.warm_start
@@ -186,8 +207,12 @@ class QuasiDynamicLine(PathStepper):
         self.cur[_k.C_LB] = sol.laid_length
         self.cur[_k.C_DT] = 0.0
         self.cur[_k.C_CHAIN] = _k.CHAIN_STEPS  # the first step evaluates its logs directly
-        self.chain[0] = 1.0  # q = 1, log q = 0: a valid reference
-        self.chain[1] = 0.0
+        self.refs[0::2] = 1.0  # q = 1, log q = 0: a valid reference
+        self.refs[1::2] = 0.0
+        self.cur[_k.C_REF] = 0.0
+        self.cur[_k.C_SLOT] = 0.0
+        self.cur[_k.C_LO:_k.C_LO + 3] = 1.0  # no station evaluated at any level
+        self.cur[_k.C_HI:_k.C_HI + 3] = 0.0
 
     # -- stepping ------------------------------------------------------------------------------
     def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
@@ -236,8 +261,8 @@ class QuasiDynamicLine(PathStepper):
             factor = np.empty(n)
         index = _k.quasi_dynamic_series(
             self.anchor, self.time, self.fairlead, self.fairlead_velocity, time, path, velocity,
-            self.prm, self.hist, self.cur, self.chain, self._x, self._z, self._scratch,
-            self._jf, self._work, self._fpos, self._fvel, fairlead_force, anchor_force,
+            self.prm, self.hist, self.cur, self.X, self.Z, self.refs[0], self.refs[1],
+            self.refs[2], self.refs[3], self._E, self._F, self._jf, self._work, self._fpos, self._fvel, fairlead_force, anchor_force,
             laid_length, iterations, factor, self._failure)
         if index >= 0:
             self.failed_index = index
@@ -259,7 +284,8 @@ class QuasiDynamicLine(PathStepper):
         """A copy of the current state."""
         return QuasiDynamicLineState(self.time, self.fairlead.copy(),
                                      self.fairlead_velocity.copy(), self.hist.copy(),
-                                     self.cur.copy(), self.chain.copy())
+                                     self.cur.copy(), self.refs.copy(),
+                                     np.stack((self.X, self.Z)))
 
     def set_state(self, state: QuasiDynamicLineState) -> None:
         """Restore a state saved by :meth:`get_state`."""
@@ -268,7 +294,8 @@ class QuasiDynamicLine(PathStepper):
         self.fairlead_velocity[:] = state.fairlead_velocity
         self.hist[:] = state.history
         self.cur[:] = state.current
-        self.chain[:] = state.chain
+        self.refs[:] = state.references
+        self.X[:], self.Z[:] = state.positions
 
     @property
     def factor(self) -> float:

@@ -8,9 +8,11 @@ differences of eq. (4), the forces of eq. (3), eq. (2) integrated with
 inputs: the catenary has its own oracle tests, and feeding both implementations the same ones
 keeps this comparison free of solver noise, which eq. (4) would amplify by 1/dt^2.
 
-Model choices (as in :mod:`floatmoor.mooring.quasidynamic`): stations evenly over the suspended
-length [L_B, L] of the current step; differences of the material points at those arc lengths on
-the two previous static lines; a = (v_n - v_{n-1}) / ((dt_n + dt_{n-1}) / 2), at rest before the
+Model choices (as in :mod:`floatmoor.mooring.quasidynamic`): fixed stations s_j = L - j h on
+the suspended part, above the material points that lifted off since the step before last (an
+even number of Simpson intervals, the lowest station dropped if need be), the rest of the
+suspended part integrated with the quadratic through the three lowest stations; differences of
+the material points at the stations on the two previous static lines; a = (v_n - v_{n-1}) / ((dt_n + dt_{n-1}) / 2), at rest before the
 first step; normal components relative to the static tangent; material-area added mass; the
 anchor force of the apparent-weight catenary. Restricted to lines whose fairlead is above the
 anchor with H > 0 (no slack or vertical profiles). Units SI.
@@ -42,7 +44,7 @@ class QDLine:
     d: float  #: drag diameter [m]
     Ca: float  #: normal added-mass coefficient on the material area m / rho_c [-]
     rho_c: float  #: material density [kg/m^3]
-    n_points: int  #: Simpson stations (odd)
+    spacing: float  #: station spacing h [m]: stations s_j = L - j h from the anchor
 
 
 def positions(line: QDLine, fairlead: np.ndarray, H: float, V: float,
@@ -88,10 +90,21 @@ def run(line: QDLine, time: np.ndarray, path: np.ndarray, H: np.ndarray, V: np.n
     k = np.ones(n)
     ff = np.array(fairlead_force, dtype=float)
     fa = np.array(anchor_force, dtype=float)
+    h = line.spacing
+    grid = line.L - np.arange(int(np.floor(line.L / h * (1 + 1e-9))) + 1) * h  # s_j = L - j h
+
+    def laid_length(j: int) -> float:
+        return line.L - V[j] / line.W if line.seabed and V[j] < line.W * line.L else 0.0
+
     for i in range(1, n):
-        touchdown = line.seabed and V[i] < line.W * line.L
-        laid = line.L - V[i] / line.W if touchdown else 0.0
-        sigma = np.linspace(laid, line.L, line.n_points)
+        laid = laid_length(i)
+        # stations on the suspended part, above the material points lifted off the seabed
+        # since the step before last; an even number of Simpson intervals
+        lift = max(laid, laid_length(i - 1), laid_length(max(i - 2, 0)))
+        sigma = grid[grid >= lift - 1e-9 * h][::-1]  # ascending
+        if (sigma.size - 1) % 2 == 1:
+            sigma = sigma[1:]
+        assert sigma.size >= 3, "oracle: at least three stations on the suspended part"
         # static positions of the material points at the stations: now, one and two steps ago
         r0 = positions(line, path[i], H[i], V[i], sigma)
         r1 = positions(line, path[i - 1], H[i - 1], V[i - 1], sigma)
@@ -117,8 +130,13 @@ def run(line: QDLine, time: np.ndarray, path: np.ndarray, H: np.ndarray, V: np.n
         f_hd = (-0.5 * line.rho_w * line.Cdn * line.d * np.linalg.norm(vn, axis=1) * vn[:, 2]
                 - line.Ca * line.rho_w * area * an[:, 2])
         f_i = line.m * a[:, 2]
-        # eq. (2), clamped at zero
-        k[i] = max(simpson(f_w + f_hd - f_i, x=sigma) / simpson(f_w, x=sigma), 0.0)
+        # eq. (2), clamped at zero: Simpson over the stations, and on [L_B, lowest station]
+        # the quadratic through the three lowest stations' densities
+        f = f_w + f_hd - f_i
+        integral = simpson(f, x=sigma)
+        quadratic = np.polyint(np.polyfit(sigma[:3], f[:3], 2))
+        integral += np.polyval(quadratic, sigma[0]) - np.polyval(quadratic, laid)
+        k[i] = max(integral / (-line.W * (line.L - laid)), 0.0)
         # eq. (1) at the fairlead; the apparent-weight catenary at the anchor
         ff[i] = k[i] * fairlead_force[i]
         if laid > 0.0:
