@@ -16,6 +16,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from floatmoor.case.floater import read_floater, read_hydro
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
@@ -99,18 +100,30 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
 
     environment = _environment(root.table("environment"))
     seabed = _seabed(root.table("seabed"))
-    line_types = {name: _line_type(name, reader) for name, reader in root.named_tables("line_types")}
-    lines = tuple(_line(reader, line_types) for reader in root.tables("lines"))
+    has_floater = root.has("floater")
+    line_types = {name: _line_type(name, reader) for name, reader in root.named_tables("line_types")} \
+        if root.has("line_types") or not has_floater else {}
+    # A floater case may have no lines (a free-floating body); other cases need lines.
+    lines = tuple(_line(reader, line_types) for reader in root.tables("lines")) \
+        if root.has("lines") or not has_floater else ()
     simulation = _simulation(root.table("simulation"))
+    if has_floater and root.has("motion"):
+        raise root.error("motion", "no [motion] table in a case with a [floater] (the "
+                         "floater's motion follows from its dynamics)", {})
     motion = _motion(root.table("motion"), base_dir or FilePath("."), simulation) \
         if root.has("motion") else None
     campaign = _campaign(root.table("campaign")) if root.has("campaign") else None
+    floater = read_floater(root.table("floater"), environment) if has_floater else None
+    if root.has("hydro") and not has_floater:
+        raise root.error("hydro", "a [floater] table for the [hydro] settings to apply to",
+                         {})
+    hydro = read_hydro(root.table("hydro")) if root.has("hydro") else None
     root.finish()
 
     case = Case(title=title, source=source, text=text, overrides=overrides,
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
                 motion=motion, simulation=simulation, description=description,
-                campaign=campaign)
+                campaign=campaign, floater=floater, hydro=hydro)
     _check_lines(case, context)
     _check_motion(case, context)
     return case

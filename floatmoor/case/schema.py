@@ -16,7 +16,8 @@ __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
     "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "SEABED_CONTACT_METHODS",
-    "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC",
+    "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
+    "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
@@ -209,6 +210,106 @@ class Simulation:
     shape_output_interval: float | None = None  #: line shape sampling [s], None = no shapes
 
 
+#: Floater geometry kinds a case file may give (``floater.geometry.kind``).
+GEOMETRY_KINDS = ("cylinder", "semisubmersible")
+
+
+@dataclass(frozen=True)
+class CylinderGeometry:
+    """A vertical circular cylinder, axis through the floater's reference point (x, y)."""
+
+    diameter: float  #: [m]
+    draft: float  #: depth of the flat bottom below the still water line [m]
+    height: float  #: bottom to top [m]; the freeboard is height - draft
+    draft_from_mass: bool  #: the draft was derived from the mass (``draft`` omitted)
+    kind: str = "cylinder"
+
+    @property
+    def radius(self) -> float:
+        """[m]"""
+        return 0.5 * self.diameter
+
+
+@dataclass(frozen=True)
+class Column:
+    """A vertical column of a semisubmersible, optionally with a wider base (heave plate)
+    of ``heave_plate_diameter`` from ``z_bottom`` up to ``z_bottom + heave_plate_height``."""
+
+    x: float  #: [m]
+    y: float  #: [m]
+    diameter: float  #: of the upper part [m]
+    z_top: float  #: [m]
+    z_bottom: float  #: [m]
+    heave_plate_diameter: float | None = None  #: [m]
+    heave_plate_height: float = 0.0  #: [m]
+
+
+@dataclass(frozen=True)
+class Member:
+    """A pontoon or brace: a circular tube between two points (each on a column or another
+    member) [m]."""
+
+    start: tuple[float, float, float]
+    end: tuple[float, float, float]
+    diameter: float
+
+
+@dataclass(frozen=True)
+class SemisubmersibleGeometry:
+    """Columns and the pontoons and braces that join them."""
+
+    columns: tuple[Column, ...]
+    members: tuple[Member, ...] = ()
+    kind: str = "semisubmersible"
+
+
+FloaterGeometry = CylinderGeometry | SemisubmersibleGeometry
+
+
+@dataclass(frozen=True)
+class Floater:
+    """A rigid floating body (``[floater]``); positions are global, at rest."""
+
+    name: str
+    mass: float  #: [kg]
+    centre_of_mass: tuple[float, float, float]  #: [m]
+    #: inertia tensor about the centre of mass, (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) [kg m^2]
+    inertia: tuple[float, float, float, float, float, float]
+    reference_point: tuple[float, float, float]  #: rotation centre of the DOFs [m]
+    geometry: FloaterGeometry
+
+    def mass_matrix(self) -> NDArray[np.float64]:
+        """6x6 rigid-body mass matrix about :attr:`reference_point` (Surge .. Yaw)."""
+        m = self.mass
+        ixx, iyy, izz, ixy, ixz, iyz = self.inertia
+        r = np.subtract(self.centre_of_mass, self.reference_point)
+        inertia_cm = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
+        # parallel axis theorem: I_ref = I_cm + m (|r|^2 1 - r r^T)
+        inertia_ref = inertia_cm + m * (float(r @ r) * np.eye(3) - np.outer(r, r))
+        skew = np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+        out = np.zeros((6, 6))
+        out[:3, :3] = m * np.eye(3)
+        out[:3, 3:] = -m * skew
+        out[3:, :3] = m * skew
+        out[3:, 3:] = inertia_ref
+        return out
+
+
+@dataclass(frozen=True)
+class HydroSettings:
+    """Settings of the BEM database of the floater (``[hydro]``)."""
+
+    database: str  #: database name: ``hydrodb/NAME.nc``
+    frequencies: tuple[float, ...]  #: finite wave frequencies, increasing [rad/s]
+    directions: tuple[float, ...]  #: wave propagation directions, increasing [rad]
+    panel_size: float  #: target panel edge length [m]
+    lid: bool  #: lid on the interior waterplane against irregular frequencies
+    lid_depth: float | None  #: [m] below the still water line, None = from the top frequency
+    infinite_depth: bool  #: solve in deep water (allows omega = 0) instead of water_depth
+    symmetry: bool  #: use the mesh symmetries capytaine supports
+    radial_panels: int | None = None  #: cylinder only: panels across the bottom radius
+
+
 @dataclass(frozen=True)
 class Case:
     """A validated case.
@@ -223,6 +324,9 @@ class Case:
         The ``--set`` assignments applied, in order.
     motion
         The prescribed fairlead motion, or None for fixed fairleads.
+    floater
+        The floating body; its lines' fairleads are body-fixed points given at rest. A case
+        has a floater or a motion, not both.
     """
 
     title: str
@@ -238,6 +342,10 @@ class Case:
     description: str = ""
     #: ``{"grid": {key: [values]}, "zip": {key: [values]}}`` from ``[campaign]``, or None
     campaign: dict[str, dict[str, list[Any]]] | None = None
+    #: the floating body, or None (fairleads fixed or moved by ``motion``)
+    floater: Floater | None = None
+    #: the BEM database settings of the floater, or None
+    hydro: HydroSettings | None = None
 
     @property
     def line_names(self) -> list[str]:

@@ -1,0 +1,197 @@
+"""Reading of the ``[floater]`` and ``[hydro]`` tables of a case file.
+
+``[floater]``: ``name``, ``mass`` [kg], ``centre_of_mass`` [m] and ``reference_point`` [m]
+(global, body at rest; the reference point is the rotation centre of the six DOFs),
+``inertia`` about the centre of mass, ``[Ixx, Iyy, Izz]`` or
+``[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`` [kg m^2], and ``[floater.geometry]``:
+
+* ``kind = "cylinder"``: ``diameter``, ``height`` (bottom to top) and optionally ``draft``
+  [m]. Without ``draft`` the draft is the one at which the cylinder floats freely,
+  ``mass / (water_density pi R^2)`` (cases.md case C: "the draft follows from the mass"); the
+  cylinder's axis passes through the reference point.
+* ``kind = "semisubmersible"``: ``[[floater.geometry.columns]]`` (``x``, ``y``, ``diameter``,
+  ``z_top``, ``z_bottom``, optional ``heave_plate_diameter`` and ``heave_plate_height``, the
+  plate's extent above ``z_bottom``) and optional ``[[floater.geometry.members]]`` (pontoons and
+  braces: ``start``, ``end``, ``diameter``) in global coordinates.
+
+``[hydro]``: ``database`` (name of ``hydrodb/NAME.nc``), the frequencies as
+``frequency_ranges = [[first, last, count], ...]`` [rad/s] and/or ``frequencies = [...]``
+[rad/s], ``directions_deg`` [deg], ``panel_size`` [m], and optionally ``lid`` (default true),
+``lid_depth`` [m] (default: wavenumber x depth = 0.15 at the top frequency), ``symmetry``
+(default true), ``infinite_depth`` (default false: the BEM uses environment.water_depth) and
+``radial_panels`` (cylinder bottom). Density and gravity come from ``[environment]``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatmoor.case.reader import TableReader
+from floatmoor.case.schema import (
+    GEOMETRY_KINDS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
+    HydroSettings, Member, SemisubmersibleGeometry,
+)
+
+__all__ = ["read_floater", "read_hydro", "MAX_FREQUENCIES"]
+
+#: More frequencies than this is a typing error rather than a plan (a 400-frequency buoy
+#: database took 84 s; capytaine_notes.md).
+MAX_FREQUENCIES = 2000
+
+
+def read_floater(t: TableReader, environment: Environment) -> Floater:
+    """Read ``[floater]``."""
+    name = t.string("name")
+    mass = t.number("mass", unit="kg", gt=0.0)
+    com = t.vector("centre_of_mass", size=3, unit="m")
+    raw = t.data.get("inertia")
+    size = 6 if isinstance(raw, list) and len(raw) == 6 else 3
+    inertia = t.vector("inertia", size=size, unit="kg m^2")
+    if any(v <= 0.0 for v in inertia[:3]):
+        raise t.error("inertia", "moments of inertia Ixx, Iyy, Izz > 0 [kg m^2]", list(inertia))
+    full = tuple(inertia) + (0.0, 0.0, 0.0) if size == 3 else tuple(inertia)
+    tensor = np.array([[full[0], full[3], full[4]], [full[3], full[1], full[5]],
+                       [full[4], full[5], full[2]]])
+    if np.linalg.eigvalsh(tensor).min() <= 0.0:
+        raise t.error("inertia", "a positive definite inertia tensor [kg m^2]", list(inertia))
+    ref = t.vector("reference_point", size=3, unit="m")
+    geometry = _geometry(t.table("geometry"), mass, environment)
+    t.finish()
+    if isinstance(geometry, CylinderGeometry) and not -geometry.draft < com[2] < \
+            geometry.height - geometry.draft:
+        raise t.error("centre_of_mass", "a centre of mass inside the cylinder (z between "
+                      f"{-geometry.draft:.6g} and {geometry.height - geometry.draft:.6g} m)",
+                      list(com))
+    return Floater(name=name, mass=mass, centre_of_mass=com,  # type: ignore[arg-type]
+                   inertia=full, reference_point=ref, geometry=geometry)  # type: ignore[arg-type]
+
+
+def _geometry(t: TableReader, mass: float, environment: Environment) -> FloaterGeometry:
+    kind = t.string("kind", choices=GEOMETRY_KINDS)
+    geometry: FloaterGeometry
+    if kind == "cylinder":
+        diameter = t.number("diameter", unit="m", gt=0.0)
+        height = t.number("height", unit="m", gt=0.0)
+        draft = t.number("draft", unit="m", gt=0.0, default=None)
+        from_mass = draft is None
+        if draft is None:
+            draft = mass / (environment.water_density * math.pi * (0.5 * diameter) ** 2)
+            if draft >= height:
+                raise t.context.error(("floater", "mass"), "a mass the cylinder can float "
+                                      f"(draft from the mass below its height {height:g} m)",
+                                      f"{mass!r} kg (draft {draft:.6g} m)")
+        elif draft >= height:
+            raise t.error("draft", f"a draft < floater.geometry.height ({height:g} m) [m]", draft)
+        if draft >= environment.water_depth:
+            raise t.error("draft" if not from_mass else "kind",
+                          f"a cylinder whose draft is less than the water depth "
+                          f"({environment.water_depth:g} m)", f"a draft of {draft:.6g} m")
+        geometry = CylinderGeometry(diameter=diameter, draft=draft, height=height,
+                                    draft_from_mass=from_mass)
+    else:
+        columns = tuple(_column(c, environment) for c in t.tables("columns"))
+        members = tuple(_member(m, environment) for m in t.tables("members", min_items=0)) \
+            if t.has("members") else ()
+        if not any(c.z_top > 0.0 > c.z_bottom for c in columns):
+            raise t.error("columns", "at least one column piercing the water line "
+                          "(z_bottom < 0 < z_top)", "none")
+        geometry = SemisubmersibleGeometry(columns=columns, members=members)
+    t.finish()
+    return geometry
+
+
+def _column(t: TableReader, environment: Environment) -> Column:
+    x = t.number("x", unit="m")
+    y = t.number("y", unit="m")
+    diameter = t.number("diameter", unit="m", gt=0.0)
+    z_top = t.number("z_top", unit="m")
+    z_bottom = t.number("z_bottom", unit="m", gt=-environment.water_depth, lt=z_top)
+    plate = t.number("heave_plate_diameter", unit="m", gt=diameter, default=None)
+    plate_height = t.number("heave_plate_height", unit="m", gt=0.0, lt=z_top - z_bottom,
+                            default=None)
+    if (plate is None) != (plate_height is None):
+        key = "heave_plate_height" if plate is not None else "heave_plate_diameter"
+        raise t.error(key, "heave_plate_diameter and heave_plate_height given together",
+                      "only one of them")
+    t.finish()
+    return Column(x=x, y=y, diameter=diameter, z_top=z_top, z_bottom=z_bottom,
+                  heave_plate_diameter=plate, heave_plate_height=plate_height or 0.0)
+
+
+def _member(t: TableReader, environment: Environment) -> Member:
+    start = t.vector("start", size=3, unit="m")
+    end = t.vector("end", size=3, unit="m")
+    diameter = t.number("diameter", unit="m", gt=0.0)
+    length = float(np.linalg.norm(np.subtract(end, start)))
+    if length <= diameter:
+        raise t.error("end", f"an end point more than one diameter ({diameter:g} m) from "
+                      "start [m]", list(end))
+    for key, point in (("start", start), ("end", end)):
+        if point[2] < -environment.water_depth:
+            raise t.error(key, "a point above the seabed [m]", list(point))
+    t.finish()
+    return Member(start=start, end=end, diameter=diameter)  # type: ignore[arg-type]
+
+
+def read_hydro(t: TableReader) -> HydroSettings:
+    """Read ``[hydro]``."""
+    database = t.string("database")
+    if not all(ch.isalnum() or ch in "-_." for ch in database) or database.startswith("."):
+        raise t.error("database", "a file name of letters, digits, '-', '_' and '.'", database)
+    omegas: list[float] = []
+    if t.has("frequency_ranges"):
+        ranges = t.data["frequency_ranges"]
+        t._read.add("frequency_ranges")
+        expected = "an array of [first, last, count] triples with 0 < first < last [rad/s] " \
+                   "and count >= 2"
+        if not isinstance(ranges, list) or not ranges:
+            raise t.error("frequency_ranges", expected, ranges)
+        for i, item in enumerate(ranges):
+            ok = (isinstance(item, list) and len(item) == 3
+                  and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                          and math.isfinite(v) for v in item)
+                  and isinstance(item[2], int) and 0 < item[0] < item[1] and item[2] >= 2)
+            if not ok:
+                raise t.error(("frequency_ranges", i), expected, item)
+            omegas.extend(np.linspace(float(item[0]), float(item[1]), int(item[2])).tolist())
+    if t.has("frequencies"):
+        raw = t.data["frequencies"]
+        size = len(raw) if isinstance(raw, list) and raw else 1
+        omegas.extend(t.vector("frequencies", size=size, unit="rad/s", gt=0.0))
+    if not omegas:
+        raise t.error("frequency_ranges", "frequency_ranges or frequencies (at least 2 "
+                      "frequencies) [rad/s]", t.data.get("frequency_ranges", None)
+                      if t.has("frequency_ranges") else _missing())
+    values = np.unique(np.round(np.asarray(omegas, float), 12))
+    if len(values) < 2 or len(values) > MAX_FREQUENCIES:
+        raise t.error("frequency_ranges", f"between 2 and {MAX_FREQUENCIES} distinct "
+                      "frequencies [rad/s]", f"{len(values)}")
+    raw_dir = t.data.get("directions_deg")
+    size = len(raw_dir) if isinstance(raw_dir, list) and raw_dir else 1
+    directions_deg = t.vector("directions_deg", size=size, unit="deg")
+    if any(not -360.0 <= d <= 360.0 for d in directions_deg) or \
+            len(set(directions_deg)) != len(directions_deg) or \
+            list(directions_deg) != sorted(directions_deg):
+        raise t.error("directions_deg", "distinct increasing directions within [-360, 360] "
+                      "[deg]", list(directions_deg))
+    settings = HydroSettings(
+        database=database,
+        frequencies=tuple(float(v) for v in values),
+        directions=tuple(math.radians(d) for d in directions_deg),
+        panel_size=t.number("panel_size", unit="m", gt=0.0),
+        lid=t.boolean("lid", default=True),
+        lid_depth=t.number("lid_depth", unit="m", gt=0.0, default=None),
+        infinite_depth=t.boolean("infinite_depth", default=False),
+        symmetry=t.boolean("symmetry", default=True),
+        radial_panels=t.integer("radial_panels", ge=1, le=1000, default=None),
+    )
+    t.finish()
+    return settings
+
+
+def _missing():
+    from floatmoor.case.reader import MISSING
+
+    return MISSING
