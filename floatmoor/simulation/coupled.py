@@ -1,0 +1,221 @@
+"""Coupled runs: a floating body integrated with the Cummins equation, sub-stepped with its
+mooring lines (physics.md section 5; issue 6).
+
+Coupling scheme, per body step [t_n, t_n + dt] (classical RK4 for the body):
+
+* stage 0 takes the line forces of the lines' states at t_n;
+* from the stage-0 acceleration a_n the body's motion over the step is predicted to second
+  order, x(tau) = x_n + v_n tau + a_n tau^2 / 2, and each line with memory (dynamic,
+  quasi-dynamic) is advanced along the fairlead path that prediction gives, to t_n + dt / 2
+  and to t_n + dt (a dynamic line at its own stable step, the fairlead on the cubic Hermite
+  curve between those samples); stages 1 and 2 take the line forces at t_n + dt / 2, stage 3
+  those at t_n + dt;
+* quasi-static lines have no memory: each stage solves them at the stage's own position.
+
+The lines thus lag the body's corrected motion by the predictor's error, O(dt^3) per step;
+each step's path starts from where the line's fairlead is, so the mismatch does not
+accumulate. The scheme is explicit: a heavy line on a light body needs a body step that
+resolves the coupled line-body oscillation (tests/body/test_coupling.py measures it).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.body.cummins import CumminsBody
+from floatmoor.body.kinematics import generalised_force, points_state
+from floatmoor.case.schema import Environment, Line, Seabed
+from floatmoor.mooring.catenary import solve_catenary
+from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.mooring.quasidynamic import QuasiDynamicLine
+from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.stepping import PathStepper
+
+__all__ = ["MooredBody", "equilibrium", "line_force_quasi_static"]
+
+#: Relative body displacement step of the finite-difference mooring stiffness in the
+#: equilibrium solve [m or rad].
+_FD_STEP = 1e-4
+#: Equilibrium: residual force below this fraction of the largest static force.
+EQUILIBRIUM_RTOL = 1e-9
+_MAX_NEWTON = 50
+
+
+def line_force_quasi_static(line: Line, environment: Environment, seabed: Seabed,
+                            fairlead: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Force the quasi-static catenary of ``line`` exerts on its fairlead at ``fairlead``."""
+    lt = line.line_type
+    friction = seabed.friction_coefficient if line.quasi_static.seabed_friction else 0.0
+    sol = solve_catenary(line.anchor, fairlead, line.length, lt.axial_stiffness,
+                         lt.weight_in_water(environment), friction,
+                         seabed_z=environment.seabed_z, tol=line.quasi_static.tolerance,
+                         max_iter=line.quasi_static.max_iterations)
+    return np.asarray(sol.fairlead_force, dtype=float)
+
+
+def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float64],
+                centre: NDArray[np.float64], environment: Environment, seabed: Seabed,
+                mean_force: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+    """The static equilibrium position x (6,) of the body on its lines (quasi-static
+    catenaries): F_0 - C x + F_lines(x) + mean_force = 0, by Newton with a finite-difference
+    mooring stiffness; DOFs without stiffness stay at zero (least-squares steps)."""
+    mean = np.zeros(6) if mean_force is None else np.asarray(mean_force, float)
+
+    def residual(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        pos, _ = points_state(x, np.zeros(6), arms, centre)
+        forces = np.array([line_force_quasi_static(ln, environment, seabed, p)
+                           for ln, p in zip(lines, pos)]).reshape(-1, 3)
+        moor = generalised_force(x, forces, arms) if len(lines) else np.zeros(6)
+        return body.static_force - body.stiffness @ x + moor + mean
+
+    x = np.zeros(6)
+    r = residual(x)
+    scale = max(float(np.abs(body.static_force).max()), float(np.abs(r).max()), 1.0)
+    for _ in range(_MAX_NEWTON):
+        if np.abs(r).max() <= EQUILIBRIUM_RTOL * scale:
+            return x
+        J = np.empty((6, 6))
+        for j in range(6):
+            e = np.zeros(6)
+            e[j] = _FD_STEP
+            J[:, j] = (residual(x + e) - residual(x - e)) / (2.0 * _FD_STEP)
+        dx = np.linalg.lstsq(J, -r, rcond=1e-10)[0]
+        step = 1.0
+        while True:
+            trial = residual(x + step * dx)
+            if np.abs(trial).max() < np.abs(r).max() or step < 1e-3:
+                break
+            step *= 0.5
+        x = x + step * dx
+        r = trial
+    raise RuntimeError(f"no static equilibrium: residual {np.abs(r).max():.3g} N after "
+                       f"{_MAX_NEWTON} Newton steps")
+
+
+_STEPPERS = {"quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
+
+
+@dataclass
+class _StepForces:
+    half: NDArray[np.float64]
+    end: NDArray[np.float64]
+
+
+class MooredBody:
+    """A Cummins body with its lines, advanced one body step at a time.
+
+    Parameters
+    ----------
+    body
+        The body (its state set by :meth:`start`).
+    lines, environment, seabed
+        The case's lines (fairleads: body-fixed points, at rest) and surroundings.
+    centre
+        The body's reference point at rest [m].
+    external
+        f(t, x, v) -> 6-DOF force of everything but the lines (excitation, drag, wind).
+    """
+
+    def __init__(self, body: CumminsBody, lines: Sequence[Line], environment: Environment,
+                 seabed: Seabed, centre: NDArray[np.float64],
+                 external: Callable[[float, NDArray[np.float64], NDArray[np.float64]],
+                                    NDArray[np.float64]] | None = None) -> None:
+        self.body = body
+        self.lines = list(lines)
+        self.environment = environment
+        self.seabed = seabed
+        self.centre = np.asarray(centre, dtype=float)
+        self.arms = np.array([np.subtract(ln.fairlead, self.centre) for ln in self.lines],
+                             dtype=float).reshape(-1, 3)
+        self.external = external if external is not None else (lambda t, x, v: np.zeros(6))
+        self.models: list[PathStepper | None] = []
+        self._qs: list[QuasiStaticLine | None] = []
+
+    # -- set-up ----------------------------------------------------------------------------
+    def start(self, position: NDArray[np.float64], time: float = 0.0) -> None:
+        """Body at rest at ``position`` (6,), each line at rest in the static shape of its
+        fairlead there (a dynamic line settled)."""
+        self.body.start(time, position)
+        fairleads, _ = points_state(self.body.x, np.zeros(6), self.arms, self.centre)
+        self.models, self._qs = [], []
+        for ln, p in zip(self.lines, fairleads):
+            moved = replace(ln, fairlead=tuple(float(c) for c in p))
+            if ln.model in _STEPPERS:
+                model = _STEPPERS[ln.model](moved, self.environment, self.seabed)
+                model.time = float(time)
+                self.models.append(model)
+                self._qs.append(None)
+            else:
+                self.models.append(None)
+                self._qs.append(QuasiStaticLine.from_case(moved, self.environment, self.seabed))
+
+    # -- line forces -----------------------------------------------------------------------
+    def _quasi_static(self, i: int, p: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
+        ff, af = np.zeros((1, 3)), np.zeros((1, 3))
+        self._qs[i].solve_path(np.zeros(1), p[None, :], ff, af, np.zeros(1), np.zeros(1))
+        return ff[0], af[0]
+
+    def line_forces(self, x: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
+        """Fairlead and anchor forces (n, 3) of the lines now: the memory lines' current
+        states, the quasi-static ones solved at the body position ``x``."""
+        pos, _ = points_state(x, np.zeros(6), self.arms, self.centre)
+        ff = np.zeros((len(self.lines), 3))
+        af = np.zeros((len(self.lines), 3))
+        for i, model in enumerate(self.models):
+            if model is None:
+                ff[i], af[i] = self._quasi_static(i, pos[i])
+            else:
+                ff[i], af[i] = model.end_forces()
+        return ff, af
+
+    def _advance_memory_lines(self, t: float, dt: float, x0, v0, a0) -> _StepForces:
+        half = np.zeros((len(self.lines), 3))
+        end = np.zeros((len(self.lines), 3))
+        if not any(m is not None for m in self.models):
+            return _StepForces(half, end)
+        taus = (0.5 * dt, dt)
+        states = [(x0 + v0 * tau + 0.5 * a0 * tau * tau, v0 + a0 * tau) for tau in taus]
+        kin = [points_state(x, v, self.arms, self.centre) for x, v in states]
+        times = np.array([t + taus[0], t + taus[1]])
+        for i, model in enumerate(self.models):
+            if model is None:
+                continue
+            path = np.array([kin[0][0][i], kin[1][0][i]])
+            vel = np.array([kin[0][1][i], kin[1][1][i]])
+            ff, af = np.zeros((2, 3)), np.zeros((2, 3))
+            model.solve_path(times, path, vel, ff, af, np.zeros(2), np.zeros(2))
+            half[i], end[i] = ff[0], ff[1]
+        return _StepForces(half, end)
+
+    # -- stepping --------------------------------------------------------------------------
+    def step(self) -> None:
+        """Advance the body and its lines by one body step."""
+        body = self.body
+        t, dt = body.time, body.dt
+        x0, v0 = body.x.copy(), body.v.copy()
+        memory: dict[str, _StepForces] = {}
+
+        def force(stage: int, tau: float, x: NDArray, v: NDArray) -> NDArray:
+            pos = None
+            if stage == 0:
+                ff, _ = self.line_forces(x)
+            else:
+                if stage == 1:  # a_n from stage 1's velocity: v = v_n + dt/2 a_n
+                    a0 = (v - v0) / (0.5 * dt)
+                    memory["f"] = self._advance_memory_lines(t, dt, x0, v0, a0)
+                lagged = memory["f"].half if stage < 3 else memory["f"].end
+                ff = lagged.copy()
+                pos, _ = points_state(x, np.zeros(6), self.arms, self.centre)
+                for i, model in enumerate(self.models):
+                    if model is None:
+                        ff[i] = self._quasi_static(i, pos[i])[0]
+            f = self.external(t + tau, x, v)
+            if len(self.lines):
+                f = f + generalised_force(x, ff, self.arms)
+            return f
+
+        body.step(force)
