@@ -15,19 +15,17 @@ with T_S0 the initial static fairlead tension (the quasi-static tension at t = 0
 at rest before the ramp).
 
 Dynamic discretisation: 10 elements of order 5 (DYNAMIC_ELEMENTS, 60 nodes; the case files
-have 6, the paper's dynamic model 31 nodes). ``discretisation_check`` compares two. The maximum of
-the steady-cycle tension with 10 elements is within 0.17 % of 16 elements on the harshest
-combination (C12, A5, alpha 0.6), where 6 elements are 2.4 % off 10 (C11: 1.5 %; C22 A3 alpha 0.3:
-0.7 %). Pointwise, the dynamic tensions of different discretisations differ by more (RMSE of the
-difference 4 % of T_S0 for 6 against 10 elements on C22 A3 0.3, 11 % for 10 against 16 on C12 A5
-0.6): the inner vibrations (high-frequency tension ripple) do not converge pointwise in phase.
+have 6, the paper's dynamic model 31 nodes), settled to its own static equilibrium before the
+ramp (DynamicLine.settle: the interpolated catenary rang on undamped in these stiff,
+frictionless chains, a ripple of the order of T_S0 that set an error floor of ~18 % RMSE_QD on
+C31 A1). ``discretisation_check`` compares two discretisations.
 
-Observed on the development machine (full study, 490 s with 2 workers): RMSE_QD < 10 % / 20 % in
-43 % / 86 % of the runs (paper 48 % / 84 %), RMSE_S in 8 % / 31 % (paper 2 % / 18 %), QD peak
-errors max(e_Tmin, e_Tmax) in 28 % / 58 % (paper 67 % / about 90 %). Errors grow with alpha and
-(from A2) with amplitude, but the shape ordering is S2 < S1 < S3, not the paper's S3 < S2 < S1:
-the dynamic tension carries a high-frequency ripple, largest relative to T_S0 on S3 (C31 A1 has
-RMSE_QD of about 18 % at every alpha), which sets an error floor and inflates the peak errors.
+Observed on the development machine (full study, 1479 s with 2 workers on a loaded machine):
+RMSE_QD < 10 % / 20 % in 53 % / 87 % of the runs (paper 48 % / 84 %), RMSE_S in 10 % / 34 %
+(paper 2 % / 18 %), QD peak errors max(e_Tmin, e_Tmax) in 41 % / 71 % (paper 67 % / about
+90 %), worst RMSE_QD 35.5 % on C11 (paper 37.6 % on C11). Mean RMSE_QD grows with alpha (2.8 %
+to 19.2 %) and with amplitude (A1 5.7 % to A5 14.7 %); mean RMSE_S grows from S3 to S1 (27.0,
+32.1, 44.5 %), mean RMSE_QD does not (S1 12.3 %, S2 9.4 %, S3 10.5 %).
 """
 
 from __future__ import annotations

@@ -83,7 +83,8 @@ def test_study_rejects_a_file_as_output_folder(tmp_path, capsys):
 
 @pytest.fixture(scope="module")
 def full_study(tmp_path_factory):
-    """All 180 runs x 3 models (about 8 min with 2 workers on the development machine)."""
+    """All 180 runs x 3 models (about 25 min with 2 workers on the loaded development machine,
+    8 min on a quiet one)."""
     ds = qdv.run_study(tmp_path_factory.mktemp("qd_full"), workers=2)
     print(qdv.summary(ds))
     return ds
@@ -92,10 +93,11 @@ def full_study(tmp_path_factory):
 @pytest.mark.slow
 def test_full_study_quasi_dynamic_beats_quasi_static(full_study):
     """Asserted (all held on the development machine, numbers observed in brackets):
-    no failed run; RMSE_QD < 20 % in at least 80 % of the runs (86 %; paper 84 %); the mean
+    no failed run; RMSE_QD < 20 % in at least 80 % of the runs (87 %; paper 84 %); the mean
     RMSE_QD below the mean RMSE_S for every shape, amplitude and alpha; the mean RMSE_QD over
-    each alpha increasing from 0.1 to 0.6 (4.3 % to 20.2 %); the mean RMSE_QD over each
-    amplitude increasing from A2 to A5 (9.1 %, 12.8 %, 13.5 %, 14.7 %)."""
+    each alpha increasing from 0.1 to 0.6 (2.8 % to 19.2 %) and over each amplitude from A1 to
+    A5 (5.7 %, 7.6 %, 12.3 %, 13.4 %, 14.7 %); the quasi-static errors growing from S3 to S1
+    (mean RMSE_S 27.0 %, 32.1 %, 44.5 %)."""
     ds = full_study
     assert ds.attrs["failed_runs"] == 0
     assert qdv.fractions(ds)["rmse_qd"][1] >= QD_UNDER_20_MIN
@@ -103,27 +105,23 @@ def test_full_study_quasi_dynamic_beats_quasi_static(full_study):
         others = [d for d in ("config", "amplitude", "alpha") if d != dim]
         assert np.all(ds["rmse_qd"].mean(others).values < ds["rmse_s"].mean(others).values)
     assert np.all(np.diff(ds["rmse_qd"].mean(("config", "amplitude")).values) > 0.0)
-    assert np.all(np.diff(ds["rmse_qd"].mean(("config", "alpha")).values[1:]) > 0.0)
+    assert np.all(np.diff(ds["rmse_qd"].mean(("config", "alpha")).values) > 0.0)
+    by_shape_s = [s for _, _, s in qdv.shape_means(ds)]
+    assert by_shape_s[2] < by_shape_s[1] < by_shape_s[0]
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="observed RMSE_S < 20 % in 31 % of the runs (paper 18 %)")
+@pytest.mark.xfail(strict=True, reason="observed RMSE_S < 20 % in 34 % of the runs (paper 18 %)")
 def test_full_study_quasi_static_rarely_within_20_percent(full_study):
     """RMSE_S < 20 % in at most 30 % of the runs."""
     assert qdv.fractions(full_study)["rmse_s"][1] <= QS_UNDER_20_MAX
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="observed mean RMSE_QD S1 12.3 %, S2 9.4 %, S3 14.4 %: "
-                   "the dynamic tension of S3 carries a large high-frequency ripple")
-def test_full_study_errors_grow_from_s3_to_s1(full_study):
+@pytest.mark.xfail(strict=True, reason="observed mean RMSE_QD S1 12.3 %, S2 9.4 %, S3 10.5 % "
+                   "(per chain: D1 S3 10.2 < S2 10.5 < S1 14.3 %; D2 S2 8.3 < S1 10.3 < S3 "
+                   "10.7 %)")
+def test_full_study_quasi_dynamic_errors_grow_from_s3_to_s1(full_study):
     """Paper: the lowest errors for S3, then S2, then S1 (mean RMSE_QD per shape)."""
     by_shape = [m for _, m, _ in qdv.shape_means(full_study)]
     assert by_shape[2] < by_shape[1] < by_shape[0]
-
-
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="observed mean RMSE_QD A1 10.0 % > A2 9.1 %")
-def test_full_study_errors_grow_with_amplitude_from_a1(full_study):
-    """Paper: errors grow with the amplitude (mean RMSE_QD over each amplitude, A1 to A5)."""
-    assert np.all(np.diff(full_study["rmse_qd"].mean(("config", "alpha")).values) > 0.0)
