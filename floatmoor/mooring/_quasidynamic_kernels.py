@@ -49,7 +49,7 @@ keep their earlier positions). The asinh term of the profile, sign(V) log q with
 q = (|V| + hypot(H, V)) / H, is evaluated as log q = log q_r + log1p(q / q_r - 1) by a short
 series from the same station's previous value (chained; directly every ``CHAIN_STEPS`` steps
 and wherever the series does not apply): exact to round-off, and the loops over the stations
-have no branches and write at most three arrays, none of which they read, so that they
+have no branches and write at most four arrays, none of which they read, so that they
 vectorise.
 
 Everything is preallocated; the kernels allocate nothing and report failure by status.
@@ -77,7 +77,7 @@ from floatmoor.mooring.dg._kernels import hermite
 __all__ = [
     "Q_L", "Q_EA", "Q_W", "Q_CB", "Q_ZB", "Q_TOL", "Q_MAXIT", "Q_M", "Q_DRAG", "Q_MA",
     "Q_MAXDT", "Q_INV_W", "Q_INV_EA", "Q_H", "N_QPRM", "C_K", "C_FAIRLEAD_FORCE",
-    "C_ANCHOR_FORCE", "C_LB", "C_DT", "C_CHAIN", "C_SLOT", "C_LO", "C_HI", "C_REF", "N_CUR",
+    "C_ANCHOR_FORCE", "C_LB", "C_DT", "C_CHAIN", "C_SLOT", "C_LO", "C_HI", "C_REF", "C_PLANE", "N_CUR",
     "H_FAIRLEAD", "H_HF", "H_VF", "H_LB", "N_HIST", "CHAIN_STEPS", "station_count",
     "qd_step", "quasi_dynamic_series",
 ]
@@ -110,7 +110,8 @@ C_SLOT = 10  #: level of ``X``, ``Z`` holding the last step
 C_LO = 11  #: 3 entries: per level of ``X``, ``Z``, the first station evaluated (inclusive)
 C_HI = 14  #: 3 entries: per level, the last station evaluated (inclusive; < C_LO: none)
 C_REF = 17  #: 0: the latest log references are in (qa, la); 1: in (qb, lb)
-N_CUR = 18
+C_PLANE = 18  #: 3 x 5 entries: per level, the vertical plane (lower end x, y, z; ux, uy)
+N_CUR = 33
 
 # -- layout of a row of ``hist`` (row 0: the last step, row 1: the one before) ---------------
 H_FAIRLEAD = 0  #: 3 entries [m]
@@ -140,7 +141,7 @@ def station_count(L: float, h: float) -> int:
 def _log1p_small(e: float) -> float:
     """log(1 + e) for |e| <= ``_SERIES_LIMIT``: the alternating series to e^9 (Horner)."""
     return e * (1.0 - e * (0.5 - e * (1.0 / 3.0 - e * (0.25 - e * (0.2 - e * (
-        1.0 / 6.0 - e * (1.0 / 7.0 - e * (0.125 - e / 9.0))))))))
+        1.0 / 6.0 - e * (1.0 / 7.0 - e * (0.125 - e * (1.0 / 9.0)))))))))
 
 
 @jit(error_model="numpy", inline="always")
@@ -228,6 +229,44 @@ def _ensure_level(anchor: np.ndarray, prm: np.ndarray, hist: np.ndarray, row: in
     cur[C_HI + slot] = max(hi, have_hi)
 
 
+@jit(error_model="numpy", inline="always")
+def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l_ref: np.ndarray,
+                     q_new: np.ndarray, l_new: np.ndarray, jf: np.ndarray, j_top: int,
+                     j_bot: int, refresh: bool, H: float, V: float, W: float, h: float,
+                     Ls: float, base: float, aa: float, inv_H: float, inv_W: float,
+                     inv_EA: float, V_low: float, h_low: float) -> None:
+    """This step's in-plane positions of the suspended stations j_top..j_bot (H > 0, fairlead
+    above the anchor) into ``X[s0]``, ``Z[s0]``, and their new log references; the asinh term
+    by the series from the references (directly when ``refresh`` or too far from them)."""
+    if refresh:  # renew the references: every log directly
+        for j in range(j_top, j_bot + 1):
+            Vs = V - W * h * jf[j]
+            qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
+            q_ref[j] = qi
+            l_ref[j] = math.log(qi)
+    for j in range(j_top, j_bot + 1):  # vectorised
+        Vs = V - W * h * jf[j]  # V(sigma) = V - W (L - sigma), L - sigma = j h
+        d = Ls - h * jf[j]  # sigma - s_low
+        hs = math.sqrt(H * H + Vs * Vs)
+        qi = (abs(Vs) + hs) * inv_H
+        li = l_ref[j] + _log1p_small(qi / q_ref[j] - 1.0)
+        X[s0, j] = base + aa * (li if Vs >= 0.0 else -li) + H * d * inv_EA
+        Z[s0, j] = (hs - h_low) * inv_W + 0.5 * (V_low + Vs) * d * inv_EA
+        q_new[j] = qi
+        l_new[j] = li
+    far = False  # |q / q_ref - 1| beyond the series' limit (or not finite)?
+    for j in range(j_top, j_bot + 1):
+        far = far or not (abs(q_new[j] - q_ref[j]) <= _SERIES_LIMIT * q_ref[j])
+    if far:  # those stations: direct logs
+        for j in range(j_top, j_bot + 1):
+            if not (abs(q_new[j] - q_ref[j]) <= _SERIES_LIMIT * q_ref[j]):
+                Vs = V - W * h * jf[j]
+                d = Ls - h * jf[j]
+                li = math.log(q_new[j])
+                X[s0, j] = base + aa * (li if Vs >= 0.0 else -li) + H * d * inv_EA
+                l_new[j] = li
+
+
 @jit(error_model="numpy")
 def _density_at(anchor: np.ndarray, fairlead: np.ndarray, prm: np.ndarray, hist: np.ndarray,
                 H: float, V: float, se: float, inv_dt: float, inv_dtp: float,
@@ -284,8 +323,8 @@ def _end_panels(anchor: np.ndarray, fairlead: np.ndarray, prm: np.ndarray, hist:
 @jit(error_model="numpy")
 def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray,
             hist: np.ndarray, cur: np.ndarray, X: np.ndarray, Z: np.ndarray, qa: np.ndarray,
-            la: np.ndarray, qb: np.ndarray, lb: np.ndarray, E: np.ndarray, F: np.ndarray,
-            jf: np.ndarray, work: np.ndarray) -> int:
+            la: np.ndarray, qb: np.ndarray, lb: np.ndarray, F: np.ndarray, jf: np.ndarray,
+            work: np.ndarray) -> int:
     """One quasi-dynamic step to the fairlead position ``fairlead``, ``dt`` after the last.
 
     Parameters
@@ -307,8 +346,8 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
     qa, la, qb, lb : float64[M]
         Two buffers of q and log q per station (the references of the logs; any pair with
         log q right is valid, e.g. (1, 0)); ``cur[C_REF]`` tells which holds the latest.
-    E, F : float64[M]
-        Scratch: series arguments, force densities.
+    F : float64[M]
+        Scratch: force densities.
     jf : float64[M]
         The station indices 0.0, 1.0, ..., M - 1 (constant).
     work : float64[N_OUT_3D]
@@ -321,9 +360,8 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
 
     Notes
     -----
-    The hot loops write at most three arrays and none they read: the compiler then vectorises
-    them (with more output streams, or updates in place, it does not, and the step costs
-    about twice as much).
+    The hot loops write at most four arrays and none they read: the compiler then vectorises
+    them (with updates in place it does not, and the step costs about twice as much).
     """
     L = prm[Q_L]
     W = prm[Q_W]
@@ -361,8 +399,6 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
             j_bot -= 1  # an even number of Simpson intervals; the rest joins the end panel
         n_grid = j_bot - j_top + 1 if j_bot >= j_top else 0
         # -- this step's static positions of the stations j_top..j_bot ----------------------
-        X0 = X[s0]
-        Z0 = Z[s0]
         if n_grid > 0 and H > 0.0 and not swapped:
             inv_H = 1.0 / H
             inv_W = prm[Q_INV_W]
@@ -376,49 +412,22 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
                 V_low = V - W * L
                 h_low = math.sqrt(H * H + V_low * V_low)
                 base = -aa * math.asinh(V_low * inv_H)
-            # references: the latest buffer in, the other out
+            # references: the latest buffer in, the other out (two calls rather than a
+            # tuple of arrays: no reference counting of array views in the step)
             new_in_b = cur[C_REF] == 0.0
-            q_ref, l_ref = (qa, la) if new_in_b else (qb, lb)
-            q_new, l_new = (qb, lb) if new_in_b else (qa, la)
-            if cur[C_CHAIN] >= CHAIN_STEPS:  # refresh the references: every log directly
-                cur[C_CHAIN] = 0.0
-                for j in range(j_top, j_bot + 1):
-                    Vs = V - W * h * jf[j]
-                    qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
-                    q_ref[j] = qi
-                    l_ref[j] = math.log(qi)
+            refresh = cur[C_CHAIN] >= CHAIN_STEPS
+            cur[C_CHAIN] = 0.0 if refresh else cur[C_CHAIN] + 1.0
+            if new_in_b:
+                _station_profile(X, Z, s0, qa, la, qb, lb, jf, j_top, j_bot, refresh, H, V, W,
+                                 h, Ls, base, aa, inv_H, inv_W, inv_EA, V_low, h_low)
             else:
-                cur[C_CHAIN] += 1.0
-            for j in range(j_top, j_bot + 1):  # vectorised
-                Vs = V - W * h * jf[j]  # V(sigma) = V - W (L - sigma), L - sigma = j h
-                d = Ls - h * jf[j]  # sigma - s_low
-                hs = math.sqrt(H * H + Vs * Vs)
-                qi = (abs(Vs) + hs) * inv_H
-                ei = qi / q_ref[j] - 1.0
-                li = l_ref[j] + _log1p_small(ei)
-                X0[j] = base + aa * (li if Vs >= 0.0 else -li) + H * d * inv_EA
-                Z0[j] = (hs - h_low) * inv_W + 0.5 * (V_low + Vs) * d * inv_EA
-                E[j] = ei
-            for j in range(j_top, j_bot + 1):  # vectorised: the new references
-                q_new[j] = q_ref[j] * (1.0 + E[j])
-                l_new[j] = l_ref[j] + _log1p_small(E[j])
+                _station_profile(X, Z, s0, qb, lb, qa, la, jf, j_top, j_bot, refresh, H, V, W,
+                                 h, Ls, base, aa, inv_H, inv_W, inv_EA, V_low, h_low)
             cur[C_REF] = 1.0 if new_in_b else 0.0
-            far = False
-            for j in range(j_top, j_bot + 1):
-                far = far or not (abs(E[j]) <= _SERIES_LIMIT)
-            if far:  # stations far from their reference (or not finite): direct logs
-                for j in range(j_top, j_bot + 1):
-                    if not (abs(E[j]) <= _SERIES_LIMIT):
-                        Vs = V - W * h * jf[j]
-                        d = Ls - h * jf[j]
-                        qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
-                        li = math.log(qi)
-                        X0[j] = base + aa * (li if Vs >= 0.0 else -li) + H * d * inv_EA
-                        q_new[j] = qi
-                        l_new[j] = li
         else:  # slack or vertical profiles, or the fairlead below the anchor: general points
             for j in range(j_top, j_bot + 1):
-                X0[j], Z0[j], _ = _material_point(anchor, fx, fy, fz, prm, H, V, L - j * h)
+                X[s0, j], Z[s0, j], _ = _material_point(anchor, fx, fy, fz, prm, H, V,
+                                                        L - j * h)
         if n_grid > 0:
             cur[C_LO + s0] = j_top
             cur[C_HI + s0] = j_bot
@@ -434,30 +443,32 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
         m = prm[Q_M]
         drag = prm[Q_DRAG]
         ma = prm[Q_MA]
-        _, l1x, l1y, l1z, u1x, u1y, _ = _plane(anchor, hist[0, 0], hist[0, 1], hist[0, 2])
-        _, l2x, l2y, l2z, u2x, u2y, _ = _plane(anchor, hist[1, 0], hist[1, 1], hist[1, 2])
-        X1, Z1, X2, Z2 = X[s1], Z[s1], X[s2], Z[s2]
+        c1 = C_PLANE + 5 * s1  # the earlier lines' planes, kept from their steps
+        c2 = C_PLANE + 5 * s2
+        l1x, l1y, l1z, u1x, u1y = cur[c1], cur[c1 + 1], cur[c1 + 2], cur[c1 + 3], cur[c1 + 4]
+        l2x, l2y, l2z, u2x, u2y = cur[c2], cur[c2 + 1], cur[c2 + 2], cur[c2 + 3], cur[c2 + 4]
         Hx = H * ux
         Hy = H * uy
         # V(sigma) at station j: V - W j h, or with the fairlead below, V - W (L - j h)
         Vt0 = V - W * L if swapped else V
         Vt1 = W * h if swapped else -W * h
         for j in range(j_top, j_bot + 1):  # vectorised
+            x0, x1, x2 = X[s0, j], X[s1, j], X[s2, j]
+            z0, z1, z2 = Z[s0, j], Z[s1, j], Z[s2, j]
             F[j] = _vertical_force(
-                (lx - l1x) + X0[j] * ux - X1[j] * u1x, (ly - l1y) + X0[j] * uy - X1[j] * u1y,
-                (lz - l1z) + Z0[j] - Z1[j], (l1x - l2x) + X1[j] * u1x - X2[j] * u2x,
-                (l1y - l2y) + X1[j] * u1y - X2[j] * u2y, (l1z - l2z) + Z1[j] - Z2[j],
+                (lx - l1x) + x0 * ux - x1 * u1x, (ly - l1y) + x0 * uy - x1 * u1y,
+                (lz - l1z) + z0 - z1, (l1x - l2x) + x1 * u1x - x2 * u2x,
+                (l1y - l2y) + x1 * u1y - x2 * u2y, (l1z - l2z) + z1 - z2,
                 Hx, Hy, Vt0 + Vt1 * jf[j], inv_dt, inv_dtp, inv_den, W, m, drag, ma)
         # -- eq. (2): Simpson over the stations (weights 1 4 2 ... 2 4 1) --------------------
         total = 0.0
         if n_grid >= 3:
             odd = 0.0
             even = 0.0
-            for j in range(j_top + 1, j_bot, 2):
+            for j in range(j_top + 1, j_bot, 2):  # pairs (odd j, even j + 1)
                 odd += F[j]
-            for j in range(j_top + 2, j_bot - 1, 2):
-                even += F[j]
-            total = (F[j_top] + F[j_bot] + 4.0 * odd + 2.0 * even) * h / 3.0
+                even += F[j + 1]
+            total = (F[j_top] - F[j_bot] + 4.0 * odd + 2.0 * even) * h / 3.0
         # -- the lower end panel [a, s_bot]: the quadratic through the three lowest stations
         # (the smooth suspended-side density, exact for quadratics), integrated exactly ------
         lower = n_grid >= 3
@@ -470,8 +481,9 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
                               - F[j_bot - 1] * (w3 / 3.0 + w2)
                               + F[j_bot - 2] * (w3 / 6.0 + 0.25 * w2))
         # -- other end panels: the trapezoidal rule with the panel end's material point -------
-        total += _end_panels(anchor, fairlead, prm, hist, H, V, a, b, j_top, j_bot, n_grid,
-                             lower, F, inv_dt, inv_dtp, inv_den)
+        if swapped or not lower:  # (the upper end b = L is station 0 otherwise)
+            total += _end_panels(anchor, fairlead, prm, hist, H, V, a, b, j_top, j_bot,
+                                 n_grid, lower, F, inv_dt, inv_dtp, inv_den)
         k = total / (-W * Ls)
         if k < 0.0:  # slack
             k = 0.0
@@ -494,6 +506,8 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
     cur[C_LB] = LB
     cur[C_DT] = dt
     cur[C_SLOT] = s0
+    c0 = C_PLANE + 5 * s0
+    cur[c0], cur[c0 + 1], cur[c0 + 2], cur[c0 + 3], cur[c0 + 4] = lx, ly, lz, ux, uy
     for c in range(N_HIST):
         hist[1, c] = hist[0, c]
     for c in range(3):
@@ -509,7 +523,7 @@ def quasi_dynamic_series(anchor: np.ndarray, t_now: float, p_now: np.ndarray, v_
                          time: np.ndarray, path: np.ndarray, velocity: np.ndarray,
                          prm: np.ndarray, hist: np.ndarray, cur: np.ndarray, X: np.ndarray,
                          Z: np.ndarray, qa: np.ndarray, la: np.ndarray, qb: np.ndarray,
-                         lb: np.ndarray, E: np.ndarray, F: np.ndarray, jf: np.ndarray,
+                         lb: np.ndarray, F: np.ndarray, jf: np.ndarray,
                          work: np.ndarray, fpos: np.ndarray, fvel: np.ndarray,
                          fairlead_force: np.ndarray, anchor_force: np.ndarray,
                          laid_length: np.ndarray, iterations: np.ndarray, factor: np.ndarray,
@@ -529,7 +543,7 @@ def quasi_dynamic_series(anchor: np.ndarray, t_now: float, p_now: np.ndarray, v_
         current state.
     path, velocity : float64[n, 3]
         Fairlead positions [m] and velocities [m/s] at the samples.
-    prm, hist, cur, X, Z, qa, la, qb, lb, E, F, jf, work
+    prm, hist, cur, X, Z, qa, la, qb, lb, F, jf, work
         As :func:`qd_step`.
     fpos, fvel : float64[3]
         Scratch for the fairlead inside a sample interval.
@@ -571,10 +585,10 @@ def quasi_dynamic_series(anchor: np.ndarray, t_now: float, p_now: np.ndarray, v_
                         hermite(t0, time[k], p_now, v_now, path[k], velocity[k], t0 + i * dt,
                                 fpos, fvel)
                     status = qd_step(anchor, fpos, dt, prm, hist, cur, X, Z, qa, la, qb,
-                                     lb, E, F, jf, work)
+                                     lb, F, jf, work)
                 else:
                     status = qd_step(anchor, path[k], dt, prm, hist, cur, X, Z, qa, la,
-                                     qb, lb, E, F, jf, work)
+                                     qb, lb, F, jf, work)
                 if status != CAT_OK:
                     failure[0] = k
                     failure[1] = status

@@ -173,7 +173,6 @@ class QuasiDynamicLine(PathStepper):
         #: unstretched arc lengths from the anchor of the stations [m]
         self.stations = line.length - np.arange(m) * self.station_spacing
         self._jf = np.arange(m, dtype=float)  # station indices, as floats
-        self._E = np.zeros(m)
         self._F = np.zeros(m)
         #: in-plane station positions (x, z) on the last three static lines
         self.X = np.zeros((3, m))
@@ -210,6 +209,9 @@ class QuasiDynamicLine(PathStepper):
         self.refs[0::2] = 1.0  # q = 1, log q = 0: a valid reference
         self.refs[1::2] = 0.0
         self.cur[_k.C_REF] = 0.0
+        plane = _k._plane(self.anchor, *(float(c) for c in fairlead))[1:6]
+        for level in range(3):
+            self.cur[_k.C_PLANE + 5 * level:_k.C_PLANE + 5 * level + 5] = plane
         self.cur[_k.C_SLOT] = 0.0
         self.cur[_k.C_LO:_k.C_LO + 3] = 1.0  # no station evaluated at any level
         self.cur[_k.C_HI:_k.C_HI + 3] = 0.0
@@ -262,7 +264,7 @@ class QuasiDynamicLine(PathStepper):
         index = _k.quasi_dynamic_series(
             self.anchor, self.time, self.fairlead, self.fairlead_velocity, time, path, velocity,
             self.prm, self.hist, self.cur, self.X, self.Z, self.refs[0], self.refs[1],
-            self.refs[2], self.refs[3], self._E, self._F, self._jf, self._work, self._fpos, self._fvel, fairlead_force, anchor_force,
+            self.refs[2], self.refs[3], self._F, self._jf, self._work, self._fpos, self._fvel, fairlead_force, anchor_force,
             laid_length, iterations, factor, self._failure)
         if index >= 0:
             self.failed_index = index
