@@ -20,9 +20,11 @@ from floatmoor._version import __version__
 from floatmoor.case.schema import Case
 from floatmoor.io.variables import attributes
 
-__all__ = ["build_result_dataset", "COMPONENTS"]
+__all__ = ["build_result_dataset", "COMPONENTS", "DOFS"]
 
 COMPONENTS = ("x", "y", "z")
+#: capytaine's names of the rigid-body DOFs
+DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 
 _DIMS = {
     1: ("line",),
@@ -34,6 +36,7 @@ _DIMS = {
 def build_result_dataset(case: Case, time: NDArray[np.float64],
                          variables: Mapping[str, NDArray[np.floating]], *, status: str,
                          shapes: Mapping[str, NDArray[np.floating]] | None = None,
+                         body: Mapping[str, NDArray[np.floating]] | None = None,
                          extra_attrs: Mapping[str, str | float | int] | None = None) -> xr.Dataset:
     """Label the arrays of a run.
 
@@ -51,6 +54,9 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
     shapes
         Optional line shapes: ``shape_time`` (m,), ``arc_length`` (line, node),
         ``shape_position`` (line, m, node, component), ``shape_tension`` (line, m, node).
+    body
+        Optional floater series: ``body_displacement`` and ``body_velocity`` (time, dof),
+        ``wave_elevation`` (time,).
     extra_attrs
         More dataset attributes (e.g. wall time).
     """
@@ -74,6 +80,12 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
                                        shapes["shape_position"], attributes("shape_position"))
         data_vars["shape_tension"] = (("line", "shape_time", "node"), shapes["shape_tension"],
                                       attributes("shape_tension"))
+    if body is not None:
+        coords["dof"] = ("dof", np.array(DOFS, dtype=str), attributes("dof"))
+        for name, array in body.items():
+            values = np.asarray(array, dtype=float)
+            data_vars[name] = (("time", "dof") if values.ndim == 2 else ("time",), values,
+                               attributes(name))
     attrs: dict[str, str | float | int] = {
         "title": case.title,
         "case_file": case.source,

@@ -23,6 +23,15 @@ VARIABLE_ATTRIBUTES: dict[str, dict[str, str]] = {
     "laid_length": {"long_name": "unstretched line length resting on the seabed", "units": "m"},
     "solver_iterations": {"long_name": "Newton iterations (quasi-static, quasi-dynamic) or "
                           "time steps (dynamic) per output sample", "units": "1"},
+    # floating body (coupled runs)
+    "dof": {"long_name": "rigid-body degree of freedom about the reference point (capytaine's "
+            "names; rotations about axes parallel to x, y, z)", "units": "1"},
+    "body_displacement": {"long_name": "floater displacement from its rest position: Surge, "
+                          "Sway, Heave [m], Roll, Pitch, Yaw [rad]", "units": "m or rad"},
+    "body_velocity": {"long_name": "floater velocity: Surge, Sway, Heave [m/s], Roll, Pitch, "
+                      "Yaw [rad/s]", "units": "m/s or rad/s"},
+    "wave_elevation": {"long_name": "undisturbed incident wave elevation at the floater's "
+                       "reference point", "units": "m"},
     # line shapes at the coarser shape interval
     "shape_time": {"long_name": "time of the line-shape samples", "units": "s"},
     "arc_length": {"long_name": "unstretched arc length from the anchor", "units": "m"},

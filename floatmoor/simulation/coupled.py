@@ -134,6 +134,8 @@ class MooredBody:
         self.external = external if external is not None else (lambda t, x, v: np.zeros(6))
         self.models: list[PathStepper | None] = []
         self._qs: list[QuasiStaticLine | None] = []
+        #: laid length of each line at its last evaluation [m]
+        self.laid_length = np.zeros(len(self.lines))
 
     # -- set-up ----------------------------------------------------------------------------
     def start(self, position: NDArray[np.float64], time: float = 0.0) -> None:
@@ -155,8 +157,9 @@ class MooredBody:
 
     # -- line forces -----------------------------------------------------------------------
     def _quasi_static(self, i: int, p: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
-        ff, af = np.zeros((1, 3)), np.zeros((1, 3))
-        self._qs[i].solve_path(np.zeros(1), p[None, :], ff, af, np.zeros(1), np.zeros(1))
+        ff, af, lb = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1)
+        self._qs[i].solve_path(np.zeros(1), p[None, :], ff, af, lb, np.zeros(1))
+        self.laid_length[i] = lb[0]
         return ff[0], af[0]
 
     def line_forces(self, x: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
@@ -186,9 +189,10 @@ class MooredBody:
                 continue
             path = np.array([kin[0][0][i], kin[1][0][i]])
             vel = np.array([kin[0][1][i], kin[1][1][i]])
-            ff, af = np.zeros((2, 3)), np.zeros((2, 3))
-            model.solve_path(times, path, vel, ff, af, np.zeros(2), np.zeros(2))
+            ff, af, lb = np.zeros((2, 3)), np.zeros((2, 3)), np.zeros(2)
+            model.solve_path(times, path, vel, ff, af, lb, np.zeros(2))
             half[i], end[i] = ff[0], ff[1]
+            self.laid_length[i] = lb[1]
         return _StepForces(half, end)
 
     # -- stepping --------------------------------------------------------------------------

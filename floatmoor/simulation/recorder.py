@@ -55,7 +55,7 @@ class Recorder:
     def __init__(self, case: Case, time: NDArray[np.float64], path: str | Path | None = None,
                  flush_interval: float = FLUSH_INTERVAL_S, *,
                  shape_nodes: list[NDArray[np.float64]] | None = None,
-                 shape_stride: int = 0) -> None:
+                 shape_stride: int = 0, body: bool = False) -> None:
         self.case = case
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
@@ -65,6 +65,12 @@ class Recorder:
             name: np.zeros((n_lines, n_time, size) if size > 1 else (n_lines, n_time))
             for name, size in _SERIES
         }
+        #: floater series (coupled runs): displacement, velocity (time, 6), wave elevation
+        self.body: dict[str, NDArray[np.float64]] | None = None
+        if body:
+            self.body = {"body_displacement": np.zeros((n_time, 6)),
+                         "body_velocity": np.zeros((n_time, 6)),
+                         "wave_elevation": np.zeros(n_time)}
         self.n_done = 0
         # line shapes every shape_stride samples, on each line's nodes; lines with fewer
         # nodes than the longest repeat their last node so every line shares the node axis
@@ -95,6 +101,13 @@ class Recorder:
                 line, index = int(bad[0]), self.n_done + int(bad[1])
                 raise SolverError(f"line '{self.case.lines[line].name}': {name} is not finite "
                                   f"at t = {self.time[index]:.6g} s")
+        if self.body is not None:
+            for name, array in self.body.items():
+                block = array[self.n_done:n_done]
+                if not np.all(np.isfinite(block)):
+                    index = self.n_done + int(np.argwhere(~np.isfinite(block))[0][0])
+                    raise SolverError(f"floater: {name} is not finite at "
+                                      f"t = {self.time[index]:.6g} s")
         self.n_done = n_done
         if self.path is not None and _time.perf_counter() - self._last_flush > self.flush_interval:
             self.write(status=f"running: partial results up to t = {self.simulated_time:.6g} s")
@@ -128,8 +141,9 @@ class Recorder:
                       "arc_length": self.shape_arc,
                       "shape_position": self.shape_position[:, :m],
                       "shape_tension": self.shape_tension[:, :m]}
+        body = None if self.body is None else {k: v[:n] for k, v in self.body.items()}
         return build_result_dataset(self.case, self.time[:n], variables, status=status,
-                                    shapes=shapes,
+                                    shapes=shapes, body=body,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
 

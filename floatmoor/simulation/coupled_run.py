@@ -1,0 +1,164 @@
+"""Coupled runs of a case with a floater: waves, the Cummins body on its lines, recorded and
+written as the run goes (issue 6; the coupling scheme is in :mod:`.coupled`)."""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.body.kinematics import points_state
+from floatmoor.body.model import build_body
+from floatmoor.case.schema import Case
+from floatmoor.errors import SolverError
+from floatmoor.hydro.database import read_database
+from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.simulation.coupled import MooredBody, equilibrium
+from floatmoor.simulation.forced import RunResult, output_times
+from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
+from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.realisation import WaveField
+from floatmoor.waves.settings import (
+    JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
+)
+
+__all__ = ["CoupledSettings", "run_coupled"]
+
+#: Body steps per chunk between progress reports, partial writes and finiteness checks.
+CHUNK_STEPS = 500
+
+
+@dataclass(frozen=True)
+class CoupledSettings:
+    """What a coupled run needs beyond the case's lines and floater."""
+
+    time_step: float  #: body time step [s]; the output interval must be a multiple of it
+    waves: RegularWaveSettings | JonswapSettings | StillWaterSettings = field(
+        default_factory=StillWaterSettings)
+    #: cosine ramp of the wave excitation [s] (0: none)
+    ramp_duration: float = 0.0
+    #: initial displacement from the static equilibrium (Surge, Sway, Heave [m], Roll, Pitch,
+    #: Yaw [rad]); the body and its lines start at rest there
+    initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    database: str | Path | None = None  #: default: hydrodb/<hydro.database>.nc
+    linear_damping: NDArray[np.float64] | None = None  #: B_1 (6, 6)
+    quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
+
+
+def _excitation(case: Case, sea: WaveField, ds) -> WaveExcitation | None:
+    if sea.n_components == 0:
+        return None
+    interp = ExcitationInterpolator(ds)
+    w_db = ds["omega"].values
+    inside = (sea.omega >= w_db[0]) & (sea.omega <= w_db[-1])
+    X = np.zeros((sea.n_components, 6), dtype=complex)
+    for beta in np.unique(sea.direction):
+        sel = inside & (sea.direction == beta)
+        if np.any(sel):
+            X[sel] = interp(sea.omega[sel], float(beta))
+    return WaveExcitation(sea, X)
+
+
+def run_coupled(case: Case, settings: CoupledSettings, *, output: str | Path | None = None,
+                progress: Callable[[float], None] | None = None,
+                flush_interval: float = FLUSH_INTERVAL_S) -> RunResult:
+    """Run a case with a floater on its lines, in waves.
+
+    Raises
+    ------
+    SolverError
+        When a line or the body goes unstable (partial results written first).
+    KeyboardInterrupt
+        Re-raised after writing the partial results.
+    """
+    if case.floater is None:
+        raise ValueError("run_coupled needs a case with a [floater]")
+    dt = float(settings.time_step)
+    times = output_times(case.simulation)
+    stride = int(round(case.simulation.output_interval / dt))
+    if stride < 1 or abs(stride * dt - case.simulation.output_interval) > 1e-9 * dt:
+        raise ValueError(f"the output interval {case.simulation.output_interval} s must be a "
+                         f"multiple of the body time step {dt} s")
+    env = case.environment
+    path = settings.database
+    if path is None:
+        path = Path(case.source).resolve().parents[2] / "hydrodb" / f"{case.hydro.database}.nc"
+    ds = read_database(path)
+    body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
+                      quadratic_damping=settings.quadratic_damping)
+    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
+    excitation = _excitation(case, sea, ds)
+    centre = np.asarray(case.floater.reference_point, dtype=float)
+    ramp = settings.ramp_duration
+
+    def ramp_factor(t: float) -> float:
+        if ramp <= 0.0 or t >= ramp:
+            return 1.0
+        return 0.5 - 0.5 * math.cos(math.pi * t / ramp)
+
+    cache: dict[str, NDArray[np.float64] | float] = {"t0": math.nan, "f": np.zeros((1, 6))}
+
+    def external(t: float, x, v) -> NDArray[np.float64]:
+        if excitation is None:
+            return np.zeros(6)
+        k = int(round((t - cache["t0"]) / (0.5 * dt)))
+        return ramp_factor(t) * cache["f"][k]
+
+    moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
+    x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed)
+    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    recorder = Recorder(case, times, output, flush_interval, body=True)
+    series, bseries = recorder.series, recorder.body
+    n_lines = len(case.lines)
+
+    def record(index: int) -> None:
+        ff, af = moored.line_forces(body.x)
+        pos, _ = points_state(body.x, body.v, moored.arms, centre)
+        for i in range(n_lines):
+            series["fairlead_force"][i, index] = ff[i]
+            series["anchor_force"][i, index] = af[i]
+            series["fairlead_position"][i, index] = pos[i]
+            series["laid_length"][i, index] = moored.laid_length[i]
+        bseries["body_displacement"][index] = body.x - x_eq
+        bseries["body_velocity"][index] = body.v
+        bseries["wave_elevation"][index] = float(sea.elevation(np.array([body.time]))[0]) \
+            if sea.n_components else 0.0
+
+    start_wall = _time.perf_counter()
+    n_steps = (times.size - 1) * stride
+    try:
+        record(0)
+        recorder.advance(1)
+        done = 0
+        while done < n_steps:
+            chunk = min(CHUNK_STEPS, n_steps - done)
+            if excitation is not None:
+                t0 = body.time
+                cache["t0"] = t0
+                cache["f"] = excitation.series(t0 + 0.5 * dt * np.arange(2 * chunk + 1))
+            for _ in range(chunk):
+                moored.step()
+                done += 1
+                if done % stride == 0:
+                    record(done // stride)
+            if not np.all(np.isfinite(body.x)):
+                raise SolverError(f"floater: the body motion is not finite at "
+                                  f"t = {body.time:.6g} s")
+            recorder.advance(done // stride + 1)
+            if progress is not None:
+                progress(recorder.simulated_time)
+    except SolverError as err:
+        recorder.write(status=f"failed: {err}")
+        raise
+    except KeyboardInterrupt:
+        recorder.write(status=f"interrupted: results up to t = {recorder.simulated_time:.6g} s")
+        raise
+    dataset = recorder.write(status="complete")
+    return RunResult(dataset=dataset, status="complete",
+                     wall_time_s=_time.perf_counter() - start_wall,
+                     simulated_time_s=recorder.simulated_time)
