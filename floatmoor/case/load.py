@@ -16,6 +16,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from floatmoor.case.coupling import read_initial, read_waves
 from floatmoor.case.floater import read_floater, read_hydro
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
@@ -118,12 +119,19 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
         raise root.error("hydro", "a [floater] table for the [hydro] settings to apply to",
                          {})
     hydro = read_hydro(root.table("hydro")) if root.has("hydro") else None
+    for key in ("waves", "initial"):
+        if root.has(key) and not has_floater:
+            raise root.error(key, f"a [floater] table for [{key}] to apply to", {})
+    waves = read_waves(root.table("waves"), environment, simulation.duration) \
+        if root.has("waves") else None
+    initial = read_initial(root.table("initial")) if root.has("initial") else (0.0,) * 6
     root.finish()
 
     case = Case(title=title, source=source, text=text, overrides=overrides,
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
                 motion=motion, simulation=simulation, description=description,
-                campaign=campaign, floater=floater, hydro=hydro)
+                campaign=campaign, floater=floater, hydro=hydro, waves=waves,
+                initial_offset=initial)
     _check_lines(case, context)
     _check_motion(case, context)
     return case
@@ -230,13 +238,19 @@ def _simulation(t: TableReader) -> Simulation:
     if interval > duration:
         raise t.error("output_interval", f"a number <= simulation.duration ({duration:g} s) [s]",
                       interval)
+    time_step = t.number("time_step", unit="s", gt=0.0, default=None)
+    if time_step is not None and (time_step > interval or abs(
+            interval / time_step - round(interval / time_step)) > 1e-6 * interval / time_step):
+        raise t.error("time_step", "a number dividing simulation.output_interval "
+                      f"({interval:g} s) [s]", time_step)
     shape = t.number("shape_output_interval", unit="s", gt=0.0, default=None)
     if shape is not None and (shape < interval or abs(shape / interval - round(shape / interval))
                               > 1e-6 * shape / interval):
         raise t.error("shape_output_interval", "a multiple of simulation.output_interval "
                       f"({interval:g} s) [s]", shape)
     t.finish()
-    return Simulation(duration=duration, output_interval=interval, shape_output_interval=shape)
+    return Simulation(duration=duration, output_interval=interval, shape_output_interval=shape,
+                      time_step=time_step)
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:

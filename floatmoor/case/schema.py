@@ -208,6 +208,8 @@ class Simulation:
     duration: float  #: [s]
     output_interval: float  #: [s]
     shape_output_interval: float | None = None  #: line shape sampling [s], None = no shapes
+    #: body step of a coupled run [s] (dividing the output interval); None = the output interval
+    time_step: float | None = None
 
 
 #: Floater geometry kinds a case file may give (``floater.geometry.kind``).
@@ -346,6 +348,10 @@ class Case:
     floater: Floater | None = None
     #: the BEM database settings of the floater, or None
     hydro: HydroSettings | None = None
+    #: the sea of a coupled run (``[waves]``: floatmoor.case.coupling.WaveCase), or None
+    waves: Any = None
+    #: the floater's offset from its static equilibrium at t = 0 (``[initial]``) [m, rad]
+    initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
 
     @property
     def line_names(self) -> list[str]:

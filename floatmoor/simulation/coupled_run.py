@@ -27,7 +27,7 @@ from floatmoor.waves.settings import (
     JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
 )
 
-__all__ = ["CoupledSettings", "run_coupled"]
+__all__ = ["CoupledSettings", "run_coupled", "settings_from_case"]
 
 #: Body steps per chunk between progress reports, partial writes and finiteness checks.
 CHUNK_STEPS = 500
@@ -50,6 +50,18 @@ class CoupledSettings:
     quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
 
 
+def settings_from_case(case: Case) -> CoupledSettings:
+    """The coupled-run settings a case file gives (``[waves]``, ``[initial]``,
+    ``[simulation] time_step``, default the output interval)."""
+    sim = case.simulation
+    waves = case.waves
+    return CoupledSettings(
+        time_step=sim.time_step if sim.time_step is not None else sim.output_interval,
+        waves=waves.settings if waves is not None else StillWaterSettings(),
+        ramp_duration=waves.ramp_duration if waves is not None else 0.0,
+        initial_offset=tuple(case.initial_offset))
+
+
 def _excitation(case: Case, sea: WaveField, ds) -> WaveExcitation | None:
     if sea.n_components == 0:
         return None
@@ -64,7 +76,8 @@ def _excitation(case: Case, sea: WaveField, ds) -> WaveExcitation | None:
     return WaveExcitation(sea, X)
 
 
-def run_coupled(case: Case, settings: CoupledSettings, *, output: str | Path | None = None,
+def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
+                output: str | Path | None = None,
                 progress: Callable[[float], None] | None = None,
                 flush_interval: float = FLUSH_INTERVAL_S) -> RunResult:
     """Run a case with a floater on its lines, in waves.
@@ -78,6 +91,8 @@ def run_coupled(case: Case, settings: CoupledSettings, *, output: str | Path | N
     """
     if case.floater is None:
         raise ValueError("run_coupled needs a case with a [floater]")
+    if settings is None:
+        settings = settings_from_case(case)
     dt = float(settings.time_step)
     times = output_times(case.simulation)
     stride = int(round(case.simulation.output_interval / dt))

@@ -1,0 +1,90 @@
+"""Case tables of coupled runs (a floater on its lines, issue 6): ``[waves]``, ``[initial]``
+and the body step ``[simulation] time_step`` (read in load.py).
+
+``[waves]``: ``kind = "still"``; ``"regular"`` with ``height`` [m], ``period`` [s],
+``direction_deg = 0``, ``phase_deg = 0``; ``"jonswap"`` with ``hs`` [m], ``tp`` [s],
+``seed``, ``gamma = 3.3``, ``direction_deg = 0``, ``spacing = "equal"`` (or
+``"random-in-bin"``), ``n_components``, ``frequency_step`` [rad/s], ``omega_min``,
+``omega_max`` [rad/s]; all kinds: ``ramp_duration`` [s] (cosine ramp of the excitation;
+default two periods, or two peak periods). ``[initial]``: the body's displacement from its
+static equilibrium at t = 0 (free decay): ``surge``, ``sway``, ``heave`` [m], ``roll_deg``,
+``pitch_deg``, ``yaw_deg`` (all default 0); body and lines start at rest there.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from floatmoor.case.reader import TableReader
+from floatmoor.case.schema import Environment
+from floatmoor.waves.realisation import SPACINGS
+from floatmoor.waves.settings import (
+    GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
+)
+
+__all__ = ["WaveCase", "read_waves", "read_initial", "WAVE_KINDS"]
+
+WAVE_KINDS = ("still", "regular", "jonswap")
+#: Default excitation ramp in (peak) wave periods.
+RAMP_PERIODS = 2.0
+
+
+@dataclass(frozen=True)
+class WaveCase:
+    """The sea of a coupled case and the ramp of its excitation."""
+
+    settings: StillWaterSettings | RegularWaveSettings | JonswapSettings
+    ramp_duration: float  #: [s]
+
+
+def read_waves(t: TableReader, environment: Environment, duration: float) -> WaveCase:
+    """``[waves]``, checked for physical values (steepness, breaking, gamma range)."""
+    kind = t.string("kind", choices=WAVE_KINDS)
+    if kind == "still":
+        settings: StillWaterSettings | RegularWaveSettings | JonswapSettings = \
+            StillWaterSettings()
+        period = 0.0
+    elif kind == "regular":
+        settings = RegularWaveSettings(
+            height=t.number("height", unit="m", gt=0.0),
+            period=t.number("period", unit="s", gt=0.0),
+            direction_deg=t.number("direction_deg", unit="deg", default=0.0),
+            phase_deg=t.number("phase_deg", unit="deg", default=0.0))
+        period = settings.period
+    else:
+        gamma = t.number("gamma", unit="-", ge=GAMMA_RANGE[0], default=3.3)
+        if gamma > GAMMA_RANGE[1]:
+            raise t.error("gamma", f"a number in [{GAMMA_RANGE[0]:g}, {GAMMA_RANGE[1]:g}]",
+                          gamma)
+        settings = JonswapSettings(
+            hs=t.number("hs", unit="m", gt=0.0), tp=t.number("tp", unit="s", gt=0.0),
+            seed=t.integer("seed", ge=0), gamma=gamma,
+            direction_deg=t.number("direction_deg", unit="deg", default=0.0),
+            spacing=t.string("spacing", choices=tuple(SPACINGS), default="equal"),
+            n_components=t.integer("n_components", ge=1, default=None),
+            frequency_step=t.number("frequency_step", unit="rad/s", gt=0.0, default=None),
+            omega_min=t.number("omega_min", unit="rad/s", gt=0.0, default=None),
+            omega_max=t.number("omega_max", unit="rad/s", gt=0.0, default=None))
+        period = settings.tp
+    ramp = t.number("ramp_duration", unit="s", ge=0.0, default=RAMP_PERIODS * period)
+    try:
+        if isinstance(settings, JonswapSettings):
+            settings.validate(environment.water_depth, environment.gravity, duration)
+        else:
+            settings.validate(environment.water_depth, environment.gravity)
+    except ValueError as err:
+        raise t.error("kind", f"a physical sea ({err})", kind) from None
+    t.finish()
+    return WaveCase(settings, ramp)
+
+
+def read_initial(t: TableReader) -> tuple[float, float, float, float, float, float]:
+    """``[initial]``: the body's offset from its equilibrium (radians inside)."""
+    out = (t.number("surge", unit="m", default=0.0), t.number("sway", unit="m", default=0.0),
+           t.number("heave", unit="m", default=0.0),
+           math.radians(t.number("roll_deg", unit="deg", default=0.0)),
+           math.radians(t.number("pitch_deg", unit="deg", default=0.0)),
+           math.radians(t.number("yaw_deg", unit="deg", default=0.0)))
+    t.finish()
+    return out
