@@ -3,7 +3,10 @@ written as the run goes (issue 6; the coupling scheme is in :mod:`.coupled`)."""
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import pickle
 import time as _time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -76,11 +79,39 @@ def _excitation(case: Case, sea: WaveField, ds) -> WaveExcitation | None:
     return WaveExcitation(sea, X)
 
 
+def checkpoint_path(output: str | Path) -> Path:
+    """The checkpoint file of a run writing ``output``."""
+    return Path(str(output) + ".checkpoint")
+
+
+def _write_checkpoint(path: Path, moored: MooredBody, recorder: Recorder, done: int,
+                      fingerprint: str) -> None:
+    external, moored.external = moored.external, None
+    try:
+        state = {"fingerprint": fingerprint, "done": done, "moored": moored,
+                 "n_done": recorder.n_done,
+                 "series": {k: v[:, :recorder.n_done] for k, v in recorder.series.items()},
+                 "body": {k: v[:recorder.n_done] for k, v in recorder.body.items()}}
+        tmp = path.with_name(path.name + ".tmp")
+        with open(tmp, "wb") as fh:
+            pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
+        os.replace(tmp, path)
+    finally:
+        moored.external = external
+
+
 def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 output: str | Path | None = None,
                 progress: Callable[[float], None] | None = None,
-                flush_interval: float = FLUSH_INTERVAL_S) -> RunResult:
+                flush_interval: float = FLUSH_INTERVAL_S,
+                checkpoint_interval: float | None = None, resume: bool = False) -> RunResult:
     """Run a case with a floater on its lines, in waves.
+
+    With ``output``, a checkpoint (``OUTPUT.checkpoint``, the whole state of body and lines)
+    is written every ``checkpoint_interval`` seconds of wall time (default: with every
+    partial write) and when the run is interrupted; ``resume=True`` continues from it and
+    gives the same results as an uninterrupted run. The checkpoint is removed when the run
+    completes.
 
     Raises
     ------
@@ -124,12 +155,38 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         k = int(round((t - cache["t0"]) / (0.5 * dt)))
         return ramp_factor(t) * cache["f"][k]
 
-    moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
-    x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed)
-    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    fingerprint = hashlib.sha256((case.text + "\n".join(case.overrides) + repr(settings))
+                                 .encode()).hexdigest()
     recorder = Recorder(case, times, output, flush_interval, body=True)
     series, bseries = recorder.series, recorder.body
     n_lines = len(case.lines)
+    ckpt = checkpoint_path(output) if output is not None else None
+    ckpt_every = flush_interval if checkpoint_interval is None else checkpoint_interval
+    done = 0
+    if resume:
+        if ckpt is None or not ckpt.is_file():
+            raise SolverError(f"no checkpoint to resume from ({ckpt})")
+        with open(ckpt, "rb") as fh:
+            state = pickle.load(fh)
+        if state["fingerprint"] != fingerprint:
+            raise SolverError(f"{ckpt}: the checkpoint belongs to another case or settings")
+        moored = state["moored"]
+        moored.external = external
+        body = moored.body
+        done = state["done"]
+        n = state["n_done"]
+        for k, v in state["series"].items():
+            series[k][:, :n] = v
+        for k, v in state["body"].items():
+            bseries[k][:n] = v
+        recorder.n_done = n
+        x_eq = None
+    else:
+        moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
+        x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed)
+        moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+        moored.equilibrium_position = x_eq
+    x_eq = moored.equilibrium_position
 
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x)
@@ -145,11 +202,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             if sea.n_components else 0.0
 
     start_wall = _time.perf_counter()
+    last_ckpt = start_wall
     n_steps = (times.size - 1) * stride
     try:
-        record(0)
-        recorder.advance(1)
-        done = 0
+        if not resume:
+            record(0)
+            recorder.advance(1)
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
             if excitation is not None:
@@ -165,6 +223,9 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 raise SolverError(f"floater: the body motion is not finite at "
                                   f"t = {body.time:.6g} s")
             recorder.advance(done // stride + 1)
+            if ckpt is not None and _time.perf_counter() - last_ckpt > ckpt_every:
+                _write_checkpoint(ckpt, moored, recorder, done, fingerprint)
+                last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)
     except SolverError as err:
@@ -174,6 +235,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         recorder.write(status=f"interrupted: results up to t = {recorder.simulated_time:.6g} s")
         raise
     dataset = recorder.write(status="complete")
+    if ckpt is not None and ckpt.is_file():
+        ckpt.unlink()
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,
                      simulated_time_s=recorder.simulated_time)
