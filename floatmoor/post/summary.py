@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from typing import Any
 
 import xarray as xr
@@ -21,6 +23,9 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     """
     motion = case.motion
     start = motion.ramp_duration if motion is not None else 0.0
+    waves = getattr(case, "waves", None)
+    if waves is not None:
+        start = waves.ramp_duration
     period = motion.cycle_period if motion is not None else None
     time = dataset["time"].values
     lines: dict[str, Any] = {}
@@ -28,7 +33,7 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         series = dataset["fairlead_tension"].sel(line=line.name).values
         lines[line.name] = {"model": line.model, "fairlead_tension_N":
                             channel_statistics(time, series, start=start, period=period)}
-    return {
+    out = {
         "title": case.title,
         "case": case.source,
         "overrides": list(case.overrides),
@@ -36,6 +41,17 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         "motion_period_s": period,
         "lines": lines,
     }
+    if "body_displacement" in dataset:
+        keep = time >= start
+        if not keep.any():  # a run shorter than the ramp: the whole record, as for the lines
+            keep = np.ones_like(keep)
+        body = {}
+        for dof in dataset["dof"].values:
+            x = dataset["body_displacement"].sel(dof=dof).values[keep]
+            body[str(dof)] = {"mean": float(x.mean()), "std": float(x.std()),
+                              "min": float(x.min()), "max": float(x.max())} if x.size else {}
+        out["body_displacement"] = body
+    return out
 
 
 def format_summary(summary: dict[str, Any]) -> str:
@@ -50,4 +66,11 @@ def format_summary(summary: dict[str, Any]) -> str:
         cycle = f"{s['mean_cycle_max']:>11.4g}" if s["mean_cycle_max"] is not None else f"{'-':>11}"
         rows.append(f"  {name:<16}{entry['model']:<15}{s['mean']:>10.4g}{s['std']:>10.4g}"
                     f"{s['min']:>10.4g}{s['max']:>10.4g}{cycle}{s['n_cycles']:>8d}")
+    if summary.get("body_displacement"):
+        rows.append("floater displacement from equilibrium [m, rad]:")
+        rows.append(f"  {'dof':<10}{'mean':>11}{'std':>11}{'min':>11}{'max':>11}")
+        for dof, b in summary["body_displacement"].items():
+            if b:
+                rows.append(f"  {dof:<10}{b['mean']:>11.4g}{b['std']:>11.4g}{b['min']:>11.4g}"
+                            f"{b['max']:>11.4g}")
     return "\n".join(rows)
