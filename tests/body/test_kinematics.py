@@ -1,0 +1,44 @@
+"""Rigid-body kinematics of body-fixed points and the generalised force of point loads."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from floatmoor.body.kinematics import generalised_force, points_state, rotation_matrix
+
+#: Identities that hold to round-off.
+ROUND_OFF = 1e-13
+
+
+def test_rotation_is_orthonormal_and_composes_z_y_x() -> None:
+    rng = np.random.default_rng(3)
+    for roll, pitch, yaw in rng.uniform(-1.0, 1.0, size=(20, 3)):
+        R = rotation_matrix(roll, pitch, yaw)
+        assert np.abs(R @ R.T - np.eye(3)).max() <= ROUND_OFF
+        assert abs(np.linalg.det(R) - 1.0) <= ROUND_OFF
+        c, s = np.cos, np.sin
+        Rx = np.array([[1, 0, 0], [0, c(roll), -s(roll)], [0, s(roll), c(roll)]])
+        Ry = np.array([[c(pitch), 0, s(pitch)], [0, 1, 0], [-s(pitch), 0, c(pitch)]])
+        Rz = np.array([[c(yaw), -s(yaw), 0], [s(yaw), c(yaw), 0], [0, 0, 1]])
+        assert np.abs(R - Rz @ Ry @ Rx).max() <= ROUND_OFF
+    # a positive pitch turns +x downwards (z up): capytaine's right-handed rotation about +y
+    assert rotation_matrix(0.0, 0.1, 0.0)[2, 0] < 0.0
+
+
+def test_points_follow_the_body_and_forces_give_moments_about_the_reference() -> None:
+    rng = np.random.default_rng(5)
+    arms = rng.normal(size=(4, 3)) * 10.0
+    centre = np.array([1.0, -2.0, 0.5])
+    x = np.concatenate([rng.normal(size=3), rng.uniform(-0.3, 0.3, 3)])
+    v = rng.normal(size=6)
+    pos, vel = points_state(x, v, arms, centre)
+    R = rotation_matrix(*x[3:])
+    assert np.abs(pos - (centre + x[:3] + arms @ R.T)).max() <= ROUND_OFF * 100
+    assert np.abs(vel - (v[:3] + np.cross(v[3:], arms @ R.T))).max() <= ROUND_OFF * 100
+    forces = rng.normal(size=(4, 3)) * 1e3
+    f6 = generalised_force(x, forces, arms)
+    assert np.abs(f6[:3] - forces.sum(0)).max() <= ROUND_OFF * 1e4
+    assert np.abs(f6[3:] - np.cross(arms @ R.T, forces).sum(0)).max() <= ROUND_OFF * 1e5
+    # a force +x at 90 m above the reference pitches the body about +y (M_y = +90 F)
+    f = generalised_force(np.zeros(6), np.array([[1.0, 0.0, 0.0]]), np.array([[0, 0, 90.0]]))
+    assert np.allclose(f, [1.0, 0, 0, 0, 90.0, 0])
