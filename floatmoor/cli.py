@@ -2,8 +2,11 @@
 
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
 runs it; ``floatmoor study qd-verification -o DIR`` runs the quasi-dynamic verification study
-(cases.md case B). Bad input (a malformed case, a bad ``--set`` or output path) prints one
-message and exits with status 2, without a traceback and without writing output. A run that
+(cases.md case B); ``floatmoor hydro build CASE`` builds the floater's BEM database,
+``floatmoor hydro check NAME`` checks one (exit 1 when a check fails) and ``floatmoor hydro info
+NAME`` describes it; a missing, damaged or stale database is bad input (exit 2). Bad input (a
+malformed case, a bad ``--set`` or output path) prints one message and exits with status 2,
+without a traceback and without writing output. A run that
 fails (no valid line state) or is interrupted writes its partial results and exits with 1 or
 130.
 """
@@ -74,6 +77,22 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("--quick", action="store_true",
                        help="reduced subset (one amplitude, two accelerations per configuration)")
     study.add_argument("--quiet", action="store_true", help="no progress reports")
+    hydro = sub.add_parser("hydro", help="hydrodynamic (BEM) databases of floaters")
+    hsub = hydro.add_subparsers(dest="hydro_command", required=True)
+    hbuild = hsub.add_parser("build", help="run capytaine for a case's [floater] and [hydro]")
+    add_case(hbuild)
+    hbuild.add_argument("--force", action="store_true",
+                        help="rebuild even if an up-to-date database exists")
+    hbuild.add_argument("-o", "--output", metavar="PATH.nc",
+                        help="database file (default: hydrodb/NAME.nc of the case)")
+    hbuild.add_argument("--quiet", action="store_true", help="no progress reports")
+    hcheck = hsub.add_parser("check", help="run the database checks")
+    hcheck.add_argument("database", metavar="NAME_OR_PATH",
+                        help="database name (hydrodb/NAME.nc) or path")
+    hcheck.add_argument("--json", action="store_true", help="results as JSON on standard output")
+    hinfo = hsub.add_parser("info", help="describe a database")
+    hinfo.add_argument("database", metavar="NAME_OR_PATH",
+                       help="database name (hydrodb/NAME.nc) or path")
     return parser
 
 
@@ -87,6 +106,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _sweep(args)
         if args.command == "study":
             return _study(args)
+        if args.command == "hydro":
+            from floatmoor.hydro.cli import hydro_command
+
+            return hydro_command(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -128,6 +151,16 @@ def _describe(case: Case) -> str:
                          f"(cfl {st.cfl:g}), seabed contact {st.seabed_contact}")
     rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
     rows.extend(notes)
+    if case.floater is not None:
+        fl = case.floater
+        rows.append(f"  floater: {fl.name}, {fl.geometry.kind}, mass {fl.mass:.6g} kg, centre of "
+                    f"mass z = {fl.centre_of_mass[2]:.6g} m"
+                    + (f", draft {fl.geometry.draft:.6g} m" if fl.geometry.kind == "cylinder"
+                       else ""))
+        rows.append("  (line fairleads: body-fixed points at rest)")
+    if case.hydro is not None:
+        rows.append(f"  hydro: database {case.hydro.database}, {len(case.hydro.frequencies)} "
+                    f"frequencies, {len(case.hydro.directions)} directions")
     if case.motion is not None:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "

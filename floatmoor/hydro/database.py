@@ -1,0 +1,305 @@
+"""Hydrodynamic databases on disk: ``hydrodb/NAME.nc``.
+
+A database is a netCDF-3 file (written atomically with :func:`floatmoor.io.netcdf.write_dataset`)
+in capytaine's dataset layout: variables ``added_mass`` and ``radiation_damping`` over
+(omega, radiating_dof, influenced_dof), ``excitation_force``, ``Froude_Krylov_force`` and
+``diffraction_force`` over (complex, omega, wave_direction, influenced_dof) with complex values
+split along a ``complex`` dimension (``re``, ``im``) as capytaine's ``separate_complex_values``
+does, ``hydrostatic_stiffness`` (buoyancy part, see :mod:`floatmoor.hydro.build`),
+``added_mass_infinite`` (and ``added_mass_zero`` in deep water). Attributes record the
+floatmoor and capytaine versions, creation time, case text, geometry, mesh panel counts and
+hash, water depth, density, gravity, build settings and build time, and ``inputs_hash``: the
+SHA-256 of every input that changes the result (:func:`database_inputs`).
+
+A database is used for a case only when its recorded inputs equal the case's
+(:func:`load_for_case`); a missing, truncated or otherwise unreadable file, or one whose
+contents fail the structural checks, raises :class:`HydroDatabaseError` naming the problem.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime as _dt
+import hashlib
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from floatmoor._version import __version__
+from floatmoor.case.schema import Case, Environment, Floater, HydroSettings
+from floatmoor.errors import FloatmoorError
+from floatmoor.io.netcdf import read_dataset, write_dataset
+
+__all__ = [
+    "HydroDatabaseError", "database_inputs", "inputs_hash", "to_dataset", "write_database",
+    "read_database", "load_for_case", "database_path", "merge_complex", "REQUIRED_VARIABLES",
+    "capytaine_major",
+]
+
+#: Variables every database holds.
+REQUIRED_VARIABLES = ("added_mass", "radiation_damping", "excitation_force",
+                      "Froude_Krylov_force", "diffraction_force", "added_mass_infinite",
+                      "hydrostatic_stiffness", "disp_volume", "center_of_buoyancy",
+                      "rotation_center", "waterplane_area")
+
+_ATTRS: dict[str, dict[str, str]] = {
+    "omega": {"long_name": "wave angular frequency", "units": "rad/s"},
+    "period": {"long_name": "wave period", "units": "s"},
+    "wavenumber": {"long_name": "wavenumber at the BEM water depth", "units": "rad/m"},
+    "wave_direction": {"long_name": "direction the waves travel towards, from +x "
+                       "counter-clockwise", "units": "rad"},
+    "radiating_dof": {"long_name": "degree of freedom of the motion", "units": "1"},
+    "influenced_dof": {"long_name": "degree of freedom of the force", "units": "1"},
+    "complex": {"long_name": "real and imaginary parts (e^{-i omega t} convention)",
+                "units": "1"},
+    "component": {"long_name": "global axis", "units": "1"},
+    "added_mass": {"long_name": "added mass (kg, kg m, kg m^2 by DOF pair)", "units": "kg"},
+    "radiation_damping": {"long_name": "radiation damping (N s/m, N s, N m s by DOF pair)",
+                          "units": "kg/s"},
+    "excitation_force": {"long_name": "wave excitation force per unit wave amplitude "
+                         "(Froude-Krylov + diffraction; N/m or N m/m)", "units": "N/m"},
+    "Froude_Krylov_force": {"long_name": "Froude-Krylov force per unit wave amplitude",
+                            "units": "N/m"},
+    "diffraction_force": {"long_name": "diffraction force per unit wave amplitude",
+                          "units": "N/m"},
+    "added_mass_infinite": {"long_name": "added mass at omega = infinity", "units": "kg"},
+    "added_mass_zero": {"long_name": "added mass at omega = 0 (deep water only)",
+                        "units": "kg"},
+    "hydrostatic_stiffness": {"long_name": "hydrostatic stiffness of the hull (buoyancy "
+                              "only, centre of mass taken at the rotation centre; N/m, N, "
+                              "N m by DOF pair)", "units": "N/m"},
+    "disp_volume": {"long_name": "displaced volume of the hull mesh", "units": "m^3"},
+    "waterplane_area": {"long_name": "waterplane area of the hull mesh", "units": "m^2"},
+    "center_of_buoyancy": {"long_name": "centre of buoyancy of the hull mesh", "units": "m"},
+    "rotation_center": {"long_name": "rotation centre of the rigid-body DOFs (the floater's "
+                        "reference point)", "units": "m"},
+}
+
+DOF_DEFINITION = ("Surge, Sway, Heave: translations along global x, y, z; Roll, Pitch, Yaw: "
+                  "rotations about axes parallel to x, y, z through rotation_center "
+                  "(capytaine rigid_body_dofs)")
+
+
+class HydroDatabaseError(FloatmoorError):
+    """A hydrodynamic database is missing, damaged or stale for the case that asks for it."""
+
+
+def capytaine_major() -> int:
+    """Major version of the installed capytaine."""
+    import capytaine
+
+    return int(capytaine.__version__.split(".")[0])
+
+
+def database_inputs(floater: Floater, hydro: HydroSettings,
+                    environment: Environment) -> dict[str, Any]:
+    """Every input that changes the BEM result, as JSON-ready values."""
+    from floatmoor.hydro.build import BEM_METHOD
+
+    geometry = dataclasses.asdict(floater.geometry)
+    geometry.pop("draft_from_mass", None)
+    return {
+        "geometry": geometry,
+        "reference_point": list(floater.reference_point),
+        "panel_size": hydro.panel_size,
+        "radial_panels": hydro.radial_panels,
+        "lid": hydro.lid,
+        "lid_depth": hydro.lid_depth,
+        "symmetry": hydro.symmetry,
+        "frequencies": [round(w, 12) for w in hydro.frequencies],
+        "directions": [round(b, 12) for b in hydro.directions],
+        "water_depth": "infinite" if hydro.infinite_depth else environment.water_depth,
+        "water_density": environment.water_density,
+        "gravity": environment.gravity,
+        "capytaine_major": capytaine_major(),
+        "bem_method": BEM_METHOD,
+    }
+
+
+def inputs_hash(inputs: dict[str, Any]) -> str:
+    """SHA-256 of the canonical JSON of :func:`database_inputs`."""
+    text = json.dumps(inputs, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _split_complex(da: xr.DataArray, name: str) -> xr.DataArray:
+    values = np.asarray(da.values)
+    if np.iscomplexobj(values):
+        out = xr.DataArray(np.stack([values.real, values.imag]), dims=("complex",) + da.dims)
+    else:
+        out = xr.DataArray(values, dims=da.dims)
+    out.attrs.update(_ATTRS[name])
+    return out
+
+
+def merge_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """Variable ``name`` with its ``complex`` dimension merged back into complex values."""
+    da = ds[name]
+    if "complex" not in da.dims:
+        return da
+    return da.sel(complex="re", drop=True) + 1j * da.sel(complex="im", drop=True)
+
+
+def to_dataset(result, case: Case) -> xr.Dataset:
+    """Label a :class:`~floatmoor.hydro.build.BemResult` of ``case`` as a database dataset."""
+    import capytaine
+
+    from floatmoor.hydro.build import DOFS, bem_dataset_arrays, wavenumber
+    from floatmoor.hydro.geometry import mesh_hash
+
+    floater, hydro, env = case.floater, case.hydro, case.environment
+    assert floater is not None and hydro is not None
+    arrays = bem_dataset_arrays(result)
+    data_vars = {name: _split_complex(da, name) for name, da in arrays.items()}
+    hs = result.hydrostatics
+    data_vars["disp_volume"] = xr.DataArray(hs["disp_volume"], attrs=_ATTRS["disp_volume"])
+    data_vars["waterplane_area"] = xr.DataArray(hs["waterplane_area"],
+                                                attrs=_ATTRS["waterplane_area"])
+    data_vars["center_of_buoyancy"] = xr.DataArray(hs["center_of_buoyancy"], dims=("component",),
+                                                   attrs=_ATTRS["center_of_buoyancy"])
+    data_vars["rotation_center"] = xr.DataArray(np.asarray(floater.reference_point, float),
+                                                dims=("component",),
+                                                attrs=_ATTRS["rotation_center"])
+    omega = np.asarray(result.omega, float)
+    depth = result.bem_depth
+    coords = {
+        "omega": ("omega", omega, _ATTRS["omega"]),
+        "period": ("omega", 2.0 * np.pi / omega, _ATTRS["period"]),
+        "wavenumber": ("omega", np.array([wavenumber(w, depth, env.gravity) for w in omega]),
+                       _ATTRS["wavenumber"]),
+        "wave_direction": ("wave_direction", np.asarray(result.directions, float),
+                           _ATTRS["wave_direction"]),
+        "radiating_dof": ("radiating_dof", np.array(DOFS), _ATTRS["radiating_dof"]),
+        "influenced_dof": ("influenced_dof", np.array(DOFS), _ATTRS["influenced_dof"]),
+        "complex": ("complex", np.array(["re", "im"]), _ATTRS["complex"]),
+        "component": ("component", np.array(["x", "y", "z"]), _ATTRS["component"]),
+    }
+    inputs = database_inputs(floater, hydro, env)
+    mesh = result.mesh
+    attrs: dict[str, Any] = {
+        "title": f"floatmoor hydrodynamic database {hydro.database} ({case.title})",
+        "database": hydro.database,
+        "floater": floater.name,
+        "geometry_kind": floater.geometry.kind,
+        "geometry_json": json.dumps(inputs["geometry"], sort_keys=True),
+        "case_file": case.source,
+        "case_toml": case.text,
+        "floatmoor_version": __version__,
+        "capytaine_version": capytaine.__version__,
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "water_depth": env.water_depth,
+        "bem_water_depth": "infinite" if not math.isfinite(depth) else f"{depth!r}",
+        "water_density": env.water_density,
+        "gravity": env.gravity,
+        "hull_panels": int(mesh.hull_panels),
+        "lid_panels": int(mesh.lid_panels),
+        "mesh_symmetry": mesh.symmetry,
+        "mesh_hash": mesh_hash(mesh.full_hull),
+        "panel_size": hydro.panel_size,
+        "lid_depth": result.lid_depth if result.lid_depth is not None else "none",
+        "build_seconds": float(result.build_seconds),
+        "build_settings_json": json.dumps({k: inputs[k] for k in
+                                           ("panel_size", "radial_panels", "lid", "lid_depth",
+                                            "symmetry", "water_depth", "bem_method")},
+                                          sort_keys=True),
+        "inputs_json": json.dumps(inputs, sort_keys=True),
+        "inputs_hash": inputs_hash(inputs),
+        "dof_definition": DOF_DEFINITION,
+        "time_convention": "e^{-i omega t} (capytaine); WAMIT phases are the conjugate",
+        "Conventions": "CF-1.8",
+    }
+    return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+def write_database(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
+    """Write atomically (the folder is created if missing)."""
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    write_dataset(dataset, path)
+
+
+def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
+    """Read and structurally check a database.
+
+    Raises
+    ------
+    HydroDatabaseError
+        Missing or unreadable file, missing variables, wrong shapes or non-finite values.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise HydroDatabaseError(f"{p}: no hydrodynamic database (build it with "
+                                 f"'floatmoor hydro build CASE')")
+    try:
+        ds = read_dataset(p)
+    except Exception as err:  # noqa: BLE001 - any reader failure means a damaged file
+        raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, not readable as "
+                                 f"netCDF ({type(err).__name__}: {err})") from None
+    missing = [v for v in REQUIRED_VARIABLES if v not in ds.variables]
+    if missing or "inputs_hash" not in ds.attrs:
+        what = ", ".join(missing) if missing else "the inputs_hash attribute"
+        raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, missing {what}")
+    n_w = ds.sizes.get("omega", 0)
+    if n_w < 2 or ds.sizes.get("radiating_dof") != 6 or ds.sizes.get("influenced_dof") != 6:
+        raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, expected >= 2 "
+                                 "frequencies and 6 x 6 DOFs")
+    for name in REQUIRED_VARIABLES:
+        values = np.asarray(ds[name].values, dtype=float)
+        if not np.all(np.isfinite(values)):
+            raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, non-finite values "
+                                     f"in {name}")
+    omega = ds["omega"].values
+    if np.any(np.diff(omega) <= 0) or omega[0] <= 0:
+        raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, frequencies not "
+                                 "positive and increasing")
+    ds.attrs["path"] = str(p)
+    return ds
+
+
+def database_path(case: Case) -> Path:
+    """``hydrodb/NAME.nc`` in the nearest folder above the case file that has a ``hydrodb``
+    folder (the repository root for the shipped cases), else in the current folder."""
+    assert case.hydro is not None
+    name = f"{case.hydro.database}.nc"
+    for parent in Path(case.source).resolve().parents:
+        if (parent / "hydrodb").is_dir():
+            return parent / "hydrodb" / name
+    return Path("hydrodb") / name
+
+
+def stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
+    """Input keys whose recorded values differ from the case's (empty when up to date)."""
+    assert case.floater is not None and case.hydro is not None
+    wanted = database_inputs(case.floater, case.hydro, case.environment)
+    if ds.attrs.get("inputs_hash") == inputs_hash(wanted):
+        return []
+    try:
+        recorded = json.loads(ds.attrs.get("inputs_json", "{}"))
+    except json.JSONDecodeError:
+        recorded = {}
+    keys = sorted(k for k in set(wanted) | set(recorded) if wanted.get(k) != recorded.get(k))
+    return keys or ["inputs_hash"]
+
+
+def load_for_case(case: Case, path: str | os.PathLike[str] | None = None) -> xr.Dataset:
+    """The database of ``case``, checked to be readable and built from the case's inputs.
+
+    Raises
+    ------
+    HydroDatabaseError
+        Missing, damaged, or stale (the message names the inputs that differ).
+    """
+    if case.floater is None or case.hydro is None:
+        raise HydroDatabaseError(f"{case.source}: the case has no [floater] and [hydro] tables")
+    p = Path(path) if path is not None else database_path(case)
+    ds = read_database(p)
+    differ = stale_keys(ds, case)
+    if differ:
+        raise HydroDatabaseError(f"{p}: stale hydrodynamic database for {case.source}: "
+                                 f"recorded inputs differ in {', '.join(differ)}; rebuild "
+                                 "with 'floatmoor hydro build CASE --force'")
+    return ds

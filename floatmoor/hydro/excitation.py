@@ -1,0 +1,77 @@
+"""Excitation force transfer functions X(omega, beta) of a database, at any frequency and
+direction in range.
+
+X is complex, per unit wave amplitude, capytaine's e^{-i omega t} convention: the force of a
+wave of amplitude a is Re{X a e^{-i omega t}}. Interpolation acts on the real and imaginary
+parts: linear in frequency (the BEM grid is dense), and in direction a cubic spline
+(not-a-knot) through the BEM directions when there are at least four, linear otherwise. At
+short waves X turns quickly with direction: on the DeepCwind database, the spline through
+every other direction (30 degree steps) errs at the left-out directions by at most 1.5 % of
+max |X| for wave periods of 9 s and more, but by 7 % at 7 s and 16 % at 5 s
+(tests/hydro/test_excitation.py); the shipped 15 degree steps halve that step. Off-grid
+directions of short waves need a finer direction grid.
+Requests outside the computed frequency range or directions raise ValueError: the transfer
+functions are not extrapolated.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from floatmoor.hydro.database import merge_complex
+
+__all__ = ["ExcitationInterpolator", "CUBIC_MIN_DIRECTIONS"]
+
+#: Directions needed for the cubic spline in direction (not-a-knot needs four points).
+CUBIC_MIN_DIRECTIONS = 4
+
+
+class ExcitationInterpolator:
+    """Interpolate ``excitation_force`` (or another force variable) of a database.
+
+    Parameters
+    ----------
+    ds
+        The database.
+    variable
+        ``excitation_force``, ``Froude_Krylov_force`` or ``diffraction_force``.
+    """
+
+    def __init__(self, ds: xr.Dataset, variable: str = "excitation_force") -> None:
+        x = merge_complex(ds, variable).transpose("omega", "wave_direction", "influenced_dof")
+        self.omega = np.asarray(ds["omega"].values, dtype=float)
+        self.directions = np.asarray(ds["wave_direction"].values, dtype=float)
+        self.values = np.asarray(x.values, dtype=complex)  # (omega, direction, dof)
+
+    def __call__(self, omega: ArrayLike, direction: float = 0.0) -> NDArray[np.complex128]:
+        """X at ``omega`` [rad/s] (scalar or array) and one direction [rad]; shape (..., 6)."""
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        tol = 1e-9 * self.omega[-1]
+        if np.any(w < self.omega[0] - tol) or np.any(w > self.omega[-1] + tol):
+            raise ValueError(f"frequency outside the database range [{self.omega[0]:g}, "
+                             f"{self.omega[-1]:g}] rad/s")
+        column = self._at_direction(float(direction))  # (omega, dof)
+        out = np.zeros(w.shape + (6,), dtype=complex)
+        for k in range(6):
+            out[..., k] = (np.interp(w, self.omega, column[:, k].real)
+                           + 1j * np.interp(w, self.omega, column[:, k].imag))
+        return out if np.ndim(omega) else out[0]
+
+    def _at_direction(self, beta: float) -> NDArray[np.complex128]:
+        d = self.directions
+        hit = np.nonzero(np.abs(d - beta) < 1e-9)[0]
+        if len(hit):
+            return self.values[:, int(hit[0]), :]
+        if len(d) < 2 or beta < d[0] or beta > d[-1]:
+            raise ValueError(f"wave direction {np.degrees(beta):g} deg outside the database "
+                             f"directions ({', '.join(f'{v:g}' for v in np.degrees(d))} deg)")
+        if len(d) >= CUBIC_MIN_DIRECTIONS:
+            from scipy.interpolate import CubicSpline
+
+            spline = CubicSpline(d, self.values, axis=1)
+            return spline(beta)
+        j = int(np.searchsorted(d, beta))
+        frac = (beta - d[j - 1]) / (d[j] - d[j - 1])
+        return (1.0 - frac) * self.values[:, j - 1, :] + frac * self.values[:, j, :]

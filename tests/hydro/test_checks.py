@@ -1,0 +1,53 @@
+"""The check suite on the shipped databases, and on broken copies (the checks can fail)."""
+
+from __future__ import annotations
+
+import pytest
+
+from floatmoor.hydro.checks import (
+    check_damping_psd, check_haskind, check_hydrostatics, check_kramers_kronig,
+    check_symmetry, run_checks,
+)
+
+
+@pytest.mark.parametrize("db", ["buoy_db", "deepcwind_db"])
+def test_shipped_database_passes_every_check(db, request):
+    results = run_checks(request.getfixturevalue(db))
+    failed = [f"{r.name}: {r.detail}" for r in results if not r.passed]
+    assert not failed
+    assert [r.name for r in results] == ["symmetry", "damping_psd", "kramers_kronig",
+                                         "kernel_decay", "haskind", "hydrostatics"]
+
+
+def _copy(ds):
+    return ds.copy(deep=True)
+
+
+def test_asymmetric_added_mass_fails(buoy_db):
+    bad = _copy(buoy_db)
+    bad["added_mass"].loc[dict(radiating_dof="Surge", influenced_dof="Pitch")] *= 1.2
+    assert not check_symmetry(bad).passed
+
+
+def test_negative_damping_fails(buoy_db):
+    bad = _copy(buoy_db)
+    bad["radiation_damping"].loc[dict(radiating_dof="Heave", influenced_dof="Heave")] *= -1.0
+    assert not check_damping_psd(bad).passed
+
+
+def test_inconsistent_added_mass_fails_kramers_kronig(buoy_db):
+    bad = _copy(buoy_db)
+    bad["added_mass_infinite"].loc[dict(radiating_dof="Heave", influenced_dof="Heave")] *= 1.1
+    assert not check_kramers_kronig(bad).passed
+
+
+def test_scaled_excitation_fails_haskind(buoy_db):
+    bad = _copy(buoy_db)
+    bad["excitation_force"] *= 1.1  # damping from it grows by 21 %
+    assert not check_haskind(bad).passed
+
+
+def test_wrong_stiffness_fails_hydrostatics(buoy_db):
+    bad = _copy(buoy_db)
+    bad["hydrostatic_stiffness"].loc[dict(influenced_dof="Heave", radiating_dof="Heave")] *= 1.02
+    assert not check_hydrostatics(bad).passed
