@@ -53,6 +53,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--json", action="store_true",
                      help="print the summary as JSON on standard output")
     run.add_argument("--quiet", action="store_true", help="no progress reports")
+    run.add_argument("--resume", action="store_true",
+                     help="floater cases: continue an interrupted run from OUT.nc.checkpoint")
     sweep = sub.add_parser("sweep", help="run a case over a grid (or zip) of key values")
     add_case(sweep)
     sweep.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
@@ -191,9 +193,17 @@ def _run(args: argparse.Namespace) -> int:
             raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
                             + ") in an existing folder", f"'{plot}'")
 
+    if args.resume and case.floater is None:
+        raise CaseError("--resume", "", "a case with a [floater] (forced-motion runs are not "
+                        "checkpointed)", "--resume")
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
     try:
-        result = run_forced_motion(case, output=output, progress=progress)
+        if case.floater is not None:
+            from floatmoor.simulation.coupled_run import run_coupled
+
+            result = run_coupled(case, output=output, progress=progress, resume=args.resume)
+        else:
+            result = run_forced_motion(case, output=output, progress=progress)
     except SolverError as err:
         _close(progress)
         print(f"floatmoor: run failed: {err}\n  partial results written to {output}",

@@ -1,0 +1,30 @@
+"""``floatmoor run`` on a floater case: a coupled run, its summary and output; ``--resume``."""
+
+from __future__ import annotations
+
+from floatmoor.cli import main
+from floatmoor.io.netcdf import read_dataset
+from tests.conftest import CASES, LINDAHL_CASE
+
+BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
+SHORT = ["--set", "simulation.duration=1.0", "--set", "simulation.output_interval=0.02"] + [
+    x for i in range(3) for x in ("--set", f'lines.{i}.model="quasi-static"')]
+
+
+def test_run_floater_case_writes_body_motions(tmp_path, capsys) -> None:
+    out = tmp_path / "buoy.nc"
+    status = main(["run", str(BUOY_CASE), "-o", str(out), "--quiet", "--set",
+                   'waves={kind = "regular", height = 0.04, period = 1.2}'] + SHORT)
+    printed = capsys.readouterr().out
+    assert status == 0
+    assert "floater displacement" in printed and "Heave" in printed
+    ds = read_dataset(out)
+    assert ds.attrs["status"] == "complete" and "body_displacement" in ds
+
+
+def test_resume_needs_a_checkpoint_and_a_floater(tmp_path, capsys) -> None:
+    out = tmp_path / "buoy.nc"
+    assert main(["run", str(BUOY_CASE), "-o", str(out), "--quiet", "--resume"] + SHORT) == 1
+    assert "no checkpoint" in capsys.readouterr().err
+    assert main(["run", str(LINDAHL_CASE), "-o", str(tmp_path / "l.nc"), "--resume"]) == 2
+    assert "--resume" in capsys.readouterr().err
