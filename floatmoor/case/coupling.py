@@ -6,7 +6,10 @@ and the body step ``[simulation] time_step`` (read in load.py).
 ``seed``, ``gamma = 3.3``, ``direction_deg = 0``, ``spacing = "equal"`` (or
 ``"random-in-bin"``), ``n_components``, ``frequency_step`` [rad/s], ``omega_min``,
 ``omega_max`` [rad/s]; all kinds: ``ramp_duration`` [s] (cosine ramp of the excitation;
-default two periods, or two peak periods). ``[initial]``: the body's displacement from its
+default two periods, or two peak periods). ``[wind]`` (rotor thrust of the NREL 5 MW turbine,
+floatmoor.wind): ``mean_speed`` [m/s] at ``reference_height = 90`` [m], ``spectrum = "npd"``
+(or ``"steady"``), ``seed = 0``, ``direction_deg = 0``, ``relative_velocity = true``,
+``cutoff_hz = 0.5``, ``hub_height = 90`` [m]. ``[initial]``: the body's displacement from its
 static equilibrium at t = 0 (free decay): ``surge``, ``sway``, ``heave`` [m], ``roll_deg``,
 ``pitch_deg``, ``yaw_deg`` (all default 0); body and lines start at rest there.
 """
@@ -22,8 +25,9 @@ from floatmoor.waves.realisation import SPACINGS
 from floatmoor.waves.settings import (
     GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
+from floatmoor.wind.force import SPECTRA, WindSettings
 
-__all__ = ["WaveCase", "read_waves", "read_initial", "WAVE_KINDS"]
+__all__ = ["WaveCase", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
 
 WAVE_KINDS = ("still", "regular", "jonswap")
 #: Default excitation ramp in (peak) wave periods.
@@ -88,3 +92,22 @@ def read_initial(t: TableReader) -> tuple[float, float, float, float, float, flo
            math.radians(t.number("yaw_deg", unit="deg", default=0.0)))
     t.finish()
     return out
+
+
+def read_wind(t: TableReader) -> WindSettings:
+    """``[wind]``: the rotor thrust's wind (floatmoor.wind.force.WindSettings)."""
+    settings = WindSettings(
+        mean_speed=t.number("mean_speed", unit="m/s", gt=0.0),
+        reference_height=t.number("reference_height", unit="m", gt=0.0, default=90.0),
+        spectrum=t.string("spectrum", choices=tuple(SPECTRA), default="npd"),
+        seed=t.integer("seed", ge=0, default=0),
+        direction_deg=t.number("direction_deg", unit="deg", default=0.0),
+        relative_velocity=t.boolean("relative_velocity", default=True),
+        cutoff_hz=t.number("cutoff_hz", unit="Hz", gt=0.0, default=0.5),
+        hub_height=t.number("hub_height", unit="m", gt=0.0, default=90.0))
+    try:
+        settings.validate()
+    except ValueError as err:
+        raise t.error("mean_speed", f"a valid wind ({err})", settings.mean_speed) from None
+    t.finish()
+    return settings

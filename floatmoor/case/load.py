@@ -16,7 +16,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from floatmoor.case.coupling import read_initial, read_waves
+from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import read_floater, read_hydro
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
@@ -119,19 +119,20 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
         raise root.error("hydro", "a [floater] table for the [hydro] settings to apply to",
                          {})
     hydro = read_hydro(root.table("hydro")) if root.has("hydro") else None
-    for key in ("waves", "initial"):
+    for key in ("waves", "initial", "wind"):
         if root.has(key) and not has_floater:
             raise root.error(key, f"a [floater] table for [{key}] to apply to", {})
     waves = read_waves(root.table("waves"), environment, simulation.duration) \
         if root.has("waves") else None
     initial = read_initial(root.table("initial")) if root.has("initial") else (0.0,) * 6
+    wind = read_wind(root.table("wind")) if root.has("wind") else None
     root.finish()
 
     case = Case(title=title, source=source, text=text, overrides=overrides,
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
                 motion=motion, simulation=simulation, description=description,
                 campaign=campaign, floater=floater, hydro=hydro, waves=waves,
-                initial_offset=initial)
+                initial_offset=initial, wind=wind)
     _check_lines(case, context)
     _check_motion(case, context)
     return case

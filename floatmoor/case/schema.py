@@ -352,6 +352,8 @@ class Case:
     waves: Any = None
     #: the floater's offset from its static equilibrium at t = 0 (``[initial]``) [m, rad]
     initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    #: the rotor's wind (``[wind]``: floatmoor.wind.force.WindSettings), or None
+    wind: Any = None
 
     @property
     def line_names(self) -> list[str]:

@@ -26,6 +26,7 @@ from floatmoor.simulation.forced import RunResult, output_times
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.realisation import WaveField
+from floatmoor.wind.force import RotorThrust
 from floatmoor.waves.settings import (
     JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
 )
@@ -149,11 +150,14 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     cache: dict[str, NDArray[np.float64] | float] = {"t0": math.nan, "f": np.zeros((1, 6))}
 
+    rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
+
     def external(t: float, x, v) -> NDArray[np.float64]:
-        if excitation is None:
-            return np.zeros(6)
         k = int(round((t - cache["t0"]) / (0.5 * dt)))
-        return ramp_factor(t) * cache["f"][k]
+        f = ramp_factor(t) * cache["f"][k] if excitation is not None else np.zeros(6)
+        if rotor is not None:  # unramped: the body starts at the mean-thrust equilibrium
+            f = f + rotor.force(k, x, v)
+        return f
 
     fingerprint = hashlib.sha256((case.text + "\n".join(case.overrides) + repr(settings))
                                  .encode()).hexdigest()
@@ -183,7 +187,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         x_eq = None
     else:
         moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
-        x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed)
+        x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
+                           mean_force=None if rotor is None else rotor.steady_force())
         moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
         moored.equilibrium_position = x_eq
     x_eq = moored.equilibrium_position
@@ -210,10 +215,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             recorder.advance(1)
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
+            t0 = body.time
+            cache["t0"] = t0
             if excitation is not None:
-                t0 = body.time
-                cache["t0"] = t0
                 cache["f"] = excitation.series(t0 + 0.5 * dt * np.arange(2 * chunk + 1))
+            if rotor is not None:
+                rotor.prepare(t0, 2 * chunk + 1, 0.5 * dt)
             for _ in range(chunk):
                 moored.step()
                 done += 1

@@ -79,3 +79,28 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
     assert not cr.checkpoint_path(out).exists()
     for name in ("body_displacement", "fairlead_tension", "wave_elevation", "laid_length"):
         assert np.array_equal(resumed[name].values, whole[name].values), name
+
+
+def test_wind_thrust_offsets_the_equilibrium_and_pushes_downwind() -> None:
+    """DeepCwind in still water with a steady 13.05 m/s wind on the rotor: the mean thrust
+    (605.9 kN, NREL 5 MW table) shifts the equilibrium downwind, and the body stays there."""
+    case = load_case(CASES / "deepcwind" / "deepcwind_free_decay.toml", [
+        "simulation.duration=20.0", "simulation.output_interval=0.5",
+        "simulation.time_step=0.1", 'wind={mean_speed = 13.05, spectrum = "steady"}'])
+    ds = run_coupled(case).dataset
+    calm = run_coupled(load_case(CASES / "deepcwind" / "deepcwind_free_decay.toml", [
+        "simulation.duration=1.0", "simulation.output_interval=0.5",
+        "simulation.time_step=0.1"])).dataset
+    surge = ds["body_displacement"].sel(dof="Surge").values
+    pitch = ds["body_displacement"].sel(dof="Pitch").values
+    # starts at equilibrium: drifts by millimetres (the thrust acts at the pitched hub, the
+    # equilibrium takes it upright)
+    print(f"surge drift {np.abs(surge).max():.2e} m, pitch {np.abs(pitch).max():.2e} rad")
+    assert np.abs(surge).max() < 5e-3 and np.abs(pitch).max() < 5e-4
+    # the downwind line 2 (anchor on +x) slackens, the upwind lines 1 and 3 tighten
+    t_wind = ds["fairlead_tension"].isel(time=0).values
+    t_calm = calm["fairlead_tension"].isel(time=0).values
+    assert t_wind[0] > t_calm[0] and t_wind[1] < t_calm[1]
+    # horizontal line forces balance the 605.9 kN thrust at equilibrium
+    fx = ds["fairlead_force"].isel(time=0).sel(component="x").values.sum()
+    assert abs(fx + 605.9e3) < 0.01 * 605.9e3
