@@ -136,3 +136,16 @@ def test_info_describes_database(capsys, monkeypatch):
 def test_floatmoor_check_prints_floater_cases(capsys, case):
     assert main(["check", str(REPO / "cases" / case)]) == 0
     assert "floater:" in capsys.readouterr().out
+
+
+def test_infinite_depth_build_adds_zero_frequency_added_mass(tiny_case, capsys):
+    """omega = 0 is solved only in deep water (capytaine_notes.md pitfall 2); the heave added
+    mass falls from omega = 0 to infinity for a floating cylinder."""
+    out = tiny_case.parent / "deep.nc"
+    assert main(["hydro", "build", str(tiny_case), "--quiet", "-o", str(out),
+                 "--set", "hydro.infinite_depth=true", "--set", "hydro.lid=false"]) == 0
+    ds = read_database(out)
+    assert ds.attrs["bem_water_depth"] == "infinite"
+    a0 = ds["added_mass_zero"].sel(radiating_dof="Heave", influenced_dof="Heave").item()
+    a_inf = ds["added_mass_infinite"].sel(radiating_dof="Heave", influenced_dof="Heave").item()
+    assert a0 > a_inf > 0.0
