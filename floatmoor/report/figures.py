@@ -434,8 +434,10 @@ def plot_free_decay(run: RunData, dof: str, fit: DecayFit, path: str | Path) -> 
             "o", ms=3, color="C3", label="extrema fitted")
     tt = t[t >= fit.extremum_times[0]]
     ax.plot(tt, check_series(upper, f"decay envelope {dof}"), "--", color="C2", lw=0.9,
-            label=f"envelope: T_d = {fit.period:.4g} s, zeta = {fit.damping_ratio:.3g}")
+            label="fitted envelope")
     ax.plot(tt, check_series(lower, f"decay envelope {dof}"), "--", color="C2", lw=0.9)
+    ax.set_title(f"damped period T_d = {fit.period:.4g} s, damping ratio zeta = "
+                 f"{fit.damping_ratio:.3g} ({fit.extremum_times.size} extrema)", fontsize=9)
     ax.set_xlabel("time [s]")
     ax.set_ylabel(f"{dof} [{_dof_unit(dof)}]")
     ax.grid(alpha=0.3)
