@@ -95,6 +95,9 @@ def _parser() -> argparse.ArgumentParser:
     hinfo = hsub.add_parser("info", help="describe a database")
     hinfo.add_argument("database", metavar="NAME_OR_PATH",
                        help="database name (hydrodb/NAME.nc) or path")
+    from floatmoor.report.cli import add_report_parsers
+
+    add_report_parsers(sub)
     return parser
 
 
@@ -112,6 +115,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             from floatmoor.hydro.cli import hydro_command
 
             return hydro_command(args)
+        if args.command in ("report", "compare"):
+            return args.report_handler(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
