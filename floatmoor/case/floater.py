@@ -58,6 +58,7 @@ def read_floater(t: TableReader, environment: Environment) -> Floater:
         raise t.error("inertia", "a positive definite inertia tensor [kg m^2]", list(inertia))
     ref = t.vector("reference_point", size=3, unit="m")
     geometry = _geometry(t.table("geometry"), mass, environment)
+    drag = _drag(t.table("drag")) if t.has("drag") else None
     t.finish()
     if isinstance(geometry, CylinderGeometry) and not -geometry.draft < com[2] < \
             geometry.height - geometry.draft:
@@ -65,7 +66,25 @@ def read_floater(t: TableReader, environment: Environment) -> Floater:
                       f"{-geometry.draft:.6g} and {geometry.height - geometry.draft:.6g} m)",
                       list(com))
     return Floater(name=name, mass=mass, centre_of_mass=com,  # type: ignore[arg-type]
-                   inertia=full, reference_point=ref, geometry=geometry)  # type: ignore[arg-type]
+                   inertia=full, reference_point=ref, geometry=geometry,  # type: ignore[arg-type]
+                   drag=drag)
+
+
+def _drag(t: TableReader):
+    """``[floater.drag]``: Morison drag on the members (floatmoor.body.morison.DragSettings:
+    ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
+    ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
+    from floatmoor.body.morison import DragSettings
+
+    try:
+        settings = DragSettings.from_settings(t.data)
+    except (ValueError, TypeError) as err:
+        raise t.error(next(iter(t.data), "preset"), f"valid drag settings ({err})",
+                      t.data) from None
+    for key in t.data:  # all read by DragSettings.from_settings
+        t._read.add(key)
+    t.finish()
+    return settings
 
 
 def _geometry(t: TableReader, mass: float, environment: Environment) -> FloaterGeometry:

@@ -279,6 +279,8 @@ class Floater:
     inertia: tuple[float, float, float, float, float, float]
     reference_point: tuple[float, float, float]  #: rotation centre of the DOFs [m]
     geometry: FloaterGeometry
+    #: Morison drag on the members (``[floater.drag]``: floatmoor.body.morison.DragSettings)
+    drag: Any = None
 
     def mass_matrix(self) -> NDArray[np.float64]:
         """6x6 rigid-body mass matrix about :attr:`reference_point` (Surge .. Yaw)."""

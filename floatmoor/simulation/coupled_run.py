@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import points_state
 from floatmoor.body.model import build_body
+from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
 from floatmoor.hydro.database import read_database
@@ -151,12 +152,15 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     cache: dict[str, NDArray[np.float64] | float] = {"t0": math.nan, "f": np.zeros((1, 6))}
 
     rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
+    parts: dict[str, MorisonDrag | None] = {"drag": None}
 
     def external(t: float, x, v) -> NDArray[np.float64]:
         k = int(round((t - cache["t0"]) / (0.5 * dt)))
         f = ramp_factor(t) * cache["f"][k] if excitation is not None else np.zeros(6)
         if rotor is not None:  # unramped: the body starts at the mean-thrust equilibrium
             f = f + rotor.force(k, x, v)
+        if parts["drag"] is not None:
+            f = f + parts["drag"].force(k, x, v)
         return f
 
     fingerprint = hashlib.sha256((case.text + "\n".join(case.overrides) + repr(settings))
@@ -192,6 +196,9 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
         moored.equilibrium_position = x_eq
     x_eq = moored.equilibrium_position
+    if case.floater.drag is not None:  # rebuilt, never pickled: the same on resume
+        parts["drag"] = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,
+                                    current=env.current_velocity, mean_displacement=x_eq)
 
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x)
@@ -221,6 +228,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 cache["f"] = excitation.series(t0 + 0.5 * dt * np.arange(2 * chunk + 1))
             if rotor is not None:
                 rotor.prepare(t0, 2 * chunk + 1, 0.5 * dt)
+            if parts["drag"] is not None:
+                parts["drag"].prepare(t0, 2 * chunk + 1, 0.5 * dt, ramp=ramp_factor)
             for _ in range(chunk):
                 moored.step()
                 done += 1

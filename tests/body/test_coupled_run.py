@@ -104,3 +104,23 @@ def test_wind_thrust_offsets_the_equilibrium_and_pushes_downwind() -> None:
     # horizontal line forces balance the 605.9 kN thrust at equilibrium
     fx = ds["fairlead_force"].isel(time=0).sel(component="x").values.sum()
     assert abs(fx + 605.9e3) < 0.01 * 605.9e3
+
+
+def test_member_drag_of_the_case_damps_heave() -> None:
+    """The DeepCwind case's [floater.drag] (cases.md D Table 6) damps a heave decay that the
+    potential flow alone barely damps; a bad preset is a case error naming the key."""
+    from floatmoor.errors import CaseError
+
+    base = ["simulation.duration=12.0", "simulation.output_interval=0.5",
+            "simulation.time_step=0.1", "initial={heave = 2.0}"]
+    deep = CASES / "deepcwind" / "deepcwind_free_decay.toml"
+    heave = {}
+    for preset in ("deepcwind_oc4", "none"):
+        ds = run_coupled(load_case(deep, base + [f'floater.drag.preset="{preset}"'])).dataset
+        heave[preset] = ds["body_displacement"].sel(dof="Heave").values
+    # after half a heave period (17.4 s / 2) the trough is shallower with drag
+    print(f"heave trough: with drag {heave['deepcwind_oc4'].min():.3f} m, without "
+          f"{heave['none'].min():.3f} m")
+    assert abs(heave["deepcwind_oc4"].min()) < 0.95 * abs(heave["none"].min())  # observed 0.90
+    with pytest.raises(CaseError, match="floater.drag"):
+        load_case(deep, ['floater.drag.preset="nonsense"'])
