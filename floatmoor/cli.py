@@ -121,6 +121,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    except FloatmoorError as err:
+        from floatmoor.hydro.database import HydroDatabaseError
+
+        if not isinstance(err, HydroDatabaseError):
+            raise
+        # a floater case whose database is missing, damaged or stale: bad input
+        print(f"floatmoor: error: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT
 
 
 def _check(args: argparse.Namespace) -> int:

@@ -94,8 +94,9 @@ def read_initial(t: TableReader) -> tuple[float, float, float, float, float, flo
     return out
 
 
-def read_wind(t: TableReader) -> WindSettings:
-    """``[wind]``: the rotor thrust's wind (floatmoor.wind.force.WindSettings)."""
+def read_wind(t: TableReader, duration: float) -> WindSettings:
+    """``[wind]``: the rotor thrust's wind (floatmoor.wind.force.WindSettings); a turbulent
+    wind needs its cutoff above two frequency steps 1 / duration."""
     settings = WindSettings(
         mean_speed=t.number("mean_speed", unit="m/s", gt=0.0),
         reference_height=t.number("reference_height", unit="m", gt=0.0, default=90.0),
@@ -109,5 +110,9 @@ def read_wind(t: TableReader) -> WindSettings:
         settings.validate()
     except ValueError as err:
         raise t.error("mean_speed", f"a valid wind ({err})", settings.mean_speed) from None
+    if settings.spectrum != "steady" and not settings.cutoff_hz > 2.0 / duration:
+        raise t.error("cutoff_hz", f"a frequency above 2 / simulation.duration = "
+                      f"{2.0 / duration:.3g} Hz (a longer run, or spectrum = \"steady\")",
+                      settings.cutoff_hz)
     t.finish()
     return settings

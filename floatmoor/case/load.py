@@ -125,7 +125,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     waves = read_waves(root.table("waves"), environment, simulation.duration) \
         if root.has("waves") else None
     initial = read_initial(root.table("initial")) if root.has("initial") else (0.0,) * 6
-    wind = read_wind(root.table("wind")) if root.has("wind") else None
+    wind = read_wind(root.table("wind"), simulation.duration) if root.has("wind") else None
     root.finish()
 
     case = Case(title=title, source=source, text=text, overrides=overrides,

@@ -20,7 +20,7 @@ from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
-from floatmoor.hydro.database import read_database
+from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.forced import RunResult, output_times
@@ -133,10 +133,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         raise ValueError(f"the output interval {case.simulation.output_interval} s must be a "
                          f"multiple of the body time step {dt} s")
     env = case.environment
-    path = settings.database
-    if path is None:
-        path = Path(case.source).resolve().parents[2] / "hydrodb" / f"{case.hydro.database}.nc"
-    ds = read_database(path)
+    # the case's database, refused when missing, damaged or built from other inputs
+    ds = load_for_case(case, settings.database)
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)
     sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)

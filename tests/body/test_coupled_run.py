@@ -124,3 +124,19 @@ def test_member_drag_of_the_case_damps_heave() -> None:
     assert abs(heave["deepcwind_oc4"].min()) < 0.95 * abs(heave["none"].min())  # observed 0.90
     with pytest.raises(CaseError, match="floater.drag"):
         load_case(deep, ['floater.drag.preset="nonsense"'])
+
+
+@pytest.mark.parametrize("name", ["deepcwind_lc34", "deepcwind_lc43"])
+def test_three_hour_sea_state_cases_start(name) -> None:
+    """The LC34 / LC43 case files load, reuse the shipped database, and run their first
+    seconds: JONSWAP sea (LC43 with the NPD rotor wind) on the moored DeepCwind."""
+    case = load_case(CASES / "deepcwind" / f"{name}.toml", ["simulation.duration=6.0"])
+    assert case.simulation.duration == 6.0 and case.waves.settings.hs in (10.5, 7.1)
+    ds = run_coupled(case).dataset
+    assert ds.attrs["status"] == "complete" and np.all(np.isfinite(ds["fairlead_tension"]))
+    assert (case.wind is not None) == (name == "deepcwind_lc43")
+    if case.wind is not None:  # a turbulent wind needs a run long enough for its band
+        from floatmoor.errors import CaseError
+
+        with pytest.raises(CaseError, match="cutoff_hz"):
+            load_case(CASES / "deepcwind" / f"{name}.toml", ["simulation.duration=4.0"])

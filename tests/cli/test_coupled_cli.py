@@ -28,3 +28,14 @@ def test_resume_needs_a_checkpoint_and_a_floater(tmp_path, capsys) -> None:
     assert "no checkpoint" in capsys.readouterr().err
     assert main(["run", str(LINDAHL_CASE), "-o", str(tmp_path / "l.nc"), "--resume"]) == 2
     assert "--resume" in capsys.readouterr().err
+
+
+def test_run_refuses_a_stale_database(tmp_path, capsys) -> None:
+    """A floater case whose hydro inputs differ from the database's is bad input (status 2,
+    one message naming what differs, nothing written)."""
+    out = tmp_path / "stale.nc"
+    status = main(["run", str(BUOY_CASE), "-o", str(out), "--quiet",
+                   "--set", "hydro.panel_size=0.01"] + SHORT)
+    err = capsys.readouterr().err
+    assert status == 2 and "stale" in err and "Traceback" not in err
+    assert not out.exists()
