@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
-from scipy.integrate import simpson
 from numpy.typing import NDArray
 
 from floatmoor.body.cummins import CumminsBody
 from floatmoor.case.schema import Environment, Floater
-from floatmoor.hydro.radiation import hydrostatic_stiffness_total, radiation_kernel
+from floatmoor.hydro.radiation import (
+    added_mass_from_kernel, hydrostatic_stiffness_total, radiation_kernel,
+)
 
 __all__ = ["static_force", "build_body", "consistent_infinite_added_mass", "KERNEL_SUBSTEPS"]
 
@@ -47,10 +48,8 @@ def consistent_infinite_added_mass(ds: xr.Dataset, time: NDArray[np.float64],
     their mean: with it, the heave response near resonance misses the RAO by 2 %."""
     omega = ds["omega"].values
     added = ds["added_mass"].transpose("omega", "radiating_dof", "influenced_dof").values
-    implied = np.empty_like(added)
-    for n, w in enumerate(omega):
-        implied[n] = added[n] + simpson(kernel * np.sin(w * time)[:, None, None], x=time,
-                                        axis=0) / w
+    # A(w) - (A_inf - (1 / w) int K sin) with A_inf = 0: the A_inf each frequency implies
+    implied = added - added_mass_from_kernel(time, kernel, np.zeros((6, 6)), omega)
     return implied.mean(axis=0)
 
 

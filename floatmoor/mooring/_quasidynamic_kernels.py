@@ -68,8 +68,8 @@ import numpy as np
 from floatmoor._numba import jit
 from floatmoor.mooring._catenary_equations import _seabed_stretch
 from floatmoor.mooring._catenary_kernels import (
-    CAT_OK, I3_ANCHOR_FORCE, I3_FAIRLEAD_FORCE, I3_HF, I3_ITER, I3_LB, I3_SWAPPED, I3_VF,
-    SEABED_CONTACT_TOL, _plane_setup, catenary_solve_3d,
+    CAT_OK, I3_ANCHOR_FORCE, I3_FAIRLEAD_FORCE, I3_HF, I3_ITER, I3_LB, I3_VF,
+    SEABED_CONTACT_TOL, catenary_solve_3d,
 )
 from floatmoor.mooring._catenary_profile import _profile_point
 from floatmoor.mooring.dg._kernels import hermite

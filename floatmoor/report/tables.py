@@ -16,7 +16,6 @@ import math
 from dataclasses import dataclass, field
 from typing import Sequence
 
-import numpy as np
 import xarray as xr
 
 from floatmoor.post.fatigue import (

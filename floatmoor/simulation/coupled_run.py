@@ -214,7 +214,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     start_wall = _time.perf_counter()
     last_ckpt = start_wall
     n_steps = (times.size - 1) * stride
-    try:
+    with recorder.partial_on_failure():
         if not resume:
             record(0)
             recorder.advance(1)
@@ -242,12 +242,6 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)
-    except SolverError as err:
-        recorder.write(status=f"failed: {err}")
-        raise
-    except KeyboardInterrupt:
-        recorder.write(status=f"interrupted: results up to t = {recorder.simulated_time:.6g} s")
-        raise
     dataset = recorder.write(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()

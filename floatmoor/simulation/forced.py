@@ -92,18 +92,12 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
                         shape_nodes=[_node_arc_lengths(m) for m in models] if stride else None,
                         shape_stride=stride)
     start_wall = _time.perf_counter()
-    try:
+    with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
             stop = min(start + CHUNK_SAMPLES, times.size)
             _solve_chunk(case, models, recorder, start, stop)
             if progress is not None:
                 progress(float(times[stop - 1]))
-    except SolverError as err:
-        recorder.write(status=f"failed: {err}")
-        raise
-    except KeyboardInterrupt:
-        recorder.write(status=f"interrupted: results up to t = {recorder.simulated_time:.6g} s")
-        raise
     dataset = recorder.write(status="complete")
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,

@@ -10,6 +10,8 @@ the final state with its status.
 from __future__ import annotations
 
 import time as _time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -146,6 +148,19 @@ class Recorder:
                                     shapes=shapes, body=body,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
+
+    @contextmanager
+    def partial_on_failure(self) -> Iterator[None]:
+        """Write the completed part, with how the run ended, when the block raises a
+        :class:`SolverError` or is interrupted; the exception goes on."""
+        try:
+            yield
+        except SolverError as err:
+            self.write(status=f"failed: {err}")
+            raise
+        except KeyboardInterrupt:
+            self.write(status=f"interrupted: results up to t = {self.simulated_time:.6g} s")
+            raise
 
     def write(self, status: str) -> xr.Dataset:
         """Write the completed part to the output file (if any) and return it."""

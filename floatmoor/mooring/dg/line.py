@@ -9,7 +9,7 @@ will call :meth:`DynamicLine.advance` once per rigid-body step.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
