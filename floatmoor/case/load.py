@@ -21,8 +21,8 @@ from floatmoor.case.floater import read_floater, read_hydro
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
-    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, SEABED_CONTACT_METHODS, Case,
-    CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
+    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, INTERNAL_DAMPING_METHODS, LINE_MODELS,
+    SEABED_CONTACT_METHODS, Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
     QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
 from floatmoor.errors import CaseError
@@ -213,6 +213,8 @@ def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
         seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
                                  default="implicit"),
         settle=dg.boolean("settle", default=True),
+        internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
+                                   default="implicit"),
     )
     dg.finish()
     qd = t.table("quasi_dynamic", required=False)

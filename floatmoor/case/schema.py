@@ -15,7 +15,8 @@ from numpy.typing import NDArray
 __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
-    "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "SEABED_CONTACT_METHODS",
+    "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "INTERNAL_DAMPING_METHODS",
+    "SEABED_CONTACT_METHODS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
 ]
@@ -26,6 +27,7 @@ LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 #: Treatments of the seabed's normal spring-damper in the dynamic model.
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
+INTERNAL_DAMPING_METHODS = ("implicit", "explicit")
 #: Rotation senses of circular motion, defined by where the end moves at the top of the circle.
 CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")
 
@@ -102,6 +104,9 @@ class DynamicSettings:
     seabed_contact: str  #: "implicit" or "explicit" normal spring-damper
     #: relax the line to the static equilibrium of its discretisation before the run
     settle: bool = True
+    #: "implicit" (a backward-Euler step after each SSP-RK3 step, so the axial wave alone sets
+    #: the time step) or "explicit" (in the right-hand side) Kelvin-Voigt internal damping
+    internal_damping: str = "implicit"
 
 
 @dataclass(frozen=True)

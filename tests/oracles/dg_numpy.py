@@ -233,6 +233,52 @@ def rhs(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *, D: Array
     return a, fl
 
 
+def damping_acceleration(v: Array, r: Array, anchor: Array, fpos: Array, fvel: Array, *,
+                         D: Array, LIFT: Array, h: float, m: float, c_int: float,
+                         m_an: float = 0.0, m_at: float = 0.0) -> Array:
+    """The acceleration of the Kelvin-Voigt term alone at velocities v, linear in v for the
+    geometry r: damping tension s = c_int t . q_t on taut nodes (eps > 0, not clipped),
+    force d(s t)/ds with traces from the fairlead side (N* = N of the fairlead-side node
+    inside, the node's own at both ends: the explicit fluxes without the elastic part and
+    the penalty), divided by the Morison-augmented mass."""
+    q = dg_derivative(r, anchor, fpos, D, LIFT, h)
+    ql = np.linalg.norm(q, axis=-1)
+    t = np.where(ql[..., None] > 0.0, q / np.where(ql > 0.0, ql, 1.0)[..., None], 0.0)
+    qt = dg_derivative(v, np.zeros(3), fvel, D, LIFT, h)
+    s = np.where(ql > 1.0, c_int * np.sum(t * qt, axis=-1), 0.0)
+    N = s[..., None] * t
+    Nstar = np.empty((r.shape[0] + 1, 3))
+    Nstar[0], Nstar[-1], Nstar[1:-1] = N[0, 0], N[-1, -1], N[1:, 0]
+    f = np.einsum("ij,kjc->kic", D, N)
+    f += LIFT[None, :, 1, None] * (Nstar[1:] - N[:, -1])[:, None, :]
+    f -= LIFT[None, :, 0, None] * (Nstar[:-1] - N[:, 0])[:, None, :]
+    f *= 2.0 / h
+    wet = r[..., 2] < 0.0
+    mn = m + np.where(wet, m_an, 0.0)
+    mt = m + np.where(wet, m_at, 0.0)
+    ft = np.sum(f * t, axis=-1)
+    return (f - ft[..., None] * t) / mn[..., None] + (ft / mt)[..., None] * t
+
+
+def implicit_damping_step(v: Array, r: Array, anchor: Array, fpos: Array, fvel: Array,
+                          dt: float, **params: float) -> Array:
+    """Backward Euler of the Kelvin-Voigt term, v1 = v + dt a_d(v1), with the geometry r fixed:
+    a dense (3 K Np)^2 solve of the affine map, built column by column."""
+    shape = v.shape
+    n = v.size
+
+    def a(x: Array, vel: Array) -> Array:
+        return damping_acceleration(x.reshape(shape), r, anchor, fpos, vel, **params).ravel()
+
+    b = a(np.zeros(n), fvel)  # the fairlead velocity's part
+    A = np.empty((n, n))
+    for j in range(n):
+        e = np.zeros(n)
+        e[j] = 1.0
+        A[:, j] = a(e, np.zeros(3))
+    return np.linalg.solve(np.eye(n) - dt * A, v.ravel() + dt * b).reshape(shape)
+
+
 def hermite(t0: float, t1: float, p0: Array, v0: Array, p1: Array, v1: Array,
             t: float) -> tuple[Array, Array]:
     """Cubic Hermite interpolant of (p, v) on [t0, t1]: the cubic matching p and dp/dt at

@@ -81,25 +81,33 @@ def test_internal_damping_tightens_the_limit():
     assert factors[-1] < 0.1 * factors[0]
 
 
-def _taut_line(p: int, cfl: float, internal_damping: float = 0.0) -> DynamicLine:
+def _taut_line(p: int, cfl: float, internal_damping: float = 0.0,
+               method: str = "explicit") -> DynamicLine:
     props = CableProperties(length=10.0, mass_per_length=1.0, axial_stiffness=1.0e4,
                             diameter=0.01, material_density=7800.0, water_density=0.0,
                             gravity=0.0, internal_damping=internal_damping)
     settings = DynamicSettings(elements=6, order=p, cfl=cfl, max_time_step=None,
-                               slack_filter=False, seabed_contact="implicit")
+                               slack_filter=False, seabed_contact="implicit",
+                               internal_damping=method)
     line = DynamicLine(props, settings, np.zeros(3), np.array([10.1, 0.0, 0.0]), name="x")
     rng = np.random.default_rng(p)
     line.v[..., 0] = 1e-3 * rng.standard_normal(line.v.shape[:2])  # excite every mode
     return line
 
 
-@pytest.mark.parametrize("p, damping", [(2, 0.0), (5, 0.0), (5, 100.0)])
-def test_kernel_is_stable_below_and_unstable_above_the_limit(p, damping):
+@pytest.mark.parametrize("p, damping, method", [
+    (2, 0.0, "explicit"), (5, 0.0, "explicit"), (5, 100.0, "explicit"),
+    (5, 100.0, "implicit"), (5, 1.0e4, "implicit")])
+def test_kernel_is_stable_below_and_unstable_above_the_limit(p, damping, method):
     """The limits match the compiled scheme, with and without internal damping: 0.95 of the
-    limit stays bounded for 400 steps, 1.3 of it grows (or trips the instability check)."""
+    limit stays bounded for 400 steps, 1.3 of it grows (or trips the instability check).
+    With the damping implicit (backward Euler), the limit is the undamped one whatever the
+    damping: damping numbers 0.1 and 10 (where the explicit limit would be 20 times lower)."""
     results = {}
     for cfl in (0.95, 1.3):
-        line = _taut_line(p, cfl, damping)
+        line = _taut_line(p, cfl, damping, method)
+        if method == "implicit":
+            assert line.time_step == pytest.approx(_taut_line(p, cfl).time_step, rel=1e-14)
         initial = float(np.abs(line.v).max())
         n = 400
         time = np.arange(n + 1) * line.time_step
@@ -116,6 +124,7 @@ def test_kernel_is_stable_below_and_unstable_above_the_limit(p, damping):
             assert 0 < line.failed_index <= n
             assert np.all(np.isfinite(out[0][:line.failed_index]))
             results[cfl] = math.inf
-    print(f"p = {p}, damping {damping}: max |v| after 400 steps / initial {results}")
+    print(f"p = {p}, damping {damping} ({method}): max |v| after 400 steps / initial "
+          f"{results}")
     assert results[0.95] < 1.0  # bounded (the LF penalty and damping only dissipate)
     assert results[1.3] > 10.0  # growing

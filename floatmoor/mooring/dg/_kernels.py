@@ -69,7 +69,9 @@ P_IMPLICIT_CONTACT = 21  #: 1.0 for the implicit seabed spring-damper
 P_FILTER = 22  #: 1.0 to filter slack elements
 P_C = 23  #: longitudinal wave speed sqrt(EA / m) [m/s]
 P_RELAX = 24  #: relaxation damping rate gamma [1/s]: dv/dt gets -gamma v (settling only; 0)
-N_PRM = 25
+P_IMPLICIT_DAMPING = 25  #: 1.0: the Kelvin-Voigt term takes a backward-Euler step after each step
+P_DAMPING_TOL = 26  #: tangent turn [rad] that makes the factored damping system stale
+N_PRM = 27
 
 # -- statuses of dg_run_path ----------------------------------------------------------------
 DG_OK = 0
@@ -82,6 +84,11 @@ DG_STRAIN = 3  #: strain beyond MAX_STRAIN
 MAX_STRAIN = 1.0
 
 _ZERO3 = np.zeros(3)  # the anchor's velocity (read-only constant inside the kernels)
+
+#: Default largest turn of a node's tangent [rad] before the factored internal-damping system
+#: is rebuilt (``P_DAMPING_TOL``, :func:`_damping_system`). The damping tension's error is then
+#: below this fraction of c_int |dv/ds| (1e-3 of the transverse velocity gradient).
+DAMPING_TANGENT_TOL = 1e-3
 
 
 @jit
@@ -165,14 +172,22 @@ def dg_tension_field(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.
                      fvel: np.ndarray, prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray,
                      q: np.ndarray, qt: np.ndarray, N: np.ndarray, Nstar: np.ndarray,
                      faces: np.ndarray, slack: np.ndarray) -> None:
-    """Tangent q, axial force N at the nodes and the Lax-Friedrichs face fluxes N*.
+    """Tangent q, axial force N at the nodes (with the internal damping) and the
+    Lax-Friedrichs face fluxes N*.
 
     ``slack[k]`` is set to 1.0 when element k has a node in compression.
     """
+    _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                   prm[P_CINT])
+
+
+@jit
+def _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                   cint):
+    """:func:`dg_tension_field` with the internal damping coefficient ``cint`` [N s]."""
     K, Np = r.shape[0], r.shape[1]
     jac = 2.0 / prm[P_H]
     EA = prm[P_EA]
-    cint = prm[P_CINT]
     _gradient(r, anchor, fpos, D, LIFT, jac, faces, q)
     if cint > 0.0:
         _gradient(v, _ZERO3, fvel, D, LIFT, jac, faces, qt)
@@ -221,8 +236,10 @@ def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
            fvel: np.ndarray, prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray, q: np.ndarray,
            qt: np.ndarray, N: np.ndarray, Nstar: np.ndarray, faces: np.ndarray,
            slack: np.ndarray, dv: np.ndarray) -> None:
-    """Acceleration dv/dt of every node (dr/dt = v needs no computation)."""
-    dg_tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack)
+    """Acceleration dv/dt of every node (dr/dt = v needs no computation); without the
+    internal damping when it is implicit (``P_IMPLICIT_DAMPING``, :func:`_implicit_damping`)."""
+    cint = prm[P_CINT] if prm[P_IMPLICIT_DAMPING] == 0.0 else 0.0
+    _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, cint)
     K, Np = r.shape[0], r.shape[1]
     jac = 2.0 / prm[P_H]
     m = prm[P_M]
@@ -302,6 +319,204 @@ def _implicit_contact(r: np.ndarray, v: np.ndarray, prm: np.ndarray, dt: float) 
 
 
 @jit
+def _damping_system(r, anchor, fpos, prm, D, LIFT, dt, q, faces, tng, minv, cn, flags, Y, band,
+                    info):
+    """Keep the backward-Euler system of the Kelvin-Voigt term factored for the state (r).
+
+    With the tangents t, the taut set and the Morison masses frozen, the damping tension
+    s = c_int t . dv/ds (taut nodes; 0 in compression) and its force d(s t)/ds, discretised
+    exactly as in the explicit right-hand side (the derivative of v with traces from the anchor
+    side, the divergence with traces from the fairlead side), make the step
+    v1 = v* + dt M_eff^-1 Div(t s), s = C t . Grad(v1) a linear system for s:
+
+        (I - dt C T^T Grad0 M_eff^-1 Div T) s = C T^T Grad(v*),
+
+    banded with 2 Np - 1 sub- and Np super-diagonals (``band``, row-wise: entry (i, j) at
+    ``band[i, 2 Np - 1 + j - i]``), LU-factored in place without pivoting (the identity plus
+    dt times a dissipative operator).
+
+    The factors are kept while they stay valid for the state: same dt, same taut and
+    submerged nodes (``flags``), and no tangent turned by more than ``prm[P_DAMPING_TOL]``
+    (default ``DAMPING_TANGENT_TOL``; 0 rebuilds every step) since they were made. The frozen
+    operator is dissipative whatever the tangents it was built with (the same T on both
+    sides), so reuse cannot destabilise; its error is that of the tangents' directions. ``info`` holds (valid, dt, any node taut, factorisations).
+    Returns whether any node is taut.
+    """
+    K, Np = r.shape[0], r.shape[1]
+    n = K * Np
+    jac = 2.0 / prm[P_H]
+    cint = prm[P_CINT]
+    m = prm[P_M]
+    kl, ku = 2 * Np - 1, Np
+    _gradient(r, anchor, fpos, D, LIFT, jac, faces, q)
+    stale = info[0] == 0.0 or info[1] != dt or prm[P_DAMPING_TOL] <= 0.0
+    if not stale:
+        tol2 = prm[P_DAMPING_TOL] * prm[P_DAMPING_TOL]
+        for k in range(K):
+            for i in range(Np):
+                ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+                flag = (1.0 if ql > 1.0 else 0.0) + (2.0 if r[k, i, 2] < 0.0 else 0.0)
+                if flag != flags[k, i]:
+                    stale = True
+                    break
+                if ql > 0.0:
+                    d2 = 0.0
+                    for c in range(3):
+                        d2 += (q[k, i, c] / ql - tng[k, i, c]) ** 2
+                    if d2 > tol2:
+                        stale = True
+                        break
+            if stale:
+                break
+    if not stale:
+        return info[2] != 0.0
+    info[0] = 1.0
+    info[1] = dt
+    info[3] += 1.0
+    any_taut = False
+    for k in range(K):
+        for i in range(Np):
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            for c in range(3):
+                tng[k, i, c] = q[k, i, c] / ql if ql > 0.0 else 0.0
+            sub = r[k, i, 2] < 0.0
+            flags[k, i] = (1.0 if ql > 1.0 else 0.0) + (2.0 if sub else 0.0)
+            if ql > 1.0:
+                cn[k, i] = cint
+                any_taut = True
+            else:
+                cn[k, i] = 0.0
+            mn = m + (prm[P_MAN] if sub else 0.0)
+            mt = m + (prm[P_MAT] if sub else 0.0)
+            minv[k, i, 0] = 1.0 / mn
+            minv[k, i, 1] = 1.0 / mt - 1.0 / mn
+    info[2] = 1.0 if any_taut else 0.0
+    if not any_taut:
+        return False
+    # Y = M_eff^-1 Div T: rows of element k, columns (k, j) for j < Np and (k + 1, 0) as j = Np
+    for k in range(K):
+        for i in range(Np):
+            a0, a1 = minv[k, i, 0], minv[k, i, 1]
+            tx, ty, tz = tng[k, i, 0], tng[k, i, 1], tng[k, i, 2]
+            for j in range(Np + 1):
+                px, py, pz = 0.0, 0.0, 0.0
+                if j < Np:
+                    coef = jac * D[i, j]
+                    if j == Np - 1 and k < K - 1:
+                        coef -= jac * LIFT[i, 1]
+                    px, py, pz = coef * tng[k, j, 0], coef * tng[k, j, 1], coef * tng[k, j, 2]
+                elif k < K - 1:
+                    coef = jac * LIFT[i, 1]
+                    px, py = coef * tng[k + 1, 0, 0], coef * tng[k + 1, 0, 1]
+                    pz = coef * tng[k + 1, 0, 2]
+                dot = a1 * (tx * px + ty * py + tz * pz)
+                Y[k, i, j, 0] = a0 * px + dot * tx
+                Y[k, i, j, 1] = a0 * py + dot * ty
+                Y[k, i, j, 2] = a0 * pz + dot * tz
+    # I - dt C T^T Grad0 Y, Grad0: traces from the anchor side, zero end values
+    for row in range(n):
+        for col in range(kl + ku + 1):
+            band[row, col] = 0.0
+    for k in range(K):
+        for i in range(Np):
+            row = k * Np + i
+            band[row, kl] = 1.0
+            c = cn[k, i]
+            if c == 0.0:
+                continue
+            tx, ty, tz = tng[k, i, 0], tng[k, i, 1], tng[k, i, 2]
+            f = -dt * c * jac
+            for j in range(Np + 1):
+                if j == Np and k == K - 1:
+                    break
+                gx, gy, gz = 0.0, 0.0, 0.0
+                for l in range(Np):
+                    d = D[i, l]
+                    gx += d * Y[k, l, j, 0]
+                    gy += d * Y[k, l, j, 1]
+                    gz += d * Y[k, l, j, 2]
+                # left face: + LIFT_i0 (u_k0 - u_left), u_left the last node of element k - 1
+                l0 = LIFT[i, 0]
+                gx += l0 * Y[k, 0, j, 0]
+                gy += l0 * Y[k, 0, j, 1]
+                gz += l0 * Y[k, 0, j, 2]
+                if j == 0 and k >= 1:  # column (k, 0) in row (k - 1, Np - 1) of Y
+                    gx -= l0 * Y[k - 1, Np - 1, Np, 0]
+                    gy -= l0 * Y[k - 1, Np - 1, Np, 1]
+                    gz -= l0 * Y[k - 1, Np - 1, Np, 2]
+                if k == K - 1:  # fairlead face, zero end value: + LIFT_i1 (0 - u_last)
+                    l1 = LIFT[i, 1]
+                    gx -= l1 * Y[k, Np - 1, j, 0]
+                    gy -= l1 * Y[k, Np - 1, j, 1]
+                    gz -= l1 * Y[k, Np - 1, j, 2]
+                col = k * Np + j
+                band[row, kl + col - row] += f * (tx * gx + ty * gy + tz * gz)
+            if k >= 1:  # columns of element k - 1 through the left trace
+                l0 = LIFT[i, 0]
+                for j in range(Np):
+                    col = (k - 1) * Np + j
+                    g = (tx * Y[k - 1, Np - 1, j, 0] + ty * Y[k - 1, Np - 1, j, 1]
+                         + tz * Y[k - 1, Np - 1, j, 2])
+                    band[row, kl + col - row] -= f * l0 * g
+    # banded LU without pivoting, in place
+    for col in range(n):
+        piv = band[col, kl]
+        for rr in range(col + 1, min(n, col + kl + 1)):
+            lf = band[rr, kl + col - rr]
+            if lf == 0.0:
+                continue
+            lf /= piv
+            band[rr, kl + col - rr] = lf
+            for cc in range(col + 1, min(n, col + ku + 1)):
+                band[rr, kl + cc - rr] -= lf * band[col, kl + cc - col]
+    return True
+
+
+@jit
+def _damping_solve(v, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv, cn, band, e):
+    """The backward-Euler velocity update of the Kelvin-Voigt term with the factored system of
+    :func:`_damping_system` (its frozen tangents, taut set and masses)."""
+    K, Np = v.shape[0], v.shape[1]
+    n = K * Np
+    jac = 2.0 / prm[P_H]
+    kl, ku = 2 * Np - 1, Np
+    _gradient(v, _ZERO3, fvel, D, LIFT, jac, faces, qt)
+    for k in range(K):
+        for i in range(Np):
+            e[k * Np + i] = cn[k, i] * (tng[k, i, 0] * qt[k, i, 0] + tng[k, i, 1] * qt[k, i, 1]
+                                        + tng[k, i, 2] * qt[k, i, 2])
+    for row in range(n):  # forward substitution (unit lower factor)
+        acc = e[row]
+        for cc in range(max(0, row - kl), row):
+            acc -= band[row, kl + cc - row] * e[cc]
+        e[row] = acc
+    for row in range(n - 1, -1, -1):
+        acc = e[row]
+        for cc in range(row + 1, min(n, row + ku + 1)):
+            acc -= band[row, kl + cc - row] * e[cc]
+        e[row] = acc / band[row, kl]
+    # v += dt M_eff^-1 Div(t s), the divergence with traces from the fairlead side
+    for k in range(K):
+        for i in range(Np):
+            s = e[k * Np + i]
+            for c in range(3):
+                N[k, i, c] = tng[k, i, c] * s
+    for f in range(K):
+        for c in range(3):
+            faces[f, c] = N[f, 0, c]
+    for c in range(3):
+        faces[K, c] = N[K - 1, Np - 1, c]
+    _strong_derivative(N, faces, D, LIFT, jac, qt)
+    for k in range(K):
+        for i in range(Np):
+            ax, ay, az = qt[k, i, 0], qt[k, i, 1], qt[k, i, 2]
+            dot = minv[k, i, 1] * (tng[k, i, 0] * ax + tng[k, i, 1] * ay + tng[k, i, 2] * az)
+            v[k, i, 0] += dt * (minv[k, i, 0] * ax + dot * tng[k, i, 0])
+            v[k, i, 1] += dt * (minv[k, i, 0] * ay + dot * tng[k, i, 1])
+            v[k, i, 2] += dt * (minv[k, i, 0] * az + dot * tng[k, i, 2])
+
+
+@jit
 def _filter_slack(u: np.ndarray, F: np.ndarray, slack: np.ndarray, tmp: np.ndarray) -> None:
     K, Np = u.shape[0], u.shape[1]
     for k in range(K):
@@ -319,8 +534,10 @@ def _filter_slack(u: np.ndarray, F: np.ndarray, slack: np.ndarray, tmp: np.ndarr
 
 @jit
 def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, work3, q, qt,
-                  N, Nstar, faces, slack, fpos, fvel, tmp, bcd):
-    """One SSP-RK3 step of (r, v) from t to t + dt, then contact and slack filtering."""
+                  N, Nstar, faces, slack, fpos, fvel, tmp, bcd, damp):
+    """One SSP-RK3 step of (r, v) from t to t + dt, then contact, internal damping (when
+    implicit) and slack filtering. ``damp`` holds the work arrays of the damping system
+    (tangents, inverse masses, coefficients, Y, band, right-hand side)."""
     r1, v1, r2, v2, a = work3[0], work3[1], work3[2], work3[3], work3[4]
     K, Np = r.shape[0], r.shape[1]
     # Stage-consistent fairlead data (Carpenter, Gottlieb, Abarbanel & Don 1995): the SSP-RK3
@@ -362,6 +579,12 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
                 v[k, i, c] = third * v[k, i, c] + two_thirds * (v2[k, i, c] + dt * a[k, i, c])
     if prm[P_IMPLICIT_CONTACT] != 0.0:
         _implicit_contact(r, v, prm, dt)
+    if prm[P_IMPLICIT_DAMPING] != 0.0 and prm[P_CINT] > 0.0:
+        hermite(t0, t1, p0, w0, p1, w1, t + dt, fpos, fvel)
+        tng, minv, cn, flags, Y, band, e, info = damp
+        if _damping_system(r, anchor, fpos, prm, D, LIFT, dt, q, faces, tng, minv, cn, flags,
+                           Y, band, info):
+            _damping_solve(v, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv, cn, band, e)
     if prm[P_FILTER] != 0.0:
         _filter_slack(v, F, slack, tmp)
 
@@ -411,7 +634,7 @@ def _check(r, v, q, prm, where):
 @jit
 def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt_max,
                 fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, work3, q,
-                qt, N, Nstar, faces, slack, fpos, fvel, tmp, bcd, where):
+                qt, N, Nstar, faces, slack, fpos, fvel, tmp, bcd, where, damp):
     """Advance the line along a fairlead path and record its end forces at every sample.
 
     ``time`` (n,), ``path`` and ``velocity`` (n, 3) give the fairlead at the output times;
@@ -455,7 +678,7 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
         for j in range(n_sub):
             _ssp_rk3_step(r, v, t0 + j * dt, dt, t0, t1, path[s], velocity[s], path[s + 1],
                           velocity[s + 1], anchor, prm, D, LIFT, F, work3, q, qt, N, Nstar,
-                          faces, slack, fpos, fvel, tmp, bcd)
+                          faces, slack, fpos, fvel, tmp, bcd, damp)
         for c in range(3):
             fpos[c] = path[s + 1, c]
             fvel[c] = velocity[s + 1, c]

@@ -152,6 +152,8 @@ class CableProperties:
         prm[_k.P_IMPLICIT_CONTACT] = 1.0 if settings.seabed_contact == "implicit" else 0.0
         prm[_k.P_FILTER] = 1.0 if settings.slack_filter else 0.0
         prm[_k.P_C] = self.wave_speed
+        prm[_k.P_IMPLICIT_DAMPING] = 1.0 if settings.internal_damping == "implicit" else 0.0
+        prm[_k.P_DAMPING_TOL] = _k.DAMPING_TANGENT_TOL
         return prm
 
 
@@ -257,7 +259,7 @@ class DynamicLine(PathStepper):
         ``max_time_step``."""
         st, pr = self.settings, self.properties
         h, c = self.element_length, pr.wave_speed
-        if pr.internal_damping > 0.0:
+        if pr.internal_damping > 0.0 and st.internal_damping == "explicit":
             nu = pr.internal_damping / (pr.mass_per_length * c * h)
             factor = stable_step_factor(st.order, nu)
         else:
@@ -376,7 +378,7 @@ class DynamicLine(PathStepper):
             self.anchor, self.prm, self.element.differentiation, self.element.lift,
             self.element.filter, self.element.weights, self.time_step, ff, af, lb, st,
             shape_every, sr, sten, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack,
-            w.fpos, w.fvel, w.tmp, w.boundary, w.where)
+            w.fpos, w.fvel, w.tmp, w.boundary, w.where, w.damping)
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         fairlead_force[:done - first] = ff[first:done]
@@ -408,6 +410,7 @@ class DynamicLine(PathStepper):
         self.v[:] = state.velocities
         self.fairlead[:] = state.fairlead
         self.fairlead_velocity[:] = state.fairlead_velocity
+        self._work.damping[-1][0] = 0.0  # the factored damping system belongs to another state
 
     def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Forces the line exerts on its fairlead and anchor in the current state [N]."""
@@ -456,3 +459,9 @@ class _Workspace:
         self.fvel = np.zeros(3)
         self.tmp = np.zeros(max(Np, 6))
         self.where = np.zeros(2, dtype=np.int64)
+        # the backward-Euler system of the internal damping (_kernels._damping_system)
+        # (tangents, inverse masses, coefficients, flags, Y, band, rhs, info); info[0] = 0
+        # marks the factors invalid
+        self.damping = (np.zeros((K, Np, 3)), np.zeros((K, Np, 2)), np.zeros((K, Np)),
+                        np.zeros((K, Np)), np.zeros((K, Np, Np + 1, 3)),
+                        np.zeros((K * Np, 3 * Np)), np.zeros(K * Np), np.zeros(4))
