@@ -26,6 +26,19 @@ class PathStepper(ABC):
                    steps: NDArray[np.float64]) -> None:
         """Advance along the path, writing the outputs at every sample."""
 
+    def end_forces_moving(self, fairlead_velocity: NDArray[np.float64]
+                          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces the line exerts on its fairlead and anchor [N] in its current state, with
+        the fairlead moving at ``fairlead_velocity`` instead of the velocity its last step
+        left it with. A model whose end force answers the fairlead's velocity at once (the
+        dynamic line's end flux holds its axial impedance) overrides this; the default is
+        :meth:`end_forces` (the quasi-dynamic force is a function of its steps' path)."""
+        return self.end_forces()
+
+    @abstractmethod
+    def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces the line exerts on its fairlead and anchor in the current state [N]."""
+
     def advance(self, t1: float, fairlead: NDArray[np.float64],
                 fairlead_velocity: NDArray[np.float64]) -> NDArray[np.float64]:
         """Advance from the current time to ``t1``, the fairlead moving (cubic Hermite) from

@@ -3,25 +3,32 @@ mooring lines (physics.md section 5; issue 6).
 
 Coupling scheme, per body step [t_n, t_n + dt] (classical RK4 for the body):
 
-* stage 0 takes the line forces of the lines' states at t_n;
 * from the stage-0 acceleration a_n the body's motion over the step is predicted to second
   order, x(tau) = x_n + v_n tau + a_n tau^2 / 2, and each line with memory (dynamic,
-  quasi-dynamic) is advanced along the fairlead path that prediction gives, to t_n + dt / 2
-  and to t_n + dt (a dynamic line at its own stable step, the fairlead on the cubic Hermite
-  curve between those samples); stages 1 and 2 take the line forces at t_n + dt / 2, stage 3
-  those at t_n + dt;
+  quasi-dynamic) is advanced along the fairlead path that prediction gives: to t_n + dt / 2
+  before stage 1, on to t_n + dt before stage 3 (a dynamic line at its own stable step, the
+  fairlead on the cubic Hermite curve between those samples);
+* every stage takes the lines' forces in the state they have reached (t_n for stage 0,
+  t_n + dt / 2 for stages 1 and 2, t_n + dt for stage 3), evaluated with the stage's own
+  fairlead velocity (``PathStepper.end_forces_moving``): the dynamic line's end flux
+  answers the fairlead velocity at once through its axial impedance Z = m c, so each stage
+  sees the line's instantaneous (dashpot) response to its own motion, and only the line's
+  memory lags;
 * quasi-static lines have no memory: each stage solves them at the stage's own position.
 
 The lines thus lag the body's corrected motion by the predictor's error, O(dt^3) per step;
 each step's path starts from where the line's fairlead is, so the mismatch does not
-accumulate. The scheme is explicit: a heavy line on a light body needs a body step that
-resolves the coupled line-body oscillation (tests/body/test_coupling.py measures it).
+accumulate. The scheme is explicit. Its stability limit against a line's axial impedance
+(the hard case: a heavy, stiff line on a light body) is that of RK4 on the dashpot:
+Z dt / M <= 2.79 (M the body's mass and added mass along the line); taking the lines' forces
+at the predicted fairlead velocity instead (the scheme before) made it unstable from
+Z dt / M ~ 1 (tests/body/test_coupling_stability.py).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -99,12 +106,6 @@ def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float
 _STEPPERS = {"quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
 
 
-@dataclass
-class _StepForces:
-    half: NDArray[np.float64]
-    end: NDArray[np.float64]
-
-
 class MooredBody:
     """A Cummins body with its lines, advanced one body step at a time.
 
@@ -162,38 +163,37 @@ class MooredBody:
         self.laid_length[i] = lb[0]
         return ff[0], af[0]
 
-    def line_forces(self, x: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
-        """Fairlead and anchor forces (n, 3) of the lines now: the memory lines' current
-        states, the quasi-static ones solved at the body position ``x``."""
-        pos, _ = points_state(x, np.zeros(6), self.arms, self.centre)
+    def line_forces(self, x: NDArray[np.float64], v: NDArray[np.float64] | None = None
+                    ) -> tuple[NDArray, NDArray]:
+        """Fairlead and anchor forces (n, 3) of the lines now, the body at ``x`` moving at
+        ``v`` (default: the memory lines' own fairlead velocities): the memory lines' current
+        states with their fairleads moving with the body (``end_forces_moving``), the
+        quasi-static ones solved at the position."""
+        pos, vel = points_state(x, np.zeros(6) if v is None else v, self.arms, self.centre)
         ff = np.zeros((len(self.lines), 3))
         af = np.zeros((len(self.lines), 3))
         for i, model in enumerate(self.models):
             if model is None:
                 ff[i], af[i] = self._quasi_static(i, pos[i])
-            else:
+            elif v is None:
                 ff[i], af[i] = model.end_forces()
+            else:
+                ff[i], af[i] = model.end_forces_moving(vel[i])
         return ff, af
 
-    def _advance_memory_lines(self, t: float, dt: float, x0, v0, a0) -> _StepForces:
-        half = np.zeros((len(self.lines), 3))
-        end = np.zeros((len(self.lines), 3))
+    def _advance_memory_lines(self, time: float, x: NDArray, v: NDArray) -> None:
+        """Advance the lines with memory to ``time``, the fairleads moving to where the body
+        state (x, v) puts them."""
         if not any(m is not None for m in self.models):
-            return _StepForces(half, end)
-        taus = (0.5 * dt, dt)
-        states = [(x0 + v0 * tau + 0.5 * a0 * tau * tau, v0 + a0 * tau) for tau in taus]
-        kin = [points_state(x, v, self.arms, self.centre) for x, v in states]
-        times = np.array([t + taus[0], t + taus[1]])
+            return
+        pos, vel = points_state(x, v, self.arms, self.centre)
+        times = np.array([time])
         for i, model in enumerate(self.models):
             if model is None:
                 continue
-            path = np.array([kin[0][0][i], kin[1][0][i]])
-            vel = np.array([kin[0][1][i], kin[1][1][i]])
-            ff, af, lb = np.zeros((2, 3)), np.zeros((2, 3)), np.zeros(2)
-            model.solve_path(times, path, vel, ff, af, lb, np.zeros(2))
-            half[i], end[i] = ff[0], ff[1]
-            self.laid_length[i] = lb[1]
-        return _StepForces(half, end)
+            ff, af, lb = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1)
+            model.solve_path(times, pos[i][None, :], vel[i][None, :], ff, af, lb, np.zeros(1))
+            self.laid_length[i] = lb[0]
 
     # -- stepping --------------------------------------------------------------------------
     def step(self) -> None:
@@ -201,24 +201,21 @@ class MooredBody:
         body = self.body
         t, dt = body.time, body.dt
         x0, v0 = body.x.copy(), body.v.copy()
-        memory: dict[str, _StepForces] = {}
+        predicted: dict[str, NDArray] = {}
 
         def force(stage: int, tau: float, x: NDArray, v: NDArray) -> NDArray:
-            pos = None
-            if stage == 0:
-                ff, _ = self.line_forces(x)
-            else:
-                if stage == 1:  # a_n from stage 1's velocity: v = v_n + dt/2 a_n
-                    a0 = (v - v0) / (0.5 * dt)
-                    memory["f"] = self._advance_memory_lines(t, dt, x0, v0, a0)
-                lagged = memory["f"].half if stage < 3 else memory["f"].end
-                ff = lagged.copy()
-                pos, _ = points_state(x, np.zeros(6), self.arms, self.centre)
-                for i, model in enumerate(self.models):
-                    if model is None:
-                        ff[i] = self._quasi_static(i, pos[i])[0]
+            if stage == 1:  # a_n from stage 1's velocity: v = v_n + dt/2 a_n
+                a0 = (v - v0) / (0.5 * dt)
+                predicted["a"] = a0
+                h = 0.5 * dt
+                self._advance_memory_lines(t + h, x0 + v0 * h + 0.5 * a0 * h * h, v0 + a0 * h)
+            elif stage == 3:
+                a0 = predicted["a"]
+                self._advance_memory_lines(t + dt, x0 + v0 * dt + 0.5 * a0 * dt * dt,
+                                           v0 + a0 * dt)
             f = self.external(t + tau, x, v)
             if len(self.lines):
+                ff, _ = self.line_forces(x, v)
                 f = f + generalised_force(x, ff, self.arms)
             return f
 

@@ -199,7 +199,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                                     current=env.current_velocity, mean_displacement=x_eq)
 
     def record(index: int) -> None:
-        ff, af = moored.line_forces(body.x)
+        ff, af = moored.line_forces(body.x, body.v)
         pos, _ = points_state(body.x, body.v, moored.arms, centre)
         for i in range(n_lines):
             series["fairlead_force"][i, index] = ff[i]

@@ -414,9 +414,21 @@ class DynamicLine(PathStepper):
 
     def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Forces the line exerts on its fairlead and anchor in the current state [N]."""
+        return self.end_forces_moving(self.fairlead_velocity)
+
+    def end_forces_moving(self, fairlead_velocity: NDArray[np.float64]
+                          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """End forces [N] of the current state with the fairlead's velocity replaced: through
+        the end flux N* = N + Z (v_fairlead - v), the fairlead force answers the fairlead
+        velocity at once with the axial impedance Z = m c. The coupled body uses this to give
+        each Runge-Kutta stage the line's dashpot response to its own velocity
+        (floatmoor.simulation.coupled). The position stays the line's own: through the end
+        tangent's lift term the end tension would answer a position change with a stiffness of
+        order EA (p + 1)^2 / h, an artefact of the discretisation."""
         w = self._work
         ff, af = np.zeros(3), np.zeros(3)
-        _k._record(self.r, self.v, self.anchor, self.fairlead, self.fairlead_velocity, self.prm,
+        _k._record(self.r, self.v, self.anchor, self.fairlead,
+                   np.asarray(fairlead_velocity, dtype=float), self.prm,
                    self.element.differentiation, self.element.lift, w.q, w.qt, w.N, w.Nstar,
                    w.faces, w.slack, self.element.weights, ff, af)
         return ff, af
