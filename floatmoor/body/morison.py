@@ -50,8 +50,10 @@ summed into forces and moments about the displaced reference point with the rota
 incident-wave velocity at the strips' MEAN positions (the rest position, or a given mean
 displacement), the standard first-order approximation: the change of the fluid velocity over
 the body's displacement is a product of two first-order quantities. Strips are the submerged
-parts at rest: no wave stretching and no wetting/drying at the moving waterline (a strip
-that emerges keeps its drag, a dry one stays dry), and the incident field is undisturbed by
+parts in the mean pose (the rest position, or the run's static equilibrium with its mean
+heel or trim): no wave stretching and no wetting/drying at the moving waterline (a strip
+that emerges keeps its drag, a dry one stays dry; so no mean drift force from the splash
+zone), and the incident field is undisturbed by
 the body (no diffraction of the kinematics). A steady uniform current is added to the waves.
 
 Cost. :meth:`MorisonDrag.prepare` computes the fluid velocity at all strips on the RK4 stage
@@ -254,22 +256,33 @@ class Strips:
 
 
 class _StripBuilder:
-    def __init__(self, settings: DragSettings, rho: float) -> None:
+    def __init__(self, settings: DragSettings, rho: float, centre: NDArray[np.float64],
+                 mean_displacement: NDArray[np.float64]) -> None:
         self.s = settings
         self.half_rho = 0.5 * rho
         self.rows: list[tuple[Any, ...]] = []
+        # elevation of a body point in the mean pose: z = c_z + x_z + (R (p - c))_z, affine
+        xm = mean_displacement
+        self._rz = rotation_matrix(xm[3], xm[4], xm[5])[2]
+        self._z0 = centre[2] + xm[2] - self._rz @ centre
+
+    def z(self, p: NDArray) -> float:
+        """Elevation of the body point ``p`` (given at rest) in the mean pose [m]."""
+        return float(self._z0 + self._rz @ p)
 
     def n_strips(self, length: float) -> int:
         return max(self.s.min_strips, math.ceil(length / self.s.strip_length - 1e-9))
 
     def line(self, a: NDArray, b: NDArray, diameter: float, cd_t: float, cd_ax: float,
              kind: int) -> None:
-        """Strips on the submerged part (z < 0) of the segment a-b (none without drag)."""
-        if (cd_t == 0.0 and cd_ax == 0.0) or (a[2] >= 0.0 and b[2] >= 0.0):
+        """Strips on the submerged part (z < 0 in the mean pose) of the segment a-b (none
+        without drag)."""
+        za, zb = self.z(a), self.z(b)
+        if (cd_t == 0.0 and cd_ax == 0.0) or (za >= 0.0 and zb >= 0.0):
             return
-        if a[2] > 0.0 or b[2] > 0.0:  # clip at the still water line
-            wet, dry = (a, b) if a[2] < 0.0 else (b, a)
-            t = wet[2] / (wet[2] - dry[2])
+        if za > 0.0 or zb > 0.0:  # clip at the still water line (the elevation is affine)
+            (wet, zw), (dry, zd) = ((a, za), (b, zb)) if za < 0.0 else ((b, zb), (a, za))
+            t = zw / (zw - zd)
             a, b = wet, wet + t * (dry - wet)
         d = b - a
         length = float(np.linalg.norm(d))
@@ -284,7 +297,7 @@ class _StripBuilder:
                               self.half_rho * cd_ax * math.pi * diameter * ds, ds, kind))
 
     def disc(self, p: NDArray, area: float, cd: float, kind: int) -> None:
-        if cd > 0.0 and p[2] < 0.0 and area > 0.0:
+        if cd > 0.0 and self.z(p) < 0.0 and area > 0.0:
             self.rows.append((p, np.array([0.0, 0.0, 1.0]), 0.0, self.half_rho * cd * area,
                               0.0, kind))
 
@@ -316,8 +329,12 @@ class _StripBuilder:
                   m.diameter, c.member_transverse, c.member_axial, KIND_MEMBER)
 
 
-def build_strips(floater: Floater, settings: DragSettings, water_density: float) -> Strips:
-    """The drag strips of ``floater``'s geometry at rest (module docstring).
+def build_strips(floater: Floater, settings: DragSettings, water_density: float,
+                 mean_displacement: ArrayLike | None = None) -> Strips:
+    """The drag strips of ``floater``'s geometry (module docstring), in body coordinates at
+    rest, on the parts that are submerged in the mean pose ``mean_displacement`` (6,) (default
+    the rest position): a mean heel or trim, as the rotor thrust gives, lifts part of a
+    column out of the water and sinks another part.
 
     A :class:`CylinderGeometry` is one column on the reference point's vertical axis from
     -draft to height - draft (its bottom disc takes ``column_axial``).
@@ -325,7 +342,8 @@ def build_strips(floater: Floater, settings: DragSettings, water_density: float)
     settings.validate()
     if not (math.isfinite(water_density) and water_density > 0.0):
         raise ValueError(f"drag: water density must be > 0, got {water_density!r}")
-    b = _StripBuilder(settings, water_density)
+    xm = np.zeros(6) if mean_displacement is None else np.asarray(mean_displacement, float)
+    b = _StripBuilder(settings, water_density, np.asarray(floater.reference_point, float), xm)
     g = floater.geometry
     if isinstance(g, CylinderGeometry):
         x0, y0 = floater.reference_point[0], floater.reference_point[1]
@@ -380,7 +398,7 @@ class MorisonDrag:
                  current: ArrayLike = (0.0, 0.0, 0.0),
                  mean_displacement: ArrayLike | None = None) -> None:
         self.settings = settings
-        self.strips = build_strips(floater, settings, water_density)
+        self.strips = build_strips(floater, settings, water_density, mean_displacement)
         self.centre = np.asarray(floater.reference_point, dtype=float)
         self.sea = sea if sea is not None and sea.n_components > 0 else None
         self.current = np.asarray(current, dtype=float).reshape(3)

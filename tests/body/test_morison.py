@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from floatmoor.body._morison_kernels import drag_force, lagrange_fill, lagrange_weights
+from floatmoor.body.kinematics import rotation_matrix
 from floatmoor.body.morison import (
     DEEPCWIND_OC4, KINEMATICS_PHASE_STEP, MIN_STRIPS, DragSettings, MorisonCoefficients,
     MorisonDrag, build_strips,
@@ -240,6 +241,34 @@ def test_deepcwind_preset_strips() -> None:
     # heave-plate axial: full 24 m discs with Cd 1.60 (HydroDyn's area, cases.md's Cd)
     plate = s.axial[s.kind == 2]
     np.testing.assert_allclose(plate, 0.5 * RHO * 1.6 * math.pi / 4 * 24.0 ** 2, rtol=1e-14)
+
+
+def test_strips_follow_the_mean_waterline_of_a_trimmed_body() -> None:
+    """With a mean trim and heave (the rotor thrust's), the strips cover the parts that are
+    wet in the mean pose: a column whose top rises keeps less length, one that sinks more,
+    and every strip centre is submerged there."""
+    case = load_case(DEEPCWIND)
+    settings = DragSettings(coefficients=DEEPCWIND_OC4)
+    pitch, heave = math.radians(-4.0), -0.3  # the +x column rises by 28.9 sin(4 deg) = 2.0 m
+    xm = np.array([-9.0, 0.0, heave, 0.0, pitch, 0.0])
+    s = build_strips(case.floater, settings, RHO, xm)
+    R = rotation_matrix(*xm[3:])
+    centre = np.asarray(case.floater.reference_point)
+    z_mean = centre[2] + xm[2] + (s.points - centre) @ R[2]
+    assert np.all(z_mean < 0.0)
+    # the columns: wet from their bottom (the plate's top, -14 m, or -20 m for the central
+    # column) up to where the mean pose's waterline crosses their axis
+    wet = 0.0
+    for c in case.floater.geometry.columns:
+        bottom = c.z_bottom + (c.heave_plate_height if c.heave_plate_diameter else 0.0)
+        # heave + R[2] . (p - centre) = 0 at p = (x, y, z_body)
+        z_body = -(heave + R[2, 0] * c.x + R[2, 1] * c.y) / R[2, 2]
+        wet += z_body - bottom
+    assert s.submerged_length("column") == pytest.approx(wet, rel=1e-12)
+    rest = build_strips(case.floater, settings, RHO)
+    assert s.submerged_length("heave_plate_side") == rest.submerged_length("heave_plate_side")
+    # the +x column lost about 2 m, the other two gained about 1 m each, the central 0.3 m
+    assert wet - rest.submerged_length("column") == pytest.approx(0.3 + 3 * 0.3, abs=0.05)
 
 
 def test_strip_length_convergence() -> None:
