@@ -68,7 +68,12 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run on this Dask distributed scheduler (tcp://host:8786)")
     sweep.add_argument("--timeseries", action="store_true",
-                       help="also keep every run's fairlead tension history")
+                       help="also keep every run's fairlead tension history (and body "
+                       "displacement history of floater cases)")
+    sweep.add_argument("--runs-dir", metavar="DIR",
+                       help="also write every run's full output file into DIR (created if its "
+                       "parent exists), named from its swept values; a re-run redoes a run "
+                       "whose file is missing or incomplete")
     sweep.add_argument("--quiet", action="store_true", help="no progress reports")
     study = sub.add_parser("study", help="run a built-in study (results, summary and figures)")
     study.add_argument("name", choices=["qd-verification"],
@@ -266,7 +271,8 @@ def _sweep(args: argparse.Namespace) -> int:
     try:
         ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
                           workers=args.workers, scheduler=args.scheduler,
-                          timeseries=args.timeseries, progress=progress)
+                          timeseries=args.timeseries, runs_dir=args.runs_dir,
+                          progress=progress)
     except KeyboardInterrupt:
         print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
               file=sys.stderr)
@@ -313,3 +319,7 @@ def run() -> None:  # pragma: no cover - console-script shim
     except FloatmoorError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
         sys.exit(EXIT_FAILED)
+
+
+if __name__ == "__main__":  # pragma: no cover - ``python -m floatmoor.cli``
+    run()

@@ -8,13 +8,22 @@ together along one dimension, named after the first of them. Values are TOML val
 from __future__ import annotations
 
 import itertools
+import re
 import tomllib
 from dataclasses import dataclass, field
 from typing import Any, Sequence
 
 from floatmoor.errors import CaseError
 
-__all__ = ["Axis", "CampaignDesign", "parse_axis_option", "design_from_options"]
+__all__ = ["Axis", "CampaignDesign", "parse_axis_option", "design_from_options",
+           "MAX_RUN_NAME_LENGTH"]
+
+#: Longest run name (a file name stem) made from the swept values; longer designs name their
+#: runs by index.
+MAX_RUN_NAME_LENGTH = 120
+#: Characters kept in run names; the others are dropped (quotes, brackets, spaces) or, for
+#: path separators and the like, replaced.
+_UNSAFE = re.compile(r"[^A-Za-z0-9._+,=-]")
 
 
 @dataclass(frozen=True)
@@ -62,6 +71,32 @@ class CampaignDesign:
                     overrides.append(f"{key}={_toml(values[j])}")
             out.append((index, overrides))
         return out
+
+    def run_names(self) -> list[str]:
+        """A file-name stem per run, in :meth:`runs` order, from its swept values:
+        ``motion.radius=0.1_motion.period=1.25`` (zipped keys by their first key).
+
+        Falls back to the run's index along each axis (``run_0-1``) for every run when the
+        values do not give distinct, short, file-system-safe names.
+        """
+        names = []
+        for index in itertools.product(*(range(len(a)) for a in self.axes)):
+            parts = [f"{_UNSAFE.sub('-', axis.name)}={_name_text(axis.values[0][j])}"
+                     for axis, j in zip(self.axes, index)]
+            names.append("_".join(parts))
+        if (len(set(names)) != len(names) or any(len(n) > MAX_RUN_NAME_LENGTH for n in names)
+                or any(n.startswith(".") for n in names)):
+            names = ["run_" + "-".join(str(j) for j in index) for index in
+                     itertools.product(*(range(len(a)) for a in self.axes))]
+        return names
+
+
+def _name_text(value: Any) -> str:
+    """A swept value in a file name: strings as they are, others as TOML, unsafe characters
+    dropped (quotes, brackets, spaces) or replaced by '-' (path separators, colons)."""
+    text = value if isinstance(value, str) else _toml(value)
+    text = re.sub(r"[\s\[\]{}\"']", "", text)
+    return _UNSAFE.sub("-", text)
 
 
 def _toml(value: Any) -> str:

@@ -1,6 +1,8 @@
 """One run of a campaign, as executed on a worker (a local process or a Dask worker).
 
-The function takes and returns plain Python data only, so it pickles to any executor.
+The function takes and returns plain Python data only, so it pickles to any executor. A case
+with a ``[floater]`` is a coupled run (:func:`~floatmoor.simulation.coupled_run.run_coupled`),
+any other a forced-motion run (:func:`~floatmoor.simulation.forced.run_forced_motion`).
 """
 
 from __future__ import annotations
@@ -10,39 +12,68 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["run_one", "SUMMARY_STATISTICS"]
+__all__ = ["run_one", "SUMMARY_STATISTICS", "BODY_STATISTICS"]
 
 #: Fairlead-tension statistics kept per run and line (see floatmoor.post.summary).
 SUMMARY_STATISTICS = ("mean", "std", "min", "max", "mean_cycle_max")
+#: Floater-displacement statistics kept per run and DOF of coupled runs (after the wave ramp).
+BODY_STATISTICS = ("mean", "std", "min", "max")
 
 
-def run_one(case_path: str, overrides: list[str], timeseries: bool = False) -> dict[str, Any]:
+def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
+            run_file: str | None = None) -> dict[str, Any]:
     """Run a case with overrides; never raises for a failing run.
+
+    Parameters
+    ----------
+    case_path
+        The case file.
+    overrides
+        ``key=VALUE`` overrides of this run (base ones first).
+    timeseries
+        Also return the histories (fairlead tension; body displacement of coupled runs).
+    run_file
+        netCDF file to write the run's full output to, as ``floatmoor run -o`` does (partial
+        on failure), or None to keep it in memory only.
 
     Returns
     -------
     dict
         ``status`` ("complete" or "failed: message"), ``compute_time_s`` (CPU time of the run
-        in this process), ``wall_time_s``, ``statistics`` {line: {statistic: value [N]}}, and
-        with ``timeseries`` the output ``time`` and ``fairlead_tension`` (line, time) arrays.
+        in this process), ``wall_time_s``, ``statistics`` {line: {statistic: value [N]}},
+        for coupled runs ``body_statistics`` {dof: {statistic: value [m or rad]}}, and with
+        ``timeseries`` the output ``time``, ``fairlead_tension`` (line, time) and for coupled
+        runs ``body_displacement`` (time, dof) arrays.
     """
     from floatmoor.case.load import load_case
     from floatmoor.post.summary import run_summary
-    from floatmoor.simulation.forced import run_forced_motion
 
     cpu, wall = time.process_time(), time.perf_counter()
     out: dict[str, Any] = {"status": "complete", "statistics": {}}
     try:
         case = load_case(case_path, overrides)
-        dataset = run_forced_motion(case).dataset
+        if case.floater is not None:
+            from floatmoor.simulation.coupled_run import run_coupled
+
+            dataset = run_coupled(case, output=run_file).dataset
+        else:
+            from floatmoor.simulation.forced import run_forced_motion
+
+            dataset = run_forced_motion(case, output=run_file).dataset
         summary = run_summary(case, dataset)
         for name, entry in summary["lines"].items():
             stats = entry["fairlead_tension_N"]
             out["statistics"][name] = {k: (np.nan if stats[k] is None else float(stats[k]))
                                        for k in SUMMARY_STATISTICS}
+        if "body_displacement" in summary:
+            out["body_statistics"] = {
+                dof: {k: float(stats.get(k, np.nan)) for k in BODY_STATISTICS}
+                for dof, stats in summary["body_displacement"].items()}
         if timeseries:
             out["time"] = dataset["time"].values
             out["fairlead_tension"] = dataset["fairlead_tension"].values
+            if "body_displacement" in dataset:
+                out["body_displacement"] = dataset["body_displacement"].values
     except Exception as err:  # a campaign records any failure and goes on
         text = str(err).strip().splitlines()[0] if str(err).strip() else ""
         out["status"] = f"failed: {type(err).__name__}: {text}"

@@ -5,7 +5,7 @@ Wire into :mod:`floatmoor.cli` with ``add_report_parsers(sub)`` in its parser an
 return the exit status: 0 done; 2 bad input (a missing or unreadable file, an unknown model, a
 bad ``--start``, ``--nominal-diameter`` or reference file, a series that cannot be plotted),
 with one message on standard error, no traceback and nothing written; 1 a run of ``compare``
-that failed.
+that failed (the message names the model; the other models still run, no report is written).
 """
 
 from __future__ import annotations
@@ -55,6 +55,9 @@ def add_report_parsers(subparsers: Any) -> None:
     compare.add_argument("--set", dest="overrides", action="append", default=[],
                          metavar="KEY=VALUE", help="override a case key for every run")
     compare.add_argument("--workers", default=1, help="local worker processes")
+    compare.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                         help="run on this Dask distributed scheduler (tcp://host:8786); its "
+                              "workers must see the output folder")
     compare.add_argument("--quiet", action="store_true", help="no progress reports")
     _add_common(compare)
     compare.set_defaults(report_handler=compare_command)
@@ -143,6 +146,7 @@ def report_command(args: argparse.Namespace) -> int:
 
 def compare_command(args: argparse.Namespace) -> int:
     """``floatmoor compare CASE --models ... -o DIR``; returns the exit status."""
+    from floatmoor.hydro.database import HydroDatabaseError
     from floatmoor.report.compare import compare_models, parse_models
     from floatmoor.report.figures import FigureDataError
     from floatmoor.report.runs import ReportInputError
@@ -167,8 +171,8 @@ def compare_command(args: argparse.Namespace) -> int:
                                overrides=getattr(args, "overrides", []), start=start,
                                reference=reference, nominal_diameters=diameters,
                                html=getattr(args, "html", False), workers=workers,
-                               progress=progress)
-    except (ReportInputError, FigureDataError, CaseError) as err:
+                               scheduler=getattr(args, "scheduler", None), progress=progress)
+    except (ReportInputError, FigureDataError, CaseError, HydroDatabaseError) as err:
         return _bad_input(err)
     except SolverError as err:
         print(f"floatmoor: run failed: {err}", file=sys.stderr)

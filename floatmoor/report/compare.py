@@ -2,29 +2,35 @@
 as the quasi-dynamic paper's section 5 compares the quasi-static, quasi-dynamic and dynamic
 models.
 
-Every line of the case gets the model of the run (``--set lines.<i>.model="MODEL"`` for every
-line i, after the user's overrides). The runs' cases are all validated before any runs. The
-campaign machinery (:mod:`floatmoor.campaign`) keeps only statistics of forced-motion runs, so
-the runs go here, in this process or on local worker processes, each writing its result file
-``runs/<model>.nc`` in the output folder; the report then reads them.
+The runs are a campaign (:mod:`floatmoor.campaign`) with one axis: the keys
+``lines.<i>.model`` of every line i, zipped, one value per model (after the user's
+overrides). It runs in this process, on local worker processes or on a Dask cluster, each run
+writing its full result file ``runs/<model>.nc`` in the output folder and the campaign file
+``runs/campaign.nc`` beside them; the report then reads the run files. A re-run of the same
+comparison resumes: models whose run file is complete are not run again.
 """
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
+from floatmoor.campaign.design import Axis, CampaignDesign
+from floatmoor.campaign.runner import run_campaign, validate_campaign
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import AVAILABLE_LINE_MODELS, Case
+from floatmoor.errors import SolverError
 from floatmoor.report.build import ReportFiles, check_output_folder, write_report
 from floatmoor.report.reference import ReferenceValues
 from floatmoor.report.runs import ReportInputError, load_run
 
-__all__ = ["parse_models", "model_overrides", "run_model", "compare_models", "RUNS_FOLDER"]
+__all__ = ["parse_models", "model_overrides", "model_design", "compare_models",
+           "RUNS_FOLDER", "CAMPAIGN_FILE"]
 
 #: Subfolder of the output holding the result file of each model.
 RUNS_FOLDER = "runs"
+#: The campaign file of the comparison, in the runs folder (what a re-run resumes from).
+CAMPAIGN_FILE = "campaign.nc"
 
 
 def parse_models(text: str | Sequence[str]) -> list[str]:
@@ -53,30 +59,20 @@ def model_overrides(case: Case, model: str) -> list[str]:
     return [f'lines.{i}.model="{model}"' for i in range(len(case.lines))]
 
 
-def run_model(case_path: str, overrides: list[str], output: str) -> str:
-    """Run a case (forced motion or coupled) into ``output``; returns the output path.
-
-    A top-level function so that it pickles to worker processes.
-    """
-    case = load_case(case_path, overrides)
-    if case.floater is not None:
-        from floatmoor.simulation.coupled_run import run_coupled
-
-        run_coupled(case, output=output)
-    else:
-        from floatmoor.simulation.forced import run_forced_motion
-
-        run_forced_motion(case, output=output)
-    return output
+def model_design(case: Case, models: Sequence[str]) -> CampaignDesign:
+    """The campaign of a comparison: ``lines.<i>.model`` of every line zipped, one value per
+    model (the axis is named ``lines.0.model``)."""
+    keys = tuple(f"lines.{i}.model" for i in range(len(case.lines)))
+    return CampaignDesign((Axis(keys, tuple(tuple(models) for _ in keys)),))
 
 
 def compare_models(case_path: str | Path, models: Sequence[str], output: str | Path, *,
                    overrides: Sequence[str] = (), start: float | None = None,
                    reference: ReferenceValues | None = None,
                    nominal_diameters: Mapping[str, float] | None = None,
-                   html: bool = False, workers: int = 1,
+                   html: bool = False, workers: int = 1, scheduler: str | None = None,
                    progress: Callable[[str], None] | None = None) -> ReportFiles:
-    """Run ``case_path`` once per line model and write the comparison report.
+    """Run ``case_path`` once per line model (a campaign) and write the comparison report.
 
     Parameters
     ----------
@@ -85,24 +81,34 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
     models
         Line models, one run each (column order of the report).
     output
-        Report folder; the runs go to ``output/runs/<model>.nc``.
+        Report folder; the runs go to ``output/runs/<model>.nc``, the campaign to
+        ``output/runs/campaign.nc``. Models already run there (same case, overrides and
+        models, complete run file) are not run again; a campaign of other models or overrides
+        there is replaced.
     overrides
         ``--set`` overrides applied to every run before the model.
     start, reference, nominal_diameters, html
         As :func:`floatmoor.report.build.write_report` (``start`` None: the case's ramp).
     workers
         Local worker processes (1: run in this process, one after the other).
+    scheduler
+        Address of a Dask distributed scheduler to run on instead (its workers must see the
+        output folder).
     progress
-        Called with a message as each run finishes.
+        Called with a message as runs finish.
 
     Raises
     ------
     CaseError
         For a bad case or override (nothing run or written).
+    HydroDatabaseError
+        For a floater case whose database is missing, damaged or stale (nothing run or
+        written).
     ReportInputError
         For bad models, workers or output folder (nothing run or written).
     SolverError
-        When a run fails (its partial result is in ``output/runs``).
+        When a run fails, naming the model and the failure (the other models still run;
+        the partial result is in ``output/runs``; no report is written).
     """
     models = parse_models(list(models))
     if workers < 1:
@@ -110,30 +116,30 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
     output = check_output_folder(output)
     case_path = str(case_path)
     base = load_case(case_path, list(overrides))
-    jobs = []
-    for model in models:
-        run_overrides = [*overrides, *model_overrides(base, model)]
-        load_case(case_path, run_overrides)  # every run's case is valid before anything runs
-        jobs.append((model, run_overrides))
     if start is not None and start >= base.simulation.duration:
         raise ReportInputError("--start", f"a time before the end of the runs "
                                f"({base.simulation.duration:g} s)", f"{start:g} s")
+    design = model_design(base, models)
+    # every run's case (and a floater's database) is valid before anything is written
+    validate_campaign(case_path, design, overrides)
     folder = output / RUNS_FOLDER
-    folder.mkdir(parents=True, exist_ok=True)
-    paths = {model: str(folder / f"{model}.nc") for model in models}
-    if workers == 1:
-        for model, run_overrides in jobs:
-            run_model(case_path, run_overrides, paths[model])
-            if progress is not None:
-                progress(f"{model} run done: {paths[model]}")
-    else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = {model: pool.submit(run_model, case_path, run_overrides, paths[model])
-                       for model, run_overrides in jobs}
-            for model, future in futures.items():
-                future.result()
-                if progress is not None:
-                    progress(f"{model} run done: {paths[model]}")
+
+    def report(done: int, total: int, left: float) -> None:
+        if progress is not None and done:
+            eta = "" if left != left else f", ~{left:.0f} s left"
+            progress(f"{done} / {total} model runs done{eta}")
+
+    output.mkdir(exist_ok=True)
+    dataset = run_campaign(case_path, design, base_overrides=list(overrides),
+                           output=folder / CAMPAIGN_FILE, workers=workers,
+                           scheduler=scheduler, runs_dir=folder, run_names=models,
+                           replace_other=True, progress=report)
+    failed = [f"{model}: {str(status).removeprefix('failed: ')}"
+              for model, status in zip(models, dataset["status"].values) if status != "complete"]
+    if failed:
+        raise SolverError(f"{len(failed)} of {len(models)} model runs failed (partial results "
+                          f"in {folder}; no report written): " + "; ".join(failed))
+    paths = {model: str(path) for model, path in zip(models, dataset["run_file"].values)}
     runs = [load_run(paths[model], start=start, label=model) for model in models]
     title = f"{base.title}: line models compared ({', '.join(models)})"
     return write_report(runs, output, reference=reference,

@@ -42,6 +42,7 @@ def test_buoy_in_regular_waves_writes_a_labelled_dataset(tmp_path) -> None:
 
 def test_free_decay_starts_from_the_offset_at_rest() -> None:
     case = load_case(BUOY_CASE, QS + ["simulation.duration=1.0", "simulation.output_interval=0.02",
+                                      'waves={kind = "still"}',
                                       "initial={surge = 0.03, pitch_deg = 2.0}"])
     ds = run_coupled(case).dataset
     x0 = ds["body_displacement"].isel(time=0).values

@@ -60,11 +60,12 @@ def test_campaign_equals_individual_runs(tmp_path):
 def test_failed_run_is_recorded_and_the_campaign_completes(tmp_path, monkeypatch):
     original = worker.run_one
 
-    def flaky(case_path, overrides, timeseries=False):
+    def flaky(case_path, overrides, timeseries=False, run_file=None):
         if "motion.period=2.5" in overrides and "motion.radius=0.2" in overrides:
             return original(case_path, [*overrides, "lines.chain.quasi_static.max_iterations=1",
-                                        "lines.chain.quasi_static.tolerance=1e-16"], timeseries)
-        return original(case_path, overrides, timeseries)
+                                        "lines.chain.quasi_static.tolerance=1e-16"], timeseries,
+                            run_file)
+        return original(case_path, overrides, timeseries, run_file)
 
     monkeypatch.setattr(campaign_runner, "run_one", flaky)
     ds = run_campaign(LINDAHL_CASE, design_from_options(GRID), base_overrides=BASE,

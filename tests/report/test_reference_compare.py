@@ -132,3 +132,56 @@ def test_bad_input_exits_2_with_one_message(lindahl_run, tmp_path, capsys) -> No
     a_file.write_text("x")
     assert report_command(_ns(runs=[str(lindahl_run)], output=str(a_file))) == 2
     assert "-o/--output" in capsys.readouterr().err
+
+
+#: Short quasi-static and dynamic Lindahl runs (ramp 2.5 s + 2 cycles).
+SHORT_COMPARE = ["simulation.duration=5.0"]
+
+
+def _compare(out: Path, models: str, overrides: list[str] = SHORT_COMPARE) -> int:
+    return compare_command(_ns(case=str(LINDAHL_CASE), models=models, overrides=overrides,
+                               workers=1, quiet=True, output=str(out)))
+
+
+def test_compare_resumes_models_already_run(tmp_path, capsys, monkeypatch) -> None:
+    from floatmoor.campaign import runner as campaign_runner
+    from floatmoor.campaign import worker
+
+    out = tmp_path / "cmp"
+    assert _compare(out, "quasi-static,dynamic") == 0, capsys.readouterr().err
+    first = (out / "summary.md").read_text()
+    calls = []
+    original = worker.run_one
+    monkeypatch.setattr(campaign_runner, "run_one",
+                        lambda *a: calls.append(a[1][-1]) or original(*a))
+    # the same comparison again: nothing runs, the same report
+    assert _compare(out, "quasi-static,dynamic") == 0
+    assert calls == []
+    assert table_rows((out / "summary.md").read_text(), "Fairlead tension statistics, line "
+                      "chain") == table_rows(first, "Fairlead tension statistics, line chain")
+    # a model whose run file went missing runs again, and only it
+    (out / "runs" / "dynamic.nc").unlink()
+    assert _compare(out, "quasi-static,dynamic") == 0
+    assert calls == ['lines.0.model="dynamic"']
+    # other models (or overrides) in the same folder: a new comparison, not an error
+    calls.clear()
+    assert _compare(out, "quasi-static,quasi-dynamic") == 0, capsys.readouterr().err
+    assert calls == ['lines.0.model="quasi-static"', 'lines.0.model="quasi-dynamic"']
+    rows = table_rows((out / "summary.md").read_text(), "Fairlead tension statistics, line chain")
+    assert rows[0][2:] == ["quasi-static", "quasi-dynamic"]
+
+
+def test_compare_reports_a_failing_model_and_exits_1(tmp_path, capsys) -> None:
+    """A catenary that cannot converge fails the quasi-static and quasi-dynamic runs at the
+    first step; the dynamic run still runs; the message names the failed models."""
+    out = tmp_path / "cmp"
+    failing = [*SHORT_COMPARE, "lines.chain.quasi_static.max_iterations=1",
+               "lines.chain.quasi_static.tolerance=1e-16"]
+    assert _compare(out, "quasi-static,dynamic", failing) == 1
+    err = capsys.readouterr().err
+    assert "run failed: 1 of 2 model runs failed" in err
+    assert "quasi-static: SolverError: line 'chain' (quasi-static)" in err
+    assert "dynamic:" not in err.replace("quasi-static", "")
+    assert "Traceback" not in err and not (out / "summary.md").exists()
+    assert read_dataset(out / "runs" / "dynamic.nc").attrs["status"] == "complete"
+    assert read_dataset(out / "runs" / "quasi-static.nc").attrs["status"].startswith("failed")

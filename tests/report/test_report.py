@@ -28,7 +28,7 @@ BUOY_WAVES = ["simulation.duration=3.0", "simulation.output_interval=0.02",
               'waves={kind = "regular", height = 0.04, period = 1.2, ramp_duration = 1.2}',
               *QS_LINES]
 BUOY_DECAY = ["simulation.duration=3.0", "simulation.output_interval=0.02",
-              "initial={heave = 0.02}", *QS_LINES]
+              'waves={kind = "still"}', "initial={heave = 0.02}", *QS_LINES]
 
 #: A figure file smaller than this [bytes] is taken as empty (a blank 990 px wide PNG
 #: with axes only is ~20 kB; the report's figures are 50-200 kB).
