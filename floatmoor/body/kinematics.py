@@ -20,6 +20,8 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.body._kinematics_kernels import generalised_force_into, points_state_into
+
 __all__ = ["rotation_matrix", "points_state", "generalised_force"]
 
 
@@ -48,9 +50,11 @@ def points_state(x: NDArray[np.float64], v: NDArray[np.float64], arms: NDArray[n
     centre
         Reference point at rest c0 (3,) [m].
     """
-    rotated = arms @ rotation_matrix(x[3], x[4], x[5]).T
-    positions = centre + x[:3] + rotated
-    velocities = v[:3] + _cross(v[3:], rotated)
+    arms = np.ascontiguousarray(arms, dtype=float).reshape(-1, 3)
+    positions = np.empty_like(arms)
+    velocities = np.empty_like(arms)
+    points_state_into(np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(v, dtype=float),
+                      arms, np.ascontiguousarray(centre, dtype=float), positions, velocities)
     return positions, velocities
 
 
@@ -58,15 +62,8 @@ def generalised_force(x: NDArray[np.float64], forces: NDArray[np.float64],
                       arms: NDArray[np.float64]) -> NDArray[np.float64]:
     """The 6-DOF force (3 forces, 3 moments about the displaced reference point) of point
     forces ``forces`` (n, 3) [N] acting at the body-fixed points with rest arms ``arms``."""
-    rotated = arms @ rotation_matrix(x[3], x[4], x[5]).T
     out = np.empty(6)
-    out[:3] = forces.sum(axis=0)
-    out[3:] = _cross(rotated, forces).sum(axis=0)
+    generalised_force_into(np.ascontiguousarray(x, dtype=float),
+                           np.ascontiguousarray(forces, dtype=float).reshape(-1, 3),
+                           np.ascontiguousarray(arms, dtype=float).reshape(-1, 3), out)
     return out
-
-
-def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """a x b on the last axis (numpy.cross costs ~100 us a call in its axis handling)."""
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)

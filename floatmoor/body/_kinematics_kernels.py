@@ -1,0 +1,75 @@
+"""Numba kernels of the rigid-body point kinematics (floatmoor.body.kinematics): positions and
+velocities of body-fixed points, and the generalised force of point loads. They run several
+times per RK4 stage of a coupled run, where NumPy's per-call overhead on (n, 3) arrays
+dominated the step (tests/oracles/kinematics_numpy.py is their NumPy reference)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatmoor._numba import jit
+
+__all__ = ["rotation_into", "points_state_into", "generalised_force_into"]
+
+
+@jit(inline="always")
+def rotation_into(roll: float, pitch: float, yaw: float, R: np.ndarray) -> None:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (body axes to global axes) into ``R`` (3, 3)."""
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    R[0, 0] = cy * cp
+    R[0, 1] = cy * sp * sr - sy * cr
+    R[0, 2] = cy * sp * cr + sy * sr
+    R[1, 0] = sy * cp
+    R[1, 1] = sy * sp * sr + cy * cr
+    R[1, 2] = sy * sp * cr - cy * sr
+    R[2, 0] = -sp
+    R[2, 1] = cp * sr
+    R[2, 2] = cp * cr
+
+
+@jit
+def points_state_into(x: np.ndarray, v: np.ndarray, arms: np.ndarray, centre: np.ndarray,
+                      positions: np.ndarray, velocities: np.ndarray) -> None:
+    """Global positions and velocities (n, 3) of the body-fixed points with rest arms
+    ``arms`` (n, 3): p = c0 + x[:3] + R a, v = x'[:3] + omega x (R a)."""
+    R = np.empty((3, 3))
+    rotation_into(x[3], x[4], x[5], R)
+    wx, wy, wz = v[3], v[4], v[5]
+    for i in range(arms.shape[0]):
+        a0, a1, a2 = arms[i, 0], arms[i, 1], arms[i, 2]
+        r0 = R[0, 0] * a0 + R[0, 1] * a1 + R[0, 2] * a2
+        r1 = R[1, 0] * a0 + R[1, 1] * a1 + R[1, 2] * a2
+        r2 = R[2, 0] * a0 + R[2, 1] * a1 + R[2, 2] * a2
+        positions[i, 0] = centre[0] + x[0] + r0
+        positions[i, 1] = centre[1] + x[1] + r1
+        positions[i, 2] = centre[2] + x[2] + r2
+        velocities[i, 0] = v[0] + wy * r2 - wz * r1
+        velocities[i, 1] = v[1] + wz * r0 - wx * r2
+        velocities[i, 2] = v[2] + wx * r1 - wy * r0
+
+
+@jit
+def generalised_force_into(x: np.ndarray, forces: np.ndarray, arms: np.ndarray,
+                           out: np.ndarray) -> None:
+    """The 6-DOF force (forces, moments about the displaced reference point) of point forces
+    ``forces`` (n, 3) at the body-fixed points with rest arms ``arms``, into ``out`` (6,)."""
+    R = np.empty((3, 3))
+    rotation_into(x[3], x[4], x[5], R)
+    for c in range(6):
+        out[c] = 0.0
+    for i in range(arms.shape[0]):
+        a0, a1, a2 = arms[i, 0], arms[i, 1], arms[i, 2]
+        r0 = R[0, 0] * a0 + R[0, 1] * a1 + R[0, 2] * a2
+        r1 = R[1, 0] * a0 + R[1, 1] * a1 + R[1, 2] * a2
+        r2 = R[2, 0] * a0 + R[2, 1] * a1 + R[2, 2] * a2
+        f0, f1, f2 = forces[i, 0], forces[i, 1], forces[i, 2]
+        out[0] += f0
+        out[1] += f1
+        out[2] += f2
+        out[3] += r1 * f2 - r2 * f1
+        out[4] += r2 * f0 - r0 * f2
+        out[5] += r0 * f1 - r1 * f0
