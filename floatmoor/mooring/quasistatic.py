@@ -19,8 +19,11 @@ from floatmoor.mooring.catenary import (
     CatenarySolution, catenary_profile, describe_failure, solve_catenary,
 )
 
-__all__ = ["QuasiStaticLine"]
+__all__ = ["QuasiStaticLine", "SHAPE_POINTS"]
 
+
+#: Points at which a quasi-static line's shape is recorded (equally spaced in arc length).
+SHAPE_POINTS = 51
 
 class QuasiStaticLine:
     """A mooring line modelled as a quasi-static elastic catenary.

@@ -39,7 +39,7 @@ from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.mooring.catenary import solve_catenary
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
-from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.quasistatic import SHAPE_POINTS, QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["MooredBody", "equilibrium", "line_force_quasi_static"]
@@ -155,6 +155,27 @@ class MooredBody:
             else:
                 self.models.append(None)
                 self._qs.append(QuasiStaticLine.from_case(moved, self.environment, self.seabed))
+
+    # -- line shapes -----------------------------------------------------------------------
+    def shape_arc_lengths(self) -> list[NDArray[np.float64]]:
+        """Arc lengths of each line's recorded shape [m]: the nodes of a memory model (as in
+        forced-motion runs), ``SHAPE_POINTS`` points on a quasi-static line."""
+        return [np.linspace(0.0, ln.length, SHAPE_POINTS) if model is None
+                else np.asarray(model.arc_length, dtype=float)
+                for ln, model in zip(self.lines, self.models)]
+
+    def line_shapes(self, fairleads: NDArray[np.float64]
+                    ) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
+        """(positions (n, 3) [m], effective tensions (n,) [N]) of every line now: the memory
+        models' states, the quasi-static catenaries at the fairleads (n_lines, 3)."""
+        out = []
+        for i, model in enumerate(self.models):
+            if model is None:
+                s = np.linspace(0.0, self.lines[i].length, SHAPE_POINTS)
+                out.append(self._qs[i].profile(fairleads[i], s))
+            else:
+                out.append((model.r.reshape(-1, 3), model.tension()))
+        return out
 
     # -- line forces -----------------------------------------------------------------------
     def _quasi_static(self, i: int, p: NDArray[np.float64]) -> tuple[NDArray, NDArray]:

@@ -23,7 +23,7 @@ from floatmoor.errors import SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.simulation.coupled import MooredBody, equilibrium
-from floatmoor.simulation.forced import RunResult, output_times
+from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.realisation import WaveField
@@ -93,7 +93,9 @@ def _write_checkpoint(path: Path, moored: MooredBody, recorder: Recorder, done: 
         state = {"fingerprint": fingerprint, "done": done, "moored": moored,
                  "n_done": recorder.n_done,
                  "series": {k: v[:, :recorder.n_done] for k, v in recorder.series.items()},
-                 "body": {k: v[:recorder.n_done] for k, v in recorder.body.items()}}
+                 "body": {k: v[:recorder.n_done] for k, v in recorder.body.items()},
+                 "shapes": ((recorder.shape_position, recorder.shape_tension)
+                            if recorder.shape_stride else None)}
         tmp = path.with_name(path.name + ".tmp")
         with open(tmp, "wb") as fh:
             pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
@@ -109,11 +111,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 checkpoint_interval: float | None = None, resume: bool = False) -> RunResult:
     """Run a case with a floater on its lines, in waves.
 
-    With ``output``, a checkpoint (``OUTPUT.checkpoint``, the whole state of body and lines)
-    is written every ``checkpoint_interval`` seconds of wall time (default: with every
-    partial write) and when the run is interrupted; ``resume=True`` continues from it and
-    gives the same results as an uninterrupted run. The checkpoint is removed when the run
-    completes.
+    With ``output``, a checkpoint (``OUTPUT.checkpoint``, the whole state of body and lines
+    at the end of a chunk of steps) is written every ``checkpoint_interval`` seconds of wall
+    time (default: with every partial write); after an interruption or a failure
+    ``resume=True`` continues from the last one and gives the same results as an
+    uninterrupted run. The checkpoint is removed when the run completes. With
+    ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
     Raises
     ------
@@ -163,12 +166,11 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     fingerprint = hashlib.sha256((case.text + "\n".join(case.overrides) + repr(settings))
                                  .encode()).hexdigest()
-    recorder = Recorder(case, times, output, flush_interval, body=True)
-    series, bseries = recorder.series, recorder.body
     n_lines = len(case.lines)
     ckpt = checkpoint_path(output) if output is not None else None
     ckpt_every = flush_interval if checkpoint_interval is None else checkpoint_interval
     done = 0
+    state = None
     if resume:
         if ckpt is None or not ckpt.is_file():
             raise SolverError(f"no checkpoint to resume from ({ckpt})")
@@ -180,19 +182,26 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         moored.external = external
         body = moored.body
         done = state["done"]
-        n = state["n_done"]
-        for k, v in state["series"].items():
-            series[k][:, :n] = v
-        for k, v in state["body"].items():
-            bseries[k][:n] = v
-        recorder.n_done = n
-        x_eq = None
     else:
         moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
         x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
                            mean_force=None if rotor is None else rotor.steady_force())
         moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
         moored.equilibrium_position = x_eq
+    stride_shapes = shape_stride(case)
+    recorder = Recorder(case, times, output, flush_interval, body=True,
+                        shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
+                        shape_stride=stride_shapes)
+    series, bseries = recorder.series, recorder.body
+    if state is not None:
+        n = state["n_done"]
+        for k, v in state["series"].items():
+            series[k][:, :n] = v
+        for k, v in state["body"].items():
+            bseries[k][:n] = v
+        if recorder.shape_stride:
+            recorder.shape_position[:], recorder.shape_tension[:] = state["shapes"]
+        recorder.n_done = n
     x_eq = moored.equilibrium_position
     if case.floater.drag is not None:  # rebuilt, never pickled: the same on resume
         parts["drag"] = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,
@@ -210,6 +219,9 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         bseries["body_velocity"][index] = body.v
         bseries["wave_elevation"][index] = float(sea.elevation(np.array([body.time]))[0]) \
             if sea.n_components else 0.0
+        if recorder.shape_stride and index % recorder.shape_stride == 0:
+            for i, (p, t) in enumerate(moored.line_shapes(pos)):
+                recorder.store_shape(i, index // recorder.shape_stride, p, t)
 
     start_wall = _time.perf_counter()
     last_ckpt = start_wall

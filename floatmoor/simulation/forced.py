@@ -18,7 +18,7 @@ from floatmoor.errors import SolverError
 from floatmoor.motion import fairlead_state
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
-from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.quasistatic import SHAPE_POINTS, QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
@@ -108,7 +108,7 @@ def _node_arc_lengths(model: LineModel) -> NDArray[np.float64]:
     """Arc lengths at which a line's shape is recorded [m]."""
     if isinstance(model, PathStepper):
         return model.arc_length
-    return np.linspace(0.0, model.length, 51)
+    return np.linspace(0.0, model.length, SHAPE_POINTS)
 
 
 def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start: int,
