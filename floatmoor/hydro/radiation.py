@@ -30,6 +30,7 @@ The Kramers-Kronig rebuild A(omega) = A_inf - (1 / omega) int_0^t_max K(t) sin(o
 
 from __future__ import annotations
 
+import hashlib
 import math
 
 import numpy as np
@@ -77,8 +78,10 @@ def cosine_transform_operator(omega: NDArray[np.float64], t: NDArray[np.float64]
     out[small] = trap
     ti = t[~small][:, None]
     if len(ti):
-        sin = np.sin(omega[None, :] * ti) / ti
-        d = (np.cos(omega[None, 1:] * ti) - np.cos(omega[None, :-1] * ti)) / (h[None, :] * ti * ti)
+        wt = omega[None, :] * ti
+        sin = np.sin(wt) / ti
+        cos = np.cos(wt)
+        d = (cos[:, 1:] - cos[:, :-1]) / (h[None, :] * ti * ti)
         big = np.zeros((len(ti), len(omega)))
         big[:, 1:] += sin[:, 1:] + d
         big[:, :-1] += -sin[:, :-1] - d
@@ -149,12 +152,21 @@ def impulse_response(omega: NDArray[np.float64], damping: NDArray[np.float64],
 
 class _TailTransform:
     """p -> int_{omega_N}^{TAIL_EXTENT omega_N} (omega_N / omega)^p cos(omega t) d omega, with
-    the transform operator of the geometric tail grid built once."""
+    the transform operator of the geometric tail grid built once (and shared by the tail fit
+    and the kernel of the same grid: it is the costliest part of building a kernel)."""
+
+    _operators: dict[tuple[float, bytes], NDArray[np.float64]] = {}
 
     def __init__(self, omega_top: float, t: NDArray[np.float64]) -> None:
         self.grid, _ = _tail_grid(omega_top, 1.0)
         self.omega_top = omega_top
-        self.operator = cosine_transform_operator(self.grid, np.asarray(t, float))
+        t = np.ascontiguousarray(t, dtype=float)
+        key = (float(omega_top), hashlib.sha1(t.tobytes()).digest())
+        if key not in self._operators:
+            if len(self._operators) >= 4:
+                self._operators.pop(next(iter(self._operators)))
+            self._operators[key] = cosine_transform_operator(self.grid, t)
+        self.operator = self._operators[key]
 
     def __call__(self, exponent: float) -> NDArray[np.float64]:
         return self.operator @ (self.omega_top / self.grid) ** exponent

@@ -153,6 +153,7 @@ class QuasiDynamicLine(PathStepper):
         self.prm = prm
         #: unstretched arc lengths from the anchor of the shape points :attr:`r` [m]
         self.arc_length = np.linspace(0.0, line.length, SHAPE_NODES)
+        self._factor1 = np.empty(1)  # k_QD of a one-sample step (the coupled body's)
         self._work = np.zeros(N_OUT_3D)
         self._fpos = np.zeros(3)
         self._fvel = np.zeros(3)
@@ -256,11 +257,11 @@ class QuasiDynamicLine(PathStepper):
         n = time.size
         if n == 0:
             return
-        if time[0] < self.time or np.any(np.diff(time) <= 0.0):
+        if time[0] < self.time or (n > 1 and np.any(np.diff(time) <= 0.0)):
             raise ValueError(f"line '{self.name}' (quasi-dynamic): sample times must increase "
                              f"from the line's time {self.time:.6g} s")
         if factor is None:
-            factor = np.empty(n)
+            factor = self._factor1 if n == 1 else np.empty(n)
         index = _k.quasi_dynamic_series(
             self.anchor, self.time, self.fairlead, self.fairlead_velocity, time, path, velocity,
             self.prm, self.hist, self.cur, self.X, self.Z, self.refs[0], self.refs[1],
