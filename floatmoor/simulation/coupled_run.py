@@ -26,6 +26,7 @@ from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.synthesis import harmonic_sum
 from floatmoor.waves.realisation import WaveField
 from floatmoor.wind.force import RotorThrust
 from floatmoor.waves.settings import (
@@ -217,21 +218,29 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             series["laid_length"][i, index] = moored.laid_length[i]
         bseries["body_displacement"][index] = body.x - x_eq
         bseries["body_velocity"][index] = body.v
-        bseries["wave_elevation"][index] = float(sea.elevation(np.array([body.time]))[0]) \
-            if sea.n_components else 0.0
         if recorder.shape_stride and index % recorder.shape_stride == 0:
             for i, (p, t) in enumerate(moored.line_shapes(pos)):
                 recorder.store_shape(i, index // recorder.shape_stride, p, t)
+
+    # the incident elevation at the reference point, filled per chunk of output samples
+    elevation = sea.complex_elevation(centre[0], centre[1]) if sea.n_components else None
+
+    def fill_elevation(first: int, last: int) -> None:
+        if elevation is not None and last >= first:
+            bseries["wave_elevation"][first:last + 1] = harmonic_sum(
+                elevation, sea.omega, times[first:last + 1])
 
     start_wall = _time.perf_counter()
     last_ckpt = start_wall
     n_steps = (times.size - 1) * stride
     with recorder.partial_on_failure():
         if not resume:
+            fill_elevation(0, 0)
             record(0)
             recorder.advance(1)
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
+            fill_elevation(done // stride + 1, (done + chunk) // stride)
             t0 = body.time
             cache["t0"] = t0
             if excitation is not None:

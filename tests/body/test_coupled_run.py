@@ -33,6 +33,13 @@ def test_buoy_in_regular_waves_writes_a_labelled_dataset(tmp_path) -> None:
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
         assert np.all(np.isfinite(ds[name].values))
     assert "case_toml" in ds.attrs and "floatmoor_version" in ds.attrs and "created" in ds.attrs
+    # the recorded elevation is the incident one at the reference point (unramped)
+    from floatmoor.waves.settings import build
+
+    sea = build(settings.waves, case.environment.water_depth, case.environment.gravity,
+                case.simulation.duration)
+    np.testing.assert_allclose(ds["wave_elevation"].values, sea.elevation(ds["time"].values),
+                               rtol=0.0, atol=1e-12)
     # the wave reaches its amplitude after the ramp; the body moves, the lines are loaded
     late = ds["time"].values > 2.0
     assert abs(np.abs(ds["wave_elevation"].values[late]).max() - 0.02) < 1e-3
