@@ -182,7 +182,7 @@ def _describe(case: Case) -> str:
         rows.append(f"  floater: {fl.name}, {fl.geometry.kind}, mass {fl.mass:.6g} kg, centre of "
                     f"mass z = {fl.centre_of_mass[2]:.6g} m"
                     + (f", draft {fl.geometry.draft:.6g} m" if fl.geometry.kind == "cylinder"
-                       else ""))
+                       else "") + f", radiation {fl.radiation}")
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
         rows.append(f"  hydro: database {case.hydro.database}, {len(case.hydro.frequencies)} "
