@@ -3,8 +3,9 @@
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
 runs it; ``floatmoor study qd-verification -o DIR`` runs the quasi-dynamic verification study
 (cases.md case B); ``floatmoor hydro build CASE`` builds the floater's BEM database,
-``floatmoor hydro check NAME`` checks one (exit 1 when a check fails) and ``floatmoor hydro info
-NAME`` describes it; a missing, damaged or stale database is bad input (exit 2). Bad input (a
+``floatmoor hydro check NAME`` checks one (exit 1 when a check fails), ``floatmoor hydro info
+NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space realisation
+of its radiation kernel; a missing, damaged or stale database is bad input (exit 2). Bad input (a
 malformed case, a bad ``--set`` or output path) prints one message and exits with status 2,
 without a traceback and without writing output. A run that
 fails (no valid line state) or is interrupted writes its partial results and exits with 1 or
@@ -100,6 +101,16 @@ def _parser() -> argparse.ArgumentParser:
     hinfo = hsub.add_parser("info", help="describe a database")
     hinfo.add_argument("database", metavar="NAME_OR_PATH",
                        help="database name (hydrodb/NAME.nc) or path")
+    hfit = hsub.add_parser("fit-state-space", help="add a state-space realisation of the "
+                           "radiation kernel K(t) to a database (no BEM rebuild)")
+    hfit.add_argument("database", metavar="NAME_OR_CASE",
+                      help="database name (hydrodb/NAME.nc), path, or a case file (.toml)")
+    hfit.add_argument("--tolerance", type=float, default=None, metavar="RTOL",
+                      help="largest relative L2 error of each K_ij over the truncation time "
+                      "(default 0.005)")
+    hfit.add_argument("--max-order", type=int, default=None, metavar="N",
+                      help="largest number of states per pair (default 30)")
+    hfit.add_argument("--json", action="store_true", help="the fit's errors as JSON")
     from floatmoor.report.cli import add_report_parsers
 
     add_report_parsers(sub)
@@ -176,7 +187,7 @@ def _describe(case: Case) -> str:
         rows.append(f"  floater: {fl.name}, {fl.geometry.kind}, mass {fl.mass:.6g} kg, centre of "
                     f"mass z = {fl.centre_of_mass[2]:.6g} m"
                     + (f", draft {fl.geometry.draft:.6g} m" if fl.geometry.kind == "cylinder"
-                       else ""))
+                       else "") + f", radiation {fl.radiation}")
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
         rows.append(f"  hydro: database {case.hydro.database}, {len(case.hydro.frequencies)} "

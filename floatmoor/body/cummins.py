@@ -10,10 +10,17 @@ drag, given by the caller), and optional linear and quadratic damping matrices
 f_lin = -B_1 x', f_quad = -B_2 |x'| x'.
 
 Time integration: the classical fourth-order Runge-Kutta scheme on (x, x') at a fixed step dt.
-The memory mu convolves K, truncated, with the velocities at the step points taken piecewise
-linear (``_memory_kernels``: weights from a finely sampled K); inside a step it is
-extrapolated linearly from its last two values (second order, so that it adds no phase lag
-of dt / 2 to the radiation damping).
+The memory mu has two paths:
+
+* convolution (default): K, truncated, convolved with the velocities at the step points
+  taken piecewise linear (``_memory_kernels``: weights from a finely sampled K); inside a
+  step it is extrapolated linearly from its last two values (second order, so that it adds
+  no phase lag of dt / 2 to the radiation damping);
+* state space (``radiation_states``, :class:`~floatmoor.body.radiation_states.
+  RadiationStates`): mu = C z + D v with z' = A z + B v, the realisations of K_ij of
+  :mod:`floatmoor.hydro.state_space`; the states are integrated in the same RK4 step as
+  (x, x'), each stage's z from that stage's velocity (``_radiation_kernels``), so the whole
+  system is fourth-order consistent.
 """
 
 from __future__ import annotations
@@ -25,6 +32,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body._memory_kernels import hat_weights, memory_force
+from floatmoor.body._radiation_kernels import radiation_combine, radiation_stage
+from floatmoor.body.radiation_states import RadiationStates
 
 __all__ = ["CumminsBody", "BodyState", "ForceFunction"]
 
@@ -46,6 +55,9 @@ class BodyState:
     filled: int
     memory: NDArray[np.float64]
     memory_before: NDArray[np.float64]
+    #: state-space path: the radiation states z (None on the convolution path, whose memory
+    #: is ``history`` and ``memory``; those stay empty on the state-space path)
+    radiation: NDArray[np.float64] | None = None
 
 
 class CumminsBody:
@@ -65,13 +77,17 @@ class CumminsBody:
         Time step [s].
     linear_damping, quadratic_damping
         B_1, B_2 (6, 6) or None.
+    radiation_states
+        The state-space radiation (then ``kernel`` must be None): the memory is C z + D v of
+        states integrated with the body.
     """
 
     def __init__(self, mass_matrix: NDArray[np.float64], added_mass_infinite: NDArray[np.float64],
                  stiffness: NDArray[np.float64], static_force: NDArray[np.float64],
                  kernel: tuple[NDArray[np.float64], NDArray[np.float64]] | None, dt: float, *,
                  linear_damping: NDArray[np.float64] | None = None,
-                 quadratic_damping: NDArray[np.float64] | None = None) -> None:
+                 quadratic_damping: NDArray[np.float64] | None = None,
+                 radiation_states: RadiationStates | None = None) -> None:
         if not dt > 0.0:
             raise ValueError(f"time step must be positive, got {dt}")
         self.dt = float(dt)
@@ -102,6 +118,22 @@ class CumminsBody:
         self.v = np.zeros(6)
         self.memory = np.zeros(6)
         self.memory_before = np.zeros(6)
+        self.radiation_states = radiation_states
+        if radiation_states is not None:
+            if kernel is not None:
+                raise ValueError("give the kernel or the radiation states, not both")
+            if radiation_states.max_amplification(self.dt) >= 1.0:
+                raise ValueError(f"a radiation state is unstable under RK4 at dt = {dt} s")
+            n = radiation_states.n_states
+            self.z = np.zeros(n)
+            self._stage_z = np.zeros(n)
+            self._stage_k = np.zeros((4, n))
+            self._stage_mu = np.zeros(6)
+
+    @property
+    def radiation(self) -> str:
+        """The radiation path: ``"convolution"`` or ``"state-space"``."""
+        return "convolution" if self.radiation_states is None else "state-space"
 
     # -- state -----------------------------------------------------------------------------
     def start(self, time: float, position: NDArray[np.float64],
@@ -112,14 +144,23 @@ class CumminsBody:
         self.v = np.zeros(6) if velocity is None else np.array(velocity, dtype=float)
         self.history[:] = 0.0
         self.filled = 0
+        if self.radiation_states is not None:
+            self.z = np.zeros(self.radiation_states.n_states)  # the rest history
+            return
         self._push(self.v)
         self.memory_before = self.memory.copy()
 
     def get_state(self) -> BodyState:
+        """A copy of the whole state (body, memory history, radiation states)."""
         return BodyState(self.time, self.x.copy(), self.v.copy(), self.history.copy(),
-                         self.newest, self.filled, self.memory.copy(), self.memory_before.copy())
+                         self.newest, self.filled, self.memory.copy(), self.memory_before.copy(),
+                         None if self.radiation_states is None else self.z.copy())
 
     def set_state(self, state: BodyState) -> None:
+        """Restore a state of :meth:`get_state`."""
+        if self.radiation_states is not None and (
+                state.radiation is None or state.radiation.shape != self.z.shape):
+            raise ValueError("the state has no radiation states of this body")
         self.time = state.time
         self.x = state.position.copy()
         self.v = state.velocity.copy()
@@ -128,6 +169,8 @@ class CumminsBody:
         self.filled = state.filled
         self.memory = state.memory.copy()
         self.memory_before = state.memory_before.copy()
+        if self.radiation_states is not None:
+            self.z = state.radiation.copy()
 
     def _push(self, v: NDArray[np.float64]) -> None:
         m = self.history.shape[0]
@@ -141,8 +184,22 @@ class CumminsBody:
     # -- dynamics --------------------------------------------------------------------------
     def internal_force(self, x: NDArray[np.float64], v: NDArray[np.float64],
                        tau: float) -> NDArray[np.float64]:
-        """F_0 - C x - mu - B_1 v - B_2 |v| v at ``tau`` into the current step."""
+        """F_0 - C x - mu - B_1 v - B_2 |v| v at ``tau`` into the current step (convolution
+        path: mu extrapolated from the step points; state-space path: mu = C z + D v of the
+        states at the start of the step, ``tau`` unused)."""
+        if self.radiation_states is not None:
+            rs = self.radiation_states
+            n = rs.n_states
+            mu = np.zeros(6)
+            radiation_stage(rs.a, rs.b, rs.c, rs.offsets, rs.radiating, rs.influenced,
+                            rs.feedthrough, self.z, np.zeros(n), 0.0, np.asarray(v, float),
+                            np.zeros(n), np.zeros(n), mu)
+            return self._force_with_memory(x, v, mu)
         mu = self.memory + (self.memory - self.memory_before) * (tau / self.dt)
+        return self._force_with_memory(x, v, mu)
+
+    def _force_with_memory(self, x: NDArray[np.float64], v: NDArray[np.float64],
+                           mu: NDArray[np.float64]) -> NDArray[np.float64]:
         f = self.static_force - self.stiffness @ x - mu
         if self.linear_damping is not None:
             f -= self.linear_damping @ v
@@ -159,6 +216,8 @@ class CumminsBody:
                                    NDArray[np.float64]]) -> NDArray[np.float64]:
         """One RK4 step of length dt; ``force(stage, tau, x, v)`` gives the external force at
         stage 0..3 (tau = 0, dt/2, dt/2, dt). Returns the acceleration of stage 0."""
+        if self.radiation_states is not None:
+            return self._step_state_space(force)
         dt = self.dt
         h = 0.5 * dt
         x0, v0 = self.x, self.v
@@ -174,4 +233,35 @@ class CumminsBody:
         self.time += dt
         self.memory_before = self.memory
         self._push(self.v)
+        return a1
+
+    def _step_state_space(self, force: Callable[[int, float, NDArray[np.float64],
+                                                 NDArray[np.float64]], NDArray[np.float64]]
+                          ) -> NDArray[np.float64]:
+        """RK4 on (x, x', z): each stage's radiation force C z_s + D v_s and derivative
+        A z_s + B v_s from the compiled stage kernel."""
+        rs = self.radiation_states
+        assert rs is not None
+        dt = self.dt
+        h = 0.5 * dt
+        k, zs, mu = self._stage_k, self._stage_z, self._stage_mu
+        x0, v0, z0 = self.x, self.v, self.z
+        args = (rs.a, rs.b, rs.c, rs.offsets, rs.radiating, rs.influenced, rs.feedthrough, z0)
+        radiation_stage(*args, k[3], 0.0, v0, zs, k[0], mu)
+        a1 = self.inverse_mass @ (self._force_with_memory(x0, v0, mu) + force(0, 0.0, x0, v0))
+        x2, v2 = x0 + h * v0, v0 + h * a1
+        radiation_stage(*args, k[0], h, v2, zs, k[1], mu)
+        a2 = self.inverse_mass @ (self._force_with_memory(x2, v2, mu) + force(1, h, x2, v2))
+        x3, v3 = x0 + h * v2, v0 + h * a2
+        radiation_stage(*args, k[1], h, v3, zs, k[2], mu)
+        a3 = self.inverse_mass @ (self._force_with_memory(x3, v3, mu) + force(2, h, x3, v3))
+        x4, v4 = x0 + dt * v3, v0 + dt * a3
+        radiation_stage(*args, k[2], dt, v4, zs, k[3], mu)
+        a4 = self.inverse_mass @ (self._force_with_memory(x4, v4, mu) + force(3, dt, x4, v4))
+        self.x = x0 + dt / 6.0 * (v0 + 2.0 * v2 + 2.0 * v3 + v4)
+        self.v = v0 + dt / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
+        z = np.empty_like(z0)
+        radiation_combine(z0, k[0], k[1], k[2], k[3], dt, z)
+        self.z = z
+        self.time += dt
         return a1

@@ -8,12 +8,15 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.body.cummins import CumminsBody
-from floatmoor.case.schema import Environment, Floater
+from floatmoor.body.radiation_states import RadiationStates
+from floatmoor.case.schema import RADIATION_METHODS, Environment, Floater
 from floatmoor.hydro.radiation import (
     added_mass_from_kernel, hydrostatic_stiffness_total, radiation_kernel,
 )
+from floatmoor.hydro.state_space import StateSpaceRadiation
 
-__all__ = ["static_force", "build_body", "consistent_infinite_added_mass", "KERNEL_SUBSTEPS"]
+__all__ = ["static_force", "build_body", "consistent_infinite_added_mass", "KERNEL_SUBSTEPS",
+           "radiation_states_of", "checked_state_space", "state_space_infinite_added_mass"]
 
 #: Fine samples of K(t) per body step for the memory weights (the kernel's peak at t = 0 of
 #: slowly decaying surge and pitch damping is a few body steps wide at T / 60).
@@ -53,29 +56,101 @@ def consistent_infinite_added_mass(ds: xr.Dataset, time: NDArray[np.float64],
     return implied.mean(axis=0)
 
 
+def state_space_infinite_added_mass(ds: xr.Dataset, realisation: StateSpaceRadiation
+                                    ) -> NDArray[np.float64]:
+    """A_inf consistent with the realisation and the BEM added mass over the band (6, 6):
+    the mean over the BEM frequencies of A(w) - (A_fit(w) - A_inf), the state-space form of
+    :func:`consistent_infinite_added_mass` (A_fit - A_inf = Im H(i w) / w of the
+    realisation; zero for the pairs without memory, as K is there)."""
+    omega = ds["omega"].values
+    added = ds["added_mass"].transpose("omega", "radiating_dof", "influenced_dof").values
+    shape, _ = realisation.frequency_response(omega)
+    return (added - shape).mean(axis=0)
+
+
+def radiation_states_of(ds: xr.Dataset, dt: float) -> RadiationStates:
+    """The database's stored state-space realisation packed for a body step ``dt``.
+
+    Raises
+    ------
+    HydroDatabaseError
+        See :func:`checked_state_space`.
+    """
+    return RadiationStates.from_pairs(
+        [(p.radiating, p.influenced, p.a, p.b, p.c) for p in checked_state_space(ds).pairs],
+        dt)
+
+
+def checked_state_space(ds: xr.Dataset) -> StateSpaceRadiation:
+    """The database's stored realisation, checked to belong to its K(t).
+
+    Raises
+    ------
+    HydroDatabaseError
+        No realisation in the database, a damaged one, or one fitted from another K(t)
+        (:func:`floatmoor.hydro.state_space.stale_reasons`).
+    """
+    from floatmoor.hydro.database import HydroDatabaseError
+    from floatmoor.hydro.state_space import read_state_space, stale_reasons
+
+    where = ds.attrs.get("path", ds.attrs.get("database", "the database"))
+    realisation = read_state_space(ds)
+    if realisation is None:
+        raise HydroDatabaseError(f"{where}: no state-space realisation of the radiation (add "
+                                 "one with 'floatmoor hydro fit-state-space NAME')")
+    reasons = stale_reasons(ds, realisation)
+    if reasons:
+        raise HydroDatabaseError(f"{where}: stale state-space realisation, fitted from another "
+                                 f"K(t): {'; '.join(reasons)}; refit with 'floatmoor hydro "
+                                 "fit-state-space NAME'")
+    return realisation
+
+
 def build_body(floater: Floater, ds: xr.Dataset, environment: Environment, dt: float, *,
                extra_stiffness: NDArray[np.float64] | None = None,
                linear_damping: NDArray[np.float64] | None = None,
                quadratic_damping: NDArray[np.float64] | None = None,
                kernel_time: float | None = None,
-               infinite_added_mass: str = "kramers-kronig") -> CumminsBody:
+               infinite_added_mass: str = "kramers-kronig",
+               radiation: str | None = None) -> CumminsBody:
     """The Cummins body of ``floater`` with its database ``ds`` at time step ``dt``.
 
     ``kernel_time`` truncates K(t) (default: the database's, radiation.truncation_time);
-    ``infinite_added_mass`` is ``"kramers-kronig"`` (:func:`consistent_infinite_added_mass`)
-    or ``"bem"`` (the database's A_inf).
+    ``infinite_added_mass`` is ``"kramers-kronig"`` (:func:`consistent_infinite_added_mass`,
+    or :func:`state_space_infinite_added_mass` on the state-space path) or ``"bem"`` (the
+    database's A_inf); ``radiation`` is ``"convolution"`` or ``"state-space"`` (the
+    database's stored realisation, :func:`radiation_states_of`), default the floater's.
     """
-    kernel = radiation_kernel(ds, dt=dt / KERNEL_SUBSTEPS, t_max=kernel_time)
-    if infinite_added_mass == "kramers-kronig":
-        a_inf = consistent_infinite_added_mass(ds, kernel.time, kernel.kernel)
-    elif infinite_added_mass == "bem":
-        a_inf = kernel.added_mass_infinite
-    else:
+    radiation = floater.radiation if radiation is None else radiation
+    if radiation not in RADIATION_METHODS:
+        raise ValueError(f"radiation: one of {RADIATION_METHODS}, got {radiation!r}")
+    if infinite_added_mass not in ("kramers-kronig", "bem"):
         raise ValueError(f"infinite_added_mass: 'kramers-kronig' or 'bem', got "
                          f"{infinite_added_mass!r}")
+    states = None
+    if radiation == "state-space":
+        if kernel_time is not None:
+            raise ValueError("kernel_time: the state-space realisation was fitted over the "
+                             "database's own truncation time")
+        realisation = checked_state_space(ds)
+        states = RadiationStates.from_pairs(
+            [(p.radiating, p.influenced, p.a, p.b, p.c) for p in realisation.pairs], dt)
+        if infinite_added_mass == "kramers-kronig":
+            a_inf = state_space_infinite_added_mass(ds, realisation)
+        else:
+            a_inf = ds["added_mass_infinite"].transpose("radiating_dof",
+                                                        "influenced_dof").values
+    else:
+        kernel = radiation_kernel(ds, dt=dt / KERNEL_SUBSTEPS, t_max=kernel_time)
+        if infinite_added_mass == "kramers-kronig":
+            a_inf = consistent_infinite_added_mass(ds, kernel.time, kernel.kernel)
+        else:
+            a_inf = kernel.added_mass_infinite
     stiffness = hydrostatic_stiffness_total(ds, floater)
     if extra_stiffness is not None:
         stiffness = stiffness + extra_stiffness
     return CumminsBody(floater.mass_matrix(), a_inf, stiffness,
-                       static_force(floater, ds, environment), (kernel.time, kernel.kernel), dt,
-                       linear_damping=linear_damping, quadratic_damping=quadratic_damping)
+                       static_force(floater, ds, environment),
+                       None if states is not None else (kernel.time, kernel.kernel), dt,
+                       linear_damping=linear_damping, quadratic_damping=quadratic_damping,
+                       radiation_states=states)

@@ -3,7 +3,9 @@
 ``[floater]``: ``name``, ``mass`` [kg], ``centre_of_mass`` [m] and ``reference_point`` [m]
 (global, body at rest; the reference point is the rotation centre of the six DOFs),
 ``inertia`` about the centre of mass, ``[Ixx, Iyy, Izz]`` or
-``[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`` [kg m^2], and ``[floater.geometry]``:
+``[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`` [kg m^2], ``radiation = "convolution"`` (default: K(t)
+convolved with the velocity history) or ``"state-space"`` (the database's stored realisation
+of K(t), ``floatmoor hydro fit-state-space``), and ``[floater.geometry]``:
 
 * ``kind = "cylinder"``: ``diameter``, ``height`` (bottom to top) and optionally ``draft``
   [m]. Without ``draft`` the draft is the one at which the cylinder floats freely,
@@ -30,8 +32,8 @@ import numpy as np
 
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
-    HydroSettings, Member, SemisubmersibleGeometry,
+    GEOMETRY_KINDS, RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater,
+    FloaterGeometry, HydroSettings, Member, SemisubmersibleGeometry,
 )
 
 __all__ = ["read_floater", "read_hydro", "MAX_FREQUENCIES"]
@@ -57,6 +59,7 @@ def read_floater(t: TableReader, environment: Environment) -> Floater:
     if np.linalg.eigvalsh(tensor).min() <= 0.0:
         raise t.error("inertia", "a positive definite inertia tensor [kg m^2]", list(inertia))
     ref = t.vector("reference_point", size=3, unit="m")
+    radiation = t.string("radiation", choices=RADIATION_METHODS, default="convolution")
     geometry = _geometry(t.table("geometry"), mass, environment)
     drag = _drag(t.table("drag")) if t.has("drag") else None
     t.finish()
@@ -67,7 +70,7 @@ def read_floater(t: TableReader, environment: Environment) -> Floater:
                       list(com))
     return Floater(name=name, mass=mass, centre_of_mass=com,  # type: ignore[arg-type]
                    inertia=full, reference_point=ref, geometry=geometry,  # type: ignore[arg-type]
-                   drag=drag)
+                   drag=drag, radiation=radiation)
 
 
 def _drag(t: TableReader):

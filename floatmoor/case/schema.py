@@ -19,6 +19,7 @@ __all__ = [
     "SEABED_CONTACT_METHODS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
+    "RADIATION_METHODS",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
@@ -219,6 +220,9 @@ class Simulation:
 
 #: Floater geometry kinds a case file may give (``floater.geometry.kind``).
 GEOMETRY_KINDS = ("cylinder", "semisubmersible")
+#: Radiation memory paths of a floater (``floater.radiation``): the convolution of K(t) with
+#: the velocity history, or the database's state-space realisation of K(t).
+RADIATION_METHODS = ("convolution", "state-space")
 
 
 @dataclass(frozen=True)
@@ -286,6 +290,8 @@ class Floater:
     geometry: FloaterGeometry
     #: Morison drag on the members (``[floater.drag]``: floatmoor.body.morison.DragSettings)
     drag: Any = None
+    #: radiation memory path (one of :data:`RADIATION_METHODS`)
+    radiation: str = "convolution"
 
     def mass_matrix(self) -> NDArray[np.float64]:
         """6x6 rigid-body mass matrix about :attr:`reference_point` (Surge .. Yaw)."""

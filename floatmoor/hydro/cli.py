@@ -1,7 +1,8 @@
-"""``floatmoor hydro build | check | info`` (called from :mod:`floatmoor.cli`).
+"""``floatmoor hydro build | check | info | fit-state-space`` (called from :mod:`floatmoor.cli`).
 
-Exit statuses: 0 success (all checks pass), 1 a check fails, 2 bad input (a malformed case,
-a case without [floater]/[hydro], a bad output path, or a missing, damaged or stale database).
+Exit statuses: 0 success (all checks pass), 1 a check fails (or no state-space fit within the
+tolerance: nothing written), 2 bad input (a malformed case, a case without [floater]/[hydro],
+a bad output path or option, or a missing, damaged or stale database).
 """
 
 from __future__ import annotations
@@ -29,6 +30,8 @@ def hydro_command(args: argparse.Namespace) -> int:
             return _build(args)
         if args.hydro_command == "check":
             return _check(args)
+        if args.hydro_command == "fit-state-space":
+            return _fit_state_space(args)
         return _info(args)
     except HydroDatabaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -128,6 +131,70 @@ def _check(args: argparse.Namespace) -> int:
     return EXIT_OK if ok else EXIT_FAILED
 
 
+def _fit_state_space(args: argparse.Namespace) -> int:
+    """Fit the realisation from the stored BEM data and write it into the same file: the BEM
+    variables and recorded inputs stay as they are (the database stays up to date)."""
+    from floatmoor.hydro import state_space as ss
+    from floatmoor.hydro.database import database_path, load_for_case, write_database
+
+    rtol = ss.KERNEL_RTOL if args.tolerance is None else args.tolerance
+    max_order = ss.MAX_ORDER if args.max_order is None else args.max_order
+    if not (math.isfinite(rtol) and 0.0 < rtol < 1.0):
+        raise CaseError("--tolerance", "", "a number between 0 and 1", str(args.tolerance))
+    if not 1 <= max_order <= ss.HANKEL_ROWS:
+        raise CaseError("--max-order", "", f"a whole number from 1 to {ss.HANKEL_ROWS}",
+                        str(args.max_order))
+    if args.database.endswith(".toml"):
+        case = load_case(args.database)
+        if case.floater is None or case.hydro is None:
+            raise CaseError(args.database, "hydro", "a case with [floater] and [hydro] tables",
+                            "none" if case.floater is None else "no [hydro] table")
+        path = database_path(case)
+        ds = load_for_case(case, path)
+    else:
+        path, ds, _ = _open(args.database)
+    realisation = ss.fit_state_space(ds, rtol=rtol, max_order=max_order)
+    summary = realisation.summary()
+    missed = [p for p in realisation.pairs if not p.within_tolerance]
+    if args.json:
+        print(json.dumps({"database": str(path), "written": not missed, **summary}, indent=2))
+    else:
+        print(f"{path}: state-space realisation of K(t), {len(realisation.pairs)} pairs, "
+              f"{realisation.n_states} states, fitted in {realisation.fit_seconds:.1f} s")
+        print(_pairs_table(realisation, rtol))
+    if missed:
+        names = ", ".join(f"{ss.DOFS[p.radiating]}-{ss.DOFS[p.influenced]}" for p in missed)
+        print(f"floatmoor: no realisation within {rtol:g} up to order {max_order} for {names}; "
+              f"nothing written (raise --max-order or --tolerance)", file=sys.stderr)
+        return EXIT_FAILED
+    write_database(ss.add_to_dataset(ds, realisation), path)
+    if not args.json:
+        print(f"written to {path}")
+    return EXIT_OK
+
+
+def _pairs_table(realisation, rtol: float | None = None) -> str:
+    from floatmoor.hydro.state_space import DOFS
+
+    rows = [f"    {'pair':<14}{'order':>6}{'K error':>10}{'B error':>10}{'A error':>10}"
+            f"{'min B':>11}  passivity"]
+    for p in realisation.pairs:
+        passive = "-" if p.radiating != p.influenced else (
+            "enforced" if p.passivity_enforced else "as fitted")
+        min_b = "-" if p.radiating != p.influenced else f"{p.min_damping:.1e}"
+        rows.append(f"    {DOFS[p.radiating] + '-' + DOFS[p.influenced]:<14}{p.order:>6}"
+                    f"{p.kernel_error:>10.2e}{p.damping_error:>10.2e}"
+                    f"{p.added_mass_error:>10.2e}{min_b:>11}  {passive}")
+    tol = f" (tolerance {rtol:g})" if rtol is not None else ""
+    rows.append(f"    K error: relative L2 over the truncation time{tol}; B, A error: largest "
+                "over the BEM band / peak; min B: smallest B_fit / largest (diagonal pairs)")
+    rows.append(f"    coupled 6 x 6 B_fit: smallest scaled eigenvalue "
+                f"{realisation.matrix_min_damping:.2e} (>= 0: passive); ERA modes dropped "
+                f"{sum(p.dropped for p in realisation.pairs)}, unstable poles reflected "
+                f"{sum(p.reflected for p in realisation.pairs)}")
+    return "\n".join(rows)
+
+
 def _info(args: argparse.Namespace) -> int:
     path, ds, note = _open(args.database)
     omega = ds["omega"].values
@@ -146,4 +213,22 @@ def _info(args: argparse.Namespace) -> int:
           f"{float(ds['waterplane_area']):.6g} m^2")
     print(f"  capytaine {a['capytaine_version']}, floatmoor {a['floatmoor_version']}, built "
           f"{a['created']} in {float(a['build_seconds']):.1f} s")
+    print(_state_space_info(ds))
     return EXIT_OK
+
+
+def _state_space_info(ds) -> str:
+    from floatmoor.hydro import state_space as ss
+
+    realisation = ss.read_state_space(ds)
+    if realisation is None:
+        return ("  state-space radiation: none (add it with 'floatmoor hydro fit-state-space "
+                f"{ds.attrs.get('database', 'NAME')}')")
+    stale = ss.stale_reasons(ds, realisation)
+    status = "up to date with the database's K(t)" if not stale else \
+        "STALE (refit with 'floatmoor hydro fit-state-space'): " + "; ".join(stale)
+    rtol = realisation.settings.get("kernel_rtol")
+    head = (f"  state-space radiation: {len(realisation.pairs)} pairs, {realisation.n_states} "
+            f"states, worst K error {realisation.worst_kernel_error:.2e}, fitted "
+            f"{realisation.created}; {status}")
+    return head + "\n" + _pairs_table(realisation, rtol)

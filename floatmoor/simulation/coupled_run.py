@@ -1,5 +1,7 @@
 """Coupled runs of a case with a floater: waves, the Cummins body on its lines, recorded and
-written as the run goes (issue 6; the coupling scheme is in :mod:`.coupled`)."""
+written as the run goes (issue 6; the coupling scheme is in :mod:`.coupled`). The floater's
+radiation memory is the convolution of K(t) or, with ``[floater] radiation = "state-space"``,
+the database's state-space realisation (whose states are in the checkpoint with the body's)."""
 
 from __future__ import annotations
 
@@ -19,9 +21,10 @@ from floatmoor.body.kinematics import points_state
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case
-from floatmoor.errors import SolverError
+from floatmoor.errors import CaseError, SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.state_space import has_state_space
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
@@ -82,6 +85,16 @@ def _excitation(case: Case, sea: WaveField, ds) -> WaveExcitation | None:
     return WaveExcitation(sea, X)
 
 
+def _key_origin(case: Case, key: str) -> str:
+    """The case file, with the ``--set`` that last set ``key`` (or a table above it)."""
+    origin = case.source
+    for text in case.overrides:
+        path = text.split("=", 1)[0].strip()
+        if key == path or key.startswith(path + "."):
+            origin = f"{case.source} (--set {text})"
+    return origin
+
+
 def checkpoint_path(output: str | Path) -> Path:
     """The checkpoint file of a run writing ``output``."""
     return Path(str(output) + ".checkpoint")
@@ -139,6 +152,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     env = case.environment
     # the case's database, refused when missing, damaged or built from other inputs
     ds = load_for_case(case, settings.database)
+    if case.floater.radiation == "state-space" and not has_state_space(ds):
+        raise CaseError(_key_origin(case, "floater.radiation"), "floater.radiation",
+                        '"convolution", or "state-space" with a database holding a state-space '
+                        "realisation of K(t) (add one with 'floatmoor hydro fit-state-space "
+                        f"{case.hydro.database if case.hydro else 'NAME'}')",
+                        f'"state-space" with {ds.attrs.get("path", "the database")}, which '
+                        "holds none")
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)
     sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)

@@ -1,0 +1,253 @@
+"""State-space realisations of K(t) (floatmoor/hydro/state_space.py): an analytic kernel with an
+exact low-order realisation, the realisations stored in the shipped databases against their
+K(t) and BEM values, ``floatmoor hydro fit-state-space`` and ``info``, and staleness."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from floatmoor.body.model import build_body
+from floatmoor.cli import main
+from floatmoor.hydro import radiation
+from floatmoor.hydro import state_space as ss
+from floatmoor.hydro.database import HydroDatabaseError, read_database, stale_keys, \
+    write_database
+from tests.hydro.conftest import BUOY_CASE, BUOY_DB, DEEPCWIND_CASE, DEEPCWIND_DB
+
+#: ERA of exact samples of a 5-state kernel in double precision: the Hankel matrix has rank 5
+#: exactly, its 5th singular value is 1e-3 of the first; poles and the kernel come back to
+#: ~1e-12 (observed 2e-13); 1e-9 leaves room for other BLAS builds.
+ROUND_OFF = 1e-9
+#: B_fit against the BEM damping over the band, relative to sqrt(max B_ii max B_jj): "within
+#: a few %" (the issue); observed at most 1.20 % (DeepCwind surge).
+DAMPING_FIT_TOL = 0.03
+#: A_fit (with the band-mean A_inf, as the body's) against the BEM added mass, relative to
+#: sqrt(max A_ii max A_jj); observed at most 0.88 % (DeepCwind surge, buoy surge 0.78 %).
+ADDED_MASS_FIT_TOL = 0.02
+#: Passivity of a diagonal pair: B_fit >= 0 up to this fraction of its peak on grids other
+#: than the fit's: where the constraint is active B_fit is 0 at its frequencies and dips in
+#: between by ~3e-8 of the peak (observed on the analytic kernel; state_space refines its
+#: grid until the dips at 4 times its points are below 1e-9).
+PASSIVITY_SLACK = 1e-6
+#: The assembled 6 x 6 B_fit (coupling pairs fitted one by one): smallest scaled eigenvalue
+#: above -1 %, the bar the BEM data themselves pass (hydro check, damping_psd); observed
+#: -0.28 % (buoy), -0.17 % (DeepCwind).
+MATRIX_PASSIVITY_TOL = 0.01
+
+
+def _analytic(t: np.ndarray) -> np.ndarray:
+    """K = 3 e^{-0.4 t} cos 2t - 1.5 e^{-0.4 t} sin 2t + 0.7 e^{-1.3 t} cos 0.5t + 2 e^{-3 t}:
+    poles -0.4 +- 2i, -1.3 +- 0.5i, -3 (5 states)."""
+    return (np.exp(-0.4 * t) * (3.0 * np.cos(2.0 * t) - 1.5 * np.sin(2.0 * t))
+            + 0.7 * np.exp(-1.3 * t) * np.cos(0.5 * t) + 2.0 * np.exp(-3.0 * t))
+
+
+def _analytic_transform(omega: np.ndarray) -> np.ndarray:
+    s = 1j * omega
+    return (3.0 * (s + 0.4) / ((s + 0.4) ** 2 + 4.0) - 1.5 * 2.0 / ((s + 0.4) ** 2 + 4.0)
+            + 0.7 * (s + 1.3) / ((s + 1.3) ** 2 + 0.25) + 2.0 / (s + 3.0))
+
+
+def test_analytic_kernel_is_recovered_to_round_off() -> None:
+    t = np.linspace(0.0, 30.0, 1501)
+    fit = ss.fit_kernel(t, _analytic(t), rtol=ROUND_OFF, max_order=10)
+    exact = np.array([-0.4 + 2j, -0.4 - 2j, -1.3 + 0.5j, -1.3 - 0.5j, -3.0])
+    poles = np.sort_complex(fit.poles)
+    print(f"order {fit.order}, K error {fit.kernel_error:.1e}, poles {np.round(poles, 12)}")
+    assert fit.order == 5 and fit.within_tolerance
+    assert fit.dropped == 0 and fit.reflected == 0
+    assert np.abs(poles - np.sort_complex(exact)).max() <= ROUND_OFF
+    fine = np.linspace(0.0, 40.0, 4001)  # beyond the fitted span as well
+    assert np.abs(fit.kernel(fine) - _analytic(fine)).max() <= ROUND_OFF * 3.0
+    omega = np.linspace(0.01, 20.0, 200)
+    h = fit.transfer(omega)
+    assert np.abs(h - _analytic_transform(omega)).max() <= ROUND_OFF * \
+        np.abs(_analytic_transform(omega)).max()
+    # the real modal form: 1 x 1 and 2 x 2 blocks, b of ones and zeros
+    assert set(np.round(fit.b, 12)) <= {0.0, 1.0}
+    assert np.count_nonzero(fit.a) == 5 + 2 * 2
+
+
+def test_lower_orders_and_passivity_constraint_on_the_analytic_kernel() -> None:
+    """Asked for less, the fit stops at the first order that reaches the tolerance; a
+    passive fit of a kernel with B(omega) < 0 somewhere (K = e^{-t} cos 3t - 0.9 e^{-t}, whose
+    transform has Re H(0) < 0) comes back with B_fit >= 0 everywhere."""
+    t = np.linspace(0.0, 30.0, 1501)
+    loose = ss.fit_kernel(t, _analytic(t), rtol=0.2, max_order=10)
+    assert loose.order < 5 and loose.kernel_error <= 0.2
+    y = np.exp(-t) * (np.cos(3.0 * t) - 0.9)
+    free = ss.fit_kernel(t, y, rtol=1e-6, max_order=6)
+    assert free.transfer(np.array([0.0]))[0].real < 0.0  # not passive as given
+    passive = ss.fit_kernel(t, y, rtol=1e-6, max_order=6, passive=True)
+    assert passive.passivity_enforced and not passive.within_tolerance
+    grid = np.concatenate([[0.0], np.logspace(-3, 3, 4000)])
+    b = passive.transfer(grid).real
+    assert b.min() >= -PASSIVITY_SLACK * b.max()
+    assert passive.min_damping >= -PASSIVITY_SLACK
+    assert passive.kernel_error > free.kernel_error  # the constraint costs accuracy
+
+
+@pytest.mark.parametrize("db", [BUOY_DB, DEEPCWIND_DB], ids=["buoy", "deepcwind"])
+def test_shipped_realisation_matches_its_kernel_and_the_bem(db) -> None:
+    ds = read_database(db)
+    realisation = ss.read_state_space(ds)
+    assert realisation is not None, f"{db.name} has no realisation"
+    kernel = radiation.radiation_kernel(ds)
+    assert ss.stale_reasons(ds, realisation, kernel) == []
+    # every pair the convolution sums is realised, and no other
+    assert sorted(realisation.orders) == ss.significant_pairs(kernel.kernel)
+    t = kernel.time
+    weights = np.full(t.size, t[1])
+    weights[[0, -1]] *= 0.5
+    omega = ds["omega"].values
+    bem_b = ds["radiation_damping"].transpose("omega", "radiating_dof", "influenced_dof").values
+    bem_a = ds["added_mass"].transpose("omega", "radiating_dof", "influenced_dof").values
+    peak_b = np.abs(np.diagonal(bem_b, axis1=1, axis2=2)).max(axis=0)
+    peak_a = np.abs(np.diagonal(bem_a, axis1=1, axis2=2)).max(axis=0)
+    shape, damping = realisation.frequency_response(omega)
+    worst = {"K": 0.0, "B": 0.0, "A": 0.0}
+    for p in realisation.pairs:
+        i, j = p.radiating, p.influenced
+        k = kernel.kernel[:, i, j]
+        err = math.sqrt(np.sum(weights * (p.kernel(t) - k) ** 2) / np.sum(weights * k * k))
+        b_err = np.abs(damping[:, i, j] - bem_b[:, i, j]).max() / math.sqrt(peak_b[i] * peak_b[j])
+        a_fit = shape[:, i, j] + np.mean(bem_a[:, i, j] - shape[:, i, j])
+        a_err = np.abs(a_fit - bem_a[:, i, j]).max() / math.sqrt(peak_a[i] * peak_a[j])
+        print(f"{ss.DOFS[i]}-{ss.DOFS[j]}: order {p.order}, K {err:.2e}, B {b_err:.2e}, "
+              f"A {a_err:.2e}, min B {p.min_damping:.1e}")
+        assert err <= ss.KERNEL_RTOL
+        assert abs(err - p.kernel_error) <= 1e-9  # the stored error is the recomputed one
+        assert b_err <= DAMPING_FIT_TOL and a_err <= ADDED_MASS_FIT_TOL
+        assert p.order <= ss.MAX_ORDER and np.all(p.poles.real < 0.0)
+        if i == j:  # passive: B_fit >= 0 at every frequency
+            grid = np.concatenate([[0.0], np.logspace(-4, 4, 6400)])
+            bw = p.transfer(grid).real
+            assert bw.min() >= -PASSIVITY_SLACK * bw.max()
+        # B(0) = 0: the zero of the radiation transfer function at s = 0
+        assert abs(p.transfer(np.zeros(1))[0]) <= 1e-9 * math.sqrt(peak_b[i] * peak_b[j])
+        worst = {"K": max(worst["K"], err), "B": max(worst["B"], b_err),
+                 "A": max(worst["A"], a_err)}
+    matrix = realisation.matrix_passivity()
+    print(f"{db.name}: {realisation.n_states} states, worst {worst}, 6 x 6 B_fit smallest "
+          f"scaled eigenvalue {matrix:.2e}")
+    assert matrix >= -MATRIX_PASSIVITY_TOL
+
+
+def test_refit_from_the_stored_data_reproduces_the_stored_realisation() -> None:
+    """The fit is deterministic: refitting the buoy database gives the stored orders and
+    errors (what CI can check without a BEM build)."""
+    ds = read_database(BUOY_DB)
+    stored = ss.read_state_space(ds)
+    refit = ss.fit_state_space(ds)
+    assert refit.orders == stored.orders
+    for a, b in zip(refit.pairs, stored.pairs):
+        assert abs(a.kernel_error - b.kernel_error) <= 1e-9
+        assert np.allclose(np.sort_complex(a.poles), np.sort_complex(b.poles), rtol=1e-8)
+
+
+def _without_realisation(src, tmp_path):
+    folder = tmp_path / "hydrodb"
+    folder.mkdir(exist_ok=True)
+    path = folder / src.name
+    ds = ss.remove_from_dataset(read_database(src))
+    ds.attrs.pop("path", None)
+    write_database(ds, path)
+    return path
+
+
+def test_fit_state_space_command_adds_variables_without_staling(tmp_path, capsys,
+                                                                monkeypatch) -> None:
+    from floatmoor.case.load import load_case
+
+    path = _without_realisation(BUOY_DB, tmp_path)
+    monkeypatch.chdir(tmp_path)
+    assert main(["hydro", "info", "cylinder_buoy"]) == 0
+    assert "state-space radiation: none" in capsys.readouterr().out
+    before = read_database(path)
+    assert main(["hydro", "fit-state-space", "cylinder_buoy"]) == 0
+    out = capsys.readouterr().out
+    assert "written to" in out and "Heave-Heave" in out
+    after = read_database(path)
+    # nothing else changed, and the database is still up to date for its case
+    for name in before.variables:
+        assert np.array_equal(before[name].values, after[name].values), name
+        assert before[name].attrs == after[name].attrs, name
+    assert {k: v for k, v in after.attrs.items() if not k.startswith("state_space_")} == \
+        before.attrs
+    assert stale_keys(after, load_case(BUOY_CASE)) == []
+    new = [v for v in after.variables if str(v).startswith("state_space_")]
+    assert len(new) >= 9
+    for name in new:
+        assert after[name].attrs["units"] and after[name].attrs["long_name"], name
+    settings = json.loads(after.attrs["state_space_settings_json"])
+    errors = json.loads(after.attrs["state_space_errors_json"])
+    assert settings["kernel_rtol"] == ss.KERNEL_RTOL and settings["max_order"] == ss.MAX_ORDER
+    assert len(errors["pairs"]) == after.sizes["state_space_pair"]
+    assert all(p["kernel_error"] <= ss.KERNEL_RTOL for p in errors["pairs"])
+    assert main(["hydro", "info", "cylinder_buoy"]) == 0
+    info = capsys.readouterr().out
+    assert "state-space radiation: 9 pairs" in info and "up to date" in info
+    assert "Pitch-Pitch" in info
+    # a run no longer needs a fit: the body takes the stored realisation
+    case = load_case(BUOY_CASE)
+    body = build_body(case.floater, after, case.environment, 0.01, radiation="state-space")
+    assert body.radiation == "state-space" and body.radiation_states.n_states > 0
+
+
+def test_fit_state_space_from_a_case_file_and_bad_options(tmp_path, capsys, monkeypatch) -> None:
+    case_dir = tmp_path / "cases"
+    case_dir.mkdir()
+    case = case_dir / "buoy.toml"
+    case.write_text(BUOY_CASE.read_text())
+    path = _without_realisation(BUOY_DB, tmp_path)
+    assert main(["hydro", "fit-state-space", str(case), "--json", "--max-order", "2"]) == 1
+    report = json.loads(capsys.readouterr().out)
+    assert report["written"] is False
+    assert not ss.has_state_space(read_database(path))  # nothing written
+    assert main(["hydro", "fit-state-space", str(path), "--tolerance", "2"]) == 2
+    assert "--tolerance" in capsys.readouterr().err
+    assert main(["hydro", "fit-state-space", str(tmp_path / "absent.nc")]) == 2
+
+
+def test_a_fit_of_another_kernel_is_stale(tmp_path, monkeypatch) -> None:
+    """The recorded K settings and fingerprint are compared with the current code's: a fit
+    made from an older K (other truncation time, tail, or values) is refused."""
+    from floatmoor.case.load import load_case
+
+    ds = read_database(BUOY_DB)
+    realisation = ss.read_state_space(ds)
+    assert ss.stale_reasons(ds, realisation) == []
+    settings = dict(realisation.kernel_settings)
+    settings["truncation_time"] *= 0.5
+    older = ss.StateSpaceRadiation(realisation.pairs, realisation.settings, settings)
+    assert any("truncation_time" in r for r in ss.stale_reasons(ds, older))
+    prints = json.loads(json.dumps(realisation.kernel_settings["fingerprint"]))
+    prints["Heave-Heave"][1] *= 1.01
+    settings = dict(realisation.kernel_settings, fingerprint=prints)
+    older = ss.StateSpaceRadiation(realisation.pairs, realisation.settings, settings)
+    assert any("Heave-Heave" in r for r in ss.stale_reasons(ds, older))
+    # the radiation code's constants changed since the fit
+    monkeypatch.setattr(radiation, "TAIL_EXTENT", 2000.0)
+    reasons = ss.stale_reasons(ds, realisation)
+    assert any("tail_extent" in r for r in reasons)
+    case = load_case(BUOY_CASE)
+    with pytest.raises(HydroDatabaseError, match="stale state-space realisation"):
+        build_body(case.floater, ds, case.environment, 0.01, radiation="state-space")
+    monkeypatch.undo()
+    # written to a file, the stale attributes are read back as such
+    stale = ss.add_to_dataset(ds, older)
+    path = tmp_path / "stale.nc"
+    write_database(stale, path)
+    assert any("Heave-Heave" in r for r in ss.stale_reasons(read_database(path)))
+
+
+def test_deepcwind_case_file_selects_the_fitted_database() -> None:
+    from floatmoor.case.load import load_case
+
+    case = load_case(DEEPCWIND_CASE, ['floater.radiation="state-space"'])
+    assert case.floater.radiation == "state-space"
+    assert load_case(DEEPCWIND_CASE).floater.radiation == "convolution"
