@@ -155,13 +155,13 @@ class _TailTransform:
     the transform operator of the geometric tail grid built once (and shared by the tail fit
     and the kernel of the same grid: it is the costliest part of building a kernel)."""
 
-    _operators: dict[tuple[float, bytes], NDArray[np.float64]] = {}
+    _operators: dict[tuple[bytes, bytes], NDArray[np.float64]] = {}
 
     def __init__(self, omega_top: float, t: NDArray[np.float64]) -> None:
         self.grid, _ = _tail_grid(omega_top, 1.0)
         self.omega_top = omega_top
         t = np.ascontiguousarray(t, dtype=float)
-        key = (float(omega_top), hashlib.sha1(t.tobytes()).digest())
+        key = (hashlib.sha1(self.grid.tobytes()).digest(), hashlib.sha1(t.tobytes()).digest())
         if key not in self._operators:
             if len(self._operators) >= 4:
                 self._operators.pop(next(iter(self._operators)))
