@@ -80,6 +80,9 @@ class CumminsBody:
     radiation_states
         The state-space radiation (then ``kernel`` must be None): the memory is C z + D v of
         states integrated with the body.
+    kernel_start
+        (t, K(t)) sampled more finely over [0, 2 dt] for the first two memory weights (a
+        kernel with a cusp at t = 0; see :func:`~floatmoor.body._memory_kernels.hat_weights`).
     """
 
     def __init__(self, mass_matrix: NDArray[np.float64], added_mass_infinite: NDArray[np.float64],
@@ -87,7 +90,9 @@ class CumminsBody:
                  kernel: tuple[NDArray[np.float64], NDArray[np.float64]] | None, dt: float, *,
                  linear_damping: NDArray[np.float64] | None = None,
                  quadratic_damping: NDArray[np.float64] | None = None,
-                 radiation_states: RadiationStates | None = None) -> None:
+                 radiation_states: RadiationStates | None = None,
+                 kernel_start: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+                 ) -> None:
         if not dt > 0.0:
             raise ValueError(f"time step must be positive, got {dt}")
         self.dt = float(dt)
@@ -102,7 +107,7 @@ class CumminsBody:
             weights = np.zeros((1, 6, 6))
         else:
             weights = hat_weights(np.asarray(kernel[0], float), np.asarray(kernel[1], float),
-                                  self.dt)
+                                  self.dt, start=kernel_start)
         # (influenced, radiating) for mu_i = sum_j W_ij * v_j
         self.weights = np.ascontiguousarray(np.transpose(weights, (0, 2, 1)))
         peak = float(np.abs(self.weights).max())

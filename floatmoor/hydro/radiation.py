@@ -42,7 +42,7 @@ from floatmoor.case.schema import Floater
 __all__ = [
     "TAIL_EXPONENT", "TAIL_EXTENT", "TAIL_MIN", "TAIL_MAX", "fit_tail_exponents",
     "impulse_response", "piecewise_linear_cosine_transform",
-    "added_mass_from_kernel", "truncation_time", "RadiationKernel", "radiation_kernel",
+    "added_mass_from_kernel", "truncation_time", "RadiationKernel", "radiation_kernel", "kernel_samples",
     "hydrostatic_stiffness_total", "added_mass_at",
 ]
 
@@ -297,8 +297,16 @@ def radiation_kernel(ds: xr.Dataset, *, t_max: float | None = None, dt: float | 
         exponents = fit_tail_exponents(omega, damping, added, a_inf, t)
     else:
         exponents = np.full((6, 6), float(tail_exponent))
-    k = impulse_response(omega, damping, t, tail_exponent=exponents)
-    return RadiationKernel(t, k, a_inf, exponents)
+    return RadiationKernel(t, kernel_samples(ds, t, exponents), a_inf, exponents)
+
+
+def kernel_samples(ds: xr.Dataset, t: NDArray[np.float64],
+                   tail_exponent: NDArray[np.float64]) -> NDArray[np.float64]:
+    """K(t) (n, 6, 6), indices (radiating, influenced), of a database at the times ``t`` [s]
+    with the given tail exponents (6, 6) (those of a :class:`RadiationKernel`)."""
+    damping = ds["radiation_damping"].transpose("omega", "radiating_dof", "influenced_dof").values
+    return impulse_response(ds["omega"].values, damping, np.asarray(t, float),
+                            tail_exponent=tail_exponent)
 
 
 def added_mass_at(ds: xr.Dataset, omega: float) -> NDArray[np.float64]:

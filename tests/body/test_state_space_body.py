@@ -217,7 +217,7 @@ def deepcwind_bodies():
     ds = read_database(DEEPCWIND_DB)
     out = {}
     for key in (("convolution", CONVERGED_STEP), ("state-space", CONVERGED_STEP),
-                ("state-space", 0.1)):
+                ("state-space", 0.1), ("convolution", 0.1)):
         body = build_body(case.floater, ds, case.environment, key[1], extra_stiffness=k_moor,
                           radiation=key[0])
         x_eq = np.linalg.lstsq(body.stiffness, body.static_force + f_moor, rcond=None)[0]
@@ -261,17 +261,22 @@ DEEPCWIND_DECAYS = {"surge": ([5.0, 0, 0, 0, 0, 0], 400.0, 0),
 
 @pytest.mark.parametrize("dof", ["surge", "heave", "pitch"])
 def test_deepcwind_decay_agrees_between_radiation_paths(dof, deepcwind_bodies) -> None:
-    """Both paths at the step where the convolution is converged; the state-space path also
-    at the case's 0.1 s step against that converged convolution."""
+    """Both paths at the step where the convolution is converged; both paths also at the
+    case's 0.1 s step against that converged convolution (the convolution's first weights
+    from K sampled finely near t = 0: surge was 2.6 % off without them)."""
     offset, duration, i = DEEPCWIND_DECAYS[dof]
     conv = _deepcwind_decay(deepcwind_bodies, "convolution", CONVERGED_STEP, offset, duration)
     ss = _deepcwind_decay(deepcwind_bodies, "state-space", CONVERGED_STEP, offset, duration)
     ss_case_step = _deepcwind_decay(deepcwind_bodies, "state-space", 0.1, offset, duration)
+    conv_case_step = _deepcwind_decay(deepcwind_bodies, "convolution", 0.1, offset, duration)
     diff, diff_case = _agreement(conv, ss, i), _agreement(conv, ss_case_step, i)
+    diff_conv = _agreement(conv, conv_case_step, i)
     print(f"DeepCwind {dof} decay: state-space vs convolution at {CONVERGED_STEP} s "
           f"{diff:.2e} (margin {PATH_AGREEMENT / diff:.1f}x); state-space at 0.1 s "
-          f"{diff_case:.2e} (margin {PATH_AGREEMENT / diff_case:.1f}x)")
+          f"{diff_case:.2e} (margin {PATH_AGREEMENT / diff_case:.1f}x); convolution at 0.1 s "
+          f"{diff_conv:.2e} (margin {PATH_AGREEMENT / diff_conv:.1f}x)")
     assert diff <= PATH_AGREEMENT and diff_case <= PATH_AGREEMENT
+    assert diff_conv <= PATH_AGREEMENT
 
 
 def test_three_hour_deepcwind_run_in_the_lc34_sea_is_stable() -> None:
