@@ -230,6 +230,16 @@ def _ensure_level(anchor: np.ndarray, prm: np.ndarray, hist: np.ndarray, row: in
 
 
 @jit(error_model="numpy", inline="always")
+def _unsigned_range(j_top: int, j_bot: int) -> tuple[np.uint64, np.uint64]:
+    """Bounds of ``range`` over the stations j_top..j_bot (0 <= j_top; empty if j_bot < j_top)
+    as unsigned integers, for the vectorised loops: numba wraps a negative signed index
+    around (j + n), a select the compiler cannot drop here (it cannot prove j_top >= 0), so
+    it vectorises those loops with gathers and scatters, which costs about twice as much;
+    unsigned indices have no wraparound and load and store contiguous vectors."""
+    return np.uint64(j_top), np.uint64(max(j_bot + 1, j_top))
+
+
+@jit(error_model="numpy", inline="always")
 def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l_ref: np.ndarray,
                      q_new: np.ndarray, l_new: np.ndarray, jf: np.ndarray, j_top: int,
                      j_bot: int, refresh: bool, H: float, V: float, W: float, h: float,
@@ -238,13 +248,14 @@ def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l
     """This step's in-plane positions of the suspended stations j_top..j_bot (H > 0, fairlead
     above the anchor) into ``X[s0]``, ``Z[s0]``, and their new log references; the asinh term
     by the series from the references (directly when ``refresh`` or too far from them)."""
+    u_top, u_end = _unsigned_range(j_top, j_bot)
     if refresh:  # renew the references: every log directly
-        for j in range(j_top, j_bot + 1):
+        for j in range(u_top, u_end):
             Vs = V - W * h * jf[j]
             qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
             q_ref[j] = qi
             l_ref[j] = math.log(qi)
-    for j in range(j_top, j_bot + 1):  # vectorised
+    for j in range(u_top, u_end):  # vectorised
         Vs = V - W * h * jf[j]  # V(sigma) = V - W (L - sigma), L - sigma = j h
         d = Ls - h * jf[j]  # sigma - s_low
         hs = math.sqrt(H * H + Vs * Vs)
@@ -255,10 +266,10 @@ def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l
         q_new[j] = qi
         l_new[j] = li
     far = False  # |q / q_ref - 1| beyond the series' limit (or not finite)?
-    for j in range(j_top, j_bot + 1):
+    for j in range(u_top, u_end):
         far = far or not (abs(q_new[j] - q_ref[j]) <= _SERIES_LIMIT * q_ref[j])
     if far:  # those stations: direct logs
-        for j in range(j_top, j_bot + 1):
+        for j in range(u_top, u_end):
             if not (abs(q_new[j] - q_ref[j]) <= _SERIES_LIMIT * q_ref[j]):
                 Vs = V - W * h * jf[j]
                 d = Ls - h * jf[j]
@@ -452,7 +463,8 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
         # V(sigma) at station j: V - W j h, or with the fairlead below, V - W (L - j h)
         Vt0 = V - W * L if swapped else V
         Vt1 = W * h if swapped else -W * h
-        for j in range(j_top, j_bot + 1):  # vectorised
+        u_top, u_end = _unsigned_range(j_top, j_bot)
+        for j in range(u_top, u_end):  # vectorised
             x0, x1, x2 = X[s0, j], X[s1, j], X[s2, j]
             z0, z1, z2 = Z[s0, j], Z[s1, j], Z[s2, j]
             F[j] = _vertical_force(
