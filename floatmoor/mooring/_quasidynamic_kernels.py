@@ -50,7 +50,8 @@ q = (|V| + hypot(H, V)) / H, is evaluated as log q = log q_r + log1p(q / q_r - 1
 series from the same station's previous value (chained; directly every ``CHAIN_STEPS`` steps
 and wherever the series does not apply): exact to round-off, and the loops over the stations
 have no branches and write at most four arrays, none of which they read, so that they
-vectorise.
+vectorise; they run over whole vectors of stations with unsigned indices (contiguous vector
+loads and stores, no scalar remainder: ``_vector_window``).
 
 Everything is preallocated; the kernels allocate nothing and report failure by status.
 Parameters travel in one float64 array ``prm`` indexed by the ``Q_*`` constants; the state of
