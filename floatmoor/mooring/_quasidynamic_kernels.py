@@ -50,7 +50,8 @@ q = (|V| + hypot(H, V)) / H, is evaluated as log q = log q_r + log1p(q / q_r - 1
 series from the same station's previous value (chained; directly every ``CHAIN_STEPS`` steps
 and wherever the series does not apply): exact to round-off, and the loops over the stations
 have no branches and write at most four arrays, none of which they read, so that they
-vectorise.
+vectorise; they run over whole vectors of stations with unsigned indices (contiguous vector
+loads and stores, no scalar remainder: ``_vector_window``).
 
 Everything is preallocated; the kernels allocate nothing and report failure by status.
 Parameters travel in one float64 array ``prm`` indexed by the ``Q_*`` constants; the state of
@@ -127,6 +128,9 @@ _SERIES_LIMIT = 1e-2
 #: adds about an ulp, so the chain stays within ~sqrt(1024) = 32 ulps of log q (and this
 #: round-off is common to the three steps of a backward difference).
 CHAIN_STEPS = 1024
+#: Stations per step of the vectorised loops' windows (8 float64: one AVX-512 vector, two
+#: AVX2 ones): the windows are rounded up to a multiple of it (see ``_vector_window``).
+_VECTOR_STATIONS = 8
 #: Relative slack on station indices: a station within 1e-9 h of the touchdown point counts
 #: as on it (the stations sit exactly on the suspended part's ends at rest).
 _INDEX_SLACK = 1e-9
@@ -230,6 +234,26 @@ def _ensure_level(anchor: np.ndarray, prm: np.ndarray, hist: np.ndarray, row: in
 
 
 @jit(error_model="numpy", inline="always")
+def _vector_window(j_top: int, j_bot: int, M: int) -> tuple[np.uint64, np.uint64]:
+    """Bounds of ``range`` for the vectorised loops over the stations j_top..j_bot
+    (0 <= j_top; empty if j_bot < j_top): the window is widened below to a whole number of
+    ``_VECTOR_STATIONS`` where the M stations allow it, and the bounds are unsigned.
+
+    The stations added below j_bot (resting, or in the lift-off layer) are evaluated like the
+    others and their results left unused: their positions stay outside the evaluated range
+    of their level and their log references stay valid pairs; this spares the scalar
+    remainder loop, which for ~30 stations costs as much as the vector part. Unsigned
+    indices: numba wraps a negative signed index around (j + n), a select the compiler
+    cannot drop here (it cannot prove j_top >= 0), so it vectorises with gathers and
+    scatters, which costs about twice as much; unsigned indices load and store contiguous
+    vectors."""
+    if j_bot < j_top:
+        return np.uint64(j_top), np.uint64(j_top)
+    n = (j_bot - j_top + _VECTOR_STATIONS) // _VECTOR_STATIONS * _VECTOR_STATIONS
+    return np.uint64(j_top), np.uint64(min(j_top + n, M))
+
+
+@jit(error_model="numpy", inline="always")
 def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l_ref: np.ndarray,
                      q_new: np.ndarray, l_new: np.ndarray, jf: np.ndarray, j_top: int,
                      j_bot: int, refresh: bool, H: float, V: float, W: float, h: float,
@@ -238,13 +262,14 @@ def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l
     """This step's in-plane positions of the suspended stations j_top..j_bot (H > 0, fairlead
     above the anchor) into ``X[s0]``, ``Z[s0]``, and their new log references; the asinh term
     by the series from the references (directly when ``refresh`` or too far from them)."""
+    u_top, u_end = _vector_window(j_top, j_bot, jf.shape[0])
     if refresh:  # renew the references: every log directly
-        for j in range(j_top, j_bot + 1):
+        for j in range(u_top, u_end):
             Vs = V - W * h * jf[j]
             qi = (abs(Vs) + math.sqrt(H * H + Vs * Vs)) * inv_H
             q_ref[j] = qi
             l_ref[j] = math.log(qi)
-    for j in range(j_top, j_bot + 1):  # vectorised
+    for j in range(u_top, u_end):  # vectorised
         Vs = V - W * h * jf[j]  # V(sigma) = V - W (L - sigma), L - sigma = j h
         d = Ls - h * jf[j]  # sigma - s_low
         hs = math.sqrt(H * H + Vs * Vs)
@@ -255,10 +280,10 @@ def _station_profile(X: np.ndarray, Z: np.ndarray, s0: int, q_ref: np.ndarray, l
         q_new[j] = qi
         l_new[j] = li
     far = False  # |q / q_ref - 1| beyond the series' limit (or not finite)?
-    for j in range(j_top, j_bot + 1):
+    for j in range(u_top, u_end):
         far = far or not (abs(q_new[j] - q_ref[j]) <= _SERIES_LIMIT * q_ref[j])
     if far:  # those stations: direct logs
-        for j in range(j_top, j_bot + 1):
+        for j in range(u_top, u_end):
             if not (abs(q_new[j] - q_ref[j]) <= _SERIES_LIMIT * q_ref[j]):
                 Vs = V - W * h * jf[j]
                 d = Ls - h * jf[j]
@@ -452,7 +477,8 @@ def qd_step(anchor: np.ndarray, fairlead: np.ndarray, dt: float, prm: np.ndarray
         # V(sigma) at station j: V - W j h, or with the fairlead below, V - W (L - j h)
         Vt0 = V - W * L if swapped else V
         Vt1 = W * h if swapped else -W * h
-        for j in range(j_top, j_bot + 1):  # vectorised
+        u_top, u_end = _vector_window(j_top, j_bot, M)
+        for j in range(u_top, u_end):  # vectorised
             x0, x1, x2 = X[s0, j], X[s1, j], X[s2, j]
             z0, z1, z2 = Z[s0, j], Z[s1, j], Z[s2, j]
             F[j] = _vertical_force(
