@@ -9,6 +9,7 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled, settings_from_case
+from tests.body.interrupted import interrupt_run
 from tests.conftest import CASES
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
@@ -72,15 +73,7 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
     case = load_case(BUOY_CASE, overrides)
     whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
     out = tmp_path / "cut.nc"
-    calls = {"n": 0}
-
-    def stop_after_three(t: float) -> None:
-        calls["n"] += 1
-        if calls["n"] == 3:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        run_coupled(case, output=out, checkpoint_interval=0.0, progress=stop_after_three)
+    interrupt_run(case, out)
     partial = read_dataset(out)
     assert partial.attrs["status"].startswith("interrupted")
     assert cr.checkpoint_path(out).is_file()

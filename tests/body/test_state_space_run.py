@@ -14,6 +14,7 @@ from floatmoor.hydro import state_space as ss
 from floatmoor.hydro.database import read_database, write_database
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled
+from tests.body.interrupted import interrupt_run
 from tests.conftest import CASES, REPO
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
@@ -38,15 +39,7 @@ def test_state_space_case_runs_and_resumes_bit_identically(tmp_path, monkeypatch
     heave = whole["body_displacement"].sel(dof="Heave").values
     assert np.all(np.isfinite(heave)) and np.ptp(heave[whole["time"].values > 2.0]) > 0.01
     out = tmp_path / "cut.nc"
-    calls = {"n": 0}
-
-    def stop_after_three(t: float) -> None:
-        calls["n"] += 1
-        if calls["n"] == 3:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        run_coupled(case, output=out, checkpoint_interval=0.0, progress=stop_after_three)
+    interrupt_run(case, out)
     assert cr.checkpoint_path(out).is_file()
     resumed = run_coupled(case, output=out, resume=True).dataset
     for name in ("body_displacement", "body_velocity", "fairlead_tension", "laid_length"):
