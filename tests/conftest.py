@@ -13,7 +13,9 @@ matplotlib.use("Agg")
 REPO = Path(__file__).resolve().parents[1]
 CASES = REPO / "cases"
 LINDAHL_CASE = CASES / "lindahl" / "lindahl_r0.20_T1.25.toml"
-REFERENCE = REPO.parent / "shared" / "reference"
+#: The measured Lindahl cycles: copies of the project reference's data folder (CC BY 4.0; see
+#: the README there), kept in the repository so that a clean clone runs its tests alone.
+MEASURED = REPO / "tests" / "data" / "lindahl"
 
 
 @pytest.fixture(autouse=True)

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from floatmoor.post.comparison import align_cycles, phase_average, read_measured_cycle
-from tests.conftest import REFERENCE
+from tests.conftest import MEASURED
 
-DATA = REFERENCE / "data"
+DATA = MEASURED
 
 
 def _waveform(t: np.ndarray, period: float) -> np.ndarray:

@@ -2,7 +2,7 @@
 
 The upper end of the 33 m chain moves on a circle of radius r with period T. We run the case
 for a two-period ramp and then ``n_cycles`` full cycles, and compare with the measured data of
-``REFERENCE/data`` (phase-averaged upper-end force over one cycle, r = 0.20 m only):
+``tests/data/lindahl`` (copies of the reference's ``data``) (phase-averaged upper-end force over one cycle, r = 0.20 m only):
 
 - the mean of the per-cycle maxima after the ramp, against the published measured mean maxima
   (70.3 N at T = 1.25 s and 50.1 N at T = 3.5 s);
@@ -28,7 +28,7 @@ from floatmoor.case.load import load_case
 from floatmoor.post.comparison import align_cycles, phase_average, read_measured_cycle
 from floatmoor.post.statistics import channel_statistics
 from floatmoor.simulation.forced import run_forced_motion
-from tests.conftest import LINDAHL_CASE, REFERENCE
+from tests.conftest import LINDAHL_CASE, MEASURED
 
 __all__ = ["PUBLISHED_MEAN_MAX_N", "MEASURED_PEAK_N", "measured_cycle_path", "run_lindahl",
            "describe", "plot_lindahl_comparison"]
@@ -54,7 +54,7 @@ def _key(radius: float, period: float) -> tuple[float, float]:
 
 def measured_cycle_path(period: float, radius: float = 0.2) -> Path:
     """The measured-cycle CSV for (r, T); it may not exist (only r = 0.20 m is provided)."""
-    return REFERENCE / "data" / f"lindahl_measured_cycle_T{period:.2f}_r{radius:.2f}.csv"
+    return MEASURED / f"lindahl_measured_cycle_T{period:.2f}_r{radius:.2f}.csv"
 
 
 def run_lindahl(period: float, radius: float = 0.2, sense: str | None = None,
