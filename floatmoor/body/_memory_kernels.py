@@ -50,7 +50,8 @@ def hat_weights(t_fine: NDArray[np.float64], kernel_fine: NDArray[np.float64],
         if t0[0] != 0.0 or t0[-1] < min(2.0 * dt, float(t_fine[-1])) * (1.0 - 1e-12):
             raise ValueError("start: the fine samples must cover [0, 2 dt] from s = 0")
         near = _hat_weights_on(t0, k0, dt)
-        out[:min(2, out.shape[0], near.shape[0])] = near[:min(2, out.shape[0], near.shape[0])]
+        n = min(2, out.shape[0], near.shape[0])
+        out[:n] = near[:n]
     return out
 
 

@@ -133,7 +133,7 @@ def build_body(floater: Floater, ds: xr.Dataset, environment: Environment, dt: f
     if infinite_added_mass not in ("kramers-kronig", "bem"):
         raise ValueError(f"infinite_added_mass: 'kramers-kronig' or 'bem', got "
                          f"{infinite_added_mass!r}")
-    states = None
+    states, kernel_start = None, None
     if radiation == "state-space":
         if kernel_time is not None:
             raise ValueError("kernel_time: the state-space realisation was fitted over the "
@@ -161,5 +161,4 @@ def build_body(floater: Floater, ds: xr.Dataset, environment: Environment, dt: f
                        static_force(floater, ds, environment),
                        None if states is not None else (kernel.time, kernel.kernel), dt,
                        linear_damping=linear_damping, quadratic_damping=quadratic_damping,
-                       radiation_states=states,
-                       kernel_start=None if states is not None else kernel_start)
+                       radiation_states=states, kernel_start=kernel_start)

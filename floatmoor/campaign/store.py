@@ -61,15 +61,9 @@ def run_file_is_complete(path: str | os.PathLike[str], case_text: str,
     Only the attributes are read: the run's status (``complete``), case text and overrides
     (so a file left by another run of the same name is not taken for this one).
     """
-    path = Path(path)
-    if not path.is_file():
-        return False
-    try:
-        with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
-            attrs = dict(ds.attrs)
-    except Exception:  # unreadable or truncated: not complete
-        return False
-    return (attrs.get("status") == "complete" and attrs.get("case_toml") == case_text
+    attrs = _attributes(path)
+    return (attrs is not None and attrs.get("status") == "complete"
+            and attrs.get("case_toml") == case_text
             and attrs.get("case_overrides") == ("\n".join(overrides) or "none"))
 
 
@@ -89,13 +83,21 @@ def same_campaign(path: str | os.PathLike[str], design: CampaignDesign, case_tex
     """Whether the campaign file ``path`` holds this campaign (same case text, base overrides
     and design), so that a run into it resumes; False for another campaign or an unreadable
     file."""
+    attrs = _attributes(path)
+    wanted = _identity(design, case_text, base_overrides)
+    return attrs is not None and all(attrs.get(key) == wanted[key] for key in _IDENTITY)
+
+
+def _attributes(path: str | os.PathLike[str]) -> dict[str, Any] | None:
+    """The global attributes of a netCDF file (only they are read), or None when it is missing,
+    unreadable or truncated."""
+    if not Path(path).is_file():
+        return None
     try:
         with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
-            attrs = dict(ds.attrs)
-    except Exception:  # unreadable: not this campaign
-        return False
-    wanted = _identity(design, case_text, base_overrides)
-    return all(attrs.get(key) == wanted[key] for key in _IDENTITY)
+            return dict(ds.attrs)
+    except Exception:  # unreadable or truncated
+        return None
 
 
 class CampaignStore:

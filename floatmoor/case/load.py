@@ -22,7 +22,8 @@ from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, INTERNAL_DAMPING_METHODS, LINE_MODELS,
-    SEABED_CONTACT_METHODS, Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
+    SEABED_CONTACT_METHODS, Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion,
+    Line, LineType, Motion,
     QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
 from floatmoor.errors import CaseError

@@ -28,6 +28,7 @@ LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 #: Treatments of the seabed's normal spring-damper in the dynamic model.
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
+#: Treatments of the dynamic model's Kelvin-Voigt internal damping.
 INTERNAL_DAMPING_METHODS = ("implicit", "explicit")
 #: Rotation senses of circular motion, defined by where the end moves at the top of the circle.
 CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")

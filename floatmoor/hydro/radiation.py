@@ -42,7 +42,8 @@ from floatmoor.case.schema import Floater
 __all__ = [
     "TAIL_EXPONENT", "TAIL_EXTENT", "TAIL_MIN", "TAIL_MAX", "fit_tail_exponents",
     "impulse_response", "piecewise_linear_cosine_transform",
-    "added_mass_from_kernel", "truncation_time", "RadiationKernel", "radiation_kernel", "kernel_samples",
+    "added_mass_from_kernel", "truncation_time", "RadiationKernel", "radiation_kernel",
+    "kernel_samples",
     "hydrostatic_stiffness_total", "added_mass_at",
 ]
 

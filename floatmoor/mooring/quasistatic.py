@@ -25,6 +25,7 @@ __all__ = ["QuasiStaticLine", "SHAPE_POINTS"]
 #: Points at which a quasi-static line's shape is recorded (equally spaced in arc length).
 SHAPE_POINTS = 51
 
+
 class QuasiStaticLine:
     """A mooring line modelled as a quasi-static elastic catenary.
 
@@ -46,6 +47,9 @@ class QuasiStaticLine:
         self.name = line.name
         self.anchor = np.asarray(line.anchor, dtype=float)
         self.length = line.length
+        #: unstretched arc lengths from the anchor of the recorded shape points [m] (as the
+        #: models with memory have)
+        self.arc_length = np.linspace(0.0, line.length, SHAPE_POINTS)
         self.axial_stiffness = line.line_type.axial_stiffness
         self.weight = line.line_type.weight_in_water(environment)
         self.friction = seabed.friction_coefficient if line.quasi_static.seabed_friction else 0.0

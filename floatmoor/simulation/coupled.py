@@ -39,7 +39,7 @@ from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.mooring.catenary import solve_catenary
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
-from floatmoor.mooring.quasistatic import SHAPE_POINTS, QuasiStaticLine
+from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["MooredBody", "equilibrium", "line_force_quasi_static"]
@@ -137,6 +137,10 @@ class MooredBody:
         self._qs: list[QuasiStaticLine | None] = []
         #: laid length of each line at its last evaluation [m]
         self.laid_length = np.zeros(len(self.lines))
+        #: one-sample outputs of a memory line's step (time, fairlead force, anchor force, laid
+        #: length, steps), reused by every line at every step
+        self._sample = (np.zeros(1), np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1),
+                        np.zeros(1))
 
     # -- set-up ----------------------------------------------------------------------------
     def start(self, position: NDArray[np.float64], time: float = 0.0) -> None:
@@ -158,11 +162,10 @@ class MooredBody:
 
     # -- line shapes -----------------------------------------------------------------------
     def shape_arc_lengths(self) -> list[NDArray[np.float64]]:
-        """Arc lengths of each line's recorded shape [m]: the nodes of a memory model (as in
-        forced-motion runs), ``SHAPE_POINTS`` points on a quasi-static line."""
-        return [np.linspace(0.0, ln.length, SHAPE_POINTS) if model is None
-                else np.asarray(model.arc_length, dtype=float)
-                for ln, model in zip(self.lines, self.models)]
+        """Arc lengths of each line's recorded shape [m] (each model's ``arc_length``, as in
+        forced-motion runs)."""
+        return [np.asarray((qs if model is None else model).arc_length, dtype=float)
+                for qs, model in zip(self._qs, self.models)]
 
     def line_shapes(self, fairleads: NDArray[np.float64]
                     ) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
@@ -171,8 +174,7 @@ class MooredBody:
         out = []
         for i, model in enumerate(self.models):
             if model is None:
-                s = np.linspace(0.0, self.lines[i].length, SHAPE_POINTS)
-                out.append(self._qs[i].profile(fairleads[i], s))
+                out.append(self._qs[i].profile(fairleads[i], self._qs[i].arc_length))
             else:
                 out.append((model.r.reshape(-1, 3), model.tension()))
         return out
@@ -208,12 +210,12 @@ class MooredBody:
         if not any(m is not None for m in self.models):
             return
         pos, vel = points_state(x, v, self.arms, self.centre)
-        times = np.array([time])
+        times, ff, af, lb, steps = self._sample
+        times[0] = time
         for i, model in enumerate(self.models):
             if model is None:
                 continue
-            ff, af, lb = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1)
-            model.solve_path(times, pos[i][None, :], vel[i][None, :], ff, af, lb, np.zeros(1))
+            model.solve_path(times, pos[i:i + 1], vel[i:i + 1], ff, af, lb, steps)
             self.laid_length[i] = lb[0]
 
     # -- stepping --------------------------------------------------------------------------

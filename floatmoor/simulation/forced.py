@@ -18,7 +18,7 @@ from floatmoor.errors import SolverError
 from floatmoor.motion import fairlead_state
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
-from floatmoor.mooring.quasistatic import SHAPE_POINTS, QuasiStaticLine
+from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
@@ -89,7 +89,7 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     models = build_line_models(case)
     stride = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval,
-                        shape_nodes=[_node_arc_lengths(m) for m in models] if stride else None,
+                        shape_nodes=[m.arc_length for m in models] if stride else None,
                         shape_stride=stride)
     start_wall = _time.perf_counter()
     with recorder.partial_on_failure():
@@ -102,13 +102,6 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,
                      simulated_time_s=recorder.simulated_time)
-
-
-def _node_arc_lengths(model: LineModel) -> NDArray[np.float64]:
-    """Arc lengths at which a line's shape is recorded [m]."""
-    if isinstance(model, PathStepper):
-        return model.arc_length
-    return np.linspace(0.0, model.length, SHAPE_POINTS)
 
 
 def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start: int,
