@@ -110,6 +110,12 @@ def _parser() -> argparse.ArgumentParser:
                       "(default 0.005)")
     hfit.add_argument("--max-order", type=int, default=None, metavar="N",
                       help="largest number of states per pair (default 30)")
+    hfit.add_argument("-o", "--output", metavar="PATH.nc",
+                      help="write the database with its realisation to this new file "
+                      "(default: into the database itself, if it holds no realisation yet)")
+    hfit.add_argument("--force", action="store_true",
+                      help="replace a realisation the database already holds, or overwrite "
+                      "an existing -o file")
     hfit.add_argument("--json", action="store_true", help="the fit's errors as JSON")
     from floatmoor.report.cli import add_report_parsers
 

@@ -132,8 +132,11 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def _fit_state_space(args: argparse.Namespace) -> int:
-    """Fit the realisation from the stored BEM data and write it into the same file: the BEM
-    variables and recorded inputs stay as they are (the database stays up to date)."""
+    """Fit the realisation from the stored BEM data and write it into the same file, or a new
+    one with ``-o``: the BEM variables and recorded inputs stay as they are (the database
+    stays up to date). A realisation already in the file, or an existing ``-o`` file, is
+    replaced only with ``--force``: a committed database is never rewritten unasked (a refit
+    on other library versions can choose other orders)."""
     from floatmoor.hydro import state_space as ss
     from floatmoor.hydro.database import database_path, load_for_case, write_database
 
@@ -153,6 +156,7 @@ def _fit_state_space(args: argparse.Namespace) -> int:
         ds = load_for_case(case, path)
     else:
         path, ds, _ = _open(args.database)
+    target = _fit_target(args, path, ds)
     realisation = ss.fit_state_space(ds, rtol=rtol, max_order=max_order)
     summary = realisation.summary()
     missed = [p for p in realisation.pairs if not p.within_tolerance]
@@ -167,10 +171,33 @@ def _fit_state_space(args: argparse.Namespace) -> int:
         print(f"floatmoor: no realisation within {rtol:g} up to order {max_order} for {names}; "
               f"nothing written (raise --max-order or --tolerance)", file=sys.stderr)
         return EXIT_FAILED
-    write_database(ss.add_to_dataset(ds, realisation), path)
+    write_database(ss.add_to_dataset(ds, realisation), target)
     if not args.json:
-        print(f"written to {path}")
+        print(f"written to {target}")
     return EXIT_OK
+
+
+def _fit_target(args: argparse.Namespace, source: Path, ds) -> Path:
+    """Where ``fit-state-space`` may write, checked before the fit: the database itself when
+    it holds no realisation (variables are added, nothing is replaced), else only with
+    ``--force``; an ``-o`` file in an existing folder, not over an existing file unless
+    ``--force``."""
+    from floatmoor.hydro import state_space as ss
+
+    if args.output is None:
+        held = ss.read_state_space(ds) if ss.has_state_space(ds) else None
+        if held is not None and not args.force:
+            raise CaseError(str(source), "state_space_*", "a database without a state-space "
+                            "realisation (--force replaces it, -o PATH.nc writes a copy)",
+                            f"a realisation of {held.n_states} states fitted {held.created}")
+        return source
+    target = Path(args.output)
+    if target.is_dir() or not target.parent.is_dir():
+        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{target}'")
+    if target.exists() and not args.force:
+        raise CaseError("-o/--output", "", "a new file (--force overwrites)",
+                        f"the existing file '{target}'")
+    return target
 
 
 def _pairs_table(realisation, rtol: float | None = None) -> str:

@@ -186,11 +186,11 @@ def test_saved_state_holds_the_radiation_states() -> None:
 
 # -- the issue's check: the two paths on decays --------------------------------------------
 
-def _buoy_heave_decay(radiation: str) -> np.ndarray:
+def _buoy_heave_decay(radiation: str, ds=None) -> np.ndarray:
     """Buoy heave free decay from 1 cm, 60 steps per linear natural period, 10 periods (the
-    set-up of tests/body/test_cummins.py)."""
+    set-up of tests/body/test_cummins.py), on the shipped database or ``ds``."""
     case = load_case(BUOY_CASE)
-    ds = read_database(BUOY_DB)
+    ds = read_database(BUOY_DB) if ds is None else ds
     mass = case.floater.mass_matrix()
     stiff = hydrostatic_stiffness_total(ds, case.floater)
     omega = math.sqrt(stiff[2, 2] / mass[2, 2])

@@ -137,16 +137,42 @@ def test_shipped_realisation_matches_its_kernel_and_the_bem(db) -> None:
     assert matrix >= -MATRIX_PASSIVITY_TOL
 
 
-def test_refit_from_the_stored_data_reproduces_the_stored_realisation() -> None:
-    """The fit is deterministic: refitting the buoy database gives the stored orders and
-    errors (what CI can check without a BEM build)."""
+def test_refit_from_the_stored_data_meets_what_the_realisation_is_for() -> None:
+    """Refitting the buoy database on this machine (what CI can do without a BEM build) gives
+    a realisation as good as the stored one by every measure that matters: each pair within
+    the kernel tolerance, passive, B and A within their bars, the 6 x 6 B_fit passive, and the
+    heave decay within 1 % of the convolution's. The orders are not asserted: where the L2
+    error falls non-monotonically with the order, the smallest order reaching the tolerance
+    moves with LAPACK/NNLS round-off (the stored heave fit has 15 states; numpy 2.4.6 /
+    scipy 1.17.1 gives 19, with order 15 at 2.1 % there). Refitting twice gives the same
+    realisation: the fit itself is deterministic."""
+    from tests.body.test_state_space_body import PATH_AGREEMENT, _agreement, \
+        _buoy_heave_decay
+
     ds = read_database(BUOY_DB)
     stored = ss.read_state_space(ds)
     refit = ss.fit_state_space(ds)
-    assert refit.orders == stored.orders
-    for a, b in zip(refit.pairs, stored.pairs):
-        assert abs(a.kernel_error - b.kernel_error) <= 1e-9
-        assert np.allclose(np.sort_complex(a.poles), np.sort_complex(b.poles), rtol=1e-8)
+    again = ss.fit_state_space(ds)
+    assert again.orders == refit.orders
+    assert [p.kernel_error for p in again.pairs] == [p.kernel_error for p in refit.pairs]
+    assert sorted(refit.orders) == sorted(stored.orders)  # the same significant pairs
+    for p in refit.pairs:
+        name = f"{ss.DOFS[p.radiating]}-{ss.DOFS[p.influenced]}"
+        print(f"{name}: order {p.order}, K {p.kernel_error:.2e}, B {p.damping_error:.2e}, "
+              f"A {p.added_mass_error:.2e}")
+        assert p.within_tolerance and p.kernel_error <= ss.KERNEL_RTOL, name
+        assert p.damping_error <= DAMPING_FIT_TOL and p.added_mass_error <= ADDED_MASS_FIT_TOL
+        assert np.all(p.poles.real < 0.0), name
+        if p.radiating == p.influenced:
+            assert p.min_damping >= -PASSIVITY_SLACK, name
+    assert refit.matrix_min_damping >= -MATRIX_PASSIVITY_TOL
+    # the decay the realisation exists for, with the refit in place of the stored one
+    refitted = ss.add_to_dataset(ss.remove_from_dataset(ds), refit)
+    diff = _agreement(_buoy_heave_decay("convolution", ds),
+                      _buoy_heave_decay("state-space", refitted), 2)
+    print(f"refit: {refit.n_states} states (stored {stored.n_states}); heave decay against "
+          f"the convolution {diff:.2e}")
+    assert diff <= PATH_AGREEMENT
 
 
 def _without_realisation(src, tmp_path):
@@ -251,3 +277,36 @@ def test_deepcwind_case_file_selects_the_fitted_database() -> None:
     case = load_case(DEEPCWIND_CASE, ['floater.radiation="state-space"'])
     assert case.floater.radiation == "state-space"
     assert load_case(DEEPCWIND_CASE).floater.radiation == "convolution"
+
+
+def test_fit_state_space_never_replaces_a_realisation_unasked(tmp_path, capsys,
+                                                                monkeypatch) -> None:
+    """A database that holds a realisation (a committed one) is not rewritten without
+    --force; -o writes a copy and refuses an existing file; refusals come before the fit."""
+    import shutil
+
+    folder = tmp_path / "hydrodb"
+    folder.mkdir()
+    path = folder / BUOY_DB.name
+    shutil.copyfile(BUOY_DB, path)
+    monkeypatch.chdir(tmp_path)
+    before = path.read_bytes()
+    fits = []
+    real_fit = ss.fit_state_space
+    monkeypatch.setattr(ss, "fit_state_space", lambda *a, **k: fits.append(1) or real_fit(*a, **k))
+    assert main(["hydro", "fit-state-space", "cylinder_buoy"]) == 2
+    err = capsys.readouterr().err
+    assert "--force" in err and "-o" in err and "82 states" in err and "Traceback" not in err
+    assert path.read_bytes() == before and fits == []
+    copy = tmp_path / "copy.nc"
+    copy.write_text("mine")
+    assert main(["hydro", "fit-state-space", "cylinder_buoy", "-o", str(copy)]) == 2
+    assert "existing file" in capsys.readouterr().err and copy.read_text() == "mine"
+    assert fits == []
+    copy.unlink()
+    assert main(["hydro", "fit-state-space", "cylinder_buoy", "-o", str(copy)]) == 0
+    assert f"written to {copy}" in capsys.readouterr().out
+    assert path.read_bytes() == before and fits == [1]
+    assert ss.read_state_space(read_database(copy)) is not None
+    assert main(["hydro", "fit-state-space", "cylinder_buoy", "--force"]) == 0
+    assert ss.read_state_space(read_database(path)) is not None
