@@ -110,6 +110,8 @@ def test_full_study_quasi_dynamic_beats_quasi_static(full_study):
     assert by_shape_s[2] < by_shape_s[1] < by_shape_s[0]
 
 
+# The two strict xfails below are documented deviations from the paper (decision of issue 13):
+# they stay until a peer check of the study says otherwise.
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="observed RMSE_S < 20 % in 34 % of the runs (paper 18 %); "
                    "31-34 % with every dynamic discretisation and unspecified input tried "

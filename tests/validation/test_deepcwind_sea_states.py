@@ -7,7 +7,9 @@ report; the checks read the same analysis the report prints (floatmoor.report.ta
 
 Issue 6: the three LC34 runs complete 3 hours without instability; the standard deviation of
 the most loaded line's tension (line 2, the upwave line) is within 25 % of the published
-dynamic model's; the mean tensions within 5 % of it (not met: see the strict xfail).
+dynamic model's. The mean tensions are not compared: the published means sit on a platform
+offset the paper does not give, and issue 13 retired that check (the offset analysis stays as
+documentation: tests/verification/test_deepcwind_mean_offset.py).
 Issue 7: the published ordering: the quasi-static standard deviation of line 2 well below
 the others' and its fatigue damage orders of magnitude lower; dynamic and quasi-dynamic
 damage within a factor 2 of each other.
@@ -32,9 +34,6 @@ DEEPCWIND = CASES / "deepcwind"
 #: Issue 6: LC34 standard deviation of the most loaded line against the published dynamic
 #: model (cases.md D Table 8: 392.0 kN).
 STD_RTOL = 0.25
-#: Issue 6: LC34 mean fairlead tensions against the published dynamic model (1030 and
-#: 1202 kN).
-MEAN_RTOL = 0.05
 #: Issue 7, "well below": the quasi-static standard deviation of line 2 at most half of the
 #: others' (published: 119.6 against 364.3 and 392.0 kN, 0.31 and 0.33).
 QS_STD_RATIO = 0.5
@@ -88,23 +87,6 @@ def test_lc34_std_of_the_most_loaded_line(lc34):
     print(f"\nLC34 line 2 tension STD: dynamic {std / 1e3:.1f} kN, published dynamic model "
           f"{published / 1e3:.1f} kN ({std / published - 1:+.1%})")
     assert std == pytest.approx(published, rel=STD_RTOL)
-
-
-@pytest.mark.xfail(strict=True, reason=(
-    "the published means (line 1 1030 kN, line 2 1202 kN) sit on a platform offset the paper "
-    "does not give ('the mean tension of the three lines will only differ due to the initial "
-    "offset of the platform', section 5; no second-order forces); a -2.27 m surge with the "
-    "fairleads 1.84 m lower reproduces its quasi-static means "
-    "(tests/verification/test_deepcwind_mean_offset.py); without it every line keeps the "
-    "1110 kN pretension (+7.7 % / -7.6 %)"))
-def test_lc34_mean_tensions(lc34):
-    _, _, analyses, reference = lc34
-    for line in ("line1", "line2"):
-        published = _published(reference, "dynamic", line, "mean")
-        mean = analyses["dynamic"].tension[line]["mean"]
-        print(f"\nLC34 {line} mean: {mean / 1e3:.1f} kN, published {published / 1e3:.1f} kN "
-              f"({mean / published - 1:+.1%})")
-        assert mean == pytest.approx(published, rel=MEAN_RTOL)
 
 
 def test_lc34_published_ordering_of_the_line_models(lc34):

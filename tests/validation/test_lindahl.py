@@ -12,11 +12,12 @@ goes slack and snaps) and 3.5 s (smooth response). With the dynamic line model w
   measured mean cycle, which bounds the record's mean cycle maximum from below (the mean of the
   per-cycle maxima cannot be smaller than the maximum of the mean cycle).
 
-The first check is 0.2 points outside its 4 % bar at both periods (+4.2 %). MoorDyn, an
-independent code, predicts the same maxima from the same inputs (72.7 N and 52.07 N, within
-1 % of ours), and both are 1.6-3.2 % above the measured record's own cycle peaks (71.02 N and
-51.41 N): the tabulated 70.3 N and 50.1 N (digitised from the 1985 report) sit below what the
-published record implies. The check is kept, as a strict xfail, until that is settled.
+The first check is judged with the measurement error of the maxima the chain-experiment
+paper gives, about +-5 % (decision of issue 13; the earlier 4 % bar was the dynamic-model
+issue's, inside that error). floatmoor gives +4.2 % at both periods; MoorDyn, an independent
+code, predicts the same maxima from the same inputs (72.7 N and 52.07 N, within 0.15 % of our
+converged values), and both are 1.6-3.2 % above the measured record's own cycle peaks
+(71.02 N and 51.41 N).
 
 Run with ``python -m pytest -m slow tests/validation -s``; set ``FLOATMOOR_PLOT_DIR`` to keep
 the comparison plot (otherwise it goes to a temporary folder).
@@ -45,9 +46,9 @@ RADIUS = 0.2
 PERIODS = (1.25, 3.5)
 
 #: Relative tolerance on the mean per-cycle maximum against the published measured mean
-#: maximum. 4 % is the acceptance bar set by the dynamic-model issue; it lies inside the
-#: +/- 5 % measurement error of the maxima (cases.md case A; chain-experiment paper).
-MEAN_MAX_RTOL = 0.04
+#: maximum: the +-5 % measurement error of the maxima the chain-experiment paper gives
+#: (cases.md case A), as issue 13 decided.
+MEAN_MAX_RTOL = 0.05
 #: Largest RMS difference between the aligned simulated mean cycle and the measured mean
 #: cycle, relative to the measured cycle's peak (71.02 N at T = 1.25 s, 51.41 N at 3.5 s): 8 %.
 ALIGNED_RMS_REL_TOL = 0.08
@@ -70,10 +71,6 @@ def _result(period: float) -> dict[str, Any]:
 
 
 @pytest.mark.parametrize("period", PERIODS)
-@pytest.mark.xfail(strict=True, reason=(
-    "+4.2 % at both periods (73.3 N vs 70.3 N, 52.2 N vs 50.1 N), 0.2 points outside the 4 % "
-    "bar; MoorDyn predicts the same from the same inputs (72.7 N, 52.07 N) and the measured "
-    "record's own cycle peaks (71.02 N, 51.41 N) lie above the tabulated maxima"))
 def test_mean_cycle_maximum(period):
     result = _result(period)
     print("\n" + describe(result))

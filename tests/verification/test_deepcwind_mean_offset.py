@@ -1,7 +1,6 @@
 """What the published DeepCwind LC34 mean tensions imply about the platform's mean position
-(the evidence behind the strict xfail of
-tests/validation/test_deepcwind_sea_states.py::test_lc34_mean_tensions; README, DeepCwind
-sea states).
+(why the published means are not a check of the line models: issue 13 retired the LC34
+mean-tension comparison; README, DeepCwind sea states).
 
 The quasi-dynamic paper runs LC34 without second-order wave forces and says that "the mean
 tension of the three lines will only differ due to the initial offset of the platform"
