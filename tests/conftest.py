@@ -18,6 +18,22 @@ LINDAHL_CASE = CASES / "lindahl" / "lindahl_r0.20_T1.25.toml"
 MEASURED = REPO / "tests" / "data" / "lindahl"
 
 
+def pytest_report_header(config) -> str:
+    """The versions the suite ran with: a fresh install takes the newest releases the
+    dependency ranges allow, and a failure that depends on them must say which."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    names = ("numpy", "scipy", "numba", "llvmlite", "capytaine", "xarray", "matplotlib",
+             "netCDF4", "h5netcdf", "moorpy", "moordyn", "dask")
+    found = []
+    for name in names:
+        try:
+            found.append(f"{name} {version(name)}")
+        except PackageNotFoundError:
+            pass
+    return "floatmoor dependencies: " + ", ".join(found)
+
+
 @pytest.fixture(autouse=True)
 def _strict_floating_point():
     """Turn floating-point trouble (overflow, invalid, division by zero) into errors."""
