@@ -24,7 +24,7 @@ from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 
 __all__ = ["StaticLineLoad", "static_line_loads", "check_static_below_mbl",
-           "strain_warnings", "mbl_ratio", "safety_factor", "STRAIN_WARNING_WITHOUT_MBL"]
+           "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]
 
 #: Static fairlead strain T / EA above which a line without an MBL gets a warning [-].
 #: The linear-elastic strain at the MBL, MBL / EA, is about 1 % for studless chain (0.8 % for
@@ -33,18 +33,6 @@ __all__ = ["StaticLineLoad", "static_line_loads", "check_static_below_mbl",
 #: polyester and ~20 % for nylon (quasi-static EA / MBL of 56.5, 14 and 5 in the same file). 2 % is beyond the breaking strain of chain and HMPE
 #: and within that of polyester and nylon, which is why it is a warning and not an error.
 STRAIN_WARNING_WITHOUT_MBL = 0.02
-
-
-def mbl_ratio(tension: float, mbl: float | None) -> float | None:
-    """Tension over minimum breaking load ``T / MBL`` [-], or None without an MBL."""
-    return None if mbl is None or not math.isfinite(mbl) else float(tension) / mbl
-
-
-def safety_factor(tension: float, mbl: float | None) -> float | None:
-    """Safety factor ``MBL / T`` [-] (inf at zero tension), or None without an MBL."""
-    if mbl is None or not math.isfinite(mbl):
-        return None
-    return math.inf if tension <= 0.0 else mbl / float(tension)
 
 
 @dataclass(frozen=True)
@@ -74,16 +62,18 @@ class StaticLineLoad:
     @property
     def ratio(self) -> float | None:
         """Fairlead tension over the MBL [-]."""
-        if self.fairlead_tension is None:
+        if self.fairlead_tension is None or self.minimum_breaking_load is None:
             return None
-        return mbl_ratio(self.fairlead_tension, self.minimum_breaking_load)
+        return self.fairlead_tension / self.minimum_breaking_load
 
     @property
     def safety_factor(self) -> float | None:
         """MBL over the fairlead tension [-]."""
-        if self.fairlead_tension is None:
+        if self.fairlead_tension is None or self.minimum_breaking_load is None:
             return None
-        return safety_factor(self.fairlead_tension, self.minimum_breaking_load)
+        if self.fairlead_tension <= 0.0:
+            return math.inf
+        return self.minimum_breaking_load / self.fairlead_tension
 
 
 def static_line_loads(case: Case) -> list[StaticLineLoad]:
