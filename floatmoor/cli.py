@@ -191,7 +191,8 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         if load.failure:
             continue
         mbl = load.minimum_breaking_load
-        rows.append(f"  {load.line:<14}{load.fairlead_tension:>12.5g}{load.strain:>13.3%}"
+        strain = f"{100.0 * load.strain:.3g} %"
+        rows.append(f"  {load.line:<14}{load.fairlead_tension:>12.5g}{strain:>13}"
                     + (f"{mbl:>12.5g}{load.ratio:>9.4g}{load.safety_factor:>15.4g}"
                        if mbl is not None else f"{'no MBL':>12}{'-':>9}{'-':>15}"))
     rows.append("  (static fairlead tension against the minimum breaking load of the line "
