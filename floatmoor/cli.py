@@ -215,14 +215,6 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     return "\n".join(rows)
 
 
-def _check_breaking(case: Case) -> None:
-    """Refuse a case whose static tension reaches a line's MBL (before any output)."""
-    from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
-
-    if any(line.line_type.minimum_breaking_load is not None for line in case.lines):
-        check_static_below_mbl(case, static_line_loads(case))
-
-
 def _output_path(args: argparse.Namespace, case: Case) -> Path:
     path = Path(args.output) if args.output else Path(Path(case.source).stem + ".nc")
     if not path.parent.is_dir():
@@ -233,6 +225,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.plot import SUPPORTED_FORMATS
     from floatmoor.post.summary import format_summary, run_summary
     from floatmoor.simulation.forced import run_forced_motion
@@ -240,7 +233,7 @@ def _run(args: argparse.Namespace) -> int:
 
     case = load_case(args.case, args.overrides)
     output = _output_path(args, case)
-    _check_breaking(case)
+    refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
     if args.plot is not None:
         plot = Path(args.plot)
         if plot.suffix.lower() not in SUPPORTED_FORMATS or not plot.parent.is_dir():

@@ -51,12 +51,14 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
         runs ``body_displacement`` (time, dof) arrays.
     """
     from floatmoor.case.load import load_case
+    from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.post.summary import run_summary
 
     cpu, wall = time.process_time(), time.perf_counter()
     out: dict[str, Any] = {"status": "complete", "statistics": {}}
     try:
         case = load_case(case_path, overrides)
+        refuse_static_breaking(case)  # a line that breaks at rest: the run fails
         if case.floater is not None:
             from floatmoor.simulation.coupled_run import run_coupled
 

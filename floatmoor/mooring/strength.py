@@ -24,7 +24,7 @@ from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 
 __all__ = ["StaticLineLoad", "static_line_loads", "check_static_below_mbl",
-           "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]
+           "refuse_static_breaking", "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]
 
 #: Static fairlead strain T / EA above which a line without an MBL gets a warning [-].
 #: The linear-elastic strain at the MBL, MBL / EA, is about 1 % for studless chain (0.8 % for
@@ -111,6 +111,19 @@ def check_static_below_mbl(case: Case, loads: list[StaticLineLoad]) -> None:
                             f"line '{load.line}' ({load.fairlead_tension:.6g} N)",
                             f"{load.minimum_breaking_load!r} N (T / MBL = {ratio:.3g}: the "
                             "line breaks at rest)")
+
+
+def refuse_static_breaking(case: Case) -> None:
+    """:func:`check_static_below_mbl` for a case about to run; no work when no line type
+    gives an MBL.
+
+    Raises
+    ------
+    CaseError
+        As :func:`check_static_below_mbl`.
+    """
+    if any(line.line_type.minimum_breaking_load is not None for line in case.lines):
+        check_static_below_mbl(case, static_line_loads(case))
 
 
 def strain_warnings(loads: list[StaticLineLoad]) -> list[str]:

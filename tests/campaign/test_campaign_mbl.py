@@ -45,3 +45,15 @@ def test_campaign_without_mbl_stores_nan(tmp_path):
                       base_overrides=BASE, output=tmp_path / "c.nc")
     assert np.all(np.isnan(ds["max_tension_over_mbl"].values))
     assert np.all(ds["max_line_tension"].values > 0.0)
+
+
+def test_a_run_whose_line_breaks_at_rest_fails_and_the_campaign_goes_on(tmp_path):
+    # the Lindahl chain holds ~23 N at rest: an MBL of 10 N breaks it before it moves
+    ds = run_campaign(LINDAHL_CASE, design_from_options(
+        ["line_types.chain.minimum_breaking_load=10.0,100.0"]), base_overrides=BASE,
+        output=tmp_path / "c.nc")
+    status = ds["status"].values
+    assert status[0].startswith("failed: CaseError") and "line 'chain'" in status[0]
+    assert status[1] == "complete"
+    assert np.isnan(ds["max_tension_over_mbl"].values[0, 0])
+    assert 0.0 < ds["max_tension_over_mbl"].values[1, 0] < 1.0
