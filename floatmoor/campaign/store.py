@@ -5,10 +5,11 @@ Dimensions: one per campaign axis (named by its first key, zipped keys as extra 
 series ``time``. Variables: ``status`` (``complete``, ``failed: ...`` or ``pending``),
 ``compute_time_s`` and ``wall_time_s`` per run, per run and line the fairlead-tension
 statistics, the largest tension at either end (``max_line_tension``) and its ratio to the
-line type's minimum breaking load (``max_tension_over_mbl``, NaN without one), per run and DOF the floater-displacement statistics of coupled runs, and with run
-files (``--runs-dir``) ``run_file``, the path of each run's full output; runs that failed or
-have not run hold NaN. Attributes: the case file and text, the base overrides and the design,
-so a re-run can resume.
+line type's minimum breaking load (``max_tension_over_mbl``, NaN without one), per run and
+DOF the floater-displacement statistics of coupled runs, and with run files (``--runs-dir``)
+``run_file``, the path of each run's full output; runs that failed or have not run hold NaN.
+Attributes: the case file and text, the base overrides and the design, so a re-run can
+resume.
 """
 
 from __future__ import annotations

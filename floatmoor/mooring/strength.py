@@ -30,8 +30,9 @@ __all__ = ["StaticLineLoad", "static_line_loads", "check_static_below_mbl",
 #: The linear-elastic strain at the MBL, MBL / EA, is about 1 % for studless chain (0.8 % for
 #: grade R3 at 150 mm to 1.4 % for R5 at 76 mm: MBL of DNV-OS-E302, EA of DNV-OS-E301 as
 #: fitted in NREL MoorPy's MoorProps_default.yaml) and 1.8 % for HMPE rope, but 7 % for
-#: polyester and ~20 % for nylon (quasi-static EA / MBL of 56.5, 14 and 5 in the same file). 2 % is beyond the breaking strain of chain and HMPE
-#: and within that of polyester and nylon, which is why it is a warning and not an error.
+#: polyester and ~20 % for nylon (quasi-static EA / MBL of 56.5, 14 and 5 in the same file).
+#: 2 % is beyond the breaking strain of chain and HMPE and within that of polyester and
+#: nylon, which is why it is a warning and not an error.
 STRAIN_WARNING_WITHOUT_MBL = 0.02
 
 
