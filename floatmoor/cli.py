@@ -189,6 +189,7 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
                 f"{'T/MBL':>9}{'safety factor':>15}")
     for load in loads:
         if load.failure:
+            rows.append(f"  {load.line:<14}  no static solution: tension and strain unknown")
             continue
         mbl = load.minimum_breaking_load
         strain = f"{100.0 * load.strain:.3g} %"
