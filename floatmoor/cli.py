@@ -18,14 +18,15 @@ import argparse
 import json
 import sys
 from pathlib import Path
-from typing import Sequence
-
-import numpy as np
+from typing import TYPE_CHECKING, Sequence
 
 from floatmoor._version import __version__
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
+
+if TYPE_CHECKING:
+    from floatmoor.mooring.strength import StaticLineLoad
 
 __all__ = ["main"]
 
@@ -154,29 +155,31 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
+    from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
+
     case = load_case(args.case, args.overrides)
+    loads = static_line_loads(case)
+    check_static_below_mbl(case, loads)
     print(f"{args.case}: valid case \"{case.title}\"")
-    print(_describe(case))
+    print(_describe(case, loads))
     return EXIT_OK
 
 
-def _describe(case: Case) -> str:
-    """Derived quantities: weights, wave speeds, static tensions at the mean position, and the
-    discretisation and time step of dynamic lines."""
+def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
+    """Derived quantities: weights, wave speeds, static tensions at the mean position against
+    the minimum breaking loads, and the discretisation and time step of dynamic lines."""
     from floatmoor.mooring.dg.line import DynamicLine
-    from floatmoor.mooring.quasistatic import QuasiStaticLine
+    from floatmoor.mooring.strength import strain_warnings
 
     rows = [f"  {'line':<14}{'model':<14}{'length':>9}{'span':>9}{'w [N/m]':>10}"
             f"{'c_axial':>10}{'T_fair':>11}{'T_anch':>11}{'on seabed':>11}"]
     notes = []
-    for line in case.lines:
-        try:
-            sol = QuasiStaticLine.from_case(line, case.environment, case.seabed).solve(
-                np.asarray(line.fairlead))
-            static = (f"{sol.fairlead_tension:>11.5g}{sol.anchor_tension:>11.5g}"
-                      f"{sol.laid_length:>11.4g}")
-        except SolverError as err:
-            static = f"  static solution failed: {err}"
+    for line, load in zip(case.lines, loads):
+        if load.failure:
+            static = f"  static solution failed: {load.failure}"
+        else:
+            static = (f"{load.fairlead_tension:>11.5g}{load.anchor_tension:>11.5g}"
+                      f"{load.laid_length:>11.4g}")
         rows.append(f"  {line.name:<14}{line.model:<14}{line.length:>9.4g}{line.span:>9.4g}"
                     f"{line.line_type.weight_in_water(case.environment):>10.4g}"
                     f"{line.line_type.axial_wave_speed:>10.4g}{static}")
@@ -188,6 +191,20 @@ def _describe(case: Case) -> str:
                          f"(cfl {st.cfl:g}), seabed contact {st.seabed_contact}")
     rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
     rows.extend(notes)
+    rows.append(f"  {'line':<14}{'T_fair [N]':>12}{'strain T/EA':>13}{'MBL [N]':>12}"
+                f"{'T/MBL':>9}{'safety factor':>15}")
+    for load in loads:
+        if load.failure:
+            rows.append(f"  {load.line:<14}  no static solution: tension and strain unknown")
+            continue
+        mbl = load.minimum_breaking_load
+        strain = f"{100.0 * load.strain:.3g} %"
+        rows.append(f"  {load.line:<14}{load.fairlead_tension:>12.5g}{strain:>13}"
+                    + (f"{mbl:>12.5g}{load.ratio:>9.4g}{load.safety_factor:>15.4g}"
+                       if mbl is not None else f"{'no MBL':>12}{'-':>9}{'-':>15}"))
+    rows.append("  (static fairlead tension against the minimum breaking load of the line "
+                "type; safety factor = MBL / T)")
+    rows.extend(f"  {w}" for w in strain_warnings(loads))
     if case.floater is not None:
         fl = case.floater
         rows.append(f"  floater: {fl.name}, {fl.geometry.kind}, mass {fl.mass:.6g} kg, centre of "
@@ -215,6 +232,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.plot import SUPPORTED_FORMATS
     from floatmoor.post.summary import format_summary, run_summary
     from floatmoor.simulation.forced import run_forced_motion
@@ -222,6 +240,7 @@ def _run(args: argparse.Namespace) -> int:
 
     case = load_case(args.case, args.overrides)
     output = _output_path(args, case)
+    refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
     if args.plot is not None:
         plot = Path(args.plot)
         if plot.suffix.lower() not in SUPPORTED_FORMATS or not plot.parent.is_dir():

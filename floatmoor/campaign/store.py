@@ -4,10 +4,12 @@ Dimensions: one per campaign axis (named by its first key, zipped keys as extra 
 ``line``, for cases with a floater ``dof`` (capytaine's names, Surge ... Yaw), and with time
 series ``time``. Variables: ``status`` (``complete``, ``failed: ...`` or ``pending``),
 ``compute_time_s`` and ``wall_time_s`` per run, per run and line the fairlead-tension
-statistics, per run and DOF the floater-displacement statistics of coupled runs, and with run
-files (``--runs-dir``) ``run_file``, the path of each run's full output; runs that failed or
-have not run hold NaN. Attributes: the case file and text, the base overrides and the design,
-so a re-run can resume.
+statistics, the largest tension at either end (``max_line_tension``) and its ratio to the
+line type's minimum breaking load (``max_tension_over_mbl``, NaN without one), per run and
+DOF the floater-displacement statistics of coupled runs, and with run files (``--runs-dir``)
+``run_file``, the path of each run's full output; runs that failed or have not run hold NaN.
+Attributes: the case file and text, the base overrides and the design, so a re-run can
+resume.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import xarray as xr
 
 from floatmoor._version import __version__
 from floatmoor.campaign.design import CampaignDesign
-from floatmoor.campaign.worker import BODY_STATISTICS, SUMMARY_STATISTICS
+from floatmoor.campaign.worker import BODY_STATISTICS, STRENGTH_STATISTICS, SUMMARY_STATISTICS
 from floatmoor.errors import CaseError
 from floatmoor.io.netcdf import NETCDF_ENGINE, read_dataset, write_dataset
 from floatmoor.io.variables import attributes
@@ -36,6 +38,12 @@ _LONG_NAMES = {
     "min": "minimum fairlead tension after the ramp",
     "max": "maximum fairlead tension after the ramp",
     "mean_cycle_max": "mean of the per-cycle maxima of the fairlead tension",
+}
+#: The largest-tension variables: name -> (long name, units).
+_STRENGTH_VARIABLES = {
+    "max_line_tension": ("largest tension at either end of the line after the ramp", "N"),
+    "max_tension_over_mbl": ("largest tension after the ramp over the minimum breaking load of "
+                             "the line type (NaN: no MBL given)", "1"),
 }
 _BODY_LONG_NAMES = {
     "mean": "mean floater displacement from equilibrium after the wave ramp",
@@ -129,6 +137,7 @@ class CampaignStore:
         self.compute_time = np.full(shape, np.nan)
         self.wall_time = np.full(shape, np.nan)
         self.statistics = {k: np.full(shape + (len(lines),), np.nan) for k in SUMMARY_STATISTICS}
+        self.strength = {k: np.full(shape + (len(lines),), np.nan) for k in STRENGTH_STATISTICS}
         self.body_statistics = {k: np.full(shape + (len(self.dofs),), np.nan)
                                 for k in BODY_STATISTICS} if self.dofs else {}
         self.run_files = run_files
@@ -156,6 +165,8 @@ class CampaignStore:
             stats = result["statistics"].get(line)
             for key in SUMMARY_STATISTICS:
                 self.statistics[key][index + (i,)] = np.nan if stats is None else stats[key]
+            for key in STRENGTH_STATISTICS:
+                self.strength[key][index + (i,)] = np.nan if stats is None else stats[key]
         body = result.get("body_statistics", {})
         for j, dof in enumerate(self.dofs):
             stats = body.get(dof)
@@ -219,6 +230,9 @@ class CampaignStore:
             self.wall_time[index] = old["wall_time_s"].values[index]
             for key in SUMMARY_STATISTICS:
                 self.statistics[key][index] = old[f"fairlead_tension_{key}"].values[index]
+            for key in STRENGTH_STATISTICS:  # NaN from a file written before they existed
+                if key in old:
+                    self.strength[key][index] = old[key].values[index]
             if body:
                 for key in BODY_STATISTICS:
                     self.body_statistics[key][index] = \
@@ -265,6 +279,10 @@ class CampaignStore:
         for key in SUMMARY_STATISTICS:
             data[f"fairlead_tension_{key}"] = (dims + ("line",), self.statistics[key],
                                                {"long_name": _LONG_NAMES[key], "units": "N"})
+        for key in STRENGTH_STATISTICS:
+            long_name, units = _STRENGTH_VARIABLES[key]
+            data[key] = (dims + ("line",), self.strength[key],
+                         {"long_name": long_name, "units": units})
         if self.dofs:
             coords["dof"] = ("dof", np.array(self.dofs, dtype=str), attributes("dof"))
             for key in BODY_STATISTICS:

@@ -12,10 +12,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["run_one", "SUMMARY_STATISTICS", "BODY_STATISTICS"]
+__all__ = ["run_one", "SUMMARY_STATISTICS", "STRENGTH_STATISTICS", "BODY_STATISTICS"]
 
 #: Fairlead-tension statistics kept per run and line (see floatmoor.post.summary).
 SUMMARY_STATISTICS = ("mean", "std", "min", "max", "mean_cycle_max")
+#: Largest-tension statistics kept per run and line: the campaign name -> the key of the run
+#: summary's ``strength`` entry (floatmoor.post.strength.line_strength; after the ramp).
+STRENGTH_STATISTICS = {"max_line_tension": "max_tension_N",
+                       "max_tension_over_mbl": "max_tension_over_mbl"}
 #: Floater-displacement statistics kept per run and DOF of coupled runs (after the wave ramp).
 BODY_STATISTICS = ("mean", "std", "min", "max")
 
@@ -40,18 +44,21 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
     -------
     dict
         ``status`` ("complete" or "failed: message"), ``compute_time_s`` (CPU time of the run
-        in this process), ``wall_time_s``, ``statistics`` {line: {statistic: value [N]}},
+        in this process), ``wall_time_s``, ``statistics`` {line: {statistic: value [N]}}
+        (fairlead-tension and largest-tension ones; ``max_tension_over_mbl`` in [-]),
         for coupled runs ``body_statistics`` {dof: {statistic: value [m or rad]}}, and with
         ``timeseries`` the output ``time``, ``fairlead_tension`` (line, time) and for coupled
         runs ``body_displacement`` (time, dof) arrays.
     """
     from floatmoor.case.load import load_case
+    from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.post.summary import run_summary
 
     cpu, wall = time.process_time(), time.perf_counter()
     out: dict[str, Any] = {"status": "complete", "statistics": {}}
     try:
         case = load_case(case_path, overrides)
+        refuse_static_breaking(case)  # a line that breaks at rest: the run fails
         if case.floater is not None:
             from floatmoor.simulation.coupled_run import run_coupled
 
@@ -65,6 +72,10 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
             stats = entry["fairlead_tension_N"]
             out["statistics"][name] = {k: (np.nan if stats[k] is None else float(stats[k]))
                                        for k in SUMMARY_STATISTICS}
+            strength = entry["strength"]
+            out["statistics"][name].update(
+                {k: (np.nan if strength[key] is None else float(strength[key]))
+                 for k, key in STRENGTH_STATISTICS.items()})
         if "body_displacement" in summary:
             out["body_statistics"] = {
                 dof: {k: float(stats.get(k, np.nan)) for k in BODY_STATISTICS}

@@ -177,6 +177,7 @@ def _line_type(name: str, t: TableReader) -> LineType:
         tangential_added_mass_coefficient=t.number("tangential_added_mass_coefficient", unit="-",
                                                    ge=0.0, default=0.0),
         internal_damping_ratio=t.number("internal_damping_ratio", unit="-", ge=0.0, default=0.0),
+        minimum_breaking_load=t.number("minimum_breaking_load", unit="N", gt=0.0, default=None),
     )
     t.finish()
     return line_type

@@ -73,6 +73,8 @@ class LineType:
     added_mass_coefficient: float  #: C_a, on the material area m/rho_c [-]
     tangential_added_mass_coefficient: float  #: [-]
     internal_damping_ratio: float  #: axial damping ratio [-]
+    #: minimum breaking load (``minimum_breaking_load``) [N], or None when not given
+    minimum_breaking_load: float | None = None
 
     def weight_in_water(self, environment: Environment) -> float:
         """Submerged weight per unstretched length, m g (1 - rho_w / rho_c) [N/m]."""

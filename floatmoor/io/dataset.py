@@ -1,7 +1,9 @@
 """Assembly of result datasets: labelled variables, units and provenance.
 
 Dimensions: ``line`` (names, with the line model as a ``model`` coordinate), ``time`` [s] and
-``component`` (x, y, z). Attributes: the title, the case file's path and text, the ``--set``
+``component`` (x, y, z). When a line type of the case gives a minimum breaking load, the
+variable ``minimum_breaking_load`` holds it per line (NaN for lines whose type gives none).
+Attributes: the title, the case file's path and text, the ``--set``
 overrides, the floatmoor and numba versions, the creation time (ISO 8601, UTC) and the run
 status (``complete``, ``interrupted ...`` or ``failed: ...``).
 """
@@ -73,6 +75,11 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
         if values.dtype.kind == "i":
             values = values.astype(np.int32)  # netCDF-3 has no 64-bit integers
         data_vars[name] = (_DIMS[values.ndim], values, attributes(name))
+    mbl = [ln.line_type.minimum_breaking_load for ln in case.lines]
+    if any(m is not None for m in mbl):
+        data_vars["minimum_breaking_load"] = (
+            ("line",), np.array([np.nan if m is None else m for m in mbl], dtype=float),
+            attributes("minimum_breaking_load"))
     if shapes is not None:
         coords["shape_time"] = ("shape_time", shapes["shape_time"], attributes("shape_time"))
         coords["arc_length"] = (("line", "node"), shapes["arc_length"], attributes("arc_length"))

@@ -14,6 +14,9 @@ VARIABLE_ATTRIBUTES: dict[str, dict[str, str]] = {
     "line": {"long_name": "mooring line name", "units": "1"},
     "component": {"long_name": "global axis (x, y horizontal, z up)", "units": "1"},
     "model": {"long_name": "line model", "units": "1"},
+    # per-line constants
+    "minimum_breaking_load": {"long_name": "minimum breaking load of the line's type (NaN: "
+                              "not given in the case)", "units": "N"},
     # per-line time series
     "fairlead_tension": {"long_name": "line tension at the fairlead", "units": "N"},
     "fairlead_force": {"long_name": "force exerted by the line on the fairlead", "units": "N"},

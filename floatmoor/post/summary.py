@@ -1,4 +1,5 @@
-"""The run summary printed by ``floatmoor run``: fairlead-tension statistics per line."""
+"""The run summary printed by ``floatmoor run``: fairlead-tension statistics per line and the
+largest tension against the line's minimum breaking load (MBL)."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import xarray as xr
 
 from floatmoor.case.schema import Case
 from floatmoor.post.statistics import channel_statistics
+from floatmoor.post.strength import line_strength
 
 __all__ = ["run_summary", "format_summary"]
 
@@ -19,7 +21,9 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
 
     The window starts at the end of the motion ramp (t = 0 without motion). For periodic
     motion the maxima of the complete cycles after the ramp are averaged (``mean_cycle_max``).
-    Tensions are in N.
+    Per line, ``strength`` holds the largest tension at either end, after the ramp and over the
+    whole run, over the MBL of its type and the safety factor MBL / T_max
+    (:func:`floatmoor.post.strength.line_strength`; None without an MBL). Tensions are in N.
     """
     motion = case.motion
     start = motion.ramp_duration if motion is not None else 0.0
@@ -31,8 +35,12 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     lines: dict[str, Any] = {}
     for line in case.lines:
         series = dataset["fairlead_tension"].sel(line=line.name).values
-        lines[line.name] = {"model": line.model, "fairlead_tension_N":
-                            channel_statistics(time, series, start=start, period=period)}
+        stats = channel_statistics(time, series, start=start, period=period)
+        lines[line.name] = {
+            "model": line.model, "fairlead_tension_N": stats,
+            "strength": line_strength(dataset, line.name,
+                                      line.line_type.minimum_breaking_load,
+                                      start=float(stats["window_start"]))}
     out = {
         "title": case.title,
         "case": case.source,
@@ -66,6 +74,24 @@ def format_summary(summary: dict[str, Any]) -> str:
         cycle = f"{s['mean_cycle_max']:>11.4g}" if s["mean_cycle_max"] is not None else f"{'-':>11}"
         rows.append(f"  {name:<16}{entry['model']:<15}{s['mean']:>10.4g}{s['std']:>10.4g}"
                     f"{s['min']:>10.4g}{s['max']:>10.4g}{cycle}{s['n_cycles']:>8d}")
+    rows.append("largest tension at either end against the minimum breaking load (MBL) [N]:")
+    rows.append(f"  {'line':<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
+                f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}")
+    warnings = []
+    for name, entry in summary["lines"].items():
+        b = entry["strength"]
+        if b["minimum_breaking_load_N"] is None:
+            tail = f"{'no MBL':>10}{'-':>11}{'-':>8}{'-':>21}"
+        else:
+            tail = (f"{b['minimum_breaking_load_N']:>10.4g}{b['max_tension_over_mbl']:>11.4g}"
+                    f"{b['safety_factor']:>8.3g}{b['whole_run_max_tension_over_mbl']:>21.4g}")
+            if b["whole_run_max_tension_over_mbl"] >= 1.0:
+                warnings.append(f"warning: line '{name}' reached its MBL (T_max / MBL = "
+                                f"{b['whole_run_max_tension_over_mbl']:.3g}): it would break")
+        rows.append(f"  {name:<16}{b['max_tension_N']:>10.4g}{b['max_tension_end']:>10}"
+                    f"{b['max_tension_time_s']:>10.4g}{tail}")
+    rows.append("  (T_max from the window start above, SF = MBL / T_max; whole run: from t = 0)")
+    rows.extend(f"  {w}" for w in warnings)
     if summary.get("body_displacement"):
         rows.append("floater displacement from equilibrium [m, rad]:")
         rows.append(f"  {'dof':<10}{'mean':>11}{'std':>11}{'min':>11}{'max':>11}")

@@ -21,7 +21,7 @@ from floatmoor.report.reference import ReferenceValues
 from floatmoor.report.runs import ReportInputError, RunData, resolve_nominal_diameters
 from floatmoor.report.tables import (
     RunAnalysis, analyse_run, decay_table, fatigue_tables, motion_table, runs_table,
-    tension_tables,
+    strength_table, tension_tables,
 )
 
 __all__ = ["ReportFiles", "write_report", "check_output_folder", "SUMMARY_NAME"]
@@ -156,6 +156,7 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
 
     blocks.append(Heading("Fatigue"))
     blocks.extend(fatigue_tables(runs, analyses, reference))
+    blocks.append(strength_table(runs, analyses))
     figure("rainflow_histogram.png", "Rainflow-counted tension ranges",
            lambda p: fig.plot_rainflow(runs, p))
 

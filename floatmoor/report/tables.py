@@ -7,14 +7,16 @@ to :data:`SIGNIFICANT_DIGITS` significant digits. Fatigue damage is Miner's sum 
 rainflow-counted fairlead tension with the DNV-OS-E301 studless-chain S-N curve, on the nominal
 area of a chain link's two legs (``2 pi d^2 / 4``, d the nominal diameter chosen by
 :func:`floatmoor.report.runs.resolve_nominal_diameters`), over the window (not scaled to any
-other duration). The damage equivalent load is that of m = 3 and 1 Hz reference cycles.
+other duration). The damage equivalent load is that of m = 3 and 1 Hz reference cycles. The
+strength table gives the largest tension at either end over the window against the minimum
+breaking load (MBL) of the line type (:mod:`floatmoor.post.strength`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Sequence
+from typing import Any, Sequence
 
 import xarray as xr
 
@@ -23,6 +25,7 @@ from floatmoor.post.fatigue import (
 )
 from floatmoor.post.spectra import peak_period, welch_psd, zero_upcrossing_period
 from floatmoor.post.statistics import time_statistics, time_window
+from floatmoor.post.strength import line_mbl, line_strength
 from floatmoor.report.figures import (
     MOTION_ACTIVE_STD, TENSION_PSD_SEGMENT, DecayFit, check_series, decay_fit,
 )
@@ -30,7 +33,7 @@ from floatmoor.report.reference import ReferenceValues
 from floatmoor.report.runs import RunData
 
 __all__ = ["Table", "RunAnalysis", "analyse_run", "format_number", "runs_table",
-           "tension_tables", "fatigue_tables", "motion_table", "decay_table",
+           "tension_tables", "fatigue_tables", "strength_table", "motion_table", "decay_table",
            "SIGNIFICANT_DIGITS", "TENSION_STATISTICS", "FATIGUE_CURVE", "DEL_SLOPE"]
 
 #: Significant digits of the numbers in the tables.
@@ -81,6 +84,9 @@ class RunAnalysis:
         DOF -> statistic (mean, std, min, max) -> value [m or rad]; empty without a floater.
     decay
         Decaying DOF -> its fit, or None with too few extrema.
+    strength
+        Line -> the largest tension over the window against the MBL
+        (:func:`floatmoor.post.strength.line_strength`).
     """
 
     tension: dict[str, dict[str, float]]
@@ -89,6 +95,7 @@ class RunAnalysis:
     window: float
     motion: dict[str, dict[str, float]] = field(default_factory=dict)
     decay: dict[str, DecayFit | None] = field(default_factory=dict)
+    strength: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 def _periods(series: xr.DataArray, start: float, std: float) -> tuple[float, float]:
@@ -127,6 +134,9 @@ def analyse_run(run: RunData) -> RunAnalysis:
     time = ds["time"].values
     window = float(time[-1] - time[time >= run.start - 1e-9 * max(run.start, 1.0)][0])
     out = RunAnalysis(tension, damage, equivalent, window)
+    for line in run.lines:
+        out.strength[line] = line_strength(ds, line, line_mbl(ds, line, run.case),
+                                           start=run.start)
     if run.has_body:
         body = time_statistics(ds["body_displacement"], start=run.start)
         for dof in ds["dof"].values:
@@ -235,6 +245,34 @@ def fatigue_tables(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
                       ["line", "run", "d [m]", "from"], d_rows,
                       [f"Caution: {w}." for w in warnings])
     return [damage, equivalent, diameters]
+
+
+def strength_table(runs: Sequence[RunData], analyses: Sequence[RunAnalysis]) -> Table:
+    """Per line and run: the largest tension at either end over the analysis window, the MBL
+    of the line type, their ratio and the safety factor MBL / T_max."""
+    rows, broken = [], []
+    for line in _lines(runs):
+        for run, a in zip(runs, analyses):
+            if line not in a.strength:
+                continue
+            b = a.strength[line]
+            mbl = b["minimum_breaking_load_N"]
+            rows.append([line, run.label, format_number(b["max_tension_N"]),
+                         b["max_tension_end"], format_number(b["max_tension_time_s"]),
+                         format_number(mbl) if mbl is not None else "no MBL",
+                         format_number(b["max_tension_over_mbl"]),
+                         format_number(b["safety_factor"])])
+            if mbl is not None and b["max_tension_over_mbl"] >= 1.0:
+                broken.append(f"line {line} of run {run.label}")
+    notes = ["Largest tension at either end (fairlead or anchor) over each run's analysis "
+             "window; MBL: the minimum_breaking_load of the line type in the case; safety "
+             "factor = MBL / T_max."]
+    if broken:
+        notes.append("Caution: the tension reached the MBL on " + ", ".join(broken)
+                     + ": the line would break.")
+    return Table("Largest tension against the minimum breaking load",
+                 ["line", "run", "T_max [N]", "at", "t [s]", "MBL [N]", "T_max / MBL",
+                  "safety factor"], rows, notes)
 
 
 def motion_table(runs: Sequence[RunData], analyses: Sequence[RunAnalysis]) -> Table | None:
