@@ -32,9 +32,9 @@ def test_lindahl_case_values():
     assert "Lindahl" in case.text and case.overrides == ()
 
 
-def test_overrides_by_name_index_and_new_subtable():
+def test_overrides_by_name_and_new_subtable():
     case = load_case(LINDAHL_CASE, [
-        "motion.period=3.5", "lines.chain.length=33.5", "lines.0.anchor=[0.1, 0.0, -3.0]",
+        "motion.period=3.5", "lines.chain.length=33.5", "lines.chain.anchor=[0.1, 0.0, -3.0]",
         "lines.chain.quasi_static.tolerance=1e-10", "motion.phase_deg=90.0",
     ])
     assert case.motion.period == 3.5
