@@ -95,7 +95,7 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
 def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                overrides: tuple[str, ...] = (), base_dir: FilePath | None = None) -> Case:
     """Validate a parsed case table (``raw`` is not modified)."""
-    raw = copy.deepcopy(raw)
+    original, raw = raw, copy.deepcopy(raw)
     applied = apply_overrides(raw, overrides, source)
     context = ReadContext(source, {path: text for text, paths in applied for path in paths})
     root = TableReader(raw, (), context)
@@ -130,7 +130,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     initial = read_initial(root.table("initial")) if root.has("initial") else (0.0,) * 6
     wind = read_wind(root.table("wind"), simulation.duration) if root.has("wind") else None
     root.finish()
-    title = render_title(title_template, raw, applied, source)
+    title = render_title(title_template, original, raw, applied, context.origin(("title",)))
 
     case = Case(title=title, title_template=title_template, source=source, text=text, overrides=overrides,
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
