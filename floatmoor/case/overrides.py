@@ -67,30 +67,33 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str] | tuple[str, ...],
 
 
 def _assign(node: Any, segments: list[str], value: Any, where: str,
-            path: tuple[str | int, ...] = ()) -> list[Path]:
-    """Set ``segments`` below ``node`` (at ``path``) to ``value``; the canonical paths set."""
+            path: tuple[str | int, ...] = (), typed: tuple[str, ...] = ()) -> list[Path]:
+    """Set ``segments`` below ``node`` (at canonical ``path``, ``typed`` as the user wrote
+    it) to ``value``; the canonical paths set."""
     segment, rest = segments[0], segments[1:]
     if isinstance(node, list):
-        indices = _entry_indices(node, segment, where, path)
+        indices = _entry_indices(node, segment, where, typed)
         out: list[Path] = []
         for index in indices:
             if not rest:
                 node[index] = value
                 out.append(path + (index,))
             else:
-                out.extend(_assign(node[index], rest, value, where, path + (index,)))
+                out.extend(_assign(node[index], rest, value, where, path + (index,),
+                                   typed + (segment,)))
         return out
     if not isinstance(node, dict):
-        raise CaseError(where, _dotted(path), "a table to set a key in",
+        raise CaseError(where, _dotted(typed), "a table to set a key in",
                         f"a value of type {type(node).__name__}")
     if segment == WILDCARD:
-        raise CaseError(where, _dotted(path + (segment,)), f"'{WILDCARD}' only after an array "
+        raise CaseError(where, _dotted(typed + (segment,)), f"'{WILDCARD}' only after an array "
                         "of tables such as lines (it addresses every entry)",
                         f"'{WILDCARD}' in a table")
     if not rest:
         node[segment] = value
         return [path + (segment,)]
-    return _assign(node.setdefault(segment, {}), rest, value, where, path + (segment,))
+    return _assign(node.setdefault(segment, {}), rest, value, where, path + (segment,),
+                   typed + (segment,))
 
 
 def resolve_key(raw: dict[str, Any], segments: list[str], where: str) -> tuple[Path, Any]:
@@ -103,38 +106,40 @@ def resolve_key(raw: dict[str, Any], segments: list[str], where: str) -> tuple[P
     """
     node: Any = raw
     path: tuple[str | int, ...] = ()
-    for segment in segments:
+    for i, segment in enumerate(segments):
+        typed = tuple(segments[:i + 1])
         if isinstance(node, list):
             if segment == WILDCARD:
-                raise CaseError(where, _dotted(path + (segment,)), "a key path naming one "
+                raise CaseError(where, _dotted(typed), "a key path naming one "
                                 f"value (no '{WILDCARD}')", f"'{'.'.join(segments)}'")
-            (index,) = _entry_indices(node, segment, where, path)
+            (index,) = _entry_indices(node, segment, where, typed[:-1])
             path, node = path + (index,), node[index]
         elif isinstance(node, dict) and segment in node:
             path, node = path + (segment,), node[segment]
         else:
             found = ", ".join(sorted(node)) if isinstance(node, dict) else \
                 f"a value of type {type(node).__name__}"
-            raise CaseError(where, _dotted(path + (segment,)),
-                            "a key path the case file or --set gives a value",
+            raise CaseError(where, _dotted(typed),
+                            "a key the case file gives",
                             f"no key '{segment}' there (keys: {found})"
                             if isinstance(node, dict) else found)
     return path, node
 
 
-def _entry_indices(entries: list[Any], segment: str, where: str, path: Path) -> list[int]:
-    """The entries ``segment`` addresses: a name, ``*`` or, in an array without names, an
-    index."""
+def _entry_indices(entries: list[Any], segment: str, where: str,
+                   typed: tuple[str, ...]) -> list[int]:
+    """The entries ``segment`` (after ``typed``) addresses: a name, ``*`` or, in an array
+    without names, an index."""
     names = [e.get("name") for e in entries if isinstance(e, dict) and "name" in e]
     if segment == WILDCARD:
         if not entries:
-            raise CaseError(where, _dotted(path + (segment,)), "an array with entries for "
+            raise CaseError(where, _dotted(typed + (segment,)), "an array with entries for "
                             f"'{WILDCARD}' to address", "an empty array")
         return list(range(len(entries)))
     for index, entry in enumerate(entries):
         if isinstance(entry, dict) and entry.get("name") == segment:
             return [index]
-    key = _dotted(path + (segment,))
+    key = _dotted(typed + (segment,))
     if names:
         listed = ", ".join(str(n) for n in names)
         hint = (f" (entries are addressed by name, not by index: '{segment}' is not one of "

@@ -86,7 +86,7 @@ def _lookup(raw: dict[str, Any], field: str, source: str) -> tuple[Path, Any]:
         path, value = resolve_key(raw, segments, source)
     except CaseError as err:
         raise CaseError(source, "title", _EXPECTED, f'the placeholder "{{{field}}}" ({err.key}: '
-                        f"expected a key the case file gives, found {err.found})") from None
+                        f"expected {err.expected}, found {err.found})") from None
     if isinstance(value, dict):
         raise CaseError(source, "title", _EXPECTED + " (a value, not a table)",
                         f'the placeholder "{{{field}}}", a table')
