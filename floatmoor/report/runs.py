@@ -266,12 +266,30 @@ def run_overrides(dataset: xr.Dataset) -> list[str]:
 
 def run_labels(runs: Sequence[RunData]) -> list[str]:
     """Labels that say how the runs differ: the overrides (swept values) whose value is not
-    the same in all runs, ``motion.period=3.5`` (a run without one shows its case file's
-    value), led by the file name when the runs come from different case files or the
-    overrides do not tell them apart; repeats get ``#2``, ``#3``, ...
+    the same in all runs of a case file, ``motion.period=3.5`` (a run without one shows its
+    case file's value), led by the file name when the runs come from different case files or
+    the overrides do not tell them apart; repeats get ``#2``, ``#3``, ...
 
     What all runs share is dropped, so labels stay short without being cut.
     """
+    groups: dict[str, list[int]] = {}
+    for k, run in enumerate(runs):
+        groups.setdefault(str(run.dataset.attrs.get("case_file", "")), []).append(k)
+    differing = [""] * len(runs)
+    for members in groups.values():
+        texts = _differing_overrides([runs[k] for k in members])
+        for k, text in zip(members, texts):
+            differing[k] = text
+    if len(groups) == 1 and all(differing) and len(set(differing)) == len(differing):
+        return differing
+    stems = [run.path.stem if run.path is not None else run.label for run in runs]
+    return unique_labels([f"{stem} [{text}]" if text else stem
+                          for stem, text in zip(stems, differing)])
+
+
+def _differing_overrides(runs: Sequence[RunData]) -> list[str]:
+    """Per run, ``key=value, ...`` of the overridden keys whose value is not the same in all
+    ``runs`` (runs of one case file)."""
     items = []
     for run in runs:
         pairs: dict[str, str] = {}
@@ -282,14 +300,8 @@ def run_labels(runs: Sequence[RunData]) -> list[str]:
         items.append(pairs)
     keys = list(dict.fromkeys(key for pairs in items for key in pairs))
     keys = [key for key in keys if len({pairs.get(key) for pairs in items}) > 1]
-    differing = [", ".join(f"{key}={pairs[key] if key in pairs else _file_value(run, key)}"
-                           for key in keys) for run, pairs in zip(runs, items)]
-    cases = {str(run.dataset.attrs.get("case_file", "")) for run in runs}
-    if len(cases) == 1 and all(differing) and len(set(differing)) == len(differing):
-        return differing
-    stems = [run.path.stem if run.path is not None else run.label for run in runs]
-    return unique_labels([f"{stem} [{text}]" if text else stem
-                          for stem, text in zip(stems, differing)])
+    return [", ".join(f"{key}={pairs[key] if key in pairs else _file_value(run, key)}"
+                      for key in keys) for run, pairs in zip(runs, items)]
 
 
 def _file_value(run: RunData, key: str) -> str:

@@ -57,10 +57,15 @@ def test_a_run_without_the_override_shows_its_case_file_value() -> None:
     assert run_labels(runs) == ["motion.period=1.25", "motion.period=3.5"]
 
 
-def test_runs_of_different_case_files_or_alike_runs_lead_with_the_file() -> None:
+def test_runs_of_different_case_files_lead_with_the_file() -> None:
+    """Overrides are compared between runs of the same case file only."""
     runs = [_run("T1.00", "buoy_T1.00.toml", ['lines.*.model="dynamic"']),
-            _run("T1.20", "buoy_T1.20.toml", ['lines.*.model="quasi-static"'])]
-    assert run_labels(runs) == ["T1.00 [lines.*.model=dynamic]",
-                                "T1.20 [lines.*.model=quasi-static]"]
+            _run("T1.20", "buoy_T1.20.toml", ['lines.*.model="quasi-static"']),
+            _run("T1.20-qd", "buoy_T1.20.toml", ['lines.*.model="quasi-dynamic"'])]
+    assert run_labels(runs) == ["T1.00", "T1.20 [lines.*.model=quasi-static]",
+                                "T1.20-qd [lines.*.model=quasi-dynamic]"]
+
+
+def test_alike_runs_are_numbered() -> None:
     same = [_run("x", "case.toml", []), _run("x", "case.toml", [])]
     assert run_labels(same) == ["x", "x #2"]
