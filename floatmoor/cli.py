@@ -43,14 +43,16 @@ def _parser() -> argparse.ArgumentParser:
         p.add_argument("case", help="TOML case file")
         p.add_argument("--set", dest="overrides", action="append", default=[],
                        metavar="KEY=VALUE", help="override a key, VALUE written as a TOML value "
-                       "(e.g. --set motion.period=3.5, --set 'lines.chain.model=\"quasi-static\"')")
+                       "(e.g. --set motion.period=3.5, --set 'lines.chain.model=\"quasi-static\"'; "
+                       "entries of [[lines]] by name, all of them by *: lines.*.model)")
 
     check = sub.add_parser("check", help="validate a case and print derived quantities")
     add_case(check)
     run = sub.add_parser("run", help="run a case")
     add_case(run)
     run.add_argument("-o", "--output", metavar="OUT.nc",
-                     help="netCDF result file (default: the case name with .nc, here)")
+                     help="netCDF result file (default, here: the case name, then the --set "
+                     "overrides as key=value_key=value, then .nc)")
     run.add_argument("--plot", metavar="OUT.png", help="plot the tension histories")
     run.add_argument("--json", action="store_true",
                      help="print the summary as JSON on standard output")
@@ -64,7 +66,8 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("--zip", dest="zipped", action="append", default=[],
                        metavar="KEY=V1,V2,...", help="keys varied together (equal lengths)")
     sweep.add_argument("-o", "--output", metavar="OUT.nc",
-                       help="campaign dataset (default: the case name with _campaign.nc); "
+                       help="campaign dataset (default: the case name and --set overrides, as "
+                       "for run, with _campaign.nc); "
                        "re-running with the same file resumes")
     sweep.add_argument("--workers", type=int, default=1, help="local worker processes")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
@@ -222,8 +225,18 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     return "\n".join(rows)
 
 
+def _default_stem(case: Case) -> str:
+    """The case file's name, and its overrides by the campaign's run-name rule, so that a run
+    with overrides does not overwrite the run without them:
+    ``lindahl_r0.20_T1.25_motion.period=3.5``."""
+    from floatmoor.case.naming import file_stem, override_items
+
+    stem = Path(case.source).stem
+    return f"{stem}_{file_stem(override_items(case.overrides))}" if case.overrides else stem
+
+
 def _output_path(args: argparse.Namespace, case: Case) -> Path:
-    path = Path(args.output) if args.output else Path(Path(case.source).stem + ".nc")
+    path = Path(args.output) if args.output else Path(_default_stem(case) + ".nc")
     if not path.parent.is_dir():
         raise CaseError("-o/--output", "", "a file in an existing folder", f"'{path}'")
     if path.is_dir():
@@ -293,7 +306,7 @@ def _sweep(args: argparse.Namespace) -> int:
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
-    output = Path(args.output) if args.output else Path(Path(case.source).stem + "_campaign.nc")
+    output = Path(args.output) if args.output else Path(_default_stem(case) + "_campaign.nc")
     if not output.parent.is_dir():
         raise CaseError("-o/--output", "", "a file in an existing folder", f"'{output}'")
     if args.workers < 1:

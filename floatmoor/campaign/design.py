@@ -8,22 +8,14 @@ together along one dimension, named after the first of them. Values are TOML val
 from __future__ import annotations
 
 import itertools
-import re
 import tomllib
 from dataclasses import dataclass, field
 from typing import Any, Sequence
 
+from floatmoor.case.naming import file_stem, toml_text
 from floatmoor.errors import CaseError
 
-__all__ = ["Axis", "CampaignDesign", "parse_axis_option", "design_from_options",
-           "MAX_RUN_NAME_LENGTH"]
-
-#: Longest run name (a file name stem) made from the swept values; longer designs name their
-#: runs by index.
-MAX_RUN_NAME_LENGTH = 120
-#: Characters kept in run names; the others are dropped (quotes, brackets, spaces) or, for
-#: path separators and the like, replaced.
-_UNSAFE = re.compile(r"[^A-Za-z0-9._+,=-]")
+__all__ = ["Axis", "CampaignDesign", "parse_axis_option", "design_from_options"]
 
 
 @dataclass(frozen=True)
@@ -68,45 +60,24 @@ class CampaignDesign:
             overrides = []
             for axis, j in zip(self.axes, index):
                 for key, values in zip(axis.keys, axis.values):
-                    overrides.append(f"{key}={_toml(values[j])}")
+                    overrides.append(f"{key}={toml_text(values[j])}")
             out.append((index, overrides))
         return out
 
     def run_names(self) -> list[str]:
         """A file-name stem per run, in :meth:`runs` order, from its swept values:
-        ``motion.radius=0.1_motion.period=1.25`` (zipped keys by their first key).
+        ``motion.radius=0.1_motion.period=1.25`` (zipped keys by their first key), by the rule
+        of :func:`floatmoor.case.naming.file_stem`.
 
         Falls back to the run's index along each axis (``run_0-1``) for every run when the
-        values do not give distinct, short, file-system-safe names.
+        values do not give distinct names (values that differ only in dropped characters).
         """
-        names = []
-        for index in itertools.product(*(range(len(a)) for a in self.axes)):
-            parts = [f"{_UNSAFE.sub('-', axis.name)}={_name_text(axis.values[0][j])}"
-                     for axis, j in zip(self.axes, index)]
-            names.append("_".join(parts))
-        if (len(set(names)) != len(names) or any(len(n) > MAX_RUN_NAME_LENGTH for n in names)
-                or any(n.startswith(".") for n in names)):
+        names = [file_stem([(axis.name, axis.values[0][j]) for axis, j in zip(self.axes, index)])
+                 for index in itertools.product(*(range(len(a)) for a in self.axes))]
+        if len(set(names)) != len(names) or any(n.startswith(".") for n in names):
             names = ["run_" + "-".join(str(j) for j in index) for index in
                      itertools.product(*(range(len(a)) for a in self.axes))]
         return names
-
-
-def _name_text(value: Any) -> str:
-    """A swept value in a file name: strings as they are, others as TOML, unsafe characters
-    dropped (quotes, brackets, spaces) or replaced by '-' (path separators, colons)."""
-    text = value if isinstance(value, str) else _toml(value)
-    text = re.sub(r"[\s\[\]{}\"']", "", text)
-    return _UNSAFE.sub("-", text)
-
-
-def _toml(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml(v) for v in value) + "]"
-    return repr(value)
 
 
 def parse_axis_option(text: str, option: str) -> tuple[str, list[Any]]:

@@ -26,6 +26,7 @@ from floatmoor.case.schema import (
     Line, LineType, Motion,
     QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
+from floatmoor.case.title import render_title
 from floatmoor.errors import CaseError
 from floatmoor.motion import fairlead_path, horizontal_direction
 
@@ -94,10 +95,11 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
 def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                overrides: tuple[str, ...] = (), base_dir: FilePath | None = None) -> Case:
     """Validate a parsed case table (``raw`` is not modified)."""
-    raw = copy.deepcopy(raw)
-    context = ReadContext(source, apply_overrides(raw, overrides, source))
+    original, raw = raw, copy.deepcopy(raw)
+    applied = apply_overrides(raw, overrides, source)
+    context = ReadContext(source, {path: text for text, paths in applied for path in paths})
     root = TableReader(raw, (), context)
-    title = root.string("title")
+    title_template = root.string("title")
     description = root.string("description", default="")
 
     environment = _environment(root.table("environment"))
@@ -128,8 +130,9 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     initial = read_initial(root.table("initial")) if root.has("initial") else (0.0,) * 6
     wind = read_wind(root.table("wind"), simulation.duration) if root.has("wind") else None
     root.finish()
+    title = render_title(title_template, original, raw, applied, context.origin(("title",)))
 
-    case = Case(title=title, source=source, text=text, overrides=overrides,
+    case = Case(title=title, title_template=title_template, source=source, text=text, overrides=overrides,
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
                 motion=motion, simulation=simulation, description=description,
                 campaign=campaign, floater=floater, hydro=hydro, waves=waves,

@@ -334,6 +334,11 @@ class Case:
 
     Attributes
     ----------
+    title
+        The title with its placeholders filled and the overrides it does not show appended
+        (:mod:`floatmoor.case.title`).
+    title_template
+        The title as the case file gives it.
     source
         Path of the case file.
     text
@@ -370,6 +375,8 @@ class Case:
     initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
     #: the rotor's wind (``[wind]``: floatmoor.wind.force.WindSettings), or None
     wind: Any = None
+    #: the title as the case file gives it, placeholders unfilled ("" = same as ``title``)
+    title_template: str = ""
 
     @property
     def line_names(self) -> list[str]:

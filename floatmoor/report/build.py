@@ -7,6 +7,7 @@ leaves nothing behind.
 
 from __future__ import annotations
 
+import os
 import shutil
 import tempfile
 from dataclasses import dataclass, field
@@ -24,7 +25,7 @@ from floatmoor.report.tables import (
     strength_table, tension_tables,
 )
 
-__all__ = ["ReportFiles", "write_report", "check_output_folder", "SUMMARY_NAME"]
+__all__ = ["ReportFiles", "write_report", "report_title", "check_output_folder", "SUMMARY_NAME"]
 
 SUMMARY_NAME = "summary.md"
 
@@ -63,6 +64,19 @@ def _check_reference(runs: Sequence[RunData], reference: ReferenceValues) -> Non
         raise ReportInputError(reference.path, "reference lines named as in the runs ("
                                + ", ".join(sorted(known)) + ")",
                                "line(s) " + ", ".join(unknown))
+
+
+def report_title(runs: Sequence[RunData]) -> str:
+    """The runs' title when they share it; else what their titles share up to the last
+    separator (``, `` or `` [``) before they differ, and the number of runs: a title that
+    speaks for every run, not the first run's."""
+    titles = [str(run.dataset.attrs.get("title", "")).strip() for run in runs]
+    if len(set(titles)) == 1:
+        return titles[0] or "floatmoor report"
+    common = os.path.commonprefix(titles)
+    cut = max(common.rfind(", "), common.rfind(" ["))
+    base = common[:cut].strip() if cut > 0 else ""
+    return f"{base} ({len(runs)} runs)" if base else f"floatmoor report ({len(runs)} runs)"
 
 
 def write_report(runs: Sequence[RunData], output: str | Path, *,
@@ -107,7 +121,7 @@ def write_report(runs: Sequence[RunData], output: str | Path, *,
     resolve_nominal_diameters(runs, dict(nominal_diameters or {}),
                               reference.nominal_diameter_map(lines) if reference else None)
     analyses = [analyse_run(run) for run in runs]
-    title = title or str(runs[0].dataset.attrs.get("title", "floatmoor report"))
+    title = title or report_title(runs)
 
     parent = output.resolve().parent
     with tempfile.TemporaryDirectory(prefix=".floatmoor-report-", dir=parent) as tmp:

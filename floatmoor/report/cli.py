@@ -125,7 +125,7 @@ def report_command(args: argparse.Namespace) -> int:
     """``floatmoor report RUN.nc [RUN2.nc ...] -o DIR``; returns the exit status."""
     from floatmoor.report.build import check_output_folder, write_report
     from floatmoor.report.figures import FigureDataError
-    from floatmoor.report.runs import ReportInputError, load_run, unique_labels
+    from floatmoor.report.runs import ReportInputError, load_run, run_labels
 
     try:
         start = parse_start(getattr(args, "start", None))
@@ -133,7 +133,7 @@ def report_command(args: argparse.Namespace) -> int:
         check_output_folder(args.output)
         reference = _reference(args)
         runs = [load_run(path, start=start) for path in args.runs]
-        for run, label in zip(runs, unique_labels([r.label for r in runs])):
+        for run, label in zip(runs, run_labels(runs)):
             run.label = label
         files = write_report(runs, args.output, reference=reference,
                              nominal_diameters=diameters, html=getattr(args, "html", False))

@@ -2,9 +2,8 @@
 as the quasi-dynamic paper's section 5 compares the quasi-static, quasi-dynamic and dynamic
 models.
 
-The runs are a campaign (:mod:`floatmoor.campaign`) with one axis: the keys
-``lines.<i>.model`` of every line i, zipped, one value per model (after the user's
-overrides). It runs in this process, on local worker processes or on a Dask cluster, each run
+The runs are a campaign (:mod:`floatmoor.campaign`) with one axis, ``lines.*.model`` (every
+line's model), one value per model (after the user's overrides). It runs in this process, on local worker processes or on a Dask cluster, each run
 writing its full result file ``runs/<model>.nc`` in the output folder and the campaign file
 ``runs/campaign.nc`` beside them; the report then reads the run files. A re-run of the same
 comparison resumes: models whose run file is complete are not run again.
@@ -25,7 +24,7 @@ from floatmoor.report.reference import ReferenceValues
 from floatmoor.report.runs import ReportInputError, load_run
 
 __all__ = ["parse_models", "model_overrides", "model_design", "compare_models",
-           "RUNS_FOLDER", "CAMPAIGN_FILE"]
+           "RUNS_FOLDER", "CAMPAIGN_FILE", "MODEL_KEY"]
 
 #: Subfolder of the output holding the result file of each model.
 RUNS_FOLDER = "runs"
@@ -54,16 +53,18 @@ def parse_models(text: str | Sequence[str]) -> list[str]:
     return items
 
 
-def model_overrides(case: Case, model: str) -> list[str]:
-    """``lines.<i>.model="MODEL"`` for every line of ``case``."""
-    return [f'lines.{i}.model="{model}"' for i in range(len(case.lines))]
+#: The key setting every line's model.
+MODEL_KEY = "lines.*.model"
 
 
-def model_design(case: Case, models: Sequence[str]) -> CampaignDesign:
-    """The campaign of a comparison: ``lines.<i>.model`` of every line zipped, one value per
-    model (the axis is named ``lines.0.model``)."""
-    keys = tuple(f"lines.{i}.model" for i in range(len(case.lines)))
-    return CampaignDesign((Axis(keys, tuple(tuple(models) for _ in keys)),))
+def model_overrides(model: str) -> list[str]:
+    """The override giving every line ``model``: ``lines.*.model="MODEL"``."""
+    return [f'{MODEL_KEY}="{model}"']
+
+
+def model_design(models: Sequence[str]) -> CampaignDesign:
+    """The campaign of a comparison: one axis, ``lines.*.model``, one value per model."""
+    return CampaignDesign((Axis((MODEL_KEY,), (tuple(models),)),))
 
 
 def compare_models(case_path: str | Path, models: Sequence[str], output: str | Path, *,
@@ -119,7 +120,7 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
     if start is not None and start >= base.simulation.duration:
         raise ReportInputError("--start", f"a time before the end of the runs "
                                f"({base.simulation.duration:g} s)", f"{start:g} s")
-    design = model_design(base, models)
+    design = model_design(models)
     # every run's case (and a floater's database) is valid before anything is written
     validate_campaign(case_path, design, overrides)
     folder = output / RUNS_FOLDER

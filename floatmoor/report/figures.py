@@ -184,6 +184,8 @@ def _colour(i: int) -> str:
 
 #: Fixed figure margins [inch] (a fixed layout: tight_layout draws every figure twice).
 _TOP, _BOTTOM, _GAP = 0.6, 0.55, 0.75
+#: Space kept right of the widest legend [inch].
+_LEGEND_MARGIN = 0.1
 
 
 def _panels(n: int, *, height: float = 2.4, width: float = 9.0):
@@ -197,9 +199,27 @@ def _panels(n: int, *, height: float = 2.4, width: float = 9.0):
 
 def _save(plt, fig, path: Path, title: str) -> Path:
     fig.suptitle(title, fontsize=11)
+    _fit_legends(fig)
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
     return path
+
+
+def _fit_legends(fig) -> None:
+    """Widen the figure so that legends beside the axes are not cut at its right edge (long
+    run labels would otherwise read alike); the axes keep their size in inches."""
+    renderer = fig.canvas.get_renderer()
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+    if not legends:
+        return
+    width = fig.get_figwidth()
+    reach = max(legend.get_window_extent(renderer).x1 for legend in legends) / fig.dpi
+    extra = reach + _LEGEND_MARGIN - width
+    if extra <= 0.0:
+        return
+    left, right = fig.subplotpars.left * width, fig.subplotpars.right * width
+    fig.set_figwidth(width + extra)
+    fig.subplots_adjust(left=left / (width + extra), right=right / (width + extra))
 
 
 def _lines(runs: Sequence[RunData]) -> list[str]:

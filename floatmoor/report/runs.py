@@ -19,13 +19,16 @@ import numpy as np
 import xarray as xr
 
 from floatmoor.case.load import parse_case
+from floatmoor.case.naming import override_label, value_text
+from floatmoor.case.overrides import resolve_key
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError
 from floatmoor.io.netcdf import read_dataset
 
 __all__ = ["ReportInputError", "LineChain", "NominalDiameter", "RunData", "load_run",
            "prepare_run", "case_from_dataset", "default_start", "resolve_nominal_diameters",
-           "unique_labels", "SOLID_ROD_DENSITY_LIMIT", "REQUIRED_VARIABLES"]
+           "unique_labels", "run_labels", "run_overrides", "SOLID_ROD_DENSITY_LIMIT",
+           "REQUIRED_VARIABLES"]
 
 #: Variables every run dataset must hold for a report.
 REQUIRED_VARIABLES = ("fairlead_tension",)
@@ -151,9 +154,7 @@ def case_from_dataset(dataset: xr.Dataset) -> Case | None:
     text = dataset.attrs.get("case_toml")
     if not isinstance(text, str) or not text.strip():
         return None
-    overrides_text = str(dataset.attrs.get("case_overrides", "none"))
-    overrides = tuple(s for s in overrides_text.splitlines() if s.strip()) \
-        if overrides_text != "none" else ()
+    overrides = tuple(run_overrides(dataset))
     source = str(dataset.attrs.get("case_file", "case"))
     try:
         raw = tomllib.loads(text)
@@ -255,6 +256,61 @@ def load_run(path: str | Path, *, start: float | None = None,
         text = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
         raise ReportInputError(str(path), "a readable netCDF result file", text) from None
     return prepare_run(dataset, label or path.stem, start=start, path=path)
+
+
+def run_overrides(dataset: xr.Dataset) -> list[str]:
+    """The ``--set`` overrides of a run, as typed (the dataset's ``case_overrides``)."""
+    text = str(dataset.attrs.get("case_overrides", "none"))
+    return [s for s in text.splitlines() if s.strip()] if text != "none" else []
+
+
+def run_labels(runs: Sequence[RunData]) -> list[str]:
+    """Labels that say how the runs differ: the overrides (swept values) whose value is not
+    the same in all runs of a case file, ``motion.period=3.5`` (a run without one shows its
+    case file's value), led by the file name when the runs come from different case files or
+    the overrides do not tell them apart; repeats get ``#2``, ``#3``, ...
+
+    What all runs share is dropped, so labels stay short without being cut.
+    """
+    groups: dict[str, list[int]] = {}
+    for k, run in enumerate(runs):
+        groups.setdefault(str(run.dataset.attrs.get("case_file", "")), []).append(k)
+    differing = [""] * len(runs)
+    for members in groups.values():
+        texts = _differing_overrides([runs[k] for k in members])
+        for k, text in zip(members, texts):
+            differing[k] = text
+    if len(groups) == 1 and all(differing) and len(set(differing)) == len(differing):
+        return differing
+    stems = [run.path.stem if run.path is not None else run.label for run in runs]
+    return unique_labels([f"{stem} [{text}]" if text else stem
+                          for stem, text in zip(stems, differing)])
+
+
+def _differing_overrides(runs: Sequence[RunData]) -> list[str]:
+    """Per run, ``key=value, ...`` of the overridden keys whose value is not the same in all
+    ``runs`` (runs of one case file)."""
+    items = []
+    for run in runs:
+        pairs: dict[str, str] = {}
+        for text in run_overrides(run.dataset):
+            key, _, value = override_label(text).partition("=")
+            pairs.pop(key, None)
+            pairs[key] = value
+        items.append(pairs)
+    keys = list(dict.fromkeys(key for pairs in items for key in pairs))
+    keys = [key for key in keys if len({pairs.get(key) for pairs in items}) > 1]
+    return [", ".join(f"{key}={pairs[key] if key in pairs else _file_value(run, key)}"
+                      for key in keys) for run, pairs in zip(runs, items)]
+
+
+def _file_value(run: RunData, key: str) -> str:
+    """The value the run's case file gives ``key``, for a run that does not override it."""
+    try:
+        raw = tomllib.loads(str(run.dataset.attrs.get("case_toml", "")))
+        return value_text(resolve_key(raw, key.split("."), "case")[1])
+    except (tomllib.TOMLDecodeError, CaseError):
+        return "(case file)"
 
 
 def unique_labels(labels: Sequence[str]) -> list[str]:

@@ -13,7 +13,7 @@ from tests.body.interrupted import interrupt_run
 from tests.conftest import CASES
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
-QS = [f'lines.{i}.model="quasi-static"' for i in range(3)]
+QS = ['lines.*.model="quasi-static"']
 
 
 def test_buoy_in_regular_waves_writes_a_labelled_dataset(tmp_path) -> None:
@@ -65,8 +65,8 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
     import floatmoor.simulation.coupled_run as cr
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
-    overrides = ['lines.0.model="quasi-dynamic"', 'lines.1.model="quasi-static"',
-                 'lines.2.model="quasi-dynamic"', "simulation.duration=3.0",
+    overrides = ['lines.*.model="quasi-dynamic"', 'lines.line2.model="quasi-static"',
+                 "simulation.duration=3.0",
                  "simulation.output_interval=0.02", "simulation.time_step=0.01",
                  "simulation.shape_output_interval=0.2",
                  'waves={kind = "regular", height = 0.04, period = 1.2}']
@@ -88,7 +88,7 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
 def test_line_shapes_of_a_coupled_run(model) -> None:
     """With ``shape_output_interval`` a coupled run records every line's shape: its ends at
     the anchor and at the moving fairlead, its end tension the fairlead tension."""
-    case = load_case(BUOY_CASE, [f'lines.{i}.model="{model}"' for i in range(3)] + [
+    case = load_case(BUOY_CASE, [f'lines.*.model="{model}"',
         "simulation.duration=0.6", "simulation.output_interval=0.02",
         "simulation.shape_output_interval=0.2", 'waves={kind = "regular", height = 0.04, '
         'period = 1.2, ramp_duration = 0.0}'])

@@ -28,8 +28,8 @@ def test_state_space_case_runs_and_resumes_bit_identically(tmp_path, monkeypatch
     import floatmoor.simulation.coupled_run as cr
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
-    overrides = [STATE_SPACE, 'lines.0.model="quasi-dynamic"', 'lines.1.model="quasi-static"',
-                 'lines.2.model="quasi-static"', "simulation.duration=3.0",
+    overrides = [STATE_SPACE, 'lines.*.model="quasi-static"',
+                 'lines.line1.model="quasi-dynamic"', "simulation.duration=3.0",
                  "simulation.output_interval=0.02", "simulation.time_step=0.01",
                  'waves={kind = "regular", height = 0.04, period = 1.2}']
     case = load_case(BUOY_CASE, overrides)
@@ -75,8 +75,7 @@ def test_state_space_without_a_realisation_exits_2_and_writes_nothing(tmp_path, 
         'reference_point = [0.0, 0.0, 0.0]     # m\nradiation = "state-space"'))
     out = tmp_path / "run.nc"
     args = ["run", str(case), "-o", str(out), "--quiet", "--set", "simulation.duration=0.1"]
-    args += ["--set", f'lines.{0}.model="quasi-static"', "--set", 'lines.1.model="quasi-static"',
-             "--set", 'lines.2.model="quasi-static"']
+    args += ["--set", 'lines.*.model="quasi-static"']
     status = main(args)
     captured = capsys.readouterr()
     assert status == 2 and captured.out == ""

@@ -26,7 +26,7 @@ BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 BUOY_BASE = ["simulation.duration=2.0", "simulation.output_interval=0.02",
              "simulation.time_step=0.02",
              'waves={kind = "regular", height = 0.04, period = 1.2, ramp_duration = 1.0}',
-             *(f'lines.{i}.model="quasi-static"' for i in range(3))]
+             'lines.*.model="quasi-static"']
 #: Three wave periods; the last run fails (its catenary cannot meet 1e-16 in one iteration).
 BUOY_ZIP = ["waves.period=1.0,1.4,1.2",
             "lines.line1.quasi_static.tolerance=1e-12,1e-12,1e-16",

@@ -29,7 +29,7 @@ def _decay(model: str):
     """(period, peaks): the time from the release to the first return peak (the period at the
     release amplitude: the catenaries stiffen with the offset, so later, smaller cycles are
     slower) and the successive positive surge peaks."""
-    case = load_case(CASE, [f'lines.{i}.model="{model}"' for i in range(3)] + [
+    case = load_case(CASE, [f'lines.*.model="{model}"',
         f"simulation.duration={DURATION}", "simulation.output_interval=0.5",
         "simulation.time_step=0.1", f"initial={{surge = {OFFSET}}}"])
     ds = run_coupled(case).dataset

@@ -98,7 +98,7 @@ def test_implicit_contact_matches_resolved_contact_on_lindahl(period):
 def _deepcwind_line_tension(method: str, tangent_tol: float | None = None):
     """Fairlead tension of DeepCwind line 2 (c_int 4.9e6 N s: damping number 0.19) with its
     fairlead in 1.5 m surge and 0.5 m heave at 10 s after a 10 s ramp; steps per sample."""
-    case = load_case(CASES / "deepcwind" / "deepcwind_lc34.toml", ['lines.1.model="dynamic"'])
+    case = load_case(CASES / "deepcwind" / "deepcwind_lc34.toml", ['lines.line2.model="dynamic"'])
     ln = case.lines[1]
     settings = dataclasses.replace(ln.dynamic, internal_damping=method)
     line = DynamicLine(CableProperties.from_case(ln, case.environment, case.seabed), settings,

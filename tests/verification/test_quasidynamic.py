@@ -78,7 +78,9 @@ def test_fairlead_at_rest_gives_the_quasi_static_tension():
     forces are the static ones, to round-off."""
     text = CASE_B.read_text()
     start, end = text.index("[motion]"), text.index("[simulation]")
-    case = parse_case(tomllib.loads(text[:start] + text[end:]), source=str(CASE_B))
+    raw = tomllib.loads(text[:start] + text[end:])
+    raw["title"] = "C22 at rest"  # its own names the motion's keys
+    case = parse_case(raw, source=str(CASE_B))
     line = case.lines[0]
     t = np.arange(201) * 0.0025
     p, v = fairlead_state(None, line, t)

@@ -1,0 +1,107 @@
+"""A case's title filled from its final values, and the overrides it does not show appended.
+
+The title of a case file is the author's text. It may name key paths in placeholders, with an
+optional Python format spec: ``"r = {motion.radius:.2f} m, T = {motion.period:.2f} s"`` reads
+``r = 0.20 m, T = 1.25 s``, and after ``--set motion.period=3.5`` ``... T = 3.50 s``. Every
+override whose keys no placeholder shows is appended in brackets, ``... [lines.*.model=dynamic]``,
+so no run reads like another. ``{{`` and ``}}`` write literal braces.
+
+A placeholder must name a value the case file itself gives (so a misspelt key is an error
+whatever the overrides); where an override replaced its table (``--set 'motion={kind =
+"harmonic", ...}'``) it reads :data:`REMOVED`, and that override is appended.
+"""
+
+from __future__ import annotations
+
+import string
+from typing import Any, Sequence
+
+from floatmoor.case.naming import override_label, value_text
+from floatmoor.case.overrides import resolve_key
+from floatmoor.case.reader import Path
+from floatmoor.errors import CaseError
+
+__all__ = ["render_title", "REMOVED"]
+
+#: What a placeholder reads when an override removed its key.
+REMOVED = "n/a"
+
+_EXPECTED = ("a title whose {...} placeholders each name one key path of the case, such as "
+             "{motion.period} or {motion.period:.2f} ({{ and }} write braces)")
+
+
+def render_title(template: str, original: dict[str, Any], raw: dict[str, Any],
+                 applied: Sequence[tuple[str, list[Path]]], source: str) -> str:
+    """Fill the placeholders of ``template`` from ``raw`` and append the unshown overrides.
+
+    Parameters
+    ----------
+    template
+        The title as the case file gives it.
+    original
+        The case table as the file gives it (what placeholders may name).
+    raw
+        The case table after the overrides (what placeholders show).
+    applied
+        Per override: its text and the key paths it set (:func:`apply_overrides`).
+    source
+        The case file, named in errors.
+
+    Raises
+    ------
+    CaseError
+        At ``title`` for a malformed placeholder, one naming no value of the case, or a format
+        spec that does not fit the value.
+    """
+    try:
+        pieces = list(string.Formatter().parse(template))
+    except ValueError as err:
+        raise CaseError(source, "title", _EXPECTED, f'"{template}" ({err})') from None
+    out = []
+    shown: set[Path] = {("title",)}  # an override of the title is the title
+    for literal, field, spec, conversion in pieces:
+        out.append(literal)
+        if field is None:
+            continue
+        if not field or conversion is not None or "{" in (spec or ""):
+            raise CaseError(source, "title", _EXPECTED, f'the placeholder "{{{field}}}" in '
+                            f'"{template}"')
+        _lookup(original, field, source)
+        try:
+            path, value = _lookup(raw, field, source)
+        except CaseError:
+            out.append(REMOVED)
+            continue
+        shown.add(path)
+        out.append(_format(value, spec or "", field, source))
+    title = "".join(out)
+    unshown = [override_label(text) for text, paths in applied
+               if not paths or not set(paths) <= shown]
+    return f"{title} [{', '.join(unshown)}]" if unshown else title
+
+
+def _lookup(raw: dict[str, Any], field: str, source: str) -> tuple[Path, Any]:
+    segments = [s.strip() for s in field.split(".")]
+    try:
+        path, value = resolve_key(raw, segments, source)
+    except CaseError as err:
+        raise CaseError(source, "title", _EXPECTED, f'the placeholder "{{{field}}}" ({err.key}: '
+                        f"expected {err.expected}, found {err.found})") from None
+    if isinstance(value, dict):
+        raise CaseError(source, "title", _EXPECTED + " (a value, not a table)",
+                        f'the placeholder "{{{field}}}", a table')
+    return path, value
+
+
+def _format(value: Any, spec: str, field: str, source: str) -> str:
+    if not spec:
+        return value_text(value)
+    if isinstance(value, (bool, list)):
+        raise CaseError(source, "title", f"no format spec for {{{field}}} (a "
+                        f"{'boolean' if isinstance(value, bool) else 'array'})",
+                        f'"{{{field}:{spec}}}"')
+    try:
+        return format(value, spec)
+    except (ValueError, TypeError) as err:
+        raise CaseError(source, "title", f"a format spec that fits {{{field}}} = "
+                        f"{value_text(value)}", f'"{{{field}:{spec}}}" ({err})') from None
