@@ -265,6 +265,7 @@ def _run(args: argparse.Namespace) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     from floatmoor.campaign.design import design_from_options
     from floatmoor.campaign.runner import run_campaign
+    from floatmoor.campaign.store import failed_runs
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
@@ -288,12 +289,39 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
               file=sys.stderr)
         return EXIT_INTERRUPTED
-    failed = [(str(s)) for s in ds["status"].values.flat if str(s).startswith("failed")]
+    failed = failed_runs(ds, design)
     print(f"{ds.attrs['runs_complete']} of {ds['status'].size} runs complete, {len(failed)} "
           f"failed; results in {output}")
-    for message in failed[:5]:
-        print(f"  {message}")
+    if failed:
+        report_failures("sweep", failed, int(ds["status"].size))
+        return EXIT_FAILED
     return EXIT_OK
+
+
+#: Failed runs named in the one-line summary, and failure messages printed after it.
+_NAMED_FAILURES, _FAILURE_MESSAGES = 10, 3
+
+
+def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) -> None:
+    """Print on standard error the one-line summary of a campaign's failed runs (how many,
+    which) and the first failure messages.
+
+    Parameters
+    ----------
+    what
+        The command (``"sweep"``, ``"study qd-verification"``).
+    failed
+        (run label, e.g. its swept values; failure message) of every failed run.
+    total
+        Runs in the campaign.
+    """
+    labels = [label for label, _ in failed]
+    named = "; ".join(labels[:_NAMED_FAILURES]) + (
+        f"; and {len(labels) - _NAMED_FAILURES} more" if len(labels) > _NAMED_FAILURES else "")
+    print(f"floatmoor: {what} failed: {len(failed)} of {total} runs failed ({named})",
+          file=sys.stderr)
+    for label, message in failed[:_FAILURE_MESSAGES]:
+        print(f"  {label}: {message}", file=sys.stderr)
 
 
 def _study(args: argparse.Namespace) -> int:
@@ -315,6 +343,10 @@ def _study(args: argparse.Namespace) -> int:
                                    progress=progress)
     print(qd_verification.summary(ds))
     print(f"results in {output}")
+    failed = qd_verification.failed_runs(ds)
+    if failed:
+        report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
+        return EXIT_FAILED
     return EXIT_OK
 
 

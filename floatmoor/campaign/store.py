@@ -7,7 +7,9 @@ series ``time``. Variables: ``status`` (``complete``, ``failed: ...`` or ``pendi
 statistics, per run and DOF the floater-displacement statistics of coupled runs, and with run
 files (``--runs-dir``) ``run_file``, the path of each run's full output; runs that failed or
 have not run hold NaN. Attributes: the case file and text, the base overrides and the design,
-so a re-run can resume.
+so a re-run can resume, and ``runs_complete`` and ``runs_failed``, the counts of complete and
+failed runs (a campaign records a failed run and goes on: check ``runs_failed``, or
+:func:`failed_runs`, before using the results).
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from floatmoor.errors import CaseError
 from floatmoor.io.netcdf import NETCDF_ENGINE, read_dataset, write_dataset
 from floatmoor.io.variables import attributes
 
-__all__ = ["CampaignStore", "run_file_is_complete", "same_campaign"]
+__all__ = ["CampaignStore", "run_file_is_complete", "same_campaign", "failed_runs"]
 
 _LONG_NAMES = {
     "mean": "mean fairlead tension after the ramp",
@@ -86,6 +88,14 @@ def same_campaign(path: str | os.PathLike[str], design: CampaignDesign, case_tex
     attrs = _attributes(path)
     wanted = _identity(design, case_text, base_overrides)
     return attrs is not None and all(attrs.get(key) == wanted[key] for key in _IDENTITY)
+
+
+def failed_runs(dataset: xr.Dataset, design: CampaignDesign) -> list[tuple[str, str]]:
+    """The runs of a campaign dataset that did not complete, in :meth:`CampaignDesign.runs`
+    order: (their swept values as ``key=VALUE, ...``, their status, e.g. ``failed: ...``)."""
+    status = dataset["status"].values
+    return [(", ".join(overrides), str(status[index])) for index, overrides in design.runs()
+            if str(status[index]) != "complete"]
 
 
 def _attributes(path: str | os.PathLike[str]) -> dict[str, Any] | None:
