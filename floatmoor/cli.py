@@ -1,15 +1,18 @@
 """The ``floatmoor`` command line.
 
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
-runs it; ``floatmoor study qd-verification -o DIR`` runs the quasi-dynamic verification study
-(cases.md case B); ``floatmoor hydro build CASE`` builds the floater's BEM database,
-``floatmoor hydro check NAME`` checks one (exit 1 when a check fails), ``floatmoor hydro info
-NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space realisation
-of its radiation kernel; a missing, damaged or stale database is bad input (exit 2). Bad input (a
-malformed case, a bad ``--set`` or output path) prints one message and exits with status 2,
-without a traceback and without writing output. A run that
-fails (no valid line state) or is interrupted writes its partial results and exits with 1 or
-130.
+runs it; ``floatmoor sweep CASE --grid ...`` runs a campaign; ``floatmoor study
+qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md case B);
+``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
+``floatmoor hydro check NAME`` checks one (both exit 1 when a check fails), ``floatmoor hydro
+info NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space
+realisation of its radiation kernel; a missing, damaged or stale database, or one failing a
+check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
+(exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
+exits with status 2, without a traceback and without writing output. A run that fails (no
+valid line state) or is interrupted writes its partial results and exits with 1 or 130. A
+sweep or study with any failed run writes its results, prints a one-line summary naming the
+failed runs (and the first messages) and exits with 1; 0 only when every run completed.
 """
 
 from __future__ import annotations
@@ -142,7 +145,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
         if not isinstance(err, HydroDatabaseError):
             raise
-        # a floater case whose database is missing, damaged or stale: bad input
+        # a floater case whose database is missing, damaged, stale or fails a check: bad input
         print(f"floatmoor: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
