@@ -342,8 +342,13 @@ def _study(args: argparse.Namespace) -> int:
         if not args.quiet:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
-    ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                   progress=progress)
+    try:
+        ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
+                                       progress=progress)
+    except KeyboardInterrupt:
+        print("floatmoor: interrupted; nothing written (the study writes its results at the "
+              "end)", file=sys.stderr)
+        return EXIT_INTERRUPTED
     print(qd_verification.summary(ds))
     print(f"results in {output}")
     failed = qd_verification.failed_runs(ds)

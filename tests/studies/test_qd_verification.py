@@ -163,3 +163,12 @@ def test_study_with_a_failed_run_exits_1_naming_it(tmp_path, capsys, monkeypatch
     assert ds["run_error"].sel(config="C11").item() == ""
     assert np.isfinite(ds["rmse_qd"].sel(config="C11").item())
     assert qdv.failed_runs(ds) == [("C12 A1 alpha 0.3", lines[1].split(": ", 1)[1])]
+
+
+def test_interrupted_study_exits_130_without_traceback(tmp_path, capsys, monkeypatch):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(qdv, "run_study", interrupted)
+    assert main(["study", "qd-verification", "-o", str(tmp_path / "out"), "--quiet"]) == 130
+    assert capsys.readouterr().err.startswith("floatmoor: interrupted; nothing written")
