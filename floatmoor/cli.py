@@ -193,8 +193,10 @@ def _describe(case: Case) -> str:
                        else "") + f", radiation {fl.radiation}")
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
+        accepted = case.hydro.accept_failed_checks
         rows.append(f"  hydro: database {case.hydro.database}, {len(case.hydro.frequencies)} "
-                    f"frequencies, {len(case.hydro.directions)} directions")
+                    f"frequencies, {len(case.hydro.directions)} directions"
+                    + (f"; accepts failed checks: {', '.join(accepted)}" if accepted else ""))
     if case.motion is not None:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "

@@ -198,3 +198,11 @@ def test_infinite_depth_build_adds_zero_frequency_added_mass(tiny_case, capsys):
     a0 = ds["added_mass_zero"].sel(radiating_dof="Heave", influenced_dof="Heave").item()
     a_inf = ds["added_mass_infinite"].sel(radiating_dof="Heave", influenced_dof="Heave").item()
     assert a0 > a_inf > 0.0
+
+
+def test_floatmoor_check_shows_the_checks_a_case_accepts(capsys):
+    case = str(REPO / "cases" / "deepcwind" / "deepcwind_free_decay.toml")
+    assert main(["check", case, "--set", 'hydro.accept_failed_checks=["kernel_decay"]']) == 0
+    assert "accepts failed checks: kernel_decay" in capsys.readouterr().out
+    assert main(["check", case]) == 0
+    assert "accepts failed checks" not in capsys.readouterr().out
