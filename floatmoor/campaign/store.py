@@ -7,9 +7,7 @@ series ``time``. Variables: ``status`` (``complete``, ``failed: ...`` or ``pendi
 statistics, per run and DOF the floater-displacement statistics of coupled runs, and with run
 files (``--runs-dir``) ``run_file``, the path of each run's full output; runs that failed or
 have not run hold NaN. Attributes: the case file and text, the base overrides and the design,
-so a re-run can resume, and ``runs_complete`` and ``runs_failed``, the counts of complete and
-failed runs (a campaign records a failed run and goes on: check ``runs_failed``, or
-:func:`failed_runs`, before using the results).
+so a re-run can resume.
 """
 
 from __future__ import annotations
@@ -251,7 +249,10 @@ class CampaignStore:
 
     # -- output ----------------------------------------------------------------------------
     def dataset(self) -> xr.Dataset:
-        """The campaign as a labelled dataset."""
+        """The campaign as a labelled dataset; its attributes ``runs_complete`` and
+        ``runs_failed`` count the complete and failed runs (a campaign records a failed run
+        and goes on: check ``runs_failed``, or :func:`failed_runs`, before using the
+        results)."""
         dims = tuple(a.name for a in self.design.axes)
         coords: dict[str, Any] = {}
         for axis in self.design.axes:

@@ -47,13 +47,19 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
     """
     from floatmoor.case.load import load_case
     from floatmoor.post.summary import run_summary
-    from floatmoor.simulation.run import run_case
 
     cpu, wall = time.process_time(), time.perf_counter()
     out: dict[str, Any] = {"status": "complete", "statistics": {}}
     try:
         case = load_case(case_path, overrides)
-        dataset = run_case(case, output=run_file).dataset
+        if case.floater is not None:
+            from floatmoor.simulation.coupled_run import run_coupled
+
+            dataset = run_coupled(case, output=run_file).dataset
+        else:
+            from floatmoor.simulation.forced import run_forced_motion
+
+            dataset = run_forced_motion(case, output=run_file).dataset
         summary = run_summary(case, dataset)
         for name, entry in summary["lines"].items():
             stats = entry["fairlead_tension_N"]
