@@ -4,11 +4,17 @@ The public API::
 
     import floatmoor as fm
     case = fm.load_case("cases/lindahl/lindahl_r0.20_T1.25.toml", ["motion.period=3.5"])
-    result = fm.run_forced_motion(case)
+    result = fm.run_forced_motion(case)   # fairleads moved by [motion]
     result.dataset["fairlead_tension"]
+
+    decay = fm.run_coupled(fm.load_case("cases/deepcwind/deepcwind_free_decay.toml"))
+    result = fm.run_case(case)            # either, as the case needs (as `floatmoor run`)
 
     sol = fm.solve_catenary(anchor, fairlead, length, EA, w, friction_coefficient=0.3,
                             seabed_z=-3.0)
+
+A runner refuses a case it cannot run as asked (``run_forced_motion`` a case with a
+``[floater]``, ``run_coupled`` one without) with a :class:`CaseError`.
 """
 
 from floatmoor._version import __version__
@@ -19,10 +25,13 @@ from floatmoor.io.netcdf import read_dataset, write_dataset
 from floatmoor.mooring.catenary import CatenarySolution, catenary_profile, solve_catenary
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.simulation.coupled_run import run_coupled
 from floatmoor.simulation.forced import RunResult, run_forced_motion
+from floatmoor.simulation.run import run_case
 
 __all__ = [
     "__version__", "load_case", "Case", "CaseError", "FloatmoorError", "SolverError",
     "read_dataset", "write_dataset", "CatenarySolution", "catenary_profile", "solve_catenary",
-    "QuasiStaticLine", "QuasiDynamicLine", "RunResult", "run_forced_motion",
+    "QuasiStaticLine", "QuasiDynamicLine", "RunResult", "run_forced_motion", "run_coupled",
+    "run_case",
 ]

@@ -1,15 +1,18 @@
 """The ``floatmoor`` command line.
 
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
-runs it; ``floatmoor study qd-verification -o DIR`` runs the quasi-dynamic verification study
-(cases.md case B); ``floatmoor hydro build CASE`` builds the floater's BEM database,
-``floatmoor hydro check NAME`` checks one (exit 1 when a check fails), ``floatmoor hydro info
-NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space realisation
-of its radiation kernel; a missing, damaged or stale database is bad input (exit 2). Bad input (a
-malformed case, a bad ``--set`` or output path) prints one message and exits with status 2,
-without a traceback and without writing output. A run that
-fails (no valid line state) or is interrupted writes its partial results and exits with 1 or
-130.
+runs it; ``floatmoor sweep CASE --grid ...`` runs a campaign; ``floatmoor study
+qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md case B);
+``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
+``floatmoor hydro check NAME`` checks one (both exit 1 when a check fails), ``floatmoor hydro
+info NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space
+realisation of its radiation kernel; a missing, damaged or stale database, or one failing a
+check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
+(exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
+exits with status 2, without a traceback and without writing output. A run that fails (no
+valid line state) or is interrupted writes its partial results and exits with 1 or 130. A
+sweep or study with any failed run writes its results, prints a one-line summary naming the
+failed runs (and the first messages) and exits with 1; 0 only when every run completed.
 """
 
 from __future__ import annotations
@@ -152,7 +155,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
         if not isinstance(err, HydroDatabaseError):
             raise
-        # a floater case whose database is missing, damaged or stale: bad input
+        # a floater case whose database is missing, damaged, stale or fails a check: bad input
         print(f"floatmoor: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
@@ -216,8 +219,10 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
                        else "") + f", radiation {fl.radiation}")
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
+        accepted = case.hydro.accept_failed_checks
         rows.append(f"  hydro: database {case.hydro.database}, {len(case.hydro.frequencies)} "
-                    f"frequencies, {len(case.hydro.directions)} directions")
+                    f"frequencies, {len(case.hydro.directions)} directions"
+                    + (f"; accepts failed checks: {', '.join(accepted)}" if accepted else ""))
     if case.motion is not None:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "
@@ -303,6 +308,7 @@ def _run(args: argparse.Namespace) -> int:
 def _sweep(args: argparse.Namespace) -> int:
     from floatmoor.campaign.design import design_from_options
     from floatmoor.campaign.runner import run_campaign
+    from floatmoor.campaign.store import failed_runs
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
@@ -326,12 +332,39 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
               file=sys.stderr)
         return EXIT_INTERRUPTED
-    failed = [(str(s)) for s in ds["status"].values.flat if str(s).startswith("failed")]
+    failed = failed_runs(ds, design)
     print(f"{ds.attrs['runs_complete']} of {ds['status'].size} runs complete, {len(failed)} "
           f"failed; results in {output}")
-    for message in failed[:5]:
-        print(f"  {message}")
+    if failed:
+        report_failures("sweep", failed, int(ds["status"].size))
+        return EXIT_FAILED
     return EXIT_OK
+
+
+#: Failed runs named in the one-line summary, and failure messages printed after it.
+_NAMED_FAILURES, _FAILURE_MESSAGES = 10, 3
+
+
+def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) -> None:
+    """Print on standard error the one-line summary of a campaign's failed runs (how many,
+    which) and the first failure messages.
+
+    Parameters
+    ----------
+    what
+        The command (``"sweep"``, ``"study qd-verification"``).
+    failed
+        (run label, e.g. its swept values; failure message) of every failed run.
+    total
+        Runs in the campaign.
+    """
+    labels = [label for label, _ in failed]
+    named = "; ".join(labels[:_NAMED_FAILURES]) + (
+        f"; and {len(labels) - _NAMED_FAILURES} more" if len(labels) > _NAMED_FAILURES else "")
+    print(f"floatmoor: {what} failed: {len(failed)} of {total} runs failed ({named})",
+          file=sys.stderr)
+    for label, message in failed[:_FAILURE_MESSAGES]:
+        print(f"  {label}: {message}", file=sys.stderr)
 
 
 def _study(args: argparse.Namespace) -> int:
@@ -349,10 +382,19 @@ def _study(args: argparse.Namespace) -> int:
         if not args.quiet:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
-    ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                   progress=progress)
+    try:
+        ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
+                                       progress=progress)
+    except KeyboardInterrupt:
+        print("floatmoor: interrupted; nothing written (the study writes its results at the "
+              "end)", file=sys.stderr)
+        return EXIT_INTERRUPTED
     print(qd_verification.summary(ds))
     print(f"results in {output}")
+    failed = qd_verification.failed_runs(ds)
+    if failed:
+        report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
+        return EXIT_FAILED
     return EXIT_OK
 
 

@@ -82,7 +82,16 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         For a bad case, override, design, output or runs folder (nothing run or written), or
         an output file holding another campaign.
     HydroDatabaseError
-        When a coupled run's database is missing, damaged or stale (nothing run or written).
+        When a coupled run's database is missing, damaged, stale or fails a check its case
+        does not accept (nothing run or written).
+
+    Returns
+    -------
+    xarray.Dataset
+        The campaign (:mod:`floatmoor.campaign.store`). A run that fails is recorded (its
+        ``status`` is ``failed: ...``) and the campaign goes on: check the attribute
+        ``runs_failed`` (or :func:`floatmoor.campaign.store.failed_runs`) before using the
+        results; ``floatmoor sweep`` exits with 1 when it is not 0.
     """
     case_path = str(case_path)
     base = validate_campaign(case_path, design, base_overrides)
@@ -137,15 +146,16 @@ def validate_campaign(case_path: str | Path, design: CampaignDesign,
     """Check that every run of a campaign is valid input; returns the base case.
 
     Every run's case is loaded, and the hydrodynamic database of every distinct floater
-    configuration is loaded once, so a bad override or a missing, damaged or stale database
-    is bad input before anything runs or is written.
+    configuration is loaded once (and checked), so a bad override or a missing, damaged,
+    stale or failing database is bad input before anything runs or is written.
 
     Raises
     ------
     CaseError
         For a bad case or override.
     HydroDatabaseError
-        For a missing, damaged or stale database.
+        For a missing, damaged or stale database, or one failing a check the case does not
+        accept.
     """
     from floatmoor.hydro.database import (
         database_inputs, database_path, inputs_hash, load_for_case,

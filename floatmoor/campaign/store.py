@@ -30,7 +30,7 @@ from floatmoor.errors import CaseError
 from floatmoor.io.netcdf import NETCDF_ENGINE, read_dataset, write_dataset
 from floatmoor.io.variables import attributes
 
-__all__ = ["CampaignStore", "run_file_is_complete", "same_campaign"]
+__all__ = ["CampaignStore", "run_file_is_complete", "same_campaign", "failed_runs"]
 
 _LONG_NAMES = {
     "mean": "mean fairlead tension after the ramp",
@@ -94,6 +94,14 @@ def same_campaign(path: str | os.PathLike[str], design: CampaignDesign, case_tex
     attrs = _attributes(path)
     wanted = _identity(design, case_text, base_overrides)
     return attrs is not None and all(attrs.get(key) == wanted[key] for key in _IDENTITY)
+
+
+def failed_runs(dataset: xr.Dataset, design: CampaignDesign) -> list[tuple[str, str]]:
+    """The runs of a campaign dataset that did not complete, in :meth:`CampaignDesign.runs`
+    order: (their swept values as ``key=VALUE, ...``, their status, e.g. ``failed: ...``)."""
+    status = dataset["status"].values
+    return [(", ".join(overrides), str(status[index])) for index, overrides in design.runs()
+            if str(status[index]) != "complete"]
 
 
 def _attributes(path: str | os.PathLike[str]) -> dict[str, Any] | None:
@@ -255,7 +263,10 @@ class CampaignStore:
 
     # -- output ----------------------------------------------------------------------------
     def dataset(self) -> xr.Dataset:
-        """The campaign as a labelled dataset."""
+        """The campaign as a labelled dataset; its attributes ``runs_complete`` and
+        ``runs_failed`` count the complete and failed runs (a campaign records a failed run
+        and goes on: check ``runs_failed``, or :func:`failed_runs`, before using the
+        results)."""
         dims = tuple(a.name for a in self.design.axes)
         coords: dict[str, Any] = {}
         for axis in self.design.axes:

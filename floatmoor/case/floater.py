@@ -22,6 +22,9 @@ of K(t), ``floatmoor hydro fit-state-space``), and ``[floater.geometry]``:
 ``lid_depth`` [m] (default: wavenumber x depth = 0.15 at the top frequency), ``symmetry``
 (default true), ``infinite_depth`` (default false: the BEM uses environment.water_depth) and
 ``radial_panels`` (cylinder bottom). Density and gravity come from ``[environment]``.
+``accept_failed_checks = ["kernel_decay", ...]`` (default none) names database checks
+(floatmoor.hydro.checks) whose failure a run of the case accepts; a run refuses a database
+failing any other check.
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ import numpy as np
 
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater,
+    GEOMETRY_KINDS, HYDRO_CHECKS, RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater,
     FloaterGeometry, HydroSettings, Member, SemisubmersibleGeometry,
 )
 
@@ -208,9 +211,23 @@ def read_hydro(t: TableReader) -> HydroSettings:
         infinite_depth=t.boolean("infinite_depth", default=False),
         symmetry=t.boolean("symmetry", default=True),
         radial_panels=t.integer("radial_panels", ge=1, le=1000, default=None),
+        accept_failed_checks=_accepted_checks(t),
     )
     t.finish()
     return settings
+
+
+def _accepted_checks(t: TableReader) -> tuple[str, ...]:
+    """``accept_failed_checks``: distinct names of database checks (default none)."""
+    if not t.has("accept_failed_checks"):
+        return ()
+    raw = t.data["accept_failed_checks"]
+    t._read.add("accept_failed_checks")
+    if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
+            not all(isinstance(name, str) and name in HYDRO_CHECKS for name in raw):
+        raise t.error("accept_failed_checks", "an array of distinct database check names "
+                      "among " + ", ".join(f'"{name}"' for name in HYDRO_CHECKS), raw)
+    return tuple(raw)
 
 
 def _missing():

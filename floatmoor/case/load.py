@@ -111,6 +111,9 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     lines = tuple(_line(reader, line_types) for reader in root.tables("lines")) \
         if root.has("lines") or not has_floater else ()
     simulation = _simulation(root.table("simulation"))
+    if simulation.time_step is not None and not has_floater:
+        raise root.error(("simulation", "time_step"), "no body time step in a case without a "
+                         "[floater] (its lines take their own steps)", simulation.time_step)
     if has_floater and root.has("motion"):
         raise root.error("motion", "no [motion] table in a case with a [floater] (the "
                          "floater's motion follows from its dynamics)", {})

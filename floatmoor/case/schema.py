@@ -19,7 +19,7 @@ __all__ = [
     "SEABED_CONTACT_METHODS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
-    "RADIATION_METHODS",
+    "RADIATION_METHODS", "HYDRO_CHECKS",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
@@ -226,6 +226,10 @@ GEOMETRY_KINDS = ("cylinder", "semisubmersible")
 #: Radiation memory paths of a floater (``floater.radiation``): the convolution of K(t) with
 #: the velocity history, or the database's state-space realisation of K(t).
 RADIATION_METHODS = ("convolution", "state-space")
+#: The checks of a hydrodynamic database (floatmoor.hydro.checks.run_checks, in its order): the
+#: names ``[hydro] accept_failed_checks`` may give.
+HYDRO_CHECKS = ("symmetry", "damping_psd", "kramers_kronig", "kernel_decay", "haskind",
+                "hydrostatics")
 
 
 @dataclass(frozen=True)
@@ -326,6 +330,8 @@ class HydroSettings:
     infinite_depth: bool  #: solve in deep water (allows omega = 0) instead of water_depth
     symmetry: bool  #: use the mesh symmetries capytaine supports
     radial_panels: int | None = None  #: cylinder only: panels across the bottom radius
+    #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
+    accept_failed_checks: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

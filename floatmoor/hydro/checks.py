@@ -32,7 +32,8 @@ from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_from_kernel, radiation_kernel
 
 __all__ = [
-    "CheckResult", "run_checks", "haskind_damping", "geometry_from_dataset",
+    "CheckResult", "run_checks", "describe_failures", "haskind_damping",
+    "geometry_from_dataset",
     "RECIPROCITY_TOLERANCE", "PSD_TOLERANCE", "KRAMERS_KRONIG_TOLERANCE",
     "KERNEL_DECAY_THRESHOLD", "HASKIND_TOLERANCE", "HYDROSTATICS_TOLERANCE",
     "HASKIND_POINTWISE_REPORT", "NEGLIGIBLE_DOF",
@@ -289,7 +290,14 @@ def check_hydrostatics(ds: xr.Dataset) -> CheckResult:
 
 
 def run_checks(ds: xr.Dataset) -> list[CheckResult]:
-    """All checks on one database, in the order of the module docstring."""
+    """All checks on one database, in the order of the module docstring (their names are
+    :data:`floatmoor.case.schema.HYDRO_CHECKS`)."""
     kernel = radiation_kernel(ds)
     return [check_symmetry(ds), check_damping_psd(ds), check_kramers_kronig(ds, kernel),
             check_kernel_decay(ds, kernel), check_haskind(ds), check_hydrostatics(ds)]
+
+
+def describe_failures(results: list[CheckResult]) -> str:
+    """``kernel_decay (worst inf, tolerance 1), ...``: the checks named with their values."""
+    return ", ".join(f"{r.name} (worst {r.worst:.3g}, tolerance {r.tolerance:.3g})"
+                     for r in results)

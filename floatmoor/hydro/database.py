@@ -11,9 +11,15 @@ floatmoor and capytaine versions, creation time, case text, geometry, mesh panel
 hash, water depth, density, gravity, build settings and build time, and ``inputs_hash``: the
 SHA-256 of every input that changes the result (:func:`database_inputs`).
 
-A database is used for a case only when its recorded inputs equal the case's
-(:func:`load_for_case`); a missing, truncated or otherwise unreadable file, or one whose
-contents fail the structural checks, raises :class:`HydroDatabaseError` naming the problem.
+A database is used for a case only when its recorded inputs equal the case's and it passes
+the checks of :mod:`floatmoor.hydro.checks` (:func:`load_for_case`); a missing, truncated or
+otherwise unreadable file, one whose contents fail the structural checks, a stale one, or one
+failing a check the case does not accept (``[hydro] accept_failed_checks``) raises
+:class:`HydroDatabaseError` naming the problem. The checks are recomputed at every load (once
+per file version and process; ~0.3-0.8 s on the shipped databases), never trusted from the
+file: a database whose values were edited with its recorded inputs kept is checked as it is.
+The results recorded by ``floatmoor hydro build`` (attributes ``checks_failed``,
+``checks_json``) are for the reader only.
 """
 
 from __future__ import annotations
@@ -285,13 +291,30 @@ def stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
     return keys or ["inputs_hash"]
 
 
-def load_for_case(case: Case, path: str | os.PathLike[str] | None = None) -> xr.Dataset:
-    """The database of ``case``, checked to be readable and built from the case's inputs.
+def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,
+                  checks: bool = True) -> xr.Dataset:
+    """The database of ``case``, checked to be readable, built from the case's inputs and
+    (with ``checks``) to pass the database checks.
+
+    A failed check named in the case's ``[hydro] accept_failed_checks`` is reported on
+    standard error (one line, once per process) instead of refusing the database.
+
+    Parameters
+    ----------
+    case
+        A case with ``[floater]`` and ``[hydro]``.
+    path
+        The database file (default: :func:`database_path` of the case).
+    checks
+        Run the checks of :func:`floatmoor.hydro.checks.run_checks` (False: only whether the
+        file is readable and up to date, as ``hydro build`` asks before rebuilding).
 
     Raises
     ------
     HydroDatabaseError
-        Missing, damaged, or stale (the message names the inputs that differ).
+        Missing, damaged, stale (the message names the inputs that differ), or failing a check
+        the case does not accept (the message names each with its value and tolerance, and
+        how to accept it).
     """
     if case.floater is None or case.hydro is None:
         raise HydroDatabaseError(f"{case.source}: the case has no [floater] and [hydro] tables")
@@ -302,4 +325,39 @@ def load_for_case(case: Case, path: str | os.PathLike[str] | None = None) -> xr.
         raise HydroDatabaseError(f"{p}: stale hydrodynamic database for {case.source}: "
                                  f"recorded inputs differ in {', '.join(differ)}; rebuild "
                                  "with 'floatmoor hydro build CASE --force'")
+    if checks:
+        _enforce_checks(ds, p, case)
     return ds
+
+
+#: Check results per database file version (resolved path, modification time, size).
+_CHECKS_CACHE: dict[tuple[str, int, int], list[Any]] = {}
+#: (file version, accepted checks) whose accepted failures were already reported.
+_REPORTED: set[tuple[tuple[str, int, int], tuple[str, ...]]] = set()
+
+
+def _enforce_checks(ds: xr.Dataset, path: Path, case: Case) -> None:
+    """Refuse ``ds`` when it fails a check ``case`` does not accept; report accepted ones."""
+    import sys
+
+    from floatmoor.hydro.checks import describe_failures, run_checks
+
+    assert case.hydro is not None
+    stat = path.stat()
+    key = (str(path.resolve()), stat.st_mtime_ns, stat.st_size)
+    if key not in _CHECKS_CACHE:
+        _CHECKS_CACHE[key] = run_checks(ds)
+    failed = [r for r in _CHECKS_CACHE[key] if not r.passed]
+    accepted = case.hydro.accept_failed_checks
+    refused = [r for r in failed if r.name not in accepted]
+    if refused:
+        names = ", ".join(f'"{r.name}"' for r in failed)
+        raise HydroDatabaseError(
+            f"{path}: hydrodynamic database fails its checks: {describe_failures(refused)}; "
+            f"see 'floatmoor hydro check {path}', rebuild it with other [hydro] settings, or "
+            f"accept in {case.source}: [hydro] accept_failed_checks = [{names}]")
+    tolerated = [r for r in failed if r.name in accepted]
+    if tolerated and (key, accepted) not in _REPORTED:
+        _REPORTED.add((key, accepted))
+        print(f"floatmoor: warning: {path}: failed checks accepted by {case.source} ([hydro] "
+              f"accept_failed_checks): {describe_failures(tolerated)}", file=sys.stderr)

@@ -5,7 +5,8 @@ Wire into :mod:`floatmoor.cli` with ``add_report_parsers(sub)`` in its parser an
 return the exit status: 0 done; 2 bad input (a missing or unreadable file, an unknown model, a
 bad ``--start``, ``--nominal-diameter`` or reference file, a series that cannot be plotted),
 with one message on standard error, no traceback and nothing written; 1 a run of ``compare``
-that failed (the message names the model; the other models still run, no report is written).
+that failed (the message names the model; the other models still run, no report is written);
+130 an interrupted ``compare`` (the finished runs are kept; a re-run resumes).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ __all__ = ["add_report_parsers", "report_command", "compare_command", "REPORT_CO
            "parse_start", "parse_nominal_diameters"]
 
 REPORT_COMMANDS = ("report", "compare")
-EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
 def _add_common(p: argparse.ArgumentParser) -> None:
@@ -177,6 +178,10 @@ def compare_command(args: argparse.Namespace) -> int:
     except SolverError as err:
         print(f"floatmoor: run failed: {err}", file=sys.stderr)
         return EXIT_FAILED
+    except KeyboardInterrupt:
+        print(f"floatmoor: interrupted; finished model runs are in {args.output} (re-run to "
+              "resume; no report written)", file=sys.stderr)
+        return EXIT_INTERRUPTED
     print(f"{len(models)} runs ({', '.join(models)}) and their report in {files.folder}: "
           f"{files.summary.name}, {len(files.figures)} figures")
     return EXIT_OK

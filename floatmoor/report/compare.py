@@ -103,8 +103,8 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
     CaseError
         For a bad case or override (nothing run or written).
     HydroDatabaseError
-        For a floater case whose database is missing, damaged or stale (nothing run or
-        written).
+        For a floater case whose database is missing, damaged, stale or failing a check
+        (nothing run or written).
     ReportInputError
         For bad models, workers or output folder (nothing run or written).
     SolverError

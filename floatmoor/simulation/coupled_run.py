@@ -36,7 +36,7 @@ from floatmoor.waves.settings import (
     JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
 )
 
-__all__ = ["CoupledSettings", "run_coupled", "settings_from_case"]
+__all__ = ["CoupledSettings", "run_coupled", "check_coupled_case", "settings_from_case"]
 
 #: Body steps per chunk between progress reports, partial writes and finiteness checks.
 CHUNK_STEPS = 500
@@ -118,6 +118,25 @@ def _write_checkpoint(path: Path, moored: MooredBody, recorder: Recorder, done: 
         moored.external = external
 
 
+def check_coupled_case(case: Case) -> None:
+    """Refuse a case that a coupled run cannot run as asked: one without a ``[floater]`` (no
+    body to couple; its fairleads would stay fixed) or with a ``[motion]`` (the floater's
+    motion follows from its dynamics; a prescribed one would be ignored).
+
+    Raises
+    ------
+    CaseError
+        Naming the part and the function that runs the case.
+    """
+    if case.floater is None:
+        raise CaseError(case.source, "floater", "a case with a [floater] for run_coupled (a "
+                        "case without one runs in forced motion: floatmoor.run_forced_motion, "
+                        "or floatmoor.run_case, which picks the runner)", "none")
+    if case.motion is not None:
+        raise CaseError(case.source, "motion", "no [motion] in a case run by run_coupled (the "
+                        "floater's motion follows from its dynamics)", "a [motion] table")
+
+
 def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 output: str | Path | None = None,
                 progress: Callable[[float], None] | None = None,
@@ -132,15 +151,23 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     uninterrupted run. The checkpoint is removed when the run completes. With
     ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
+    ``settings`` (default :func:`settings_from_case`) replaces the case's ``[waves]``,
+    ``[initial]`` and ``simulation.time_step``.
+
     Raises
     ------
+    CaseError
+        For a case without a ``[floater]``, or with a ``[motion]`` (see
+        :func:`check_coupled_case`); nothing is run.
+    HydroDatabaseError
+        When the case's database is missing, damaged, stale or fails a check the case does
+        not accept (:func:`floatmoor.hydro.database.load_for_case`).
     SolverError
         When a line or the body goes unstable (partial results written first).
     KeyboardInterrupt
         Re-raised after writing the partial results.
     """
-    if case.floater is None:
-        raise ValueError("run_coupled needs a case with a [floater]")
+    check_coupled_case(case)
     if settings is None:
         settings = settings_from_case(case)
     dt = float(settings.time_step)

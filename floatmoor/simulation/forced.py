@@ -1,5 +1,8 @@
 """Forced-motion runs: every fairlead follows the prescribed motion, each line responds with
 its chosen model, and the line forces are recorded.
+
+A case with parts a forced-motion run would ignore (a ``[floater]`` and what goes with it) is
+refused, not run without them: :func:`check_forced_case`.
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Simulation
-from floatmoor.errors import SolverError
+from floatmoor.errors import CaseError, SolverError
 from floatmoor.motion import fairlead_state
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
@@ -22,7 +25,8 @@ from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
-__all__ = ["RunResult", "run_forced_motion", "output_times", "build_line_models"]
+__all__ = ["RunResult", "run_forced_motion", "check_forced_case", "output_times",
+           "build_line_models"]
 
 #: Output samples solved per chunk between progress reports and checks: large enough to make
 #: the per-chunk Python overhead negligible, small enough to report progress every ~0.1 s.
@@ -62,6 +66,33 @@ def shape_stride(case: Case) -> int:
     return max(1, int(round(interval / case.simulation.output_interval)))
 
 
+def check_forced_case(case: Case) -> None:
+    """Refuse a case that a forced-motion run cannot run as asked.
+
+    A forced-motion run moves the fairleads as ``[motion]`` prescribes (fixed without one);
+    it has no floater, so a case with a ``[floater]`` (or the ``[hydro]``, ``[waves]``,
+    ``[wind]``, ``[initial]`` or ``simulation.time_step`` of one) would run with those parts
+    ignored and its fairleads fixed.
+
+    Raises
+    ------
+    CaseError
+        Naming the first such part and the function that runs the case.
+    """
+    parts = (("floater", "a [floater] table", case.floater is not None),
+             ("hydro", "a [hydro] table", case.hydro is not None),
+             ("waves", "a [waves] table", case.waves is not None),
+             ("wind", "a [wind] table", case.wind is not None),
+             ("initial", "an [initial] offset", any(v != 0.0 for v in case.initial_offset)),
+             ("simulation.time_step", "a body time step",
+              case.simulation.time_step is not None))
+    for key, found, present in parts:
+        if present:
+            raise CaseError(case.source, key, "a case without a floater for run_forced_motion "
+                            "(a case with a [floater] runs coupled: floatmoor.run_coupled, or "
+                            "floatmoor.run_case, which picks the runner)", found)
+
+
 def run_forced_motion(case: Case, *, output: str | Path | None = None,
                       progress: Callable[[float], None] | None = None,
                       flush_interval: float = FLUSH_INTERVAL_S) -> RunResult:
@@ -80,11 +111,14 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
 
     Raises
     ------
+    CaseError
+        For a case with a ``[floater]`` (see :func:`check_forced_case`); nothing is run.
     SolverError
         When a line has no valid state; the partial results are written first.
     KeyboardInterrupt
         Re-raised after writing the partial results.
     """
+    check_forced_case(case)
     times = output_times(case.simulation)
     models = build_line_models(case)
     stride = shape_stride(case)

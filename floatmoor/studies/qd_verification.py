@@ -211,7 +211,11 @@ def design(quick: bool = False, configs: Sequence[str] = CONFIGS) -> list[RunSpe
 def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = False,
               progress: Callable[[int, int], None] | None = None):
     """Run the study; returns the xarray dataset (written to OUTPUT/qd_verification.nc with
-    summary.txt and the figures when ``output`` is given)."""
+    summary.txt and the figures when ``output`` is given).
+
+    A combination whose run fails is recorded and the study goes on: its error measures are
+    NaN, ``run_error`` holds the message, the attribute ``failed_runs`` counts them and
+    :func:`failed_runs` lists them (``floatmoor study`` then exits with status 1)."""
     import xarray as xr
 
     specs = design(quick)
@@ -236,6 +240,7 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
     names = ("rmse_qd", "rmse_s", "e_tmin", "e_tmax", "t_s0", "period", "z_m")
     arrays = {n: np.full(shape, np.nan) for n in names}
     cycles = np.full(shape + (len(MODELS), PHASE_POINTS), np.nan)
+    errors = np.full(shape, "", dtype=object)
     failures = []
     for res in results:
         s = res["spec"]
@@ -243,8 +248,8 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
                alpha_idx.index(s.alpha_index))
         arrays["period"][ijk], arrays["z_m"][ijk] = s.period, s.z_m
         if res["error"]:
-            failures.append(f"{s.config} {AMPLITUDE_NAMES[s.amplitude_index]} "
-                            f"alpha {s.alpha}: {res['error']}")
+            failures.append(f"{run_label(s)}: {res['error']}")
+            errors[ijk] = res["error"]
             continue
         for n in names[:5]:
             arrays[n][ijk] = res[n]
@@ -266,6 +271,8 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
     dims = ("config", "amplitude", "alpha")
     data_vars = {n: (dims, arrays[n], {"long_name": meta[n][0], "units": meta[n][1]})
                  for n in names}
+    data_vars["run_error"] = (dims, errors.astype(str), {
+        "long_name": "why the run failed (empty: the run completed)", "units": "1"})
     data_vars["cycle_tension"] = (
         dims + ("model", "phase"), cycles,
         {"long_name": "fairlead tension over the last (steady) cycle", "units": "N"})
@@ -312,6 +319,24 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
         plot_errors(ds, out / "fig7_rmse.png", ("rmse_qd", "rmse_s"))
         plot_errors(ds, out / "fig8_peaks.png", ("e_tmin", "e_tmax"))
     return ds
+
+
+def run_label(spec: RunSpec) -> str:
+    """A combination as the summaries name it: ``C11 A1 alpha 0.3``."""
+    return f"{spec.config} {AMPLITUDE_NAMES[spec.amplitude_index]} alpha {spec.alpha:g}"
+
+
+def failed_runs(ds) -> list[tuple[str, str]]:
+    """(run label, failure message) of every failed combination of a study dataset (a failed
+    combination is recorded and the study goes on; its error measures are NaN)."""
+    out = []
+    for i, config in enumerate(ds["config"].values):
+        for j, amplitude in enumerate(ds["amplitude_name"].values):
+            for k, alpha in enumerate(ds["alpha"].values):
+                error = str(ds["run_error"].values[i, j, k])
+                if error:
+                    out.append((f"{config} {amplitude} alpha {float(alpha):g}", error))
+    return out
 
 
 # --- summary and figures --------------------------------------------------------------------

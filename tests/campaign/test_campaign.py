@@ -152,3 +152,52 @@ def test_campaign_table_in_the_case_file(tmp_path, capsys):
     assert main([*argv[:-3], "--grid", "motion.radius=0.15", "-o", str(tmp_path / "b.nc"),
                  "--quiet"]) == 0
     assert read_dataset(tmp_path / "b.nc").sizes["motion.radius"] == 1
+
+
+def test_sweep_with_failed_runs_exits_1_naming_them(tmp_path, capsys):
+    """A sweep whose runs fail at run time (one iteration cannot reach 1e-16; the values
+    validate) keeps its dataset but exits 1 with a one-line summary naming the failed runs by
+    their swept values, then their messages; 0 only when every run completes (issue 13)."""
+    out = tmp_path / "sweep.nc"
+    argv = ["sweep", str(LINDAHL_CASE), *sum((["--set", b] for b in BASE), []),
+            "--set", "lines.chain.quasi_static.max_iterations=1",
+            "--grid", "lines.chain.quasi_static.tolerance=1e-16,1e-6", "--grid",
+            "motion.radius=0.1,0.2", "-o", str(out), "--quiet"]
+    assert main(argv) == 1
+    captured = capsys.readouterr()
+    assert "2 of 4 runs complete, 2 failed" in captured.out
+    lines = captured.err.strip().splitlines()
+    assert lines[0] == ("floatmoor: sweep failed: 2 of 4 runs failed "
+                        "(lines.chain.quasi_static.tolerance=1e-16, motion.radius=0.1; "
+                        "lines.chain.quasi_static.tolerance=1e-16, motion.radius=0.2)")
+    assert lines[1].startswith("  lines.chain.quasi_static.tolerance=1e-16, motion.radius=0.1: "
+                               "failed: SolverError: line 'chain'")
+    assert len(lines) == 3
+    ds = read_dataset(out)
+    assert ds.attrs["runs_failed"] == 2 and ds.attrs["runs_complete"] == 2
+    # every run failing (the issue's probe) is a failure too, not "0 of 2 ... exit 0"
+    assert main([*argv[:-7], "--grid", "lines.chain.quasi_static.tolerance=1e-16", "--grid",
+                 "motion.radius=0.1,0.2", "-o", str(tmp_path / "all.nc"), "--quiet"]) == 1
+    assert "2 of 2 runs failed" in capsys.readouterr().err
+
+
+def test_sweep_whose_workers_cannot_read_the_case_exits_1(tmp_path, capsys, monkeypatch):
+    """The issue's probe: every worker fails to load the case (here a path the workers do not
+    see); the sweep said "0 of 4 runs complete, 4 failed" and exited 0."""
+    original = worker.run_one
+
+    def elsewhere(case_path, overrides, timeseries=False, run_file=None):
+        return original(str(tmp_path / "not_on_this_worker.toml"), overrides, timeseries,
+                        run_file)
+
+    monkeypatch.setattr(campaign_runner, "run_one", elsewhere)
+    out = tmp_path / "lost.nc"
+    assert main(["sweep", str(LINDAHL_CASE), *sum((["--set", b] for b in BASE), []),
+                 "--grid", GRID[0], "--grid", GRID[1], "-o", str(out), "--quiet"]) == 1
+    captured = capsys.readouterr()
+    assert "0 of 4 runs complete, 4 failed" in captured.out
+    err = captured.err.strip().splitlines()
+    assert err[0].startswith("floatmoor: sweep failed: 4 of 4 runs failed (motion.radius=0.1, "
+                             "motion.period=1.25; ")
+    assert "failed: CaseError: " in err[1] and "not_on_this_worker.toml" in err[1]
+    assert read_dataset(out).attrs["runs_failed"] == 4

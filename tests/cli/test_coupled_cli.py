@@ -39,3 +39,33 @@ def test_run_refuses_a_stale_database(tmp_path, capsys) -> None:
     err = capsys.readouterr().err
     assert status == 2 and "stale" in err and "Traceback" not in err
     assert not out.exists()
+
+
+def test_run_refuses_a_database_failing_its_checks_unless_the_case_accepts(tmp_path, capsys
+                                                                          ) -> None:
+    """A database that fails ``hydro check`` is bad input for a run (status 2, one message
+    naming the database, the check with its value and tolerance and how to accept it, nothing
+    written); accepted by the case, the run goes on with one warning line (issue 13)."""
+    from floatmoor.hydro.database import read_database, write_database
+
+    (tmp_path / "hydrodb").mkdir()
+    bad = read_database(CASES.parent / "hydrodb" / "cylinder_buoy.nc")
+    bad["excitation_force"] = bad["excitation_force"] * 1.2
+    bad.attrs.pop("path")
+    database = tmp_path / "hydrodb" / "cylinder_buoy.nc"
+    write_database(bad, database)
+    case = tmp_path / "buoy.toml"
+    case.write_text(BUOY_CASE.read_text())
+    out = tmp_path / "run.nc"
+    assert main(["run", str(case), "-o", str(out), "--quiet"] + SHORT) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(
+        f"floatmoor: error: {database}: hydrodynamic database fails its checks: haskind "
+        "(worst 0.441, tolerance 0.05)")
+    assert 'accept_failed_checks = ["haskind"]' in err[0] and not out.exists()
+    status = main(["run", str(case), "-o", str(out), "--quiet", "--set",
+                   'hydro.accept_failed_checks=["haskind"]'] + SHORT)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 0 and read_dataset(out).attrs["status"] == "complete"
+    assert len(err) == 1 and err[0].startswith(f"floatmoor: warning: {database}: failed "
+                                               "checks accepted by")

@@ -7,6 +7,9 @@ import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
+from floatmoor.case.schema import HYDRO_CHECKS
+from floatmoor.errors import CaseError
+from floatmoor.hydro.checks import run_checks
 from floatmoor.hydro.database import (
     REQUIRED_VARIABLES, HydroDatabaseError, database_path, load_for_case, merge_complex,
     read_database, write_database,
@@ -87,3 +90,60 @@ def test_missing_variable_and_nan_are_damage(buoy_db, tmp_path):
 def test_database_files_are_small():
     for path in (BUOY_DB, DEEPCWIND_DB):
         assert path.stat().st_size < 5e6
+
+
+def _corrupted(buoy_db, path):
+    """The buoy database with its excitation 20 % too large, inputs and hash kept: it fails
+    the Haskind check only (0.44 against 0.05)."""
+    bad = buoy_db.copy(deep=True)
+    bad["excitation_force"] = bad["excitation_force"] * 1.2
+    bad.attrs.pop("path", None)
+    write_database(bad, path)
+    return path
+
+
+def test_database_failing_a_check_is_refused_naming_check_value_tolerance(buoy_db, tmp_path,
+                                                                         capsys):
+    """The checks are recomputed at load, not trusted from the file: an edited database with
+    its recorded inputs (and hash) kept is refused (issue 13)."""
+    path = _corrupted(buoy_db, tmp_path / "edited.nc")
+    case = load_case(BUOY_CASE)
+    with pytest.raises(HydroDatabaseError) as info:
+        load_for_case(case, path)
+    message = str(info.value)
+    assert message.startswith(f"{path}: hydrodynamic database fails its checks: haskind "
+                              "(worst 0.441, tolerance 0.05)")
+    assert "kernel_decay" not in message
+    assert f'accept in {BUOY_CASE}: [hydro] accept_failed_checks = ["haskind"]' in message
+    # staleness alone (as hydro build asks) does not run the checks
+    load_for_case(case, path, checks=False)
+    assert capsys.readouterr().err == ""
+
+
+def test_check_accepted_by_the_case_is_reported_once_not_fatal(buoy_db, tmp_path, capsys):
+    path = _corrupted(buoy_db, tmp_path / "accepted.nc")
+    case = load_case(BUOY_CASE, ['hydro.accept_failed_checks=["haskind"]'])
+    ds = load_for_case(case, path)
+    assert ds.attrs["path"] == str(path)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"floatmoor: warning: {path}: failed checks accepted by {BUOY_CASE} "
+                   "([hydro] accept_failed_checks): haskind (worst 0.441, tolerance 0.05)"]
+    load_for_case(case, path)
+    assert capsys.readouterr().err == ""
+    # accepting another check does not accept this one
+    other = load_case(BUOY_CASE, ['hydro.accept_failed_checks=["kernel_decay"]'])
+    with pytest.raises(HydroDatabaseError, match="haskind"):
+        load_for_case(other, path)
+
+
+@pytest.mark.parametrize("value", ['["kernel-decay"]', '"haskind"', '["haskind", "haskind"]',
+                                   "[1]"])
+def test_accept_failed_checks_takes_only_names_of_checks(value):
+    with pytest.raises(CaseError) as info:
+        load_case(BUOY_CASE, [f"hydro.accept_failed_checks={value}"])
+    assert info.value.key == "hydro.accept_failed_checks"
+    assert '"kernel_decay"' in info.value.expected
+
+
+def test_check_names_are_those_a_case_may_accept(buoy_db):
+    assert tuple(r.name for r in run_checks(buoy_db)) == HYDRO_CHECKS

@@ -185,3 +185,15 @@ def test_compare_reports_a_failing_model_and_exits_1(tmp_path, capsys) -> None:
     assert "Traceback" not in err and not (out / "summary.md").exists()
     assert read_dataset(out / "runs" / "dynamic.nc").attrs["status"] == "complete"
     assert read_dataset(out / "runs" / "quasi-static.nc").attrs["status"].startswith("failed")
+
+
+def test_interrupted_compare_exits_130_without_traceback(tmp_path, capsys, monkeypatch) -> None:
+    import floatmoor.report.compare as compare
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(compare, "compare_models", interrupted)
+    assert _compare(tmp_path / "cmp", "quasi-static,dynamic") == 130
+    err = capsys.readouterr().err
+    assert err.startswith("floatmoor: interrupted;") and "re-run to resume" in err

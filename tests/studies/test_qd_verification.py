@@ -131,3 +131,46 @@ def test_full_study_quasi_dynamic_errors_grow_from_s3_to_s1(full_study):
     """Paper: the lowest errors for S3, then S2, then S1 (mean RMSE_QD per shape)."""
     by_shape = [m for _, m, _ in qdv.shape_means(full_study)]
     assert by_shape[2] < by_shape[1] < by_shape[0]
+
+
+def test_study_with_a_failed_run_exits_1_naming_it(tmp_path, capsys, monkeypatch):
+    """A combination whose run fails is recorded (NaN measures, its message in run_error) and
+    the study completes, but ``floatmoor study`` exits 1 naming it (issue 13). Two
+    combinations; the model runs are replaced by a synthetic steady cycle and a solver
+    failure."""
+    from floatmoor.errors import SolverError
+
+    specs = [qdv.RunSpec("C11", 0, 2), qdv.RunSpec("C12", 0, 2)]
+    monkeypatch.setattr(qdv, "design", lambda quick=False, configs=qdv.CONFIGS: specs)
+
+    def tensions(spec):
+        if spec.config == "C12":
+            raise SolverError("line 'chain' (dynamic): not finite at t = 1.5 s")
+        t = np.arange(0.0, 7 * spec.period, qdv.OUTPUT_INTERVAL)
+        wave = 100.0 + 10.0 * np.sin(2 * np.pi * t / spec.period)
+        return t, {"quasi-static": wave, "quasi-dynamic": wave + 1.0, "dynamic": wave}
+
+    monkeypatch.setattr(qdv, "tensions", tensions)
+    out = tmp_path / "out"
+    assert main(["study", "qd-verification", "-o", str(out), "--quiet"]) == 1
+    captured = capsys.readouterr()
+    assert "RMSE_QD" in captured.out
+    lines = captured.err.strip().splitlines()
+    assert lines[0] == ("floatmoor: study qd-verification failed: 1 of 2 runs failed "
+                        "(C12 A1 alpha 0.3)")
+    assert lines[1] == "  C12 A1 alpha 0.3: SolverError: line 'chain' (dynamic): not finite " \
+                       "at t = 1.5 s"
+    ds = xr.load_dataset(out / "qd_verification.nc")
+    assert ds.attrs["failed_runs"] == 1
+    assert ds["run_error"].sel(config="C11").item() == ""
+    assert np.isfinite(ds["rmse_qd"].sel(config="C11").item())
+    assert qdv.failed_runs(ds) == [("C12 A1 alpha 0.3", lines[1].split(": ", 1)[1])]
+
+
+def test_interrupted_study_exits_130_without_traceback(tmp_path, capsys, monkeypatch):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(qdv, "run_study", interrupted)
+    assert main(["study", "qd-verification", "-o", str(tmp_path / "out"), "--quiet"]) == 130
+    assert capsys.readouterr().err.startswith("floatmoor: interrupted; nothing written")
