@@ -62,14 +62,13 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     return out
 
 
-def format_summary(summary: dict[str, Any]) -> str:
-    """A plain-text table of :func:`run_summary`."""
-    rows = [f"{summary['title']}",
-            "fairlead tension [N] from t = {:.6g} s:".format(
-                next(iter(summary["lines"].values()))["fairlead_tension_N"]["window_start"]),
+def _line_rows(lines: dict[str, Any]) -> list[str]:
+    """Tension statistics and strength rows of the lines of a summary."""
+    rows = ["fairlead tension [N] from t = {:.6g} s:".format(
+                next(iter(lines.values()))["fairlead_tension_N"]["window_start"]),
             f"  {'line':<16}{'model':<15}{'mean':>10}{'std':>10}{'min':>10}{'max':>10}"
             f"{'cycle max':>11}{'cycles':>8}"]
-    for name, entry in summary["lines"].items():
+    for name, entry in lines.items():
         s = entry["fairlead_tension_N"]
         cycle = f"{s['mean_cycle_max']:>11.4g}" if s["mean_cycle_max"] is not None else f"{'-':>11}"
         rows.append(f"  {name:<16}{entry['model']:<15}{s['mean']:>10.4g}{s['std']:>10.4g}"
@@ -78,7 +77,7 @@ def format_summary(summary: dict[str, Any]) -> str:
     rows.append(f"  {'line':<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
                 f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}")
     warnings = []
-    for name, entry in summary["lines"].items():
+    for name, entry in lines.items():
         b = entry["strength"]
         if b["minimum_breaking_load_N"] is None:
             tail = f"{'no MBL':>10}{'-':>11}{'-':>8}{'-':>21}"
@@ -92,6 +91,16 @@ def format_summary(summary: dict[str, Any]) -> str:
                     f"{b['max_tension_time_s']:>10.4g}{tail}")
     rows.append("  (T_max from the window start above, SF = MBL / T_max; whole run: from t = 0)")
     rows.extend(f"  {w}" for w in warnings)
+    return rows
+
+
+def format_summary(summary: dict[str, Any]) -> str:
+    """A plain-text table of :func:`run_summary`."""
+    rows = [f"{summary['title']}"]
+    if summary["lines"]:
+        rows.extend(_line_rows(summary["lines"]))
+    else:
+        rows.append("no mooring lines")
     if summary.get("body_displacement"):
         rows.append("floater displacement from equilibrium [m, rad]:")
         rows.append(f"  {'dof':<10}{'mean':>11}{'std':>11}{'min':>11}{'max':>11}")

@@ -115,3 +115,13 @@ def test_line_mbl_from_the_dataset_or_the_case():
     ds = _dataset([1.0], [1.0]).assign_coords(line=["chain"])
     assert line_mbl(ds, "chain", case) == 250.0  # a dataset without the variable
     assert line_mbl(ds, "chain", None) is None
+
+
+def test_summary_of_a_floater_without_lines_is_printed():
+    """A free-floating body has no lines: the summary says so instead of failing."""
+    from floatmoor.post.summary import format_summary
+
+    body = {"Surge": {"mean": 0.0, "std": 0.1, "min": -0.2, "max": 0.2}}
+    text = format_summary({"title": "free body", "lines": {}, "body_displacement": body})
+    assert text.splitlines()[:2] == ["free body", "no mooring lines"]
+    assert "Surge" in text
