@@ -113,7 +113,7 @@ def test_run_summary_without_mbl_says_so(tmp_path, capsys):
 
 
 def test_coupled_run_summary_carries_the_mbl_ratio(tmp_path, capsys):
-    qs = [f'lines.{i}.model="quasi-static"' for i in range(3)]
+    qs = ['lines.*.model="quasi-static"']
     sets = [x for o in [*qs, "simulation.duration=1.0", "simulation.output_interval=0.02",
                         'waves={kind = "regular", height = 0.04, period = 1.2, '
                         'ramp_duration = 0.4}', f"{KEY}=20.0"] for x in ("--set", o)]
