@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from contextlib import nullcontext
 from pathlib import Path
 from typing import Sequence
 
@@ -209,6 +210,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from floatmoor._numba import watch_compilation
     from floatmoor.plot import SUPPORTED_FORMATS
     from floatmoor.post.summary import format_summary, run_summary
     from floatmoor.simulation.forced import run_forced_motion
@@ -227,12 +229,15 @@ def _run(args: argparse.Namespace) -> int:
                         "checkpointed)", "--resume")
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
     try:
-        if case.floater is not None:
-            from floatmoor.simulation.coupled_run import run_coupled
+        with (nullcontext() if progress is None
+              else watch_compilation(progress.compiling, progress.compiled)):
+            if case.floater is not None:
+                from floatmoor.simulation.coupled_run import run_coupled
 
-            result = run_coupled(case, output=output, progress=progress, resume=args.resume)
-        else:
-            result = run_forced_motion(case, output=output, progress=progress)
+                result = run_coupled(case, output=output, progress=progress,
+                                     resume=args.resume)
+            else:
+                result = run_forced_motion(case, output=output, progress=progress)
     except SolverError as err:
         _close(progress)
         print(f"floatmoor: run failed: {err}\n  partial results written to {output}",
