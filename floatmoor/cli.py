@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shlex
 import sys
 from contextlib import nullcontext
 from pathlib import Path
@@ -245,7 +246,8 @@ def _run(args: argparse.Namespace) -> int:
         return EXIT_FAILED
     except KeyboardInterrupt:
         _close(progress)
-        print(f"floatmoor: interrupted; partial results written to {output}", file=sys.stderr)
+        print(f"floatmoor: interrupted; partial results written to {output}"
+              + _resume_hint(args, case, output), file=sys.stderr)
         return EXIT_INTERRUPTED
     _close(progress)
 
@@ -265,6 +267,24 @@ def _run(args: argparse.Namespace) -> int:
         print(f"simulated {result.simulated_time_s:.6g} s in {result.wall_time_s:.3g} s of wall "
               f"time; results in {output}" + (f", plot in {args.plot}" if args.plot else ""))
     return EXIT_OK
+
+
+def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
+    """Where an interrupted floater run left its checkpoint and the command that resumes it
+    ("" when there is none)."""
+    if case.floater is None:
+        return ""
+    from floatmoor.simulation.coupled_run import checkpoint_path
+
+    ckpt = checkpoint_path(output)
+    if not ckpt.is_file():
+        return ""
+    command = ["floatmoor", "run", args.case, "-o", str(output), "--resume"]
+    for text in args.overrides:
+        command += ["--set", text]
+    if args.plot is not None:
+        command += ["--plot", args.plot]
+    return f"\n  checkpoint written to {ckpt}; continue with: {shlex.join(command)}"
 
 
 def _sweep(args: argparse.Namespace) -> int:

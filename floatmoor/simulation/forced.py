@@ -92,8 +92,6 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
                         shape_nodes=[m.arc_length for m in models] if stride else None,
                         shape_stride=stride)
     start_wall = _time.perf_counter()
-    if progress is not None:
-        progress(float(times[0]))  # the time loop starts: the origin of time-left estimates
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
             stop = min(start + CHUNK_SAMPLES, times.size)

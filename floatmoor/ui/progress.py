@@ -16,11 +16,11 @@ class ProgressReporter:
     """Reports simulated time against wall time, once a run has lasted ``delay`` seconds.
 
     Short runs stay silent. On a terminal the line is rewritten in place; otherwise (a log
-    file, CI) one line is written every ``interval`` seconds. The time-left estimate is the
-    rate since the first report (runners make one as their time loop starts, so set-up and a
-    resumed run's earlier part do not count). When kernels compile (:meth:`compiling`,
-    :meth:`compiled`), that is said once, and the estimate starts again from the first report
-    after the compilation: a chunk that included compiling says nothing about the rest.
+    file, CI) one line is written every ``interval`` seconds. The time left is estimated
+    from the rate since the first report (so neither set-up nor a resumed run's earlier part
+    counts). When kernels compile (:meth:`compiling`, :meth:`compiled`), that is said once,
+    and the estimate starts again from the first report after the compilation: a chunk that
+    included compiling says nothing about the rest of the run.
 
     Parameters
     ----------
@@ -78,7 +78,7 @@ class ProgressReporter:
         else:
             left = self._left(now, simulated)
         elapsed = now - self._start
-        if simulated <= 0.0 or elapsed < self.delay or now - self._last < self.interval:
+        if elapsed < self.delay or now - self._last < self.interval:
             return
         self._last = now
         fraction = simulated / self.total if self.total > 0 else 1.0
