@@ -129,7 +129,8 @@ def test_run_stopped_in_its_first_chunk_resumes_from_the_start(tmp_path, monkeyp
     """Interrupted before any chunk is complete, the checkpoint is the initial state."""
     import floatmoor.simulation.coupled_run as cr
 
-    case = load_case(BUOY_CASE, ['lines.0.model="quasi-dynamic"', "simulation.duration=0.4",
+    case = load_case(BUOY_CASE, ['lines.0.model="quasi-dynamic"', *QS[1:],
+                                 "simulation.duration=0.4",
                                  "simulation.output_interval=0.02",
                                  'waves={kind = "regular", height = 0.04, period = 1.2}'])
     whole = run_coupled(case).dataset
