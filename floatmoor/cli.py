@@ -288,8 +288,10 @@ def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
 
 
 def _sweep(args: argparse.Namespace) -> int:
+    from floatmoor._numba import watch_compilation
     from floatmoor.campaign.design import design_from_options
     from floatmoor.campaign.runner import run_campaign
+    from floatmoor.ui.progress import COMPILING_MESSAGE
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
@@ -304,11 +306,19 @@ def _sweep(args: argparse.Namespace) -> int:
             eta = "" if left != left else f", ~{left:.0f} s left"
             print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
 
+    said = []
+
+    def compiling() -> None:  # runs in this process (one worker): say it once
+        if not args.quiet and not said:
+            said.append(True)
+            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
+
     try:
-        ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
-                          workers=args.workers, scheduler=args.scheduler,
-                          timeseries=args.timeseries, runs_dir=args.runs_dir,
-                          progress=progress)
+        with watch_compilation(compiling, lambda seconds: None):
+            ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
+                              workers=args.workers, scheduler=args.scheduler,
+                              timeseries=args.timeseries, runs_dir=args.runs_dir,
+                              progress=progress)
     except KeyboardInterrupt:
         print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
               file=sys.stderr)
