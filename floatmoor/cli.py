@@ -9,7 +9,8 @@ of its radiation kernel; a missing, damaged or stale database is bad input (exit
 malformed case, a bad ``--set`` or output path) prints one message and exits with status 2,
 without a traceback and without writing output. A run that
 fails (no valid line state) or is interrupted writes its partial results and exits with 1 or
-130.
+130; an interrupted floater run also leaves a checkpoint and says the command that resumes it.
+The first run after an install says that it is compiling the numerical kernels.
 """
 
 from __future__ import annotations

@@ -147,10 +147,10 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     With ``output``, a checkpoint (``OUTPUT.checkpoint``, the whole state of body and lines
     at the end of a chunk of steps) is written every ``checkpoint_interval`` seconds of wall
-    time (default: with every partial write), and when the run is interrupted or fails, of
-    the end of the last complete chunk (or the start); ``resume=True`` continues from it and
-    gives the same results as an uninterrupted run. The checkpoint is removed when the run
-    completes. With
+    time (default: with every partial write), and when the run is interrupted, of the end of
+    its last complete chunk (or its start); ``resume=True`` continues from the checkpoint and
+    gives the same results as an uninterrupted run. A failed run writes none at its failure
+    (resumed, it would fail again). The checkpoint is removed when the run completes. With
     ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
     Raises
@@ -282,8 +282,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         if ckpt is not None and snapshot is not None:
             _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
 
-    # on interruption or failure: the partial results first, then the checkpoint
-    with _checkpoint_on_failure(checkpoint_last), recorder.partial_on_failure():
+    # on interruption: the partial results first, then the checkpoint
+    with _checkpoint_on_interrupt(checkpoint_last), recorder.partial_on_failure():
         if not resume:
             fill_elevation(0, 0)
             record(0)
@@ -326,11 +326,11 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
 
 @contextmanager
-def _checkpoint_on_failure(write: Callable[[], None]) -> Iterator[None]:
+def _checkpoint_on_interrupt(write: Callable[[], None]) -> Iterator[None]:
     """Call ``write`` (the checkpoint of the last consistent state) when the block is
-    interrupted or fails; the exception goes on."""
+    interrupted; the interrupt goes on."""
     try:
         yield
-    except (KeyboardInterrupt, SolverError):
+    except KeyboardInterrupt:
         write()
         raise
