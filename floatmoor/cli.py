@@ -12,14 +12,18 @@ check its case does not accept (``[hydro] accept_failed_checks``), is bad input 
 exits with status 2, without a traceback and without writing output. A run that fails (no
 valid line state) or is interrupted writes its partial results and exits with 1 or 130. A
 sweep or study with any failed run writes its results, prints a one-line summary naming the
-failed runs (and the first messages) and exits with 1; 0 only when every run completed.
+failed runs (and the first messages) and exits with 1; 0 only when every run completed. An
+interrupted floater run also leaves a checkpoint and says the command that resumes it. The
+first run after an install says that it is compiling the numerical kernels.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import shlex
 import sys
+from contextlib import nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
@@ -251,6 +255,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
 
 def _run(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import refuse_static_breaking
+    from floatmoor._numba import watch_compilation
     from floatmoor.plot import SUPPORTED_FORMATS
     from floatmoor.post.summary import format_summary, run_summary
     from floatmoor.simulation.forced import run_forced_motion
@@ -270,12 +275,15 @@ def _run(args: argparse.Namespace) -> int:
                         "checkpointed)", "--resume")
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
     try:
-        if case.floater is not None:
-            from floatmoor.simulation.coupled_run import run_coupled
+        with (nullcontext() if progress is None
+              else watch_compilation(progress.compiling, progress.compiled)):
+            if case.floater is not None:
+                from floatmoor.simulation.coupled_run import run_coupled
 
-            result = run_coupled(case, output=output, progress=progress, resume=args.resume)
-        else:
-            result = run_forced_motion(case, output=output, progress=progress)
+                result = run_coupled(case, output=output, progress=progress,
+                                     resume=args.resume)
+            else:
+                result = run_forced_motion(case, output=output, progress=progress)
     except SolverError as err:
         _close(progress)
         print(f"floatmoor: run failed: {err}\n  partial results written to {output}",
@@ -283,7 +291,8 @@ def _run(args: argparse.Namespace) -> int:
         return EXIT_FAILED
     except KeyboardInterrupt:
         _close(progress)
-        print(f"floatmoor: interrupted; partial results written to {output}", file=sys.stderr)
+        print(f"floatmoor: interrupted; partial results written to {output}"
+              + _resume_hint(args, case, output), file=sys.stderr)
         return EXIT_INTERRUPTED
     _close(progress)
 
@@ -305,10 +314,30 @@ def _run(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
+    """Where an interrupted floater run left its checkpoint and the command that resumes it
+    ("" when there is none)."""
+    if case.floater is None:
+        return ""
+    from floatmoor.simulation.coupled_run import checkpoint_path
+
+    ckpt = checkpoint_path(output)
+    if not ckpt.is_file():
+        return ""
+    command = ["floatmoor", "run", args.case, "-o", str(output), "--resume"]
+    for text in args.overrides:
+        command += ["--set", text]
+    if args.plot is not None:
+        command += ["--plot", args.plot]
+    return f"\n  checkpoint written to {ckpt}; continue with: {shlex.join(command)}"
+
+
 def _sweep(args: argparse.Namespace) -> int:
+    from floatmoor._numba import watch_compilation
     from floatmoor.campaign.design import design_from_options
     from floatmoor.campaign.runner import run_campaign
     from floatmoor.campaign.store import failed_runs
+    from floatmoor.ui.progress import COMPILING_MESSAGE
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
@@ -323,11 +352,19 @@ def _sweep(args: argparse.Namespace) -> int:
             eta = "" if left != left else f", ~{left:.0f} s left"
             print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
 
+    said = []
+
+    def compiling() -> None:  # runs in this process (one worker): say it once
+        if not args.quiet and not said:
+            said.append(True)
+            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
+
     try:
-        ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
-                          workers=args.workers, scheduler=args.scheduler,
-                          timeseries=args.timeseries, runs_dir=args.runs_dir,
-                          progress=progress)
+        with watch_compilation(compiling, lambda seconds: None):
+            ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
+                              workers=args.workers, scheduler=args.scheduler,
+                              timeseries=args.timeseries, runs_dir=args.runs_dir,
+                              progress=progress)
     except KeyboardInterrupt:
         print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
               file=sys.stderr)

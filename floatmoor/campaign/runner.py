@@ -74,7 +74,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         When ``output`` holds another campaign, start afresh (and replace it) instead of
         refusing.
     progress
-        Called with (runs done, runs in total, estimated seconds left) after each run.
+        Called with (runs done, runs in total, estimated seconds left) after each run; the
+        estimate is NaN until a run completes after the last one that compiled kernels.
 
     Raises
     ------
@@ -122,6 +123,9 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     if progress is not None:
         progress(done, total, float("nan"))
     executed = 0
+    # the estimate's origin (wall time, runs executed): moved to each run that compiled
+    # kernels, whose time says nothing about the runs left
+    origin = (start, 0)
     try:
         for index, run_file, result in _execute(case_path, todo, workers, scheduler,
                                                 timeseries):
@@ -132,9 +136,13 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
             if path is not None and now - last_write >= write_interval:
                 store.write(path)
                 last_write = now
+            if result.get("compile_time_s", 0.0) > 0.0:
+                origin = (now, executed)
             if progress is not None:
-                rate = (now - start) / executed
-                progress(done, total, rate * (total - done))
+                since = executed - origin[1]
+                left = ((now - origin[0]) / since * (total - done) if since > 0
+                        else float("nan"))
+                progress(done, total, left)
     finally:
         if path is not None:
             store.write(path)

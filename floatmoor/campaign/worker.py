@@ -44,29 +44,36 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
     -------
     dict
         ``status`` ("complete" or "failed: message"), ``compute_time_s`` (CPU time of the run
-        in this process), ``wall_time_s``, ``statistics`` {line: {statistic: value [N]}}
+        in this process), ``wall_time_s``, ``compile_time_s`` (wall time spent compiling
+        kernels, 0 once they are cached), ``statistics`` {line: {statistic: value [N]}}
         (fairlead-tension and largest-tension ones; ``max_tension_over_mbl`` in [-]),
         for coupled runs ``body_statistics`` {dof: {statistic: value [m or rad]}}, and with
         ``timeseries`` the output ``time``, ``fairlead_tension`` (line, time) and for coupled
         runs ``body_displacement`` (time, dof) arrays.
     """
+    from floatmoor._numba import watch_compilation
     from floatmoor.case.load import load_case
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.post.summary import run_summary
 
     cpu, wall = time.process_time(), time.perf_counter()
-    out: dict[str, Any] = {"status": "complete", "statistics": {}}
+    out: dict[str, Any] = {"status": "complete", "statistics": {}, "compile_time_s": 0.0}
+
+    def compiled(seconds: float) -> None:
+        out["compile_time_s"] += seconds
+
     try:
         case = load_case(case_path, overrides)
         refuse_static_breaking(case)  # a line that breaks at rest: the run fails
-        if case.floater is not None:
-            from floatmoor.simulation.coupled_run import run_coupled
+        with watch_compilation(lambda: None, compiled):
+            if case.floater is not None:
+                from floatmoor.simulation.coupled_run import run_coupled
 
-            dataset = run_coupled(case, output=run_file).dataset
-        else:
-            from floatmoor.simulation.forced import run_forced_motion
+                dataset = run_coupled(case, output=run_file).dataset
+            else:
+                from floatmoor.simulation.forced import run_forced_motion
 
-            dataset = run_forced_motion(case, output=run_file).dataset
+                dataset = run_forced_motion(case, output=run_file).dataset
         summary = run_summary(case, dataset)
         for name, entry in summary["lines"].items():
             stats = entry["fairlead_tension_N"]

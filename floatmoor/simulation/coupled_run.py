@@ -10,7 +10,8 @@ import math
 import os
 import pickle
 import time as _time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -100,22 +101,41 @@ def checkpoint_path(output: str | Path) -> Path:
     return Path(str(output) + ".checkpoint")
 
 
-def _write_checkpoint(path: Path, moored: MooredBody, recorder: Recorder, done: int,
+@dataclass(frozen=True)
+class _Snapshot:
+    """The run's state at the end of a chunk: body and lines (pickled, so a copy that later
+    steps do not touch), body steps done and output samples complete. With the recorder's
+    samples before ``n_done`` (which later steps never rewrite) it is a consistent state to
+    resume from, whenever the run stops."""
+
+    moored: bytes
+    done: int
+    n_done: int
+
+    @classmethod
+    def take(cls, moored: MooredBody, recorder: Recorder, done: int) -> "_Snapshot":
+        external, moored.external = moored.external, None
+        try:
+            return cls(pickle.dumps(moored, protocol=pickle.HIGHEST_PROTOCOL), done,
+                       recorder.n_done)
+        finally:
+            moored.external = external
+
+
+def _write_checkpoint(path: Path, snapshot: _Snapshot, recorder: Recorder,
                       fingerprint: str) -> None:
-    external, moored.external = moored.external, None
-    try:
-        state = {"fingerprint": fingerprint, "done": done, "moored": moored,
-                 "n_done": recorder.n_done,
-                 "series": {k: v[:, :recorder.n_done] for k, v in recorder.series.items()},
-                 "body": {k: v[:recorder.n_done] for k, v in recorder.body.items()},
-                 "shapes": ((recorder.shape_position, recorder.shape_tension)
-                            if recorder.shape_stride else None)}
-        tmp = path.with_name(path.name + ".tmp")
-        with open(tmp, "wb") as fh:
-            pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
-        os.replace(tmp, path)
-    finally:
-        moored.external = external
+    """Write ``snapshot`` with the recorded samples it covers, atomically."""
+    n = snapshot.n_done
+    state = {"fingerprint": fingerprint, "done": snapshot.done, "moored": snapshot.moored,
+             "n_done": n,
+             "series": {k: v[:, :n] for k, v in recorder.series.items()},
+             "body": {k: v[:n] for k, v in recorder.body.items()},
+             "shapes": ((recorder.shape_position, recorder.shape_tension)
+                        if recorder.shape_stride else None)}
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "wb") as fh:
+        pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
+    os.replace(tmp, path)
 
 
 def check_coupled_case(case: Case) -> None:
@@ -146,9 +166,10 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     With ``output``, a checkpoint (``OUTPUT.checkpoint``, the whole state of body and lines
     at the end of a chunk of steps) is written every ``checkpoint_interval`` seconds of wall
-    time (default: with every partial write); after an interruption or a failure
-    ``resume=True`` continues from the last one and gives the same results as an
-    uninterrupted run. The checkpoint is removed when the run completes. With
+    time (default: with every partial write), and when the run is interrupted, of the end of
+    its last complete chunk (or its start); ``resume=True`` continues from the checkpoint and
+    gives the same results as an uninterrupted run. A failed run writes none at its failure
+    (resumed, it would fail again). The checkpoint is removed when the run completes. With
     ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
     ``settings`` (default :func:`settings_from_case`) replaces the case's ``[waves]``,
@@ -227,6 +248,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         if state["fingerprint"] != fingerprint:
             raise SolverError(f"{ckpt}: the checkpoint belongs to another case or settings")
         moored = state["moored"]
+        if isinstance(moored, bytes):  # pickled apart (checkpoints of a snapshot)
+            moored = pickle.loads(moored)
         moored.external = external
         body = moored.body
         done = state["done"]
@@ -280,11 +303,20 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     start_wall = _time.perf_counter()
     last_ckpt = start_wall
     n_steps = (times.size - 1) * stride
-    with recorder.partial_on_failure():
+    snapshot: _Snapshot | None = None  # the last consistent state
+
+    def checkpoint_last() -> None:
+        if ckpt is not None and snapshot is not None:
+            _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
+
+    # on interruption: the partial results first, then the checkpoint
+    with _checkpoint_on_interrupt(checkpoint_last), recorder.partial_on_failure():
         if not resume:
             fill_elevation(0, 0)
             record(0)
             recorder.advance(1)
+        if ckpt is not None:
+            snapshot = _Snapshot.take(moored, recorder, done)
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
             fill_elevation(done // stride + 1, (done + chunk) // stride)
@@ -305,9 +337,11 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                 raise SolverError(f"floater: the body motion is not finite at "
                                   f"t = {body.time:.6g} s")
             recorder.advance(done // stride + 1)
-            if ckpt is not None and _time.perf_counter() - last_ckpt > ckpt_every:
-                _write_checkpoint(ckpt, moored, recorder, done, fingerprint)
-                last_ckpt = _time.perf_counter()
+            if ckpt is not None:
+                snapshot = _Snapshot.take(moored, recorder, done)
+                if _time.perf_counter() - last_ckpt > ckpt_every:
+                    _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
+                    last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)
     dataset = recorder.write(status="complete")
@@ -316,3 +350,14 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,
                      simulated_time_s=recorder.simulated_time)
+
+
+@contextmanager
+def _checkpoint_on_interrupt(write: Callable[[], None]) -> Iterator[None]:
+    """Call ``write`` (the checkpoint of the last consistent state) when the block is
+    interrupted; the interrupt goes on."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        write()
+        raise

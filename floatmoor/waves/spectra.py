@@ -36,7 +36,6 @@ from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import integrate
 
 from floatmoor.waves.dispersion import STANDARD_GRAVITY
 
@@ -93,6 +92,8 @@ def shape_integral(gamma: float, moment: int = 0) -> float:
 
     def f(nu: float) -> float:
         return float(nu ** moment * _shape(np.array([nu]), gamma)[0])
+
+    from scipy import integrate  # here, not at import: case loading needs none of scipy
 
     # Split at the peak (sigma changes there) and where the enhancement has died out.
     pieces = [(0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 10.0), (10.0, math.inf)]

@@ -40,8 +40,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
-from scipy.special import beta, betainc
 
 __all__ = ["NPD_EXPONENT", "npd_spectrum", "npd_variance", "npd_band_variance",
            "npd_fraction_below", "npd_profile", "speed_at_10m"]
@@ -90,6 +88,8 @@ def npd_variance(mean_speed_10m: float, height: float) -> float:
     _check(mean_speed_10m, height)
     s0, a = _scales(mean_speed_10m, height)
     n = NPD_EXPONENT
+    from scipy.special import beta  # here, not at import: case loading needs none of scipy
+
     return s0 / a * beta(1.0 / n, 2.0 / (3.0 * n)) / n
 
 
@@ -110,6 +110,8 @@ def npd_fraction_below(frequency: ArrayLike, mean_speed_10m: float,
     with np.errstate(over="ignore", invalid="ignore"):
         y = (a * f) ** n
         x = np.where(np.isinf(y), 1.0, y / (1.0 + y))
+    from scipy.special import betainc
+
     return betainc(1.0 / n, 2.0 / (3.0 * n), x)
 
 
@@ -146,4 +148,6 @@ def speed_at_10m(mean_speed: float, reference_height: float) -> float:
                              f"{reference_height} m")
     if g(lo) > 0.0:
         raise ValueError(f"no 10 m wind speed gives {mean_speed} m/s at {reference_height} m")
+    from scipy.optimize import brentq
+
     return float(brentq(g, lo, hi, xtol=1e-12, rtol=1e-14))

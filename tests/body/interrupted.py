@@ -22,3 +22,26 @@ def interrupt_run(case: Case, output: Path, after_chunks: int = 3) -> None:
 
     with pytest.raises(KeyboardInterrupt):
         run_coupled(case, output=output, checkpoint_interval=0.0, progress=stop)
+
+
+def stop_mid_step(case: Case, output: Path, monkeypatch: pytest.MonkeyPatch, calls: int,
+                  error: BaseException) -> None:
+    """Run ``case`` to ``output`` with the default (wall-clock) checkpoint interval and raise
+    ``error`` from the ``calls``-th advance of a quasi-dynamic line: inside a body step, after
+    some lines have advanced and before the others, the state the run must not checkpoint."""
+    from floatmoor.mooring.quasidynamic import QuasiDynamicLine
+
+    original = QuasiDynamicLine.solve_path
+    count = {"n": 0}
+
+    def advance(self, *args, **kwargs):
+        count["n"] += 1
+        if count["n"] == calls:
+            raise error
+        return original(self, *args, **kwargs)
+
+    with monkeypatch.context() as patch:
+        patch.setattr(QuasiDynamicLine, "solve_path", advance)
+        with pytest.raises(type(error)):
+            run_coupled(case, output=output)
+    assert count["n"] == calls

@@ -3,13 +3,17 @@ partial file, and the waves and initial offset of a case file."""
 
 from __future__ import annotations
 
+import pickle
+import time
+
 import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
+from floatmoor.errors import SolverError
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled, settings_from_case
-from tests.body.interrupted import interrupt_run
+from tests.body.interrupted import interrupt_run, stop_mid_step
 from tests.conftest import CASES
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
@@ -81,6 +85,61 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
     assert not cr.checkpoint_path(out).exists()
     for name in ("body_displacement", "fairlead_tension", "wave_elevation", "laid_length",
                  "shape_position", "shape_tension"):
+        assert np.array_equal(resumed[name].values, whole[name].values), name
+
+
+def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path,
+                                                                        monkeypatch) -> None:
+    """Interrupted inside a body step of its third chunk, well before the wall-clock
+    checkpoint interval (10 s), a run still leaves a checkpoint: the state at the end of its
+    second chunk, from which the resumed run's output equals an uninterrupted run's bit for
+    bit. A run failing at the same point leaves none (resumed, it would fail again)."""
+    import floatmoor.simulation.coupled_run as cr
+    from floatmoor.simulation.recorder import FLUSH_INTERVAL_S
+
+    monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
+    overrides = ['lines.0.model="quasi-dynamic"', 'lines.1.model="quasi-static"',
+                 'lines.2.model="quasi-dynamic"', "simulation.duration=2.0",
+                 "simulation.output_interval=0.02", "simulation.time_step=0.01",
+                 "simulation.shape_output_interval=0.2",
+                 'waves={kind = "regular", height = 0.04, period = 1.2}']
+    case = load_case(BUOY_CASE, overrides)
+    whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
+    # two memory lines, advanced twice per step: 160 calls a chunk; stop between the lines
+    calls = 2 * 160 + 4 * 13 + 2
+    failed = tmp_path / "failed.nc"
+    stop_mid_step(case, failed, monkeypatch, calls, SolverError("line went unstable"))
+    assert read_dataset(failed).attrs["status"].startswith("failed")
+    assert not cr.checkpoint_path(failed).exists()
+    out = tmp_path / "cut.nc"
+    start = time.perf_counter()
+    stop_mid_step(case, out, monkeypatch, calls, KeyboardInterrupt())
+    assert time.perf_counter() - start < 0.5 * FLUSH_INTERVAL_S
+    assert read_dataset(out).attrs["status"].startswith("interrupted")
+    with open(cr.checkpoint_path(out), "rb") as fh:
+        state = pickle.load(fh)
+    assert state["done"] == 2 * 40 and state["n_done"] == 2 * 40 // 2 + 1
+    resumed = run_coupled(case, output=out, resume=True).dataset
+    assert not cr.checkpoint_path(out).exists()
+    for name in ("body_displacement", "body_velocity", "fairlead_tension", "wave_elevation",
+                 "laid_length", "shape_position", "shape_tension"):
+        assert np.array_equal(resumed[name].values, whole[name].values), name
+
+
+def test_run_stopped_in_its_first_chunk_resumes_from_the_start(tmp_path, monkeypatch) -> None:
+    """Interrupted before any chunk is complete, the checkpoint is the initial state."""
+    import floatmoor.simulation.coupled_run as cr
+
+    case = load_case(BUOY_CASE, ['lines.0.model="quasi-dynamic"', *QS[1:],
+                                 "simulation.duration=0.4",
+                                 "simulation.output_interval=0.02",
+                                 'waves={kind = "regular", height = 0.04, period = 1.2}'])
+    whole = run_coupled(case).dataset
+    out = tmp_path / "cut.nc"
+    stop_mid_step(case, out, monkeypatch, calls=7, error=KeyboardInterrupt())
+    assert read_dataset(out).sizes["time"] == 1
+    resumed = run_coupled(case, output=out, resume=True).dataset
+    for name in ("body_displacement", "fairlead_tension", "laid_length"):
         assert np.array_equal(resumed[name].values, whole[name].values), name
 
 

@@ -77,6 +77,40 @@ def test_failed_run_is_recorded_and_the_campaign_completes(tmp_path, monkeypatch
     assert ds.attrs["runs_failed"] == 1
 
 
+def test_time_left_is_not_estimated_from_runs_that_compiled(monkeypatch):
+    """A first run of 20 s that compiled kernels, then runs of 1 s: no estimate after the
+    first run (it was '~60 s left'), then one from the runs after it."""
+    import types
+
+    clock = {"now": 0.0}
+    durations = iter([20.0, 1.0, 1.0, 1.0])
+    original = worker.run_one
+
+    def timed(case_path, overrides, timeseries=False, run_file=None):
+        result = original(case_path, overrides, timeseries, run_file)
+        seconds = next(durations)
+        clock["now"] += seconds
+        result["compile_time_s"] = 19.0 if seconds == 20.0 else 0.0
+        return result
+
+    monkeypatch.setattr(campaign_runner, "run_one", timed)
+    monkeypatch.setattr(campaign_runner, "_time",
+                        types.SimpleNamespace(perf_counter=lambda: clock["now"]))
+    seen = []
+    run_campaign(LINDAHL_CASE, design_from_options(GRID), base_overrides=BASE,
+                 progress=lambda done, total, left: seen.append((done, left)))
+    assert [done for done, _ in seen] == [0, 1, 2, 3, 4]
+    assert np.isnan(seen[1][1]) and seen[2][1] == 2.0 and seen[3][1] == 1.0
+
+
+def test_runs_report_their_compile_time():
+    """A worker's result says how long its kernels compiled: 0 once they are cached."""
+    first = worker.run_one(str(LINDAHL_CASE), BASE)  # compiles on a cold cache
+    again = worker.run_one(str(LINDAHL_CASE), BASE)
+    assert first["compile_time_s"] >= 0.0
+    assert again["status"] == "complete" and again["compile_time_s"] == 0.0
+
+
 def test_interrupted_campaign_resumes_without_redoing_runs(tmp_path, monkeypatch):
     out = tmp_path / "c.nc"
     calls = []

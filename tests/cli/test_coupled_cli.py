@@ -69,3 +69,37 @@ def test_run_refuses_a_database_failing_its_checks_unless_the_case_accepts(tmp_p
     assert status == 0 and read_dataset(out).attrs["status"] == "complete"
     assert len(err) == 1 and err[0].startswith(f"floatmoor: warning: {database}: failed "
                                                "checks accepted by")
+
+
+def test_interrupted_run_says_how_to_resume_and_the_command_does(tmp_path, capsys,
+                                                                  monkeypatch) -> None:
+    """Ctrl-C a second into a floater run: exit 130, a checkpoint, and a message giving the
+    command that resumes it; that command completes the run to the uninterrupted results."""
+    import shlex
+
+    from floatmoor.simulation.coupled import MooredBody
+
+    waves = ["--set", 'waves={kind = "regular", height = 0.04, period = 1.2}']
+    whole = tmp_path / "whole.nc"
+    assert main(["run", str(BUOY_CASE), "-o", str(whole), "--quiet"] + waves + SHORT) == 0
+    original, calls = MooredBody.step, []
+
+    def step(self) -> None:
+        calls.append(1)
+        if len(calls) == 30:
+            raise KeyboardInterrupt
+        original(self)
+
+    monkeypatch.setattr(MooredBody, "step", step)
+    out = tmp_path / "cut.nc"
+    assert main(["run", str(BUOY_CASE), "-o", str(out)] + waves + SHORT) == 130
+    err = capsys.readouterr().err
+    assert f"checkpoint written to {out}.checkpoint" in err and "Traceback" not in err
+    command = shlex.split(err.split("continue with: ", 1)[1].strip())
+    assert command[:2] == ["floatmoor", "run"] and "--resume" in command
+    monkeypatch.setattr(MooredBody, "step", original)
+    assert main(command[1:] + ["--quiet"]) == 0
+    resumed, reference = read_dataset(out), read_dataset(whole)
+    assert resumed.attrs["status"] == "complete"
+    for name in ("body_displacement", "fairlead_tension"):
+        assert (resumed[name].values == reference[name].values).all(), name

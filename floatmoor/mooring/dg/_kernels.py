@@ -537,7 +537,8 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
                   N, Nstar, faces, slack, fpos, fvel, tmp, bcd, damp):
     """One SSP-RK3 step of (r, v) from t to t + dt, then contact, internal damping (when
     implicit) and slack filtering. ``damp`` holds the work arrays of the damping system
-    (tangents, inverse masses, coefficients, Y, band, right-hand side)."""
+    (tangents, inverse masses, coefficients, Y, band, right-hand side), or is None when the
+    line has no implicit internal damping."""
     r1, v1, r2, v2, a = work3[0], work3[1], work3[2], work3[3], work3[4]
     K, Np = r.shape[0], r.shape[1]
     # Stage-consistent fairlead data (Carpenter, Gottlieb, Abarbanel & Don 1995): the SSP-RK3
@@ -579,7 +580,9 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
                 v[k, i, c] = third * v[k, i, c] + two_thirds * (v2[k, i, c] + dt * a[k, i, c])
     if prm[P_IMPLICIT_CONTACT] != 0.0:
         _implicit_contact(r, v, prm, dt)
-    if prm[P_IMPLICIT_DAMPING] != 0.0 and prm[P_CINT] > 0.0:
+    # damp is None for a line without implicit damping: numba prunes the branch at compile
+    # time, and its kernels (most of this step's compile time) are not compiled
+    if damp is not None and prm[P_IMPLICIT_DAMPING] != 0.0 and prm[P_CINT] > 0.0:
         hermite(t0, t1, p0, w0, p1, w1, t + dt, fpos, fvel)
         tng, minv, cn, flags, Y, band, e, info = damp
         if _damping_system(r, anchor, fpos, prm, D, LIFT, dt, q, faces, tng, minv, cn, flags,

@@ -378,7 +378,8 @@ class DynamicLine(PathStepper):
             self.anchor, self.prm, self.element.differentiation, self.element.lift,
             self.element.filter, self.element.weights, self.time_step, ff, af, lb, st,
             shape_every, sr, sten, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack,
-            w.fpos, w.fvel, w.tmp, w.boundary, w.where, w.damping)
+            w.fpos, w.fvel, w.tmp, w.boundary, w.where,
+            w.damping if self._implicit_damping() else None)
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         fairlead_force[:done - first] = ff[first:done]
@@ -396,6 +397,11 @@ class DynamicLine(PathStepper):
         self.time = float(time[-1])
         self.fairlead = np.array(path[-1], dtype=float)
         self.fairlead_velocity = np.array(velocity[-1], dtype=float)
+
+    def _implicit_damping(self) -> bool:
+        """Whether the steps take the backward-Euler internal-damping step: only then do the
+        kernels get its work arrays (and compile its code)."""
+        return self.prm[_k.P_IMPLICIT_DAMPING] != 0.0 and self.prm[_k.P_CINT] > 0.0
 
     # -- state ---------------------------------------------------------------------------------
     def get_state(self) -> DynamicLineState:
