@@ -96,11 +96,11 @@ def _lookup(raw: dict[str, Any], field: str, source: str) -> tuple[Path, Any]:
 def _format(value: Any, spec: str, field: str, source: str) -> str:
     if not spec:
         return value_text(value)
-    if isinstance(value, (bool, list)):
-        raise CaseError(source, "title", f"no format spec for {{{field}}} (a "
-                        f"{'boolean' if isinstance(value, bool) else 'array'})",
-                        f'"{{{field}:{spec}}}"')
+    if isinstance(value, bool):
+        return value_text(value)
     try:
+        if isinstance(value, list):  # a key an override may turn into an array (per-axis)
+            return "[" + ", ".join(format(v, spec) for v in value) + "]"
         return format(value, spec)
     except (ValueError, TypeError) as err:
         raise CaseError(source, "title", f"a format spec that fits {{{field}}} = "

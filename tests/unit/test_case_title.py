@@ -33,6 +33,15 @@ def test_placeholders_follow_the_overrides_and_nothing_is_appended_for_them():
     assert case.title == "Lindahl chain, circular motion r = 0.15 m, T = 3.50 s"
 
 
+def test_a_formatted_placeholder_takes_an_array_an_override_sets():
+    """A valid override may turn a scalar the title formats into an array (per-axis harmonic
+    motion): the spec applies to each element, the case still loads."""
+    qd = LINDAHL_CASE.parents[1] / "qd_verification" / "s2_d2.toml"
+    case = load_case(qd, ['motion={kind = "harmonic", amplitude = [0.05, 0.1, 0.03], '
+                          'period = [1.3, 1.7, 1.1]}'])
+    assert "x amplitude 0.05 m, T = [1.3, 1.7, 1.1] s" in case.title
+
+
 def test_overrides_the_title_does_not_show_are_appended_in_order():
     case = load_case(LINDAHL_CASE, ['lines.*.model="quasi-static"', "motion.period=3.5",
                                     "simulation.duration=20.0"])
