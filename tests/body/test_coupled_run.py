@@ -98,8 +98,8 @@ def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path
     from floatmoor.simulation.recorder import FLUSH_INTERVAL_S
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
-    overrides = ['lines.0.model="quasi-dynamic"', 'lines.1.model="quasi-static"',
-                 'lines.2.model="quasi-dynamic"', "simulation.duration=2.0",
+    overrides = ['lines.*.model="quasi-dynamic"', 'lines.line2.model="quasi-static"',
+                 "simulation.duration=2.0",
                  "simulation.output_interval=0.02", "simulation.time_step=0.01",
                  "simulation.shape_output_interval=0.2",
                  'waves={kind = "regular", height = 0.04, period = 1.2}']
@@ -130,7 +130,7 @@ def test_run_stopped_in_its_first_chunk_resumes_from_the_start(tmp_path, monkeyp
     """Interrupted before any chunk is complete, the checkpoint is the initial state."""
     import floatmoor.simulation.coupled_run as cr
 
-    case = load_case(BUOY_CASE, ['lines.0.model="quasi-dynamic"', *QS[1:],
+    case = load_case(BUOY_CASE, [*QS, 'lines.line1.model="quasi-dynamic"',
                                  "simulation.duration=0.4",
                                  "simulation.output_interval=0.02",
                                  'waves={kind = "regular", height = 0.04, period = 1.2}'])
