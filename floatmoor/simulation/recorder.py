@@ -154,15 +154,18 @@ class Recorder:
     def partial_on_failure(self) -> Iterator[None]:
         """Write the completed part, with how the run ended, when the block raises a
         :class:`SolverError` or is interrupted (SIGINT, or SIGTERM as
-        :class:`floatmoor.signals.Terminated`); the exception goes on."""
+        :class:`floatmoor.signals.Terminated`); the exception goes on. Before the first
+        sample nothing is written (a file of no samples is not a valid result file)."""
         try:
             yield
         except SolverError as err:
-            self.write(status=f"failed: {err}")
+            if self.n_done:
+                self.write(status=f"failed: {err}")
             raise
         except KeyboardInterrupt as stop:
-            self.write(status=f"{signal_name(stop)}: results up to "
-                              f"t = {self.simulated_time:.6g} s")
+            if self.n_done:
+                self.write(status=f"{signal_name(stop)}: results up to "
+                                  f"t = {self.simulated_time:.6g} s")
             raise
 
     def write(self, status: str) -> xr.Dataset:

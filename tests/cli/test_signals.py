@@ -27,7 +27,7 @@ QS = ["--set", 'lines.chain.model="quasi-static"']
 #: Long enough to be signalled (about 10 s of wall time) and stopped after about 1 s.
 LONG = [*QS, "--set", "simulation.duration=2000"]
 #: Seconds a signalled command may take to write and exit before the test calls it hung.
-EXIT_TIMEOUT_S = 30.0
+EXIT_TIMEOUT_S = 60.0
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -144,6 +144,19 @@ def test_interrupt_before_recording_says_nothing_written(tmp_path, capsys, monke
         assert f"{out} is unchanged" in err and out.read_bytes() == b"an earlier result"
     else:
         assert not out.exists()
+
+
+def test_interrupt_before_the_first_sample_writes_no_file(tmp_path, capsys, monkeypatch):
+    """A file of no samples cannot be read back: a run stopped in its first chunk leaves
+    none, and says so."""
+    def interrupted_chunk(*args):
+        os.kill(os.getpid(), signal.SIGINT)
+
+    monkeypatch.setattr(forced, "_solve_chunk", interrupted_chunk)
+    out = tmp_path / "none.nc"
+    assert main(["run", str(LINDAHL_CASE), "-o", str(out), *QS, "--quiet"]) == 130
+    assert "interrupted; nothing written" in capsys.readouterr().err
+    assert not out.exists()
 
 
 def _alive(pid: int) -> bool:
