@@ -177,6 +177,7 @@ SWEEP = ["sweep", str(LINDAHL_CASE), *QS, "--grid", "simulation.duration=5,5.5,2
          "--workers", "2"]
 
 
+@pytest.mark.slow  # about 10 s on a loaded machine: two workers start and run
 @pytest.mark.skipif(not os.path.exists("/proc/self/task"), reason="needs Linux /proc")
 def test_killed_sweep_parent_leaves_no_worker_and_keeps_finished_runs(tmp_path):
     out = tmp_path / "campaign.nc"
