@@ -13,14 +13,17 @@ exits with status 2, without a traceback and without writing output. A run that 
 valid line state) or is interrupted writes its partial results and exits with 1 or 130. A
 sweep or study with any failed run writes its results, prints a one-line summary naming the
 failed runs (and the first messages) and exits with 1; 0 only when every run completed. An
-interrupted floater run also leaves a checkpoint and says the command that resumes it. The
-first run after an install says that it is compiling the numerical kernels.
+interrupted floater run also leaves a checkpoint and says the command that resumes it. SIGTERM
+is handled as Ctrl-C but exits with 143; a second Ctrl-C (or SIGTERM) lets the partial writes
+finish, a third stops at once (:mod:`floatmoor.signals`); the message says what was written.
+The first run after an install says that it is compiling the numerical kernels.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import shlex
 import sys
 from contextlib import nullcontext
@@ -31,9 +34,11 @@ from floatmoor._version import __version__
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
+from floatmoor.signals import exit_status, interrupt_handling, signal_name
 
 if TYPE_CHECKING:
     from floatmoor.mooring.strength import StaticLineLoad
+    from floatmoor.simulation.forced import RunResult
 
 __all__ = ["main"]
 
@@ -137,6 +142,15 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``floatmoor`` command; returns the exit status."""
     args = _parser().parse_args(argv)
+    with interrupt_handling():
+        try:
+            return _command(args)
+        except KeyboardInterrupt as stop:  # before a command's own handling began
+            print(f"floatmoor: {signal_name(stop)}; nothing written", file=sys.stderr)
+            return exit_status(stop)
+
+
+def _command(args: argparse.Namespace) -> int:
     try:
         if args.command == "check":
             return _check(args)
@@ -257,7 +271,6 @@ def _run(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor._numba import watch_compilation
     from floatmoor.plot import SUPPORTED_FORMATS
-    from floatmoor.post.summary import format_summary, run_summary
     from floatmoor.simulation.forced import run_forced_motion
     from floatmoor.ui.progress import ProgressReporter
 
@@ -274,6 +287,7 @@ def _run(args: argparse.Namespace) -> int:
         raise CaseError("--resume", "", "a case with a [floater] (forced-motion runs are not "
                         "checkpointed)", "--resume")
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
+    before = _file_state(output)
     try:
         with (nullcontext() if progress is None
               else watch_compilation(progress.compiling, progress.compiled)):
@@ -286,15 +300,27 @@ def _run(args: argparse.Namespace) -> int:
                 result = run_forced_motion(case, output=output, progress=progress)
     except SolverError as err:
         _close(progress)
-        print(f"floatmoor: run failed: {err}\n  partial results written to {output}",
+        print(f"floatmoor: run failed: {err}\n  {_left_behind(output, before)}",
               file=sys.stderr)
         return EXIT_FAILED
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as stop:
         _close(progress)
-        print(f"floatmoor: interrupted; partial results written to {output}"
+        print(f"floatmoor: {signal_name(stop)}; {_left_behind(output, before)}"
               + _resume_hint(args, case, output), file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return exit_status(stop)
     _close(progress)
+    try:
+        return _report_run(args, case, result, output)
+    except KeyboardInterrupt as stop:
+        print(f"floatmoor: {signal_name(stop)} after the run; its complete results are in "
+              f"{output}" + (f", the plot {args.plot} may be missing" if args.plot else ""),
+              file=sys.stderr)
+        return exit_status(stop)
+
+
+def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path) -> int:
+    """Print the summary of a completed run (and draw its plot)."""
+    from floatmoor.post.summary import format_summary, run_summary
 
     summary = run_summary(case, result.dataset)
     summary.update(output=str(output), wall_time_s=result.wall_time_s,
@@ -359,16 +385,17 @@ def _sweep(args: argparse.Namespace) -> int:
             said.append(True)
             print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
 
+    before = _file_state(output)
     try:
         with watch_compilation(compiling, lambda seconds: None):
             ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
                               workers=args.workers, scheduler=args.scheduler,
                               timeseries=args.timeseries, runs_dir=args.runs_dir,
                               progress=progress)
-    except KeyboardInterrupt:
-        print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
+    except KeyboardInterrupt as stop:
+        print(f"floatmoor: {signal_name(stop)}; {_campaign_left_behind(output, before)}",
               file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return exit_status(stop)
     failed = failed_runs(ds, design)
     print(f"{ds.attrs['runs_complete']} of {ds['status'].size} runs complete, {len(failed)} "
           f"failed; results in {output}")
@@ -422,10 +449,10 @@ def _study(args: argparse.Namespace) -> int:
     try:
         ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
                                        progress=progress)
-    except KeyboardInterrupt:
-        print("floatmoor: interrupted; nothing written (the study writes its results at the "
-              "end)", file=sys.stderr)
-        return EXIT_INTERRUPTED
+    except KeyboardInterrupt as stop:
+        print(f"floatmoor: {signal_name(stop)}; nothing written (the study writes its results "
+              "at the end)", file=sys.stderr)
+        return exit_status(stop)
     print(qd_verification.summary(ds))
     print(f"results in {output}")
     failed = qd_verification.failed_runs(ds)
@@ -433,6 +460,50 @@ def _study(args: argparse.Namespace) -> int:
         report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _file_state(path: Path) -> tuple[int, int, int] | None:
+    """(inode, modification time, size) of ``path``, None if it is no file: a file written
+    (replaced) since has another."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return (st.st_ino, st.st_mtime_ns, st.st_size) if path.is_file() else None
+
+
+def _attributes(path: Path) -> dict[str, object]:
+    """The global attributes of a netCDF file, {} when it cannot be read."""
+    import xarray as xr
+
+    from floatmoor.io.netcdf import NETCDF_ENGINE
+
+    try:
+        with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
+            return dict(ds.attrs)
+    except Exception:  # noqa: BLE001 - only the message depends on it
+        return {}
+
+
+def _left_behind(output: Path, before: tuple[int, int, int] | None) -> str:
+    """What a stopped run left in ``output`` (``before``: its :func:`_file_state` when the run
+    began): partial results up to some time, or nothing."""
+    if _file_state(output) in (None, before):
+        return ("nothing written" + (f" ({output} is unchanged)" if before is not None else "")
+                + ": the run stopped before recording")
+    t = _attributes(output).get("simulated_time_s")
+    upto = f" up to t = {float(t):.6g} s" if isinstance(t, (int, float)) else ""
+    return f"partial results{upto} written to {output}"
+
+
+def _campaign_left_behind(output: Path, before: tuple[int, int, int] | None) -> str:
+    """What a stopped sweep left in ``output``: how many runs it holds, or nothing."""
+    if _file_state(output) in (None, before):
+        return "nothing written" + (f" ({output} is unchanged)" if before is not None else "")
+    attrs = _attributes(output)
+    complete = attrs.get("runs_complete")
+    held = f"{int(complete)} finished runs are" if complete is not None else "finished runs are"
+    return f"{held} in {output} (re-run the same command to resume)"
 
 
 def _close(progress: object) -> None:

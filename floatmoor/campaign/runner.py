@@ -1,9 +1,12 @@
 """Running a campaign: serially, on local processes, or on a Dask distributed cluster.
 
 Runs are independent; each completes on whatever executor into the same
-:class:`~floatmoor.campaign.store.CampaignStore`, which is written after every completed run
-(at most every ``write_interval`` seconds), so an interrupted campaign keeps what finished and
-a re-run with the same output file resumes: completed runs are skipped, failed ones retried.
+:class:`~floatmoor.campaign.store.CampaignStore`, which is written as runs complete (once per
+batch of runs that finished together), so an interrupted or killed campaign keeps what
+finished and a re-run with the same output file resumes: completed runs are skipped, failed
+ones retried. When interrupted, the runs that finished meanwhile are recorded and written
+before the workers are stopped; local workers die with the parent process, even when it is
+killed (:func:`floatmoor.signals.die_with_parent`).
 With a runs folder every run also writes its full output file there (``NAME.nc``, named from
 its swept values); a completed run is then skipped only if its file is there and complete.
 Cases with a ``[floater]`` run coupled, the others in forced motion.
@@ -11,11 +14,13 @@ Cases with a ``[floater]`` run coupled, the others in forced motion.
 
 from __future__ import annotations
 
+import os
 import time as _time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any, Callable, Sequence
 
+import numpy as np
 import xarray as xr
 
 from floatmoor.campaign.design import CampaignDesign
@@ -25,11 +30,9 @@ from floatmoor.case.load import load_case
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError
 from floatmoor.io.dataset import DOFS
+from floatmoor.signals import die_with_parent
 
-__all__ = ["run_campaign", "validate_campaign", "WRITE_INTERVAL_S"]
-
-#: Wall time between writes of the output file while runs complete [s].
-WRITE_INTERVAL_S = 5.0
+__all__ = ["run_campaign", "validate_campaign"]
 
 Progress = Callable[[int, int, float], None]
 #: (index along each axis, overrides, run file or None) of a run to execute.
@@ -40,8 +43,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                  base_overrides: Sequence[str] = (), output: str | Path | None = None,
                  workers: int = 1, scheduler: str | None = None, timeseries: bool = False,
                  runs_dir: str | Path | None = None, run_names: Sequence[str] | None = None,
-                 replace_other: bool = False, progress: Progress | None = None,
-                 write_interval: float = WRITE_INTERVAL_S) -> xr.Dataset:
+                 replace_other: bool = False, progress: Progress | None = None
+                 ) -> xr.Dataset:
     """Run every run of ``design`` and gather the results.
 
     Parameters
@@ -53,8 +56,9 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     base_overrides
         ``--set`` overrides applied to every run before the swept ones.
     output
-        netCDF file, written as runs complete; if it exists and holds the same campaign, its
-        completed runs are kept and not run again.
+        netCDF file, written as runs complete (no finished run is lost when the campaign is
+        interrupted or killed); if it exists and holds the same campaign, its completed runs
+        are kept and not run again.
     workers
         Local worker processes (1: run in this process).
     scheduler
@@ -95,7 +99,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         results; ``floatmoor sweep`` exits with 1 when it is not 0.
     """
     case_path = str(case_path)
-    base = validate_campaign(case_path, design, base_overrides)
+    base = validate_campaign(case_path, design, base_overrides, timeseries=timeseries)
     runs = design.runs()
     files = _run_files(design, runs_dir, run_names)
     store = CampaignStore(design, case_path, base.text, list(base_overrides), base.line_names,
@@ -105,6 +109,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     if path is not None and path.exists():
         if not replace_other or same_campaign(path, design, base.text, base_overrides):
             store.resume_from(path)
+            _check_resumed_series(store, path, timeseries)
     if files:
         Path(files[0]).parent.mkdir(exist_ok=True)
     todo: list[Job] = []
@@ -118,49 +123,57 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                 store.set_run_file(index, run_file)
                 continue
         todo.append((index, run_overrides, run_file))
-    total, done = len(runs), len(runs) - len(todo)
-    start, last_write = _time.perf_counter(), -float("inf")
+    total = len(runs)
     if progress is not None:
-        progress(done, total, float("nan"))
-    executed = 0
+        progress(total - len(todo), total, float("nan"))
     # the estimate's origin (wall time, runs executed): moved to each run that compiled
     # kernels, whose time says nothing about the runs left
-    origin = (start, 0)
-    try:
-        for index, run_file, result in _execute(case_path, todo, workers, scheduler,
-                                                timeseries):
-            store.record(index, result, run_file)
-            done += 1
-            executed += 1
-            now = _time.perf_counter()
-            if path is not None and now - last_write >= write_interval:
-                store.write(path)
-                last_write = now
-            if result.get("compile_time_s", 0.0) > 0.0:
-                origin = (now, executed)
-            if progress is not None:
-                since = executed - origin[1]
-                left = ((now - origin[0]) / since * (total - done) if since > 0
-                        else float("nan"))
-                progress(done, total, left)
-    finally:
+    count = {"done": total - len(todo), "executed": 0, "reported": total - len(todo)}
+    origin = [_time.perf_counter(), 0]
+    recorded: set[tuple[int, ...]] = set()
+
+    def record(index: tuple[int, ...], run_file: str | None, result: dict[str, Any]) -> None:
+        store.record(index, result, run_file)
+        if index in recorded:  # recorded again after an interrupt: counted once
+            return
+        recorded.add(index)
+        count["done"] += 1
+        count["executed"] += 1
+        if result.get("compile_time_s", 0.0) > 0.0:
+            origin[:] = [_time.perf_counter(), count["executed"]]
+
+    def save() -> None:
+        """Write what is recorded, then report it (a run reported done is in the file)."""
         if path is not None:
             store.write(path)
+        if progress is not None and count["done"] > count["reported"]:
+            count["reported"] = count["done"]
+            since = count["executed"] - origin[1]
+            left = ((_time.perf_counter() - origin[0]) / since * (total - count["done"])
+                    if since > 0 else float("nan"))
+            progress(count["done"], total, left)
+
+    try:
+        _execute(case_path, todo, workers, scheduler, timeseries, record, save)
+    finally:
+        save()
     return store.dataset()
 
 
 def validate_campaign(case_path: str | Path, design: CampaignDesign,
-                      base_overrides: Sequence[str] = ()) -> Case:
+                      base_overrides: Sequence[str] = (), *, timeseries: bool = False) -> Case:
     """Check that every run of a campaign is valid input; returns the base case.
 
     Every run's case is loaded, and the hydrodynamic database of every distinct floater
     configuration is loaded once (and checked), so a bad override or a missing, damaged,
-    stale or failing database is bad input before anything runs or is written.
+    stale or failing database is bad input before anything runs or is written. With
+    ``timeseries``, every run must have the same output times (the histories share one time
+    axis).
 
     Raises
     ------
     CaseError
-        For a bad case or override.
+        For a bad case or override, or runs of different output times with ``timeseries``.
     HydroDatabaseError
         For a missing, damaged or stale database, or one failing a check the case does not
         accept.
@@ -173,6 +186,8 @@ def validate_campaign(case_path: str | Path, design: CampaignDesign,
     base = load_case(case_path, list(base_overrides))
     cases = [load_case(case_path, [*base_overrides, *overrides])
              for _, overrides in design.runs()]
+    if timeseries:
+        _check_same_times(cases, design)
     seen = set()
     for case in cases:
         if case.floater is None or case.hydro is None:
@@ -183,6 +198,40 @@ def validate_campaign(case_path: str | Path, design: CampaignDesign,
             seen.add(key)
             load_for_case(case)
     return base
+
+
+def _check_same_times(cases: Sequence[Case], design: CampaignDesign) -> None:
+    """Refuse histories of runs with different output times (one time axis holds them)."""
+    from floatmoor.simulation.forced import output_times
+
+    runs = design.runs()
+    first = output_times(cases[0].simulation)
+    for case, (_, overrides) in zip(cases[1:], runs[1:]):
+        if not np.array_equal(output_times(case.simulation), first):
+            sim0, sim = cases[0].simulation, case.simulation
+            raise CaseError("--timeseries", "", "runs with the same output times (duration "
+                            "and output_interval), as their histories share one time axis; "
+                            "sweep them without --timeseries, or keep a run file of each "
+                            "with --runs-dir",
+                            f"duration {sim0.duration:g} s, output_interval "
+                            f"{sim0.output_interval:g} s in run {', '.join(runs[0][1])}"
+                            f" but {sim.duration:g} s, {sim.output_interval:g} s in run "
+                            f"{', '.join(overrides)}")
+
+
+def _check_resumed_series(store: CampaignStore, path: Path, timeseries: bool) -> None:
+    """Refuse to resume a campaign file whose histories would not match this campaign's:
+    with time series into a file of complete runs without them, or the other way round
+    (the runs run now would hold none: complete runs with NaN histories)."""
+    complete = bool(np.any(store.status == "complete"))
+    if timeseries and complete and store.series is None:
+        raise CaseError(str(path), "", "a campaign file with time series to resume with "
+                        "--timeseries (resume it without, or write another output file)",
+                        "complete runs without time series")
+    if not timeseries and store.series is not None:
+        raise CaseError(str(path), "", "a campaign file without time series to resume "
+                        "without --timeseries (resume it with --timeseries, or write another "
+                        "output file)", "time series")
 
 
 def _run_files(design: CampaignDesign, runs_dir: str | Path | None,
@@ -207,37 +256,92 @@ def _absolute(run_file: str | None) -> str | None:
     return None if run_file is None else str(Path(run_file).resolve())
 
 
+#: Called with (index, run file, result) of every run that completes.
+Record = Callable[[tuple[int, ...], str | None, dict[str, Any]], None]
+
+
 def _execute(case_path: str, todo: list[Job], workers: int, scheduler: str | None,
-             timeseries: bool
-             ) -> Iterator[tuple[tuple[int, ...], str | None, dict[str, Any]]]:
-    """Yield (index, run file, result) as runs complete."""
+             timeseries: bool, record: Record, save: Callable[[], None]) -> None:
+    """Run ``todo``, passing each result to ``record`` as it completes and calling ``save``
+    after each batch; when interrupted, the runs finished meanwhile are recorded and saved
+    before the workers are stopped, then the interrupt goes on."""
     if not todo:
         return
     if scheduler is not None:
-        yield from _execute_dask(case_path, todo, scheduler, timeseries)
+        _execute_dask(case_path, todo, scheduler, timeseries, record, save)
     elif workers <= 1:
         for index, overrides, run_file in todo:
-            yield index, run_file, run_one(case_path, overrides, timeseries, _absolute(run_file))
+            record(index, run_file, run_one(case_path, overrides, timeseries,
+                                            _absolute(run_file)))
+            save()
     else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            pending: dict[Future[dict[str, Any]], tuple[tuple[int, ...], str | None]] = {
-                pool.submit(run_one, case_path, overrides, timeseries, _absolute(run_file)):
-                (index, run_file) for index, overrides, run_file in todo}
-            while pending:
-                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
-                for future in finished:
-                    index, run_file = pending.pop(future)
-                    yield index, run_file, future.result()
+        _execute_local(case_path, todo, workers, timeseries, record, save)
 
 
-def _execute_dask(case_path: str, todo: list[Job], scheduler: str, timeseries: bool
-                  ) -> Iterator[tuple[tuple[int, ...], str | None, dict[str, Any]]]:
+def _execute_local(case_path: str, todo: list[Job], workers: int, timeseries: bool,
+                   record: Record, save: Callable[[], None]) -> None:
+    """On local worker processes that die with this one."""
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=die_with_parent,
+                               initargs=(os.getpid(),))
+    pending: dict[Future[dict[str, Any]], tuple[tuple[int, ...], str | None]] = {}
+    try:
+        for index, overrides, run_file in todo:
+            pending[pool.submit(run_one, case_path, overrides, timeseries,
+                                _absolute(run_file))] = (index, run_file)
+        while pending:
+            finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+            for future in finished:
+                record(*pending[future], future.result())
+                del pending[future]  # after recording: an interrupt records it again
+            save()
+    except BaseException:
+        _record_finished(pending, record)
+        save()
+        raise
+    finally:
+        _stop_workers(pool)
+
+
+def _record_finished(pending: dict[Any, tuple[tuple[int, ...], str | None]],
+                     record: Record) -> None:
+    """Record the runs of ``pending`` that have finished (their results are there)."""
+    for future, (index, run_file) in list(pending.items()):
+        if future.done() and not future.cancelled() and future.exception() is None:
+            record(index, run_file, future.result())
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Cancel the runs not started and end the workers, even those running a run."""
+    # the executor has no public way to end busy workers (Python 3.14 adds
+    # terminate_workers); its process table is the only handle on them
+    processes = list(getattr(pool, "_processes", {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    for process in processes:
+        process.join()
+    pool.shutdown(wait=True)
+
+
+def _execute_dask(case_path: str, todo: list[Job], scheduler: str, timeseries: bool,
+                  record: Record, save: Callable[[], None]) -> None:
     from distributed import Client, as_completed
 
     with Client(scheduler) as client:
         futures = {client.submit(run_one, case_path, overrides, timeseries,
                                  _absolute(run_file), pure=False): (index, run_file)
                    for index, overrides, run_file in todo}
-        for future in as_completed(futures):
-            index, run_file = futures[future]
-            yield index, run_file, future.result()
+        pending = dict(futures)
+        try:
+            for batch in as_completed(futures).batches():
+                for future in batch:
+                    record(*futures[future], future.result())
+                    pending.pop(future)
+                save()
+        except BaseException:
+            finished = {f: job for f, job in pending.items() if f.status == "finished"}
+            _record_finished(finished, record)
+            save()
+            client.cancel([f for f in pending if f.status != "finished"])
+            raise

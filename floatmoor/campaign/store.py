@@ -163,7 +163,15 @@ class CampaignStore:
     # -- filling ---------------------------------------------------------------------------
     def record(self, index: tuple[int, ...], result: dict[str, Any],
                run_file: str | None = None) -> None:
-        """Store one run's result (and the path of its output file, if it wrote one)."""
+        """Store one run's result (and the path of its output file, if it wrote one).
+
+        Raises
+        ------
+        CaseError
+            If its histories have other output times than the runs before (nothing stored).
+        """
+        if "fairlead_tension" in result or ("body_displacement" in result and self.dofs):
+            self._check_time(result["time"])  # before anything is stored
         self.status[index] = result["status"]
         self.compute_time[index] = result["compute_time_s"]
         self.wall_time[index] = result["wall_time_s"]

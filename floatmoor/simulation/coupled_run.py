@@ -29,6 +29,7 @@ from floatmoor.hydro.state_space import has_state_space
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
+from floatmoor.signals import deferred_interrupts
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.synthesis import harmonic_sum
 from floatmoor.waves.realisation import WaveField
@@ -307,7 +308,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     def checkpoint_last() -> None:
         if ckpt is not None and snapshot is not None:
-            _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
+            with deferred_interrupts():  # a second Ctrl-C must not cut it
+                _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
 
     # on interruption: the partial results first, then the checkpoint
     with _checkpoint_on_interrupt(checkpoint_last), recorder.partial_on_failure():

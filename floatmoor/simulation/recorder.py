@@ -22,6 +22,7 @@ from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
 from floatmoor.io.dataset import build_result_dataset
 from floatmoor.io.netcdf import write_dataset
+from floatmoor.signals import deferred_interrupts, signal_name
 
 __all__ = ["Recorder", "FLUSH_INTERVAL_S"]
 
@@ -152,20 +153,27 @@ class Recorder:
     @contextmanager
     def partial_on_failure(self) -> Iterator[None]:
         """Write the completed part, with how the run ended, when the block raises a
-        :class:`SolverError` or is interrupted; the exception goes on."""
+        :class:`SolverError` or is interrupted (SIGINT, or SIGTERM as
+        :class:`floatmoor.signals.Terminated`); the exception goes on. Before the first
+        sample nothing is written (a file of no samples is not a valid result file)."""
         try:
             yield
         except SolverError as err:
-            self.write(status=f"failed: {err}")
+            if self.n_done:
+                self.write(status=f"failed: {err}")
             raise
-        except KeyboardInterrupt:
-            self.write(status=f"interrupted: results up to t = {self.simulated_time:.6g} s")
+        except KeyboardInterrupt as stop:
+            if self.n_done:
+                self.write(status=f"{signal_name(stop)}: results up to "
+                                  f"t = {self.simulated_time:.6g} s")
             raise
 
     def write(self, status: str) -> xr.Dataset:
-        """Write the completed part to the output file (if any) and return it."""
+        """Write the completed part to the output file (if any) and return it; an interrupt
+        during the write is delivered after it, so the file is whole."""
         dataset = self.dataset(status)
         if self.path is not None:
-            write_dataset(dataset, self.path)
+            with deferred_interrupts():
+                write_dataset(dataset, self.path)
         self._last_flush = _time.perf_counter()
         return dataset
