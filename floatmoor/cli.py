@@ -245,30 +245,54 @@ def _default_stem(case: Case) -> str:
 
 
 def _output_path(args: argparse.Namespace, case: Case) -> Path:
-    path = Path(args.output) if args.output else Path(_default_stem(case) + ".nc")
-    if not path.parent.is_dir():
-        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{path}'")
-    if path.is_dir():
-        raise CaseError("-o/--output", "", "a file name", f"the folder '{path}'")
-    return path
+    """The run's checked output file (and its plot's, when asked for); a file there that the
+    run will replace is announced on standard error once every check has passed."""
+    from floatmoor.io.output_files import IMAGE, check_output_file
+    from floatmoor.plot import SUPPORTED_FORMATS
+    from floatmoor.simulation.recorder import estimated_output_bytes
+
+    protected = {"case file": case.source}
+    if case.hydro is not None:
+        from floatmoor.hydro.database import database_path
+
+        protected["hydrodynamic database"] = str(database_path(case))
+    text = args.output if args.output else _default_stem(case) + ".nc"
+    output = check_output_file(text, "-o/--output", protected=protected,
+                               expected_bytes=int(min(estimated_output_bytes(case), 2**62)))
+    plot = None
+    if args.plot is not None:
+        if Path(args.plot).suffix.lower() not in SUPPORTED_FORMATS:
+            raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
+                            + ") in an existing folder", f"'{args.plot}'")
+        plot = check_output_file(args.plot, "--plot", kind=IMAGE, protected={
+            **protected, "result file (-o)": output.path})
+    for checked in (output, plot):
+        if checked is not None and checked.replaces and not (checked is output and args.resume):
+            print(f"floatmoor: replacing the existing {checked.path}", file=sys.stderr)
+    return output.path
 
 
 def _run(args: argparse.Namespace) -> int:
+    from floatmoor.io.output_files import output_lock
+
+    case = load_case(args.case, args.overrides)
+    output = _output_path(args, case)
+    with output_lock(output), (nullcontext() if args.plot is None
+                               else output_lock(args.plot, "--plot")):
+        return _run_case(args, case, output)
+
+
+def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
+    """Run a checked case into its locked output file."""
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor._numba import watch_compilation
-    from floatmoor.plot import SUPPORTED_FORMATS
+    from floatmoor.io.output_files import OutputWriteError, file_state, written_since
     from floatmoor.post.summary import format_summary, run_summary
     from floatmoor.simulation.forced import run_forced_motion
     from floatmoor.ui.progress import ProgressReporter
 
-    case = load_case(args.case, args.overrides)
-    output = _output_path(args, case)
     refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
-    if args.plot is not None:
-        plot = Path(args.plot)
-        if plot.suffix.lower() not in SUPPORTED_FORMATS or not plot.parent.is_dir():
-            raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
-                            + ") in an existing folder", f"'{plot}'")
+    before = file_state(output)
 
     if args.resume and case.floater is None:
         raise CaseError("--resume", "", "a case with a [floater] (forced-motion runs are not "
@@ -286,12 +310,18 @@ def _run(args: argparse.Namespace) -> int:
                 result = run_forced_motion(case, output=output, progress=progress)
     except SolverError as err:
         _close(progress)
-        print(f"floatmoor: run failed: {err}\n  partial results written to {output}",
+        print(f"floatmoor: run failed: {err}\n  {_partial_note(output, before)}",
               file=sys.stderr)
+        return EXIT_FAILED
+    except OutputWriteError as err:
+        _close(progress)
+        left = (f"{output} holds the results of the last write that succeeded (its status "
+                f"says so)" if written_since(output, before) else _partial_note(output, before))
+        print(f"floatmoor: run failed: {err}\n  {left}", file=sys.stderr)
         return EXIT_FAILED
     except KeyboardInterrupt:
         _close(progress)
-        print(f"floatmoor: interrupted; partial results written to {output}"
+        print(f"floatmoor: interrupted; {_partial_note(output, before)}"
               + _resume_hint(args, case, output), file=sys.stderr)
         return EXIT_INTERRUPTED
     _close(progress)
@@ -303,7 +333,12 @@ def _run(args: argparse.Namespace) -> int:
         from floatmoor.plot import plot_tensions
 
         ramp = case.motion.ramp_duration if case.motion is not None else 0.0
-        plot_tensions(result.dataset, args.plot, ramp_duration=ramp)
+        try:
+            plot_tensions(result.dataset, args.plot, ramp_duration=ramp)
+        except OutputWriteError as err:
+            print(f"floatmoor: the plot failed: {err}\n  the run completed; results in "
+                  f"{output}", file=sys.stderr)
+            return EXIT_FAILED
         summary["plot"] = str(args.plot)
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -312,6 +347,18 @@ def _run(args: argparse.Namespace) -> int:
         print(f"simulated {result.simulated_time_s:.6g} s in {result.wall_time_s:.3g} s of wall "
               f"time; results in {output}" + (f", plot in {args.plot}" if args.plot else ""))
     return EXIT_OK
+
+
+def _partial_note(output: Path, before: tuple[int, int, int] | None) -> str:
+    """What an ended run left in its output: partial results when it wrote the file, else
+    that nothing was written (it ended before recording started, or its writes failed)."""
+    from floatmoor.io.output_files import written_since
+
+    if written_since(output, before):
+        return f"partial results written to {output}"
+    if before is not None:
+        return f"no results written; {output} is as it was before the run"
+    return f"no results written ({output} not created)"
 
 
 def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
