@@ -33,6 +33,7 @@ from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
 
 if TYPE_CHECKING:
+    from floatmoor.campaign.design import CampaignDesign
     from floatmoor.mooring.strength import StaticLineLoad
 
 __all__ = ["main"]
@@ -380,19 +381,47 @@ def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from floatmoor._numba import watch_compilation
     from floatmoor.campaign.design import design_from_options
-    from floatmoor.campaign.runner import run_campaign
-    from floatmoor.campaign.store import failed_runs
-    from floatmoor.ui.progress import COMPILING_MESSAGE
+    from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
-    output = Path(args.output) if args.output else Path(_default_stem(case) + "_campaign.nc")
-    if not output.parent.is_dir():
-        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{output}'")
+    output = _campaign_output(args, case, design.size)
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+    with output_lock(output):
+        return _sweep_locked(args, design, output)
+
+
+def _campaign_output(args: argparse.Namespace, case: Case, runs: int) -> Path:
+    """The sweep's checked campaign file (and runs folder), with room for what they will
+    hold."""
+    from floatmoor.io.output_files import check_output_file
+    from floatmoor.simulation.recorder import estimated_output_bytes
+
+    run_bytes = estimated_output_bytes(case)
+    text = args.output if args.output else _default_stem(case) + "_campaign.nc"
+    # per run: a few statistics per line (and DOF); with --timeseries the histories, about
+    # a tenth of a run file's values (one of its 13 values per line and sample)
+    expected = runs * ((run_bytes / 10.0 if args.timeseries else 0.0) + 8192.0)
+    output = check_output_file(text, "-o/--output", protected={"case file": case.source},
+                               expected_bytes=int(min(expected, 2**62))).path
+    if args.runs_dir is not None:
+        folder = Path(args.runs_dir)
+        probe = folder / ".floatmoor-runs-dir" if folder.is_dir() else folder
+        if folder.is_dir() or not folder.exists():
+            check_output_file(probe, "--runs-dir", expected_bytes=int(min(
+                runs * run_bytes, 2**62)))
+    return output
+
+
+def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path) -> int:
+    """Run a campaign into its checked and locked output file."""
+    from floatmoor._numba import watch_compilation
+    from floatmoor.campaign.runner import run_campaign
+    from floatmoor.campaign.store import failed_runs
+    from floatmoor.io.output_files import OutputWriteError
+    from floatmoor.ui.progress import COMPILING_MESSAGE
 
     def progress(done: int, total: int, left: float) -> None:
         if not args.quiet:
@@ -416,6 +445,10 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"floatmoor: interrupted; finished runs are in {output} (re-run to resume)",
               file=sys.stderr)
         return EXIT_INTERRUPTED
+    except OutputWriteError as err:
+        print(f"floatmoor: sweep failed: {err}\n  {output} holds the runs of the last write "
+              "that succeeded, if any (re-run to resume)", file=sys.stderr)
+        return EXIT_FAILED
     failed = failed_runs(ds, design)
     print(f"{ds.attrs['runs_complete']} of {ds['status'].size} runs complete, {len(failed)} "
           f"failed; results in {output}")

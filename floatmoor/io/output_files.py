@@ -129,6 +129,8 @@ def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]])
         raise CaseError(option, "", "a path that can be examined",
                         f"'{path}': {err.strerror}") from None
     file_type = stat.S_IFMT(info.st_mode)
+    if file_type == stat.S_IFDIR:
+        raise CaseError(option, "", "a file name (not a folder)", f"'{path}', a folder")
     if file_type != stat.S_IFREG:
         what = _FILE_TYPES.get(file_type, "not a regular file")
         raise CaseError(option, "", "a new or regular file to replace", f"'{path}', {what}")
