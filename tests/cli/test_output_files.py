@@ -281,3 +281,38 @@ def test_failure_before_recording_says_no_results_were_written(case, tmp_path, c
     err = capsys.readouterr().err
     assert "run failed" in err and f"no results written ({out} not created)" in err
     assert "partial results written" not in err and not out.exists()
+
+
+# -- the other commands that write ---------------------------------------------------------
+def test_sweep_outputs_are_checked_before_any_run(case, tmp_path, tmpfs, capsys):
+    text = case.read_text()
+    grid = ["--grid", "motion.period=1.25,1.5"]
+    assert main(["sweep", str(case), *SHORT, *grid, "-o", str(case), "--quiet"]) == 2
+    assert "expected a file other than the case file" in capsys.readouterr().err
+    assert case.read_text() == text
+    folder = tmpfs("ro", "ro,size=1m")
+    assert main(["sweep", str(case), *SHORT, *grid, "-o", str(folder / "c.nc"),
+                 "--quiet"]) == 2
+    assert "folder floatmoor can write to" in capsys.readouterr().err
+    out = tmp_path / "c.nc"
+    assert main(["sweep", str(case), *SHORT, *grid, "-o", str(out), "--runs-dir",
+                 str(folder / "runs"), "--quiet"]) == 2
+    assert "--runs-dir: expected a file in a folder floatmoor can write to" in \
+        capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_hydro_build_output_is_checked_and_locked(tmp_path, capsys):
+    from tests.hydro.test_cli_hydro import TINY_CASE
+
+    (tmp_path / "hydrodb").mkdir()
+    case = tmp_path / "tiny.toml"
+    case.write_text(TINY_CASE)
+    assert main(["hydro", "build", str(case), "-o", str(case), "--quiet"]) == 2
+    assert "expected a file other than the case file" in capsys.readouterr().err
+    assert case.read_text() == TINY_CASE
+    target = tmp_path / "hydrodb" / "tiny.nc"
+    with output_lock(target):
+        assert main(["hydro", "build", str(case), "--quiet"]) == 2
+        assert "being written by process" in capsys.readouterr().err
+    assert not target.exists()
