@@ -487,11 +487,9 @@ def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) ->
 def _study(args: argparse.Namespace) -> int:
     from floatmoor.studies import qd_verification
 
-    output = Path(args.output)
-    if output.exists() and not output.is_dir():
-        raise CaseError("-o/--output", "", "a folder", f"the file '{output}'")
-    if not output.parent.is_dir():
-        raise CaseError("-o/--output", "", "a folder in an existing folder", f"'{output}'")
+    from floatmoor.io.output_files import check_output_folder, output_lock
+
+    output = check_output_folder(args.output, "-o/--output")
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
 
@@ -500,8 +498,9 @@ def _study(args: argparse.Namespace) -> int:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
     try:
-        ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                       progress=progress)
+        with output_lock(output.resolve()):
+            ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
+                                           progress=progress)
     except KeyboardInterrupt:
         print("floatmoor: interrupted; nothing written (the study writes its results at the "
               "end)", file=sys.stderr)

@@ -30,7 +30,8 @@ from pathlib import Path
 
 from floatmoor.errors import CaseError, FloatmoorError
 
-__all__ = ["OutputFile", "OutputWriteError", "check_output_file", "output_lock",
+__all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
+           "output_lock",
            "atomic_target", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
 
 #: Free space asked for beyond the estimated output: the estimate leaves out the file format's
@@ -117,6 +118,28 @@ def check_output_file(text: str | os.PathLike[str], option: str, *,
                         f"{_size(expected_bytes + SPACE_MARGIN)})",
                         f"{_size(free)} free in '{folder}'")
     return OutputFile(path=path, replaces=replaces)
+
+
+def check_output_folder(text: str | os.PathLike[str], option: str) -> Path:
+    """Check an output folder (of a study or report) before a command does any work: an
+    existing folder floatmoor can write to, or a new one in such a folder.
+
+    Raises
+    ------
+    CaseError
+        Naming the option, what it should be and what it is.
+    """
+    path = Path(text)
+    if path.exists() and not path.is_dir():
+        raise CaseError(option, "", "a folder", f"the file '{path}'")
+    if path.is_dir():
+        _check_writable(path, option)
+    else:
+        parent = path.resolve().parent
+        if not parent.is_dir():
+            raise CaseError(option, "", "a folder in an existing folder", f"'{path}'")
+        _check_writable(parent, option)
+    return path
 
 
 def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]]) -> int | None:

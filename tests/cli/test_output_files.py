@@ -316,3 +316,16 @@ def test_hydro_build_output_is_checked_and_locked(tmp_path, capsys):
         assert main(["hydro", "build", str(case), "--quiet"]) == 2
         assert "being written by process" in capsys.readouterr().err
     assert not target.exists()
+
+
+def test_study_and_report_folders_are_checked_and_locked(tmp_path, tmpfs, capsys):
+    folder = tmpfs("ro", "ro,size=1m")
+    for command in (["study", "qd-verification", "--quick", "--quiet"], ["report", "x.nc"]):
+        assert main([*command, "-o", str(folder / "out")]) == 2
+        err = capsys.readouterr().err
+        assert "folder floatmoor can write to" in err and "Read-only file system" in err
+    out = tmp_path / "study"
+    with output_lock(out.resolve()):
+        assert main(["study", "qd-verification", "--quick", "-o", str(out), "--quiet"]) == 2
+        assert "being written by process" in capsys.readouterr().err
+    assert not out.exists()
