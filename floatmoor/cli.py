@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import shlex
 import sys
 from contextlib import nullcontext
@@ -37,6 +36,7 @@ from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.signals import exit_status, interrupt_handling, signal_name
 
 if TYPE_CHECKING:
+    from floatmoor.campaign.design import CampaignDesign
     from floatmoor.mooring.strength import StaticLineLoad
     from floatmoor.simulation.forced import RunResult
 
@@ -259,35 +259,58 @@ def _default_stem(case: Case) -> str:
 
 
 def _output_path(args: argparse.Namespace, case: Case) -> Path:
-    path = Path(args.output) if args.output else Path(_default_stem(case) + ".nc")
-    if not path.parent.is_dir():
-        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{path}'")
-    if path.is_dir():
-        raise CaseError("-o/--output", "", "a file name", f"the folder '{path}'")
-    return path
+    """The run's checked output file (and its plot's, when asked for); a file there that the
+    run will replace is announced on standard error once every check has passed."""
+    from floatmoor.io.output_files import IMAGE, check_output_file
+    from floatmoor.plot import SUPPORTED_FORMATS
+    from floatmoor.simulation.recorder import estimated_output_bytes
+
+    protected = {"case file": case.source}
+    if case.hydro is not None:
+        from floatmoor.hydro.database import database_path
+
+        protected["hydrodynamic database"] = str(database_path(case))
+    text = args.output if args.output else _default_stem(case) + ".nc"
+    output = check_output_file(text, "-o/--output", protected=protected,
+                               expected_bytes=int(min(estimated_output_bytes(case), 2**62)))
+    plot = None
+    if args.plot is not None:
+        if Path(args.plot).suffix.lower() not in SUPPORTED_FORMATS:
+            raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
+                            + ") in an existing folder", f"'{args.plot}'")
+        plot = check_output_file(args.plot, "--plot", kind=IMAGE, protected={
+            **protected, "result file (-o)": output.path})
+    for checked in (output, plot):
+        if checked is not None and checked.replaces and not (checked is output and args.resume):
+            print(f"floatmoor: replacing the existing {checked.path}", file=sys.stderr)
+    return output.path
 
 
 def _run(args: argparse.Namespace) -> int:
-    from floatmoor.mooring.strength import refuse_static_breaking
-    from floatmoor._numba import watch_compilation
-    from floatmoor.plot import SUPPORTED_FORMATS
-    from floatmoor.simulation.forced import run_forced_motion
-    from floatmoor.ui.progress import ProgressReporter
+    from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
     output = _output_path(args, case)
+    with output_lock(output), (nullcontext() if args.plot is None
+                               else output_lock(args.plot, "--plot")):
+        return _run_case(args, case, output)
+
+
+def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
+    """Run a checked case into its locked output file."""
+    from floatmoor.mooring.strength import refuse_static_breaking
+    from floatmoor._numba import watch_compilation
+    from floatmoor.io.output_files import OutputWriteError, file_state
+    from floatmoor.simulation.forced import run_forced_motion
+    from floatmoor.ui.progress import ProgressReporter
+
     refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
-    if args.plot is not None:
-        plot = Path(args.plot)
-        if plot.suffix.lower() not in SUPPORTED_FORMATS or not plot.parent.is_dir():
-            raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
-                            + ") in an existing folder", f"'{plot}'")
 
     if args.resume and case.floater is None:
         raise CaseError("--resume", "", "a case with a [floater] (forced-motion runs are not "
                         "checkpointed)", "--resume")
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
-    before = _file_state(output)
+    before = file_state(output)
     try:
         with (nullcontext() if progress is None
               else watch_compilation(progress.compiling, progress.compiled)):
@@ -301,6 +324,12 @@ def _run(args: argparse.Namespace) -> int:
     except SolverError as err:
         _close(progress)
         print(f"floatmoor: run failed: {err}\n  {_left_behind(output, before)}",
+              file=sys.stderr)
+        return EXIT_FAILED
+    except OutputWriteError as err:
+        _close(progress)
+        print(f"floatmoor: run failed: {err}\n  "
+              f"{_left_behind(output, before, 'its writes failed')}",
               file=sys.stderr)
         return EXIT_FAILED
     except KeyboardInterrupt as stop:
@@ -320,6 +349,7 @@ def _run(args: argparse.Namespace) -> int:
 
 def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path) -> int:
     """Print the summary of a completed run (and draw its plot)."""
+    from floatmoor.io.output_files import OutputWriteError
     from floatmoor.post.summary import format_summary, run_summary
 
     summary = run_summary(case, result.dataset)
@@ -329,7 +359,12 @@ def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output:
         from floatmoor.plot import plot_tensions
 
         ramp = case.motion.ramp_duration if case.motion is not None else 0.0
-        plot_tensions(result.dataset, args.plot, ramp_duration=ramp)
+        try:
+            plot_tensions(result.dataset, args.plot, ramp_duration=ramp)
+        except OutputWriteError as err:
+            print(f"floatmoor: the plot failed: {err}\n  the run completed; results in "
+                  f"{output}", file=sys.stderr)
+            return EXIT_FAILED
         summary["plot"] = str(args.plot)
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -359,19 +394,47 @@ def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from floatmoor._numba import watch_compilation
     from floatmoor.campaign.design import design_from_options
-    from floatmoor.campaign.runner import run_campaign
-    from floatmoor.campaign.store import failed_runs
-    from floatmoor.ui.progress import COMPILING_MESSAGE
+    from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
     design = design_from_options(args.grid, args.zipped, getattr(case, "campaign", None))
-    output = Path(args.output) if args.output else Path(_default_stem(case) + "_campaign.nc")
-    if not output.parent.is_dir():
-        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{output}'")
+    output = _campaign_output(args, case, design.size)
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+    with output_lock(output):
+        return _sweep_locked(args, design, output)
+
+
+def _campaign_output(args: argparse.Namespace, case: Case, runs: int) -> Path:
+    """The sweep's checked campaign file (and runs folder), with room for what they will
+    hold."""
+    from floatmoor.io.output_files import check_output_file
+    from floatmoor.simulation.recorder import estimated_output_bytes
+
+    run_bytes = estimated_output_bytes(case)
+    text = args.output if args.output else _default_stem(case) + "_campaign.nc"
+    # per run: a few statistics per line (and DOF); with --timeseries the histories, about
+    # a tenth of a run file's values (one of its 13 values per line and sample)
+    expected = runs * ((run_bytes / 10.0 if args.timeseries else 0.0) + 8192.0)
+    output = check_output_file(text, "-o/--output", protected={"case file": case.source},
+                               expected_bytes=int(min(expected, 2**62))).path
+    if args.runs_dir is not None:
+        folder = Path(args.runs_dir)
+        probe = folder / ".floatmoor-runs-dir" if folder.is_dir() else folder
+        if folder.is_dir() or not folder.exists():
+            check_output_file(probe, "--runs-dir", expected_bytes=int(min(
+                runs * run_bytes, 2**62)))
+    return output
+
+
+def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path) -> int:
+    """Run a campaign into its checked and locked output file."""
+    from floatmoor._numba import watch_compilation
+    from floatmoor.campaign.runner import run_campaign
+    from floatmoor.campaign.store import failed_runs
+    from floatmoor.io.output_files import OutputWriteError, file_state
+    from floatmoor.ui.progress import COMPILING_MESSAGE
 
     def progress(done: int, total: int, left: float) -> None:
         if not args.quiet:
@@ -385,7 +448,7 @@ def _sweep(args: argparse.Namespace) -> int:
             said.append(True)
             print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
 
-    before = _file_state(output)
+    before = file_state(output)
     try:
         with watch_compilation(compiling, lambda seconds: None):
             ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
@@ -396,6 +459,10 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"floatmoor: {signal_name(stop)}; {_campaign_left_behind(output, before)}",
               file=sys.stderr)
         return exit_status(stop)
+    except OutputWriteError as err:
+        print(f"floatmoor: sweep failed: {err}\n  {_campaign_left_behind(output, before)}",
+              file=sys.stderr)
+        return EXIT_FAILED
     failed = failed_runs(ds, design)
     print(f"{ds.attrs['runs_complete']} of {ds['status'].size} runs complete, {len(failed)} "
           f"failed; results in {output}")
@@ -434,11 +501,9 @@ def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) ->
 def _study(args: argparse.Namespace) -> int:
     from floatmoor.studies import qd_verification
 
-    output = Path(args.output)
-    if output.exists() and not output.is_dir():
-        raise CaseError("-o/--output", "", "a folder", f"the file '{output}'")
-    if not output.parent.is_dir():
-        raise CaseError("-o/--output", "", "a folder in an existing folder", f"'{output}'")
+    from floatmoor.io.output_files import check_output_folder, output_lock
+
+    output = check_output_folder(args.output, "-o/--output")
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
 
@@ -447,8 +512,9 @@ def _study(args: argparse.Namespace) -> int:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
     try:
-        ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                       progress=progress)
+        with output_lock(output.resolve()):
+            ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
+                                           progress=progress)
     except KeyboardInterrupt as stop:
         print(f"floatmoor: {signal_name(stop)}; nothing written (the study writes its results "
               "at the end)", file=sys.stderr)
@@ -460,16 +526,6 @@ def _study(args: argparse.Namespace) -> int:
         report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
         return EXIT_FAILED
     return EXIT_OK
-
-
-def _file_state(path: Path) -> tuple[int, int, int] | None:
-    """(inode, modification time, size) of ``path``, None if it is no file: a file written
-    (replaced) since has another."""
-    try:
-        st = os.stat(path)
-    except OSError:
-        return None
-    return (st.st_ino, st.st_mtime_ns, st.st_size) if path.is_file() else None
 
 
 def _attributes(path: Path) -> dict[str, object]:
@@ -485,12 +541,16 @@ def _attributes(path: Path) -> dict[str, object]:
         return {}
 
 
-def _left_behind(output: Path, before: tuple[int, int, int] | None) -> str:
-    """What a stopped run left in ``output`` (``before``: its :func:`_file_state` when the run
-    began): partial results up to some time, or nothing."""
-    if _file_state(output) in (None, before):
+def _left_behind(output: Path, before: tuple[int, int, int] | None,
+                 why: str = "the run stopped before recording") -> str:
+    """What a stopped run left in ``output`` (``before``: its
+    :func:`~floatmoor.io.output_files.file_state` when the run began): partial results up to
+    some time, or nothing."""
+    from floatmoor.io.output_files import written_since
+
+    if not written_since(output, before):
         return ("nothing written" + (f" ({output} is unchanged)" if before is not None else "")
-                + ": the run stopped before recording")
+                + f": {why}")
     t = _attributes(output).get("simulated_time_s")
     upto = f" up to t = {float(t):.6g} s" if isinstance(t, (int, float)) else ""
     return f"partial results{upto} written to {output}"
@@ -498,7 +558,9 @@ def _left_behind(output: Path, before: tuple[int, int, int] | None) -> str:
 
 def _campaign_left_behind(output: Path, before: tuple[int, int, int] | None) -> str:
     """What a stopped sweep left in ``output``: how many runs it holds, or nothing."""
-    if _file_state(output) in (None, before):
+    from floatmoor.io.output_files import written_since
+
+    if not written_since(output, before):
         return "nothing written" + (f" ({output} is unchanged)" if before is not None else "")
     attrs = _attributes(output)
     complete = attrs.get("runs_complete")

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import xarray as xr
 
+from floatmoor.io.output_files import atomic_target
+
 __all__ = ["plot_tensions", "SUPPORTED_FORMATS"]
 
 #: File formats the Agg-based backends write.
@@ -26,6 +28,11 @@ def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float
         Image file (.png, .pdf or .svg).
     ramp_duration
         The motion ramp, shaded [s].
+
+    Raises
+    ------
+    OutputWriteError
+        When the image cannot be written (written atomically: an old file is kept).
     """
     import matplotlib
 
@@ -50,5 +57,8 @@ def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float
     # the title carries the run's overrides: wrapped, and the image grown to hold it all
     fig.suptitle(textwrap.fill(str(dataset.attrs.get("title", "")), _TITLE_WRAP), fontsize=11)
     fig.tight_layout()
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    try:
+        with atomic_target(path, suffix=Path(path).suffix) as tmp:
+            fig.savefig(tmp, dpi=120, bbox_inches="tight")
+    finally:
+        plt.close(fig)

@@ -58,19 +58,39 @@ def resolve_database(text: str) -> Path:
 
 
 def _build(args: argparse.Namespace) -> int:
-    from floatmoor.hydro.build import build_database
-    from floatmoor.hydro.checks import run_checks
-    from floatmoor.hydro.database import (
-        HydroDatabaseError, database_path, load_for_case, write_database,
-    )
+    from floatmoor.hydro.database import database_path
+    from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
     if case.floater is None or case.hydro is None:
         raise CaseError(args.case, "hydro", "a case with [floater] and [hydro] tables",
                         "none" if case.floater is None else "no [hydro] table")
-    output = Path(args.output) if args.output else database_path(case)
-    if args.output is not None and (output.is_dir() or not output.parent.is_dir()):
-        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{output}'")
+    output = _database_output(args, case, database_path(case))
+    with output_lock(output):
+        return _build_locked(args, case, output)
+
+
+def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
+    """The checked database file of ``hydro build``: ``-o``, else the case's database (its
+    folder is created when missing)."""
+    from floatmoor.io.output_files import check_output_file
+
+    if args.output is None and not default.parent.is_dir():
+        try:
+            default.parent.mkdir(parents=True)
+        except OSError as err:
+            raise CaseError(case.source, "hydro.database", "a database folder floatmoor can "
+                            "create", f"'{default.parent}': {err.strerror}") from None
+    return check_output_file(args.output or default, "-o/--output",
+                             protected={"case file": case.source}).path
+
+
+def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
+    """Build the database of a checked case into its locked output file."""
+    from floatmoor.hydro.build import build_database
+    from floatmoor.hydro.checks import run_checks
+    from floatmoor.hydro.database import HydroDatabaseError, load_for_case, write_database
+
     if output.exists() and not args.force:
         try:
             ds = load_for_case(case, output, checks=False)
@@ -181,6 +201,7 @@ def _fit_state_space(args: argparse.Namespace) -> int:
     on other library versions can choose other orders)."""
     from floatmoor.hydro import state_space as ss
     from floatmoor.hydro.database import database_path, load_for_case, write_database
+    from floatmoor.io.output_files import output_lock
 
     rtol = ss.KERNEL_RTOL if args.tolerance is None else args.tolerance
     max_order = ss.MAX_ORDER if args.max_order is None else args.max_order
@@ -213,7 +234,8 @@ def _fit_state_space(args: argparse.Namespace) -> int:
         print(f"floatmoor: no realisation within {rtol:g} up to order {max_order} for {names}; "
               f"nothing written (raise --max-order or --tolerance)", file=sys.stderr)
         return EXIT_FAILED
-    write_database(ss.add_to_dataset(ds, realisation), target)
+    with output_lock(target):
+        write_database(ss.add_to_dataset(ds, realisation), target)
     if not args.json:
         print(f"written to {target}")
     return EXIT_OK
@@ -239,7 +261,10 @@ def _fit_target(args: argparse.Namespace, source: Path, ds) -> Path:
     if target.exists() and not args.force:
         raise CaseError("-o/--output", "", "a new file (--force overwrites)",
                         f"the existing file '{target}'")
-    return target
+    from floatmoor.io.output_files import check_output_file
+
+    return check_output_file(args.output, "-o/--output",
+                             protected={"database fitted": source}).path
 
 
 def _pairs_table(realisation, rtol: float | None = None) -> str:

@@ -3,16 +3,18 @@
 Files are netCDF-3 (64-bit offset) written with xarray's ``scipy`` engine, the one engine that
 floatmoor's own dependencies provide, so every installation can read every file. Writes are
 atomic: the dataset goes to a temporary file beside the target, which then replaces it, so a
-reader (or an interrupted run) never sees a half-written file.
+reader (or an interrupted run) never sees a half-written file; the file is on disk before it
+replaces the old one, which keeps its permissions, and a failed write (disk full, read-only
+folder) leaves the old file and no temporary file behind.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
-from pathlib import Path
 
 import xarray as xr
+
+from floatmoor.io.output_files import atomic_target
 
 __all__ = ["write_dataset", "read_dataset", "NETCDF_ENGINE", "NETCDF_FORMAT"]
 
@@ -28,18 +30,15 @@ def write_dataset(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
     dataset
         Real-valued dataset (netCDF-3 stores no complex numbers and no 64-bit integers).
     path
-        Target file; its folder must exist.
+        Target file; its folder must exist. An existing file must be a regular file.
+
+    Raises
+    ------
+    OutputWriteError
+        When the write fails or ``path`` is not a regular file (the old file is kept).
     """
-    target = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent or ".")
-    os.close(fd)
-    try:
+    with atomic_target(path) as tmp:
         dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT)
-        os.replace(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def read_dataset(path: str | os.PathLike[str]) -> xr.Dataset:

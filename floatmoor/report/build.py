@@ -48,13 +48,17 @@ def check_output_folder(path: str | Path, option: str = "-o/--output") -> Path:
     ------
     ReportInputError
         When it is a file, or its parent folder does not exist.
+    CaseError
+        When floatmoor cannot write in it (or in its parent, for a new folder).
     """
     path = Path(path)
     if path.exists() and not path.is_dir():
         raise ReportInputError(option, "a folder", f"the file '{path}'")
     if not path.exists() and not path.resolve().parent.is_dir():
         raise ReportInputError(option, "a folder in an existing folder", f"'{path}'")
-    return path
+    from floatmoor.io.output_files import check_output_folder as check_writable_folder
+
+    return check_writable_folder(path, option)  # CaseError: not writable
 
 
 def _check_reference(runs: Sequence[RunData], reference: ReferenceValues) -> None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from pathlib import Path
 from typing import Any
 
 from floatmoor.errors import CaseError, SolverError
@@ -124,6 +125,7 @@ def _reference(args: argparse.Namespace):
 
 def report_command(args: argparse.Namespace) -> int:
     """``floatmoor report RUN.nc [RUN2.nc ...] -o DIR``; returns the exit status."""
+    from floatmoor.io.output_files import output_lock
     from floatmoor.report.build import check_output_folder, write_report
     from floatmoor.report.figures import FigureDataError
     from floatmoor.report.runs import ReportInputError, load_run, run_labels
@@ -136,8 +138,9 @@ def report_command(args: argparse.Namespace) -> int:
         runs = [load_run(path, start=start) for path in args.runs]
         for run, label in zip(runs, run_labels(runs)):
             run.label = label
-        files = write_report(runs, args.output, reference=reference,
-                             nominal_diameters=diameters, html=getattr(args, "html", False))
+        with output_lock(Path(args.output).resolve()):
+            files = write_report(runs, args.output, reference=reference,
+                                 nominal_diameters=diameters, html=getattr(args, "html", False))
     except (ReportInputError, FigureDataError, CaseError) as err:
         return _bad_input(err)
     print(f"report of {len(runs)} run(s) in {files.folder}: {files.summary.name}, "
@@ -148,6 +151,8 @@ def report_command(args: argparse.Namespace) -> int:
 def compare_command(args: argparse.Namespace) -> int:
     """``floatmoor compare CASE --models ... -o DIR``; returns the exit status."""
     from floatmoor.hydro.database import HydroDatabaseError
+    from floatmoor.io.output_files import output_lock
+    from floatmoor.report.build import check_output_folder
     from floatmoor.report.compare import compare_models, parse_models
     from floatmoor.report.figures import FigureDataError
     from floatmoor.report.runs import ReportInputError
@@ -168,11 +173,14 @@ def compare_command(args: argparse.Namespace) -> int:
         start = parse_start(getattr(args, "start", None))
         diameters = parse_nominal_diameters(getattr(args, "nominal_diameter", []))
         reference = _reference(args)
-        files = compare_models(args.case, models, args.output,
-                               overrides=getattr(args, "overrides", []), start=start,
-                               reference=reference, nominal_diameters=diameters,
-                               html=getattr(args, "html", False), workers=workers,
-                               scheduler=getattr(args, "scheduler", None), progress=progress)
+        check_output_folder(args.output)
+        with output_lock(Path(args.output).resolve()):
+            files = compare_models(args.case, models, args.output,
+                                   overrides=getattr(args, "overrides", []), start=start,
+                                   reference=reference, nominal_diameters=diameters,
+                                   html=getattr(args, "html", False), workers=workers,
+                                   scheduler=getattr(args, "scheduler", None),
+                                   progress=progress)
     except (ReportInputError, FigureDataError, CaseError, HydroDatabaseError) as err:
         return _bad_input(err)
     except SolverError as err:

@@ -24,7 +24,7 @@ from floatmoor.io.dataset import build_result_dataset
 from floatmoor.io.netcdf import write_dataset
 from floatmoor.signals import deferred_interrupts, signal_name
 
-__all__ = ["Recorder", "FLUSH_INTERVAL_S"]
+__all__ = ["Recorder", "FLUSH_INTERVAL_S", "estimated_output_bytes"]
 
 #: Wall time between partial writes of a long run [s]: often enough that a killed run loses
 #: little, rarely enough that rewriting the file costs a negligible share of the run.
@@ -38,6 +38,34 @@ _SERIES = (
     ("laid_length", 1),
     ("solver_iterations", 1),
 )
+
+#: Floater series of coupled runs: values per sample (displacement, velocity, wave elevation).
+_BODY_VALUES = 6 + 6 + 1
+#: Bytes per stored value (float64; the int32 solver iterations are counted as 8 too).
+_VALUE_BYTES = 8
+
+
+def estimated_output_bytes(case: Case) -> float:
+    """Size of a run's output file [bytes], from its samples, lines and variables: what the
+    folder must have room for before the run starts (the header and attributes, a few kB,
+    are left out).
+    """
+    from floatmoor.mooring.quasidynamic import SHAPE_NODES
+    from floatmoor.mooring.quasistatic import SHAPE_POINTS
+
+    sim = case.simulation
+    n_time = sim.duration / sim.output_interval + 1.0
+    per_line = sum(size for _, size in _SERIES) + 2  # and the two tensions
+    values = len(case.lines) * n_time * per_line
+    if case.floater is not None:
+        values += n_time * _BODY_VALUES
+    if sim.shape_output_interval is not None:
+        nodes = max((line.dynamic.elements * (line.dynamic.order + 1)
+                     if line.model == "dynamic" else max(SHAPE_NODES, SHAPE_POINTS))
+                    for line in case.lines)
+        n_shapes = sim.duration / max(sim.shape_output_interval, sim.output_interval) + 1.0
+        values += len(case.lines) * n_shapes * nodes * (3 + 1) + nodes * len(case.lines)
+    return float(values * _VALUE_BYTES)
 
 
 class Recorder:

@@ -56,6 +56,7 @@ import numpy as np
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import FloatmoorError
+from floatmoor.io.output_files import atomic_target
 from floatmoor.simulation.forced import run_forced_motion
 
 #: Folder of the six case files (s1_d1.toml ... s3_d2.toml).
@@ -312,7 +313,8 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
     if output is not None:
         out = Path(output)
         out.mkdir(parents=True, exist_ok=True)
-        ds.to_netcdf(out / "qd_verification.nc")
+        with atomic_target(out / "qd_verification.nc") as tmp:
+            ds.to_netcdf(tmp)
         text = summary(ds)
         (out / "summary.txt").write_text(text + "\n")
         plot_cycles(ds, out / "fig6_cycles_A4.png")
