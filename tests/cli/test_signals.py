@@ -134,14 +134,19 @@ def test_interrupt_before_recording_says_nothing_written(tmp_path, capsys, monke
 
     monkeypatch.setattr(forced, "build_line_models", interrupted_build)
     out = tmp_path / "none.nc"
-    if existing:
-        out.write_bytes(b"an earlier result")
+    if existing:  # an earlier result (floatmoor replaces netCDF files only)
+        import xarray as xr
+
+        from floatmoor.io.netcdf import write_dataset
+
+        write_dataset(xr.Dataset({"x": ("a", [1.0])}), out)
+        earlier = out.read_bytes()
     assert main(["run", str(LINDAHL_CASE), "-o", str(out), *QS, "--quiet"]) == 143
     err = capsys.readouterr().err
     assert "terminated (SIGTERM); nothing written" in err
     assert "partial results" not in err
     if existing:
-        assert f"{out} is unchanged" in err and out.read_bytes() == b"an earlier result"
+        assert f"{out} is unchanged" in err and out.read_bytes() == earlier
     else:
         assert not out.exists()
 
