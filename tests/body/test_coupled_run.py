@@ -3,7 +3,6 @@ partial file, and the waves and initial offset of a case file."""
 
 from __future__ import annotations
 
-import pickle
 import time
 
 import numpy as np
@@ -98,8 +97,8 @@ def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path
     from floatmoor.simulation.recorder import FLUSH_INTERVAL_S
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
-    overrides = ['lines.0.model="quasi-dynamic"', 'lines.1.model="quasi-static"',
-                 'lines.2.model="quasi-dynamic"', "simulation.duration=2.0",
+    overrides = ['lines.line1.model="quasi-dynamic"', 'lines.line2.model="quasi-static"',
+                 'lines.line3.model="quasi-dynamic"', "simulation.duration=2.0",
                  "simulation.output_interval=0.02", "simulation.time_step=0.01",
                  "simulation.shape_output_interval=0.2",
                  'waves={kind = "regular", height = 0.04, period = 1.2}']
@@ -116,9 +115,9 @@ def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path
     stop_mid_step(case, out, monkeypatch, calls, KeyboardInterrupt())
     assert time.perf_counter() - start < 0.5 * FLUSH_INTERVAL_S
     assert read_dataset(out).attrs["status"].startswith("interrupted")
-    with open(cr.checkpoint_path(out), "rb") as fh:
-        state = pickle.load(fh)
-    assert state["done"] == 2 * 40 and state["n_done"] == 2 * 40 // 2 + 1
+    with np.load(cr.checkpoint_path(out), allow_pickle=False) as state:
+        assert state["progress/done"] == 2 * 40
+        assert state["progress/n_done"] == 2 * 40 // 2 + 1
     resumed = run_coupled(case, output=out, resume=True).dataset
     assert not cr.checkpoint_path(out).exists()
     for name in ("body_displacement", "body_velocity", "fairlead_tension", "wave_elevation",
@@ -130,7 +129,7 @@ def test_run_stopped_in_its_first_chunk_resumes_from_the_start(tmp_path, monkeyp
     """Interrupted before any chunk is complete, the checkpoint is the initial state."""
     import floatmoor.simulation.coupled_run as cr
 
-    case = load_case(BUOY_CASE, ['lines.0.model="quasi-dynamic"', *QS[1:],
+    case = load_case(BUOY_CASE, ['lines.line1.model="quasi-dynamic"', *QS[1:],
                                  "simulation.duration=0.4",
                                  "simulation.output_interval=0.02",
                                  'waves={kind = "regular", height = 0.04, period = 1.2}'])
