@@ -47,7 +47,7 @@ _META_MAX_BYTES = 1 << 20
 _PICKLE_MAGIC = b"\x80"
 _ZIP_MAGIC = b"PK"
 _START_OVER = ("resume with the same case file and --set overrides, or run without --resume "
-               "to start over (the checkpoint is then replaced)")
+               "to start over, which replaces the checkpoint")
 
 
 class CheckpointError(CaseError):
@@ -149,8 +149,8 @@ def _open_zip(path: Path) -> zipfile.ZipFile:
     except OSError as err:
         raise CheckpointError(path, "a readable checkpoint", f"{err.strerror or err}")
     if not head:
-        raise CheckpointError(path, f"a {FORMAT}", "an empty file (remove it and run without "
-                              "--resume to start over)")
+        raise CheckpointError(path, f"a {FORMAT}", "an empty file (run without --resume to "
+                              "start over)")
     if head.startswith(_PICKLE_MAGIC):
         raise CheckpointError(path, f"a {FORMAT} (a zip of numeric arrays)",
                               "a pickle, which is never loaded (it could run code; checkpoints "
@@ -158,7 +158,7 @@ def _open_zip(path: Path) -> zipfile.ZipFile:
                               "--resume to start over)")
     if not head.startswith(_ZIP_MAGIC):
         raise CheckpointError(path, f"a {FORMAT} (a zip of numeric arrays)",
-                              "another kind of file")
+                              "another kind of file (run without --resume to start over)")
     try:
         return zipfile.ZipFile(path)
     except (zipfile.BadZipFile, OSError, ValueError, EOFError) as err:

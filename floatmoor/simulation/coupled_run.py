@@ -233,6 +233,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     check_coupled_case(case)
     if settings is None:
         settings = settings_from_case(case)
+    identity = RunIdentity.of(case.text, case.overrides, repr(settings), case.source)
+    ckpt = checkpoint_path(output) if output is not None else None
+    if resume:
+        if ckpt is None:
+            raise CheckpointError("--resume", "a run with an output file (its checkpoint is "
+                                  "OUTPUT.checkpoint)", "no output")
+        check_checkpoint(ckpt, identity)  # before the set-up: the file, its format and run
     dt = float(settings.time_step)
     times = output_times(case.simulation)
     stride = int(round(case.simulation.output_interval / dt))
@@ -275,15 +282,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             f = f + parts["drag"].force(k, x, v)
         return f
 
-    identity = RunIdentity.of(case.text, case.overrides, repr(settings), case.source)
     n_lines = len(case.lines)
-    ckpt = checkpoint_path(output) if output is not None else None
     ckpt_every = flush_interval if checkpoint_interval is None else checkpoint_interval
-    if resume:
-        if ckpt is None:
-            raise CheckpointError("--resume", "a run with an output file (its checkpoint is "
-                                  "OUTPUT.checkpoint)", "no output")
-        check_checkpoint(ckpt, identity)  # before the set-up: the file, its format and run
     # built as for a fresh start, so that a checkpoint's state fits the same operators
     moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
     x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
