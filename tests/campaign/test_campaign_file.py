@@ -107,9 +107,10 @@ def test_restart_keeps_every_earlier_backup(tmp_path, capsys, campaign_bytes, no
     out.write_bytes(campaign_bytes)
     assert _sweep(out, capsys)[0] == 0 and not no_runs
     Path(f"{out}.bak-1").write_bytes(b"an earlier backup")
+    resumed = out.read_bytes()
     assert _sweep(out, capsys, "--restart")[0] == 0
     assert Path(f"{out}.bak-1").read_bytes() == b"an earlier backup"
-    assert Path(f"{out}.bak-2").read_bytes() == campaign_bytes
+    assert Path(f"{out}.bak-2").read_bytes() == resumed
     assert len(no_runs) == 2
 
 
