@@ -120,7 +120,10 @@ def write_checkpoint(path: str | os.PathLike[str], arrays: Mapping[str, NDArray]
     atomically: through ``PATH.tmp`` beside it, removed if the write fails."""
     path = Path(path)
     tmp = path.with_name(path.name + ".tmp")
-    members = {**_meta(identity), **arrays}
+    members = {**_meta(identity), **{k: np.asarray(v) for k, v in arrays.items()}}
+    objects = [k for k, v in members.items() if v.dtype.hasobject]
+    if objects:  # numpy.savez would pickle them (its allow_pickle needs numpy >= 2.1)
+        raise ValueError(f"checkpoint arrays must be numeric or text, not objects: {objects}")
     try:
         with open(tmp, "wb") as fh:
             np.savez(fh, **members)
