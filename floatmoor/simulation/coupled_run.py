@@ -207,8 +207,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     time (default: with every partial write), and when the run is interrupted, of the end of
     its last complete chunk (or its start); ``resume=True`` continues from the checkpoint and
     gives the same results as an uninterrupted run (the checkpoint holds plain arrays,
-    checked against this run before use: :mod:`floatmoor.simulation.checkpoint`). A failed run writes none at its failure
-    (resumed, it would fail again). The checkpoint is removed when the run completes. With
+    checked against this run before use: :mod:`floatmoor.simulation.checkpoint`). A failed
+    run writes none at its failure (resumed, it would fail again). The checkpoint is removed when the run completes. With
     ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
     ``settings`` (default :func:`settings_from_case`) replaces the case's ``[waves]``,
