@@ -43,6 +43,9 @@ VERSION = 1
 #: Largest member holding metadata [bytes]: the overrides of a run fit easily (a crafted
 #: header may not make the reader allocate more).
 _META_MAX_BYTES = 1 << 20
+#: Most members a checkpoint may have: a run's state is a dozen arrays per line (a crafted
+#: zip of millions of empty members may not keep the reader busy).
+_MAX_MEMBERS = 100_000
 _PICKLE_MAGIC = b"\x80"
 _ZIP_MAGIC = b"PK"
 _START_OVER = ("resume with the same case file and --set overrides, or run without --resume "
@@ -194,6 +197,9 @@ class _Members:
         self.path, self.zf = path, zf
         self.info: dict[str, zipfile.ZipInfo] = {}
         self.headers: dict[str, tuple[tuple[int, ...], np.dtype]] = {}
+        if len(zf.infolist()) > _MAX_MEMBERS:
+            raise CheckpointError(path, f"a {FORMAT} of at most {_MAX_MEMBERS} arrays",
+                                  f"{len(zf.infolist())} members")
         try:
             for info in zf.infolist():
                 if not info.filename.endswith(".npy"):
