@@ -91,6 +91,9 @@ def _parser() -> argparse.ArgumentParser:
                        help="also write every run's full output file into DIR (created if its "
                        "parent exists), named from its swept values; a re-run redoes a run "
                        "whose file is missing or incomplete")
+    sweep.add_argument("--restart", action="store_true",
+                       help="start the campaign afresh: an existing output file is moved "
+                       "aside to OUT.nc.bak-N (never deleted) instead of resumed")
     sweep.add_argument("--quiet", action="store_true", help="no progress reports")
     study = sub.add_parser("study", help="run a built-in study (results, summary and figures)")
     study.add_argument("name", choices=["qd-verification"],
@@ -454,7 +457,8 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
             ds = run_campaign(args.case, design, base_overrides=args.overrides, output=output,
                               workers=args.workers, scheduler=args.scheduler,
                               timeseries=args.timeseries, runs_dir=args.runs_dir,
-                              progress=progress)
+                              progress=progress, restart=args.restart,
+                              moved_aside=_say_moved_aside)
     except KeyboardInterrupt as stop:
         print(f"floatmoor: {signal_name(stop)}; {_campaign_left_behind(output, before)}",
               file=sys.stderr)
@@ -470,6 +474,11 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
         report_failures("sweep", failed, int(ds["status"].size))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _say_moved_aside(path: Path, backup: Path) -> None:
+    print(f"floatmoor: --restart: moved the existing {path} aside to {backup}; starting "
+          "afresh", file=sys.stderr, flush=True)
 
 
 #: Failed runs named in the one-line summary, and failure messages printed after it.

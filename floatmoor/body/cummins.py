@@ -177,6 +177,30 @@ class CumminsBody:
         if self.radiation_states is not None:
             self.z = state.radiation.copy()
 
+    def state_arrays(self) -> dict[str, NDArray]:
+        """The state of :meth:`get_state` as named arrays (0-d for scalars), for a checkpoint
+        of plain numeric data; ``radiation`` only on the state-space path."""
+        s = self.get_state()
+        out: dict[str, NDArray] = {
+            "time": np.array(s.time, dtype=np.float64), "position": s.position,
+            "velocity": s.velocity, "history": s.history,
+            "newest": np.array(s.newest, dtype=np.int64),
+            "filled": np.array(s.filled, dtype=np.int64), "memory": s.memory,
+            "memory_before": s.memory_before}
+        if s.radiation is not None:
+            out["radiation"] = s.radiation
+        return out
+
+    def set_state_arrays(self, arrays: dict[str, NDArray]) -> None:
+        """Restore a state of :meth:`state_arrays` (shapes checked by the caller)."""
+        self.set_state(BodyState(
+            float(arrays["time"]), np.array(arrays["position"], dtype=float),
+            np.array(arrays["velocity"], dtype=float), np.array(arrays["history"], dtype=float),
+            int(arrays["newest"]), int(arrays["filled"]),
+            np.array(arrays["memory"], dtype=float),
+            np.array(arrays["memory_before"], dtype=float),
+            None if "radiation" not in arrays else np.array(arrays["radiation"], dtype=float)))
+
     def _push(self, v: NDArray[np.float64]) -> None:
         m = self.history.shape[0]
         self.newest = (self.newest + 1) % m

@@ -24,6 +24,7 @@ import numpy as np
 import xarray as xr
 
 from floatmoor.campaign.design import CampaignDesign
+from floatmoor.campaign.reopen import move_aside
 from floatmoor.campaign.store import CampaignStore, run_file_is_complete, same_campaign
 from floatmoor.campaign.worker import run_one
 from floatmoor.case.load import load_case
@@ -43,8 +44,9 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                  base_overrides: Sequence[str] = (), output: str | Path | None = None,
                  workers: int = 1, scheduler: str | None = None, timeseries: bool = False,
                  runs_dir: str | Path | None = None, run_names: Sequence[str] | None = None,
-                 replace_other: bool = False, progress: Progress | None = None
-                 ) -> xr.Dataset:
+                 replace_other: bool = False, progress: Progress | None = None,
+                 restart: bool = False,
+                 moved_aside: Callable[[Path, Path], None] | None = None) -> xr.Dataset:
     """Run every run of ``design`` and gather the results.
 
     Parameters
@@ -75,8 +77,13 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         File-name stems of the runs in :meth:`CampaignDesign.runs` order (default:
         :meth:`CampaignDesign.run_names`, from the swept values).
     replace_other
-        When ``output`` holds another campaign, start afresh (and replace it) instead of
-        refusing.
+        When ``output`` holds another campaign (or is damaged), start afresh instead of
+        refusing: the old file is moved aside to ``OUTPUT.bak-N``
+        (:func:`floatmoor.campaign.reopen.move_aside`).
+    restart
+        Start afresh even from this campaign's own file, moving it aside the same way.
+    moved_aside
+        Called with (output, backup) when the existing output was moved aside.
     progress
         Called with (runs done, runs in total, estimated seconds left) after each run; the
         estimate is NaN until a run completes after the last one that compiled kernels.
@@ -85,7 +92,9 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     ------
     CaseError
         For a bad case, override, design, output or runs folder (nothing run or written), or
-        an output file holding another campaign.
+        an output file that is not this campaign's to resume: another campaign, a damaged,
+        truncated or foreign file (a :class:`~floatmoor.campaign.reopen.CampaignFileError`
+        saying how to start over).
     HydroDatabaseError
         When a coupled run's database is missing, damaged, stale or fails a check its case
         does not accept (nothing run or written).
@@ -106,9 +115,10 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                           dofs=DOFS if base.floater is not None else (),
                           run_files=files is not None)
     path = Path(output) if output is not None else None
-    if path is not None and path.exists():
-        if not replace_other or same_campaign(path, design, base.text, base_overrides):
-            store.resume_from(path)
+    if path is not None:
+        _reopen(path, store, restart or (replace_other and path.exists() and not same_campaign(
+            path, design, base.text, base_overrides)), moved_aside)
+        if path.exists():
             _check_resumed_series(store, path, timeseries)
     if files:
         Path(files[0]).parent.mkdir(exist_ok=True)
@@ -158,6 +168,20 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     finally:
         save()
     return store.dataset()
+
+
+def _reopen(path: Path, store: CampaignStore, afresh: bool,
+            moved_aside: Callable[[Path, Path], None] | None) -> None:
+    """Resume ``store`` from an existing ``path`` (validated), or with ``afresh`` move the
+    file aside (never deleted) and start from nothing."""
+    if not (path.exists() or path.is_symlink()):
+        return
+    if afresh and (path.is_file() or path.is_symlink()):
+        backup = move_aside(path)
+        if moved_aside is not None:
+            moved_aside(path, backup)
+        return
+    store.resume_from(path)  # refuses anything but this campaign's own file
 
 
 def validate_campaign(case_path: str | Path, design: CampaignDesign,

@@ -25,9 +25,10 @@ import xarray as xr
 
 from floatmoor._version import __version__
 from floatmoor.campaign.design import CampaignDesign
+from floatmoor.campaign.reopen import read_campaign_file
 from floatmoor.campaign.worker import BODY_STATISTICS, STRENGTH_STATISTICS, SUMMARY_STATISTICS
 from floatmoor.errors import CaseError
-from floatmoor.io.netcdf import NETCDF_ENGINE, read_dataset, write_dataset
+from floatmoor.io.netcdf import NETCDF_ENGINE, write_dataset
 from floatmoor.io.variables import attributes
 
 __all__ = ["CampaignStore", "run_file_is_complete", "same_campaign", "failed_runs"]
@@ -227,15 +228,13 @@ class CampaignStore:
 
         Raises
         ------
-        CaseError
-            If the file holds another campaign (case, overrides or design differ).
+        CampaignFileError
+            If the file is not this campaign's: not a readable campaign file, or another
+            campaign (case, overrides or design differ), or damaged
+            (:func:`floatmoor.campaign.reopen.read_campaign_file`).
         """
-        old = read_dataset(path)
-        for key in _IDENTITY:
-            if old.attrs.get(key) != self.attrs[key]:
-                raise CaseError(str(path), key.replace("_", " "),
-                                "the same campaign to resume (or another output file)",
-                                "a different one in the existing file")
+        old = read_campaign_file(path, self.design, {k: self.attrs[k] for k in _IDENTITY},
+                                 self.lines, self.dofs)
         status = old["status"].values.astype(str)
         body = self.dofs and "dof" in old.coords and \
             [str(d) for d in old["dof"].values] == self.dofs

@@ -300,6 +300,21 @@ class QuasiDynamicLine(PathStepper):
         self.refs[:] = state.references
         self.X[:], self.Z[:] = state.positions
 
+    def state_arrays(self) -> dict[str, NDArray[np.float64]]:
+        """The state of :meth:`get_state` as named arrays (time 0-d), for a checkpoint of
+        plain numeric data."""
+        s = self.get_state()
+        return {"time": np.array(s.time, dtype=np.float64), "fairlead": s.fairlead,
+                "fairlead_velocity": s.fairlead_velocity, "history": s.history,
+                "current": s.current, "references": s.references, "positions": s.positions}
+
+    def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
+        """Restore a state of :meth:`state_arrays` (shapes checked by the caller)."""
+        self.set_state(QuasiDynamicLineState(
+            float(arrays["time"]), *(np.asarray(arrays[k], dtype=float) for k in (
+                "fairlead", "fairlead_velocity", "history", "current", "references",
+                "positions"))))
+
     @property
     def factor(self) -> float:
         """The quasi-dynamic factor k_QD of the current state [-]."""

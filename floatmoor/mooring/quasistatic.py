@@ -67,6 +67,16 @@ class QuasiStaticLine:
         """The quasi-static model of a case's line."""
         return cls(line, environment, seabed)
 
+    def state_arrays(self) -> dict[str, NDArray[np.float64]]:
+        """The line's only memory, the Newton warm start (upper-end HF, VF; NaN: none), as
+        named arrays for a checkpoint: it decides the iterates, hence the last bits, of the
+        next solutions."""
+        return {"warm_start": self._warm.copy()}
+
+    def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
+        """Restore a state of :meth:`state_arrays`."""
+        self._warm[:] = arrays["warm_start"]
+
     def profile(self, fairlead: NDArray[np.float64], arc_lengths: NDArray[np.float64]
                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Node positions (n, 3) [m] and tensions (n,) [N] of the static line."""

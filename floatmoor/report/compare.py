@@ -85,7 +85,8 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
         Report folder; the runs go to ``output/runs/<model>.nc``, the campaign to
         ``output/runs/campaign.nc``. Models already run there (same case, overrides and
         models, complete run file) are not run again; a campaign of other models or overrides
-        there is replaced.
+        (or a damaged campaign file) there is replaced, the old file moved aside to
+        ``campaign.nc.bak-N``.
     overrides
         ``--set`` overrides applied to every run before the model.
     start, reference, nominal_diameters, html

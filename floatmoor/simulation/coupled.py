@@ -160,6 +160,30 @@ class MooredBody:
                 self.models.append(None)
                 self._qs.append(QuasiStaticLine.from_case(moved, self.environment, self.seabed))
 
+    # -- state ---------------------------------------------------------------------------
+    def state_arrays(self) -> dict[str, NDArray]:
+        """The whole state of body and lines as named arrays (copies): ``body/...``,
+        ``line{i}/...`` (each model's ``state_arrays``) and ``laid_length``; with the case it
+        is all a checkpoint needs (the models' operators are rebuilt by :meth:`start`)."""
+        out = {f"body/{k}": np.array(v) for k, v in self.body.state_arrays().items()}
+        for i, (model, qs) in enumerate(zip(self.models, self._qs)):
+            line = qs if model is None else model
+            out.update({f"line{i}/{k}": np.array(v) for k, v in line.state_arrays().items()})
+        out["laid_length"] = self.laid_length.copy()
+        return out
+
+    def set_state_arrays(self, arrays: dict[str, NDArray]) -> None:
+        """Restore a state of :meth:`state_arrays` into a body and lines built by
+        :meth:`start` as for the state's run (keys and shapes checked by the caller)."""
+
+        def part(prefix: str) -> dict[str, NDArray]:
+            return {k[len(prefix):]: v for k, v in arrays.items() if k.startswith(prefix)}
+
+        self.body.set_state_arrays(part("body/"))
+        for i, (model, qs) in enumerate(zip(self.models, self._qs)):
+            (qs if model is None else model).set_state_arrays(part(f"line{i}/"))
+        self.laid_length[:] = arrays["laid_length"]
+
     # -- line shapes -----------------------------------------------------------------------
     def shape_arc_lengths(self) -> list[NDArray[np.float64]]:
         """Arc lengths of each line's recorded shape [m] (each model's ``arc_length``, as in

@@ -5,10 +5,7 @@ the database's state-space realisation (whose states are in the checkpoint with 
 
 from __future__ import annotations
 
-import hashlib
 import math
-import os
-import pickle
 import time as _time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -26,6 +23,9 @@ from floatmoor.errors import CaseError, SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.hydro.state_space import has_state_space
+from floatmoor.simulation.checkpoint import (
+    CheckpointError, RunIdentity, check_checkpoint, read_checkpoint, write_checkpoint,
+)
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
@@ -104,39 +104,77 @@ def checkpoint_path(output: str | Path) -> Path:
 
 @dataclass(frozen=True)
 class _Snapshot:
-    """The run's state at the end of a chunk: body and lines (pickled, so a copy that later
-    steps do not touch), body steps done and output samples complete. With the recorder's
-    samples before ``n_done`` (which later steps never rewrite) it is a consistent state to
-    resume from, whenever the run stops."""
+    """The run's state at the end of a chunk: body and lines (copies of their state arrays,
+    which later steps do not touch), body steps done and output samples complete. With the
+    recorder's samples before ``n_done`` (which later steps never rewrite) it is a consistent
+    state to resume from, whenever the run stops."""
 
-    moored: bytes
+    state: dict[str, NDArray]
     done: int
     n_done: int
 
     @classmethod
     def take(cls, moored: MooredBody, recorder: Recorder, done: int) -> "_Snapshot":
-        external, moored.external = moored.external, None
-        try:
-            return cls(pickle.dumps(moored, protocol=pickle.HIGHEST_PROTOCOL), done,
-                       recorder.n_done)
-        finally:
-            moored.external = external
+        return cls(moored.state_arrays(), done, recorder.n_done)
+
+
+def _recorded(recorder: Recorder, n: int) -> dict[str, NDArray]:
+    """The checkpoint's ``recorded/`` arrays: the first ``n`` samples of every series and
+    all the shape buffers."""
+    out = {f"recorded/{k}": v[:, :n] for k, v in recorder.series.items()}
+    out.update({f"recorded/{k}": v[:n] for k, v in recorder.body.items()})
+    if recorder.shape_stride:
+        out["recorded/shape_position"] = recorder.shape_position
+        out["recorded/shape_tension"] = recorder.shape_tension
+    return out
 
 
 def _write_checkpoint(path: Path, snapshot: _Snapshot, recorder: Recorder,
-                      fingerprint: str) -> None:
-    """Write ``snapshot`` with the recorded samples it covers, atomically."""
-    n = snapshot.n_done
-    state = {"fingerprint": fingerprint, "done": snapshot.done, "moored": snapshot.moored,
-             "n_done": n,
-             "series": {k: v[:, :n] for k, v in recorder.series.items()},
-             "body": {k: v[:n] for k, v in recorder.body.items()},
-             "shapes": ((recorder.shape_position, recorder.shape_tension)
-                        if recorder.shape_stride else None)}
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "wb") as fh:
-        pickle.dump(state, fh, protocol=pickle.HIGHEST_PROTOCOL)
-    os.replace(tmp, path)
+                      identity: RunIdentity) -> None:
+    """Write ``snapshot`` with the recorded samples it covers, atomically, as plain arrays
+    (:mod:`floatmoor.simulation.checkpoint`)."""
+    arrays = {f"state/{k}": v for k, v in snapshot.state.items()}
+    arrays["progress/done"] = np.array(snapshot.done, dtype=np.int64)
+    arrays["progress/n_done"] = np.array(snapshot.n_done, dtype=np.int64)
+    arrays.update(_recorded(recorder, snapshot.n_done))
+    write_checkpoint(path, arrays, identity)
+
+
+def _load_checkpoint(path: Path, identity: RunIdentity, moored: MooredBody,
+                     recorder: Recorder, stride: int, n_steps: int) -> int:
+    """Restore the checkpoint ``path`` into ``moored`` and ``recorder`` (both built as for
+    a fresh start); returns the body steps done.
+
+    Raises
+    ------
+    CheckpointError
+        When the checkpoint is not one of this run (see :func:`read_checkpoint`) or its
+        progress is not a state this run reaches.
+    """
+    int64 = np.dtype(np.int64)
+    progress = read_checkpoint(path, identity, {"progress/done": ((), int64),
+                                                "progress/n_done": ((), int64)}, exact=False)
+    done, n = int(progress["progress/done"]), int(progress["progress/n_done"])
+    if not (0 <= done <= n_steps and n == done // stride + 1):
+        raise CheckpointError(path, f"a state of this run (body steps done: 0 to {n_steps}, "
+                              f"output samples done: steps // {stride} + 1)",
+                              f"{done} steps and {n} samples done")
+    template = {f"state/{k}": v for k, v in moored.state_arrays().items()}
+    template.update(progress)
+    template.update(_recorded(recorder, n))
+    arrays = read_checkpoint(path, identity, {k: (v.shape, v.dtype)
+                                              for k, v in template.items()})
+    moored.set_state_arrays({k[len("state/"):]: v for k, v in arrays.items()
+                             if k.startswith("state/")})
+    for k, v in recorder.series.items():
+        v[:, :n] = arrays[f"recorded/{k}"]
+    for k, v in recorder.body.items():
+        v[:n] = arrays[f"recorded/{k}"]
+    if recorder.shape_stride:
+        recorder.shape_position[:] = arrays["recorded/shape_position"]
+        recorder.shape_tension[:] = arrays["recorded/shape_tension"]
+    recorder.n_done = n
+    return done
 
 
 def check_coupled_case(case: Case) -> None:
@@ -169,8 +207,9 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     at the end of a chunk of steps) is written every ``checkpoint_interval`` seconds of wall
     time (default: with every partial write), and when the run is interrupted, of the end of
     its last complete chunk (or its start); ``resume=True`` continues from the checkpoint and
-    gives the same results as an uninterrupted run. A failed run writes none at its failure
-    (resumed, it would fail again). The checkpoint is removed when the run completes. With
+    gives the same results as an uninterrupted run (the checkpoint holds plain arrays,
+    checked against this run before use: :mod:`floatmoor.simulation.checkpoint`). A failed
+    run writes none at its failure (resumed, it would fail again). The checkpoint is removed when the run completes. With
     ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
     ``settings`` (default :func:`settings_from_case`) replaces the case's ``[waves]``,
@@ -184,6 +223,9 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     HydroDatabaseError
         When the case's database is missing, damaged, stale or fails a check the case does
         not accept (:func:`floatmoor.hydro.database.load_for_case`).
+    CheckpointError
+        With ``resume``: no checkpoint, or one that is damaged, truncated, foreign or of
+        another run (the message names what differs); nothing is run or written.
     SolverError
         When a line or the body goes unstable (partial results written first).
     KeyboardInterrupt
@@ -192,6 +234,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     check_coupled_case(case)
     if settings is None:
         settings = settings_from_case(case)
+    identity = RunIdentity.of(case.text, case.overrides, repr(settings), case.source)
+    ckpt = checkpoint_path(output) if output is not None else None
+    if resume:
+        if ckpt is None:
+            raise CheckpointError("--resume", "a run with an output file (its checkpoint is "
+                                  "OUTPUT.checkpoint)", "no output")
+        check_checkpoint(ckpt, identity)  # before the set-up: the file, its format and run
     dt = float(settings.time_step)
     times = output_times(case.simulation)
     stride = int(round(case.simulation.output_interval / dt))
@@ -234,47 +283,23 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             f = f + parts["drag"].force(k, x, v)
         return f
 
-    fingerprint = hashlib.sha256((case.text + "\n".join(case.overrides) + repr(settings))
-                                 .encode()).hexdigest()
     n_lines = len(case.lines)
-    ckpt = checkpoint_path(output) if output is not None else None
     ckpt_every = flush_interval if checkpoint_interval is None else checkpoint_interval
-    done = 0
-    state = None
-    if resume:
-        if ckpt is None or not ckpt.is_file():
-            raise SolverError(f"no checkpoint to resume from ({ckpt})")
-        with open(ckpt, "rb") as fh:
-            state = pickle.load(fh)
-        if state["fingerprint"] != fingerprint:
-            raise SolverError(f"{ckpt}: the checkpoint belongs to another case or settings")
-        moored = state["moored"]
-        if isinstance(moored, bytes):  # pickled apart (checkpoints of a snapshot)
-            moored = pickle.loads(moored)
-        moored.external = external
-        body = moored.body
-        done = state["done"]
-    else:
-        moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
-        x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
-                           mean_force=None if rotor is None else rotor.steady_force())
-        moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
-        moored.equilibrium_position = x_eq
+    # built as for a fresh start, so that a checkpoint's state fits the same operators
+    moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
+    x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
+                       mean_force=None if rotor is None else rotor.steady_force())
+    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    moored.equilibrium_position = x_eq
     stride_shapes = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval, body=True,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
                         shape_stride=stride_shapes)
     series, bseries = recorder.series, recorder.body
-    if state is not None:
-        n = state["n_done"]
-        for k, v in state["series"].items():
-            series[k][:, :n] = v
-        for k, v in state["body"].items():
-            bseries[k][:n] = v
-        if recorder.shape_stride:
-            recorder.shape_position[:], recorder.shape_tension[:] = state["shapes"]
-        recorder.n_done = n
-    x_eq = moored.equilibrium_position
+    n_steps = (times.size - 1) * stride
+    done = 0
+    if resume:
+        done = _load_checkpoint(ckpt, identity, moored, recorder, stride, n_steps)
     if case.floater.drag is not None:  # rebuilt, never pickled: the same on resume
         parts["drag"] = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,
                                     current=env.current_velocity, mean_displacement=x_eq)
@@ -303,13 +328,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     start_wall = _time.perf_counter()
     last_ckpt = start_wall
-    n_steps = (times.size - 1) * stride
     snapshot: _Snapshot | None = None  # the last consistent state
 
     def checkpoint_last() -> None:
         if ckpt is not None and snapshot is not None:
             with deferred_interrupts():  # a second Ctrl-C must not cut it
-                _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
+                _write_checkpoint(ckpt, snapshot, recorder, identity)
 
     # on interruption: the partial results first, then the checkpoint
     with _checkpoint_on_interrupt(checkpoint_last), recorder.partial_on_failure():
@@ -342,7 +366,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             if ckpt is not None:
                 snapshot = _Snapshot.take(moored, recorder, done)
                 if _time.perf_counter() - last_ckpt > ckpt_every:
-                    _write_checkpoint(ckpt, snapshot, recorder, fingerprint)
+                    _write_checkpoint(ckpt, snapshot, recorder, identity)
                     last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)

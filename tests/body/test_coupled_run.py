@@ -3,7 +3,6 @@ partial file, and the waves and initial offset of a case file."""
 
 from __future__ import annotations
 
-import pickle
 import time
 
 import numpy as np
@@ -116,9 +115,9 @@ def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path
     stop_mid_step(case, out, monkeypatch, calls, KeyboardInterrupt())
     assert time.perf_counter() - start < 0.5 * FLUSH_INTERVAL_S
     assert read_dataset(out).attrs["status"].startswith("interrupted")
-    with open(cr.checkpoint_path(out), "rb") as fh:
-        state = pickle.load(fh)
-    assert state["done"] == 2 * 40 and state["n_done"] == 2 * 40 // 2 + 1
+    with np.load(cr.checkpoint_path(out), allow_pickle=False) as state:
+        assert state["progress/done"] == 2 * 40
+        assert state["progress/n_done"] == 2 * 40 // 2 + 1
     resumed = run_coupled(case, output=out, resume=True).dataset
     assert not cr.checkpoint_path(out).exists()
     for name in ("body_displacement", "body_velocity", "fairlead_tension", "wave_elevation",

@@ -24,8 +24,9 @@ def test_run_floater_case_writes_body_motions(tmp_path, capsys) -> None:
 
 def test_resume_needs_a_checkpoint_and_a_floater(tmp_path, capsys) -> None:
     out = tmp_path / "buoy.nc"
-    assert main(["run", str(BUOY_CASE), "-o", str(out), "--quiet", "--resume"] + SHORT) == 1
-    assert "no checkpoint" in capsys.readouterr().err
+    assert main(["run", str(BUOY_CASE), "-o", str(out), "--quiet", "--resume"] + SHORT) == 2
+    err = capsys.readouterr().err
+    assert "no checkpoint" in err and "partial results" not in err and not out.exists()
     assert main(["run", str(LINDAHL_CASE), "-o", str(tmp_path / "l.nc"), "--resume"]) == 2
     assert "--resume" in capsys.readouterr().err
 

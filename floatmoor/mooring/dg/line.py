@@ -418,6 +418,29 @@ class DynamicLine(PathStepper):
         self.fairlead_velocity[:] = state.fairlead_velocity
         self._work.damping[-1][0] = 0.0  # the factored damping system belongs to another state
 
+    def state_arrays(self) -> dict[str, NDArray[np.float64]]:
+        """The state of :meth:`get_state` as named arrays (time 0-d), for a checkpoint of
+        plain numeric data; with the implicit internal damping also its frozen factors
+        (``damping_*``), which later steps reuse until the tangents move (a state restored
+        without them refactors earlier, and continues to other last bits)."""
+        s = self.get_state()
+        out = {"time": np.array(s.time, dtype=np.float64), "positions": s.positions,
+               "velocities": s.velocities, "fairlead": s.fairlead,
+               "fairlead_velocity": s.fairlead_velocity}
+        if self._implicit_damping():
+            out.update({f"damping_{name}": a.copy()
+                        for name, a in zip(_DAMPING_ARRAYS, self._work.damping)})
+        return out
+
+    def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
+        """Restore a state of :meth:`state_arrays` (shapes checked by the caller)."""
+        self.set_state(DynamicLineState(
+            float(arrays["time"]), *(np.asarray(arrays[k], dtype=float) for k in (
+                "positions", "velocities", "fairlead", "fairlead_velocity"))))
+        if self._implicit_damping():
+            for name, a in zip(_DAMPING_ARRAYS, self._work.damping):
+                a[...] = arrays[f"damping_{name}"]
+
     def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Forces the line exerts on its fairlead and anchor in the current state [N]."""
         return self.end_forces_moving(self.fairlead_velocity)
@@ -459,6 +482,11 @@ class DynamicLine(PathStepper):
         return {"kinetic": float(0.5 * pr.mass_per_length * np.sum(wq * v2)),
                 "strain": float(0.5 * pr.axial_stiffness * np.sum(wq * eps ** 2)),
                 "gravity": float(np.sum(wq * weight * z))}
+
+
+#: Names of the arrays of ``_Workspace.damping``, in order (checkpoint keys).
+_DAMPING_ARRAYS = ("tangents", "inverse_masses", "coefficients", "flags", "y", "band", "rhs",
+                   "info")
 
 
 class _Workspace:
