@@ -17,7 +17,7 @@ from typing import Callable, Mapping, Sequence
 from floatmoor.campaign.design import Axis, CampaignDesign
 from floatmoor.campaign.runner import run_campaign, validate_campaign
 from floatmoor.case.load import load_case
-from floatmoor.case.schema import AVAILABLE_LINE_MODELS, Case
+from floatmoor.case.schema import AVAILABLE_LINE_MODELS
 from floatmoor.errors import SolverError
 from floatmoor.report.build import ReportFiles, check_output_folder, write_report
 from floatmoor.report.reference import ReferenceValues
