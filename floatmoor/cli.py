@@ -412,7 +412,7 @@ def _sweep(args: argparse.Namespace) -> int:
 def _campaign_output(args: argparse.Namespace, case: Case, runs: int) -> Path:
     """The sweep's checked campaign file (and runs folder), with room for what they will
     hold."""
-    from floatmoor.io.output_files import check_output_file
+    from floatmoor.io.output_files import CAMPAIGN, check_output_file
     from floatmoor.simulation.recorder import estimated_output_bytes
 
     run_bytes = estimated_output_bytes(case)
@@ -420,7 +420,8 @@ def _campaign_output(args: argparse.Namespace, case: Case, runs: int) -> Path:
     # per run: a few statistics per line (and DOF); with --timeseries the histories, about
     # a tenth of a run file's values (one of its 13 values per line and sample)
     expected = runs * ((run_bytes / 10.0 if args.timeseries else 0.0) + 8192.0)
-    output = check_output_file(text, "-o/--output", protected={"case file": case.source},
+    output = check_output_file(text, "-o/--output", kind=CAMPAIGN,
+                               protected={"case file": case.source},
                                expected_bytes=int(min(expected, 2**62))).path
     if args.runs_dir is not None:
         folder = Path(args.runs_dir)

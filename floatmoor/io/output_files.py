@@ -43,6 +43,9 @@ SPACE_MARGIN = 1 << 20
 #: offset) and netCDF-4/HDF5 for results; PNG, PDF and SVG (XML) for plots.
 NETCDF = ("netCDF", (b"CDF\x01", b"CDF\x02", b"CDF\x05", b"\x89HDF\r\n\x1a\n"))
 IMAGE = ("image", (b"\x89PNG\r\n\x1a\n", b"%PDF", b"<?xml", b"<svg"))
+#: Any regular file: for a campaign file, which is never overwritten (it is resumed after its
+#: own validation, or moved aside with ``sweep --restart``).
+CAMPAIGN = ("campaign", (b"",))
 
 _FILE_TYPES = {stat.S_IFDIR: "a folder", stat.S_IFLNK: "a symbolic link",
                stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
