@@ -45,3 +45,19 @@ def stop_mid_step(case: Case, output: Path, monkeypatch: pytest.MonkeyPatch, cal
         with pytest.raises(type(error)):
             run_coupled(case, output=output)
     assert count["n"] == calls
+
+
+def interrupt_at_body_step(patch: pytest.MonkeyPatch, step: int) -> None:
+    """Make the ``step``-th body step of the coupled runs that follow raise a
+    KeyboardInterrupt (Ctrl-C inside a run, as the CLI sees it)."""
+    from floatmoor.simulation.coupled import MooredBody
+
+    original, calls = MooredBody.step, []
+
+    def stepped(self) -> None:
+        calls.append(1)
+        if len(calls) == step:
+            raise KeyboardInterrupt
+        original(self)
+
+    patch.setattr(MooredBody, "step", stepped)

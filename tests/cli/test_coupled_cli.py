@@ -78,27 +78,19 @@ def test_interrupted_run_says_how_to_resume_and_the_command_does(tmp_path, capsy
     command that resumes it; that command completes the run to the uninterrupted results."""
     import shlex
 
-    from floatmoor.simulation.coupled import MooredBody
+    from tests.body.interrupted import interrupt_at_body_step
 
     waves = ["--set", 'waves={kind = "regular", height = 0.04, period = 1.2}']
     whole = tmp_path / "whole.nc"
     assert main(["run", str(BUOY_CASE), "-o", str(whole), "--quiet"] + waves + SHORT) == 0
-    original, calls = MooredBody.step, []
-
-    def step(self) -> None:
-        calls.append(1)
-        if len(calls) == 30:
-            raise KeyboardInterrupt
-        original(self)
-
-    monkeypatch.setattr(MooredBody, "step", step)
     out = tmp_path / "cut.nc"
-    assert main(["run", str(BUOY_CASE), "-o", str(out)] + waves + SHORT) == 130
+    with monkeypatch.context() as patch:
+        interrupt_at_body_step(patch, 30)
+        assert main(["run", str(BUOY_CASE), "-o", str(out)] + waves + SHORT) == 130
     err = capsys.readouterr().err
     assert f"checkpoint written to {out}.checkpoint" in err and "Traceback" not in err
     command = shlex.split(err.split("continue with: ", 1)[1].strip())
     assert command[:2] == ["floatmoor", "run"] and "--resume" in command
-    monkeypatch.setattr(MooredBody, "step", original)
     assert main(command[1:] + ["--quiet"]) == 0
     resumed, reference = read_dataset(out), read_dataset(whole)
     assert resumed.attrs["status"] == "complete"

@@ -28,20 +28,12 @@ RUN = ["--set", "simulation.duration=1.0", "--set", "simulation.output_interval=
 def interrupted(tmp_path_factory) -> tuple[Path, bytes, bytes]:
     """A floater run stopped after 30 body steps: (its output, the partial file's bytes, the
     checkpoint's bytes)."""
-    from floatmoor.simulation.coupled import MooredBody
+    from tests.body.interrupted import interrupt_at_body_step
 
     folder = tmp_path_factory.mktemp("interrupted")
     out = folder / "cut.nc"
-    original, calls = MooredBody.step, []
-
-    def step(self) -> None:
-        calls.append(1)
-        if len(calls) == 30:
-            raise KeyboardInterrupt
-        original(self)
-
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(MooredBody, "step", step)
+        interrupt_at_body_step(patch, 30)
         assert main(["run", str(BUOY_CASE), "-o", str(out), "--quiet"] + RUN) == 130
     return out, out.read_bytes(), Path(f"{out}.checkpoint").read_bytes()
 
