@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import copy
 import math
-import tomllib
 from pathlib import Path as FilePath
 from typing import Any, Sequence
 
@@ -18,6 +17,7 @@ import numpy as np
 
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import read_floater, read_hydro
+from floatmoor.case.limits import MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
@@ -84,10 +84,7 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
         raise CaseError(source, "", "a readable case file", "no such file") from None
     except (OSError, UnicodeDecodeError) as err:
         raise CaseError(source, "", "a readable UTF-8 case file", str(err)) from None
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise CaseError(source, "", "valid TOML", f"a syntax error ({err})") from None
+    raw = parse_toml(text, source)
     return parse_case(raw, source=source, text=text, overrides=tuple(overrides),
                       base_dir=FilePath(path).parent)
 
@@ -97,6 +94,9 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     """Validate a parsed case table (``raw`` is not modified)."""
     original, raw = raw, copy.deepcopy(raw)
     applied = apply_overrides(raw, overrides, source)
+    if nesting_depth(raw) > MAX_NESTING_DEPTH:
+        raise CaseError(source, "", f"tables and arrays nested at most {MAX_NESTING_DEPTH} "
+                        "deep", "deeper nesting (after the --set overrides)")
     context = ReadContext(source, {path: text for text, paths in applied for path in paths})
     root = TableReader(raw, (), context)
     title_template = root.string("title")
@@ -140,6 +140,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                 motion=motion, simulation=simulation, description=description,
                 campaign=campaign, floater=floater, hydro=hydro, waves=waves,
                 initial_offset=initial, wind=wind)
+    check_sizes(case, context)
     _check_lines(case, context)
     _check_motion(case, context)
     return case
