@@ -22,6 +22,7 @@ if TYPE_CHECKING:
 
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
+           "MAX_CASE_FILE_BYTES",
            "nesting_depth", "parse_toml", "check_sizes"]
 
 #: Deepest nesting of tables and arrays in a case (or a ``--set`` value). Case files nest at
@@ -53,6 +54,9 @@ MAX_AXIAL_WAVE_SPEED = 1.0e5
 #: Largest motion table file [bytes]. A table sampled at 1 kHz for 3 h is ~10 MB of CSV; 100 MB
 #: is far beyond any experiment's record, and keeps /dev/zero-like files from filling memory.
 MAX_MOTION_TABLE_BYTES = 100 * 1024 * 1024
+#: Largest case file [bytes]. The longest shipped case is ~12 kB; 10 MB keeps a mistaken
+#: argument (a data file, /dev/zero) from being read into memory.
+MAX_CASE_FILE_BYTES = 10 * 1024 * 1024
 
 
 def nesting_depth(value: Any) -> int:

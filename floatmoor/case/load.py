@@ -17,7 +17,8 @@ import numpy as np
 
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import read_floater, read_hydro
-from floatmoor.case.limits import MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml
+from floatmoor.case.limits import MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml
+from floatmoor.case.motion_table import CaseFileKindError, read_case_text, read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
@@ -79,7 +80,10 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
     """
     source = str(path)
     try:
-        text = FilePath(path).read_text(encoding="utf-8")
+        text = read_case_text(FilePath(path))
+    except CaseFileKindError as err:
+        raise CaseError(source, "", "a readable case file (a regular file of at most "
+                        f"{MAX_CASE_FILE_BYTES} bytes)", str(err)) from None
     except FileNotFoundError:
         raise CaseError(source, "", "a readable case file", "no such file") from None
     except (OSError, UnicodeDecodeError) as err:
@@ -291,8 +295,8 @@ def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motio
         )
     else:
         file_name = t.string("file")
-        time, disp = _read_motion_table(t, base_dir / file_name)
-        motion = TableMotion(file=str(base_dir / file_name), time=time, displacement=disp,
+        path, time, disp = read_motion_table(t, base_dir, file_name)
+        motion = TableMotion(file=str(path), time=time, displacement=disp,
                              ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=0.0))
         if time[-1] < simulation.duration:
             raise t.context.error(("simulation", "duration"),
@@ -323,42 +327,6 @@ def _campaign(t: TableReader) -> dict[str, dict[str, list[Any]]]:
                       MISSING)
     t.finish()
     return out
-
-
-def _read_motion_table(t: TableReader, path: FilePath) -> tuple[np.ndarray, np.ndarray]:
-    """Read a ``time, x, y, z`` CSV of displacements [s, m]."""
-    try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError:
-        raise t.error("file", "a readable CSV file with columns time, x, y, z",
-                      f"no readable file {path}") from None
-    rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
-    header = [h.strip() for h in rows[0].split(",")] if rows else []
-    if header != ["time", "x", "y", "z"]:
-        raise t.error("file", f"{path}: a header line 'time,x,y,z'",
-                      _found(f"'{rows[0] if rows else ''}'"))
-    data = []
-    for number, row in enumerate(rows[1:], start=2):
-        try:
-            values = [float(v) for v in row.split(",")]
-        except ValueError:
-            values = []
-        if len(values) != 4 or not all(math.isfinite(v) for v in values):
-            raise t.error("file", f"{path}: data row {number} with 4 finite numbers",
-                          _found(f"'{row}'"))
-        data.append(values)
-    array = np.array(data, dtype=float).reshape(-1, 4)
-    if len(array) < 2 or np.any(np.diff(array[:, 0]) <= 0.0) or array[0, 0] > 0.0:
-        raise t.error("file", f"{path}: at least 2 rows with strictly increasing time from <= 0 s",
-                      _found(f"{len(array)} rows, times {array[:, 0].min(initial=np.nan):g} "
-                             f"to {array[:, 0].max(initial=np.nan):g} s"))
-    return array[:, 0].copy(), array[:, 1:].copy()
-
-
-def _found(text: str) -> Any:
-    from floatmoor.case.reader import _Found
-
-    return _Found(text)
 
 
 # -- cross checks -----------------------------------------------------------------------------
