@@ -40,6 +40,10 @@ MAX_STATIC_STRAIN = 0.30
 #: How far below the seabed an end may be and still count as on it [m]: TOML decimal input
 #: such as -3.0 against a depth of 3.0 is exact, so this only absorbs round-off of sums.
 SEABED_TOLERANCE = 1e-9
+#: Anchor and fairlead closer than this fraction of the line length count as one point [-]:
+#: the line has no direction, so no model (nor a circular motion's plane) is defined. 1e-9
+#: is round-off of sums of coordinates, far below any real mooring geometry.
+COINCIDENT_ENDS = 1e-9
 #: Newton tolerance of the quasi-static catenary, relative to the line length [-]. The
 #: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
 DEFAULT_CATENARY_TOLERANCE = 1e-12
@@ -344,6 +348,12 @@ def _check_lines(case: Case, context: ReadContext) -> None:
             if z < seabed_z - SEABED_TOLERANCE:
                 raise context.error(path + (end,), f"a point on or above the seabed (z >= "
                                     f"{seabed_z:g} m)", f"z = {z!r} m")
+        if line.span <= COINCIDENT_ENDS * line.length:  # every model needs a direction
+            end, other = ("anchor", "fairlead") \
+                if context.origin(path + ("anchor",)) != context.source else ("fairlead", "anchor")
+            raise context.error(path + (end,), f"a point apart from the {other} "
+                                f"{list(getattr(line, other))} m",
+                                f"{list(getattr(line, end))} m, the same point")
         needed = line.span / line.length - 1.0
         if needed > MAX_STATIC_STRAIN:
             raise context.error(path + ("length",),
