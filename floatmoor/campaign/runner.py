@@ -19,6 +19,7 @@ from typing import Any, Callable, Iterator, Sequence
 import xarray as xr
 
 from floatmoor.campaign.design import CampaignDesign
+from floatmoor.campaign.scheduler import check_address, connect
 from floatmoor.campaign.store import CampaignStore, run_file_is_complete, same_campaign
 from floatmoor.campaign.worker import run_one
 from floatmoor.case.load import load_case
@@ -95,6 +96,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         results; ``floatmoor sweep`` exits with 1 when it is not 0.
     """
     case_path = str(case_path)
+    if scheduler is not None:
+        check_address(scheduler)
     base = validate_campaign(case_path, design, base_overrides)
     runs = design.runs()
     files = _run_files(design, runs_dir, run_names)
@@ -232,9 +235,9 @@ def _execute(case_path: str, todo: list[Job], workers: int, scheduler: str | Non
 
 def _execute_dask(case_path: str, todo: list[Job], scheduler: str, timeseries: bool
                   ) -> Iterator[tuple[tuple[int, ...], str | None, dict[str, Any]]]:
-    from distributed import Client, as_completed
+    from distributed import as_completed
 
-    with Client(scheduler) as client:
+    with connect(scheduler) as client:
         futures = {client.submit(run_one, case_path, overrides, timeseries,
                                  _absolute(run_file), pure=False): (index, run_file)
                    for index, overrides, run_file in todo}
