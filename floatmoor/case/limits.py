@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
-           "MAX_CASE_FILE_BYTES",
+           "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS",
            "nesting_depth", "parse_toml", "check_sizes"]
 
 #: Deepest nesting of tables and arrays in a case (or a ``--set`` value). Case files nest at
@@ -54,6 +54,11 @@ MAX_AXIAL_WAVE_SPEED = 1.0e5
 #: Largest motion table file [bytes]. A table sampled at 1 kHz for 3 h is ~10 MB of CSV; 100 MB
 #: is far beyond any experiment's record, and keeps /dev/zero-like files from filling memory.
 MAX_MOTION_TABLE_BYTES = 100 * 1024 * 1024
+#: Most hull panels of a BEM mesh, estimated at load as the wetted area / panel_size^2 (the
+#: mesher's count is up to 3 times that: 1633 estimated for DeepCwind's 4380, 2163 for the
+#: buoy's 3240). The solver's dense influence matrices take about 32 N^2 bytes, 13 GB at
+#: this bound, so a finer panel_size is a typing error rather than a plan.
+MAX_BEM_PANELS = 20_000
 #: Largest case file [bytes]. The longest shipped case is ~12 kB; 10 MB keeps a mistaken
 #: argument (a data file, /dev/zero) from being read into memory.
 MAX_CASE_FILE_BYTES = 10 * 1024 * 1024
@@ -151,6 +156,34 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
                                 f"'{line.name}' (its time step shrinks with the speed) [N]",
                                 f"{lt.axial_stiffness!r} ({count_text(speed)} m/s)")
     _check_components(case, context)
+    _check_panels(case, context)
+
+
+def wetted_area_estimate(geometry: Any) -> float:
+    """Rough wetted area of a floater geometry [m^2] (sides and bottoms of the columns, the
+    pontoons' surfaces), for the panel bound only."""
+    if geometry.kind == "cylinder":
+        d = geometry.diameter
+        return math.pi * d * geometry.draft + math.pi * d * d / 4.0
+    area = 0.0
+    for c in geometry.columns:
+        area += math.pi * c.diameter * max(min(c.z_top, 0.0) - c.z_bottom, 0.0)
+        area += math.pi * max(c.diameter, c.heave_plate_diameter or 0.0) ** 2 / 2.0
+    for m in geometry.members:
+        area += math.pi * m.diameter * math.dist(m.start, m.end)
+    return area
+
+
+def _check_panels(case: "Case", context: "ReadContext") -> None:
+    if case.floater is None or case.hydro is None:
+        return
+    size = case.hydro.panel_size
+    panels = wetted_area_estimate(case.floater.geometry) / (size * size)
+    if not panels <= MAX_BEM_PANELS:
+        raise context.error(("hydro", "panel_size"), f"a panel size giving at most "
+                            f"{MAX_BEM_PANELS} hull panels (wetted area / panel_size^2; "
+                            "floatmoor.case.limits.MAX_BEM_PANELS) [m]",
+                            f"{size!r} (~{count_text(panels)} panels)")
 
 
 def _check_components(case: "Case", context: "ReadContext") -> None:

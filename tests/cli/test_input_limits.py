@@ -55,6 +55,7 @@ def test_sizes_of_a_forced_run_are_bounded_at_load(capsys, override, key, words)
     ('waves.spacing="random-in-bin"', "waves.n_components"),  # needs n_components: no bound
     ("wind.cutoff_hz=1e9", "wind.cutoff_hz"),
     ("hydro.frequency_ranges=[[0.8, 9.2, 10000000000]]", "hydro.frequency_ranges[0][2]"),
+    ("hydro.panel_size=1e-9", "hydro.panel_size"),
 ])
 def test_components_and_frequencies_are_bounded_at_load(capsys, override, key):
     overrides = [override]
