@@ -150,11 +150,14 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
         speed = math.sqrt(lt.axial_stiffness / lt.mass_per_length) \
             if lt.axial_stiffness / lt.mass_per_length < math.inf else math.inf
         if line.model == "dynamic" and not speed <= MAX_AXIAL_WAVE_SPEED:
-            raise context.error(("line_types", lt.name, "axial_stiffness"),
+            key, unit = ("mass_per_length", "kg/m") if context.origin(
+                ("line_types", lt.name, "mass_per_length")) != context.source \
+                else ("axial_stiffness", "N")  # the one set on the command line, if either
+            raise context.error(("line_types", lt.name, key),
                                 "an axial wave speed sqrt(EA / mass_per_length) of at most "
                                 f"{MAX_AXIAL_WAVE_SPEED:g} m/s for the dynamic model of line "
-                                f"'{line.name}' (its time step shrinks with the speed) [N]",
-                                f"{lt.axial_stiffness!r} ({count_text(speed)} m/s)")
+                                f"'{line.name}' (its time step shrinks with the speed) [{unit}]",
+                                f"{getattr(lt, key)!r} ({count_text(speed)} m/s)")
     _check_components(case, context)
     _check_panels(case, context)
 
