@@ -117,8 +117,8 @@ def design_from_options(grid: Sequence[str] = (), zipped: Sequence[str] = (),
         for text in texts:
             key, values = parse_axis_option(text, option)
             if key in given:  # two sweeps of one key: neither may silently win
-                raise CaseError(f"{option} {text}", key, "a key swept by one option only",
-                                f"it also in {given[key]}")
+                raise CaseError(f"{option} {text}", key, "a key swept once (by one --grid or "
+                                "--zip)", f"it also in {given[key]}")
             given[key] = f"{option} {text}"
             axes_of[key] = values
     for key in set(grid_axes) & set(zip_axes):

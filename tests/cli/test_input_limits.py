@@ -122,7 +122,7 @@ def test_a_key_swept_twice_is_an_error(tmp_path, capsys):
     status = main(["sweep", str(LINDAHL_CASE), "--grid", "motion.period=1.0,2.0",
                    "--grid", "motion.period=3.0", "-o", str(out)])
     err = capsys.readouterr().err
-    assert status == 2 and "a key swept by one option only" in err and not out.exists()
+    assert status == 2 and "a key swept once" in err and not out.exists()
 
 
 def test_malformed_scheduler_is_bad_input_before_running(tmp_path, capsys):
