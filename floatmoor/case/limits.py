@@ -1,9 +1,9 @@
 """Bounds on the sizes a case file controls, checked when the case is loaded.
 
 A case sets how many samples, time steps, frequencies and wave or wind components a run
-allocates and loops over. Each bound below is far above what any realistic case needs (the
-shipped cases stay at least 20 times below it) and far below what exhausts memory or runs for
-days, so a value beyond it is a typing error (``1e6`` for ``1e3``, a missing minus sign in an
+allocates and loops over. Each bound below is far above what any realistic case needs and far
+below what exhausts memory or runs for
+days (the figures for the shipped cases are given with each bound), so a value beyond it is a typing error (``1e6`` for ``1e3``, a missing minus sign in an
 exponent), reported at load with exit status 2 instead of a run that swaps, hangs or
 overflows. The nesting bound keeps TOML's recursive parser and the loader's copies off
 Python's recursion limit.
@@ -30,21 +30,21 @@ __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAV
 #: any future schema, and stays far below Python's recursion limit (1000), which the TOML
 #: parser and deep copies would otherwise hit with a traceback.
 MAX_NESTING_DEPTH = 32
-#: Most output samples per recorded series, duration / output_interval + 1. The longest
-#: shipped case records 3 h at 0.05 s (216 001 samples); 10 million samples of one float are
+#: Most output samples per recorded series, duration / output_interval + 1. The shipped
+#: cases record at most 21 601 samples (3 h every 0.5 s); 10 million samples of one float are
 #: 80 MB per channel, so a run with a few lines stays within a workstation's memory.
 MAX_OUTPUT_SAMPLES = 10_000_000
 #: Most time steps a run may ask for through a prescribed step (duration / time_step,
 #: duration / max_time_step). At a microsecond per step (the cheapest line model) 1e9 steps
-#: take a quarter of an hour; the shipped cases take under 1e6. Smaller steps also stop
+#: take a quarter of an hour; the shipped cases prescribe at most 108 000 (3 h at 0.1 s). Smaller steps also stop
 #: advancing time in double precision (t + dt == t), which the solvers would misreport.
 MAX_TIME_STEPS = 1_000_000_000
 #: Most components of an irregular sea (JONSWAP: (omega_max - omega_min) / frequency_step,
-#: or n_components). The shipped 3 h DeepCwind seas use ~3000 (d omega = 2 pi / duration);
+#: or n_components). The shipped 3 h DeepCwind seas use ~2750 (d omega = 2 pi / duration);
 #: every component is evaluated at every body time step, so 1e5 is already a slow run.
 MAX_WAVE_COMPONENTS = 100_000
 #: Most components of a turbulent wind (cutoff_hz * duration bins of width 1 / duration).
-#: The shipped cases use 0.5 Hz over 3 h (5400); same reasoning as the wave bound.
+#: The shipped LC43 uses 0.5 Hz over 3 h (5400); same reasoning as the wave bound.
 MAX_WIND_COMPONENTS = 100_000
 #: Fastest axial wave a dynamic line may carry, sqrt(EA / m) [m/s]. The dynamic model's time
 #: step is proportional to 1 / wave speed; no material carries sound faster than ~18 km/s
