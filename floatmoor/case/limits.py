@@ -1,9 +1,9 @@
 """Bounds on the sizes a case file controls, checked when the case is loaded.
 
 A case sets how many samples, time steps, frequencies and wave or wind components a run
-allocates and loops over. Each bound below is far above what any realistic case needs and far
-below what exhausts memory or runs for
-days (the figures for the shipped cases are given with each bound), so a value beyond it is a typing error (``1e6`` for ``1e3``, a missing minus sign in an
+allocates and loops over. Each bound below is far above what any realistic case needs (the
+shipped cases' figures are given with each) and far below what exhausts memory or runs for
+days, so a value beyond it is a typing error (``1e6`` for ``1e3``, a missing minus sign in an
 exponent), reported at load with exit status 2 instead of a run that swaps, hangs or
 overflows. The nesting bound keeps TOML's recursive parser and the loader's copies off
 Python's recursion limit.
