@@ -36,8 +36,9 @@ MAX_NESTING_DEPTH = 32
 MAX_OUTPUT_SAMPLES = 10_000_000
 #: Most time steps a run may ask for through a prescribed step (duration / time_step,
 #: duration / max_time_step). At a microsecond per step (the cheapest line model) 1e9 steps
-#: take a quarter of an hour; the shipped cases prescribe at most 108 000 (3 h at 0.1 s). Smaller steps also stop
-#: advancing time in double precision (t + dt == t), which the solvers would misreport.
+#: take a quarter of an hour; the shipped cases prescribe at most 108 000 (3 h at 0.1 s).
+#: Smaller steps also stop advancing time in double precision (t + dt == t), which the
+#: solvers would misreport (a 1e-300 s step read as "a node moves faster than the wave").
 MAX_TIME_STEPS = 1_000_000_000
 #: Most components of an irregular sea (JONSWAP: (omega_max - omega_min) / frequency_step,
 #: or n_components). The shipped 3 h DeepCwind seas use ~2750 (d omega = 2 pi / duration);

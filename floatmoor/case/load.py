@@ -17,7 +17,9 @@ import numpy as np
 
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import read_floater, read_hydro
-from floatmoor.case.limits import MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml
+from floatmoor.case.limits import (
+    MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
+)
 from floatmoor.case.motion_table import CaseFileKindError, read_case_text, read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
