@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
-           "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS",
+           "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS", "MAX_SHAPE_POINTS",
            "nesting_depth", "parse_toml", "check_sizes"]
 
 #: Deepest nesting of tables and arrays in a case (or a ``--set`` value). Case files nest at
@@ -34,6 +34,14 @@ MAX_NESTING_DEPTH = 32
 #: cases record at most 21 601 samples (3 h every 0.5 s); 10 million samples of one float are
 #: 80 MB per channel, so a run with a few lines stays within a workstation's memory.
 MAX_OUTPUT_SAMPLES = 10_000_000
+#: Most line-shape values, shape samples x shape nodes summed over the lines (each a position
+#: and a tension, 32 bytes): 25 million are 800 MB. No shipped case records shapes; a 3 h
+#: record every second of ten 100-node lines is 11 million.
+MAX_SHAPE_POINTS = 25_000_000
+#: Shape nodes of a quasi-static or quasi-dynamic line (floatmoor.mooring.quasistatic.
+#: SHAPE_POINTS, floatmoor.mooring.quasidynamic.SHAPE_NODES); a dynamic line records its
+#: elements x (order + 1) nodes.
+_OTHER_SHAPE_NODES = 51
 #: Most time steps a run may ask for through a prescribed step (duration / time_step,
 #: duration / max_time_step). At a microsecond per step (the cheapest line model) 1e9 steps
 #: take a quarter of an hour; the shipped cases prescribe at most 108 000 (3 h at 0.1 s).
@@ -133,6 +141,16 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
                             f" + 1; floatmoor.case.limits.MAX_OUTPUT_SAMPLES) [s]",
                             f"duration {sim.duration!r} with output_interval "
                             f"{sim.output_interval!r} ({count_text(samples)} samples)")
+    if sim.shape_output_interval is not None:
+        nodes = sum(line.dynamic.elements * (line.dynamic.order + 1)
+                    if line.model == "dynamic" else _OTHER_SHAPE_NODES for line in case.lines)
+        points = (sim.duration / sim.shape_output_interval + 1.0) * nodes
+        if not points <= MAX_SHAPE_POINTS:
+            raise context.error(("simulation", "shape_output_interval"), "at most "
+                                f"{MAX_SHAPE_POINTS:.3g} shape values (shape samples x nodes of "
+                                "every line; floatmoor.case.limits.MAX_SHAPE_POINTS) [s]",
+                                f"{sim.shape_output_interval!r} ({count_text(points)} values "
+                                f"over {nodes} nodes)")
     steps = [(("simulation", "time_step"), sim.time_step)]
     for i, line in enumerate(case.lines):
         if line.model == "dynamic":
