@@ -184,3 +184,11 @@ def test_case_error_for_a_value_the_loader_copies(capsys):
     assert "(--set simulation.output_interval=1e-300)" in err
     with pytest.raises(CaseError):
         load_case(LINDAHL_CASE, ["simulation.duration=1e308"])
+
+
+@pytest.mark.parametrize("period", ["1e-300", "1e308"])
+def test_wave_period_beyond_the_dispersion_relation_is_a_case_error(capsys, period):
+    # found by the mutation corpus: Newton's RuntimeError came out as a traceback
+    err = _refused(capsys, CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml",
+                   f"waves.period={period}")
+    assert "waves.period: expected a wave period for which the dispersion relation" in err
