@@ -200,7 +200,7 @@ def _check_panels(case: "Case", context: "ReadContext") -> None:
     if case.floater is None or case.hydro is None:
         return
     size = case.hydro.panel_size
-    panels = wetted_area_estimate(case.floater.geometry) / (size * size)
+    panels = wetted_area_estimate(case.floater.geometry) / size / size  # (size * size: 0)
     if not panels <= MAX_BEM_PANELS:
         raise context.error(("hydro", "panel_size"), f"a panel size giving at most "
                             f"{MAX_BEM_PANELS} hull panels (wetted area / panel_size^2; "

@@ -59,6 +59,7 @@ def test_sizes_of_a_forced_run_are_bounded_at_load(capsys, override, key, words)
     ("wind.cutoff_hz=1e9", "wind.cutoff_hz"),
     ("hydro.frequency_ranges=[[0.8, 9.2, 10000000000]]", "hydro.frequency_ranges[0][2]"),
     ("hydro.panel_size=1e-9", "hydro.panel_size"),
+    ("hydro.panel_size=1e-300", "hydro.panel_size"),  # its square underflows to 0
 ])
 def test_components_and_frequencies_are_bounded_at_load(capsys, override, key):
     overrides = [override]
