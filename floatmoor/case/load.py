@@ -20,7 +20,8 @@ from floatmoor.case.floater import read_floater, read_hydro
 from floatmoor.case.limits import (
     MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
 )
-from floatmoor.case.motion_table import CaseFileKindError, read_case_text, read_motion_table
+from floatmoor.case.files import CaseFileKindError, read_case_text
+from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (

@@ -1,13 +1,10 @@
 """Reading a motion table (``[motion] kind = "table"``): a ``time, x, y, z`` CSV file.
 
-A case file may be shared like any data file, so the table it names is confined: the path is
-relative to the case file's folder and must stay inside it (after symbolic links are
-resolved), and it must be a regular file no larger than
-:data:`~floatmoor.case.limits.MAX_MOTION_TABLE_BYTES`. FIFOs, devices and folders are refused
-before they are opened, so a case cannot hang the run on a pipe or read ``/dev/zero`` until
-memory runs out. Numbers are plain decimals (``1.5``, ``-2e-3``): Python's ``float()`` also
-takes ``1_0``, ``inf`` and ``nan``, which in a measured record are typing errors. Errors name
-the file, the row and the column, and never repeat the file's contents.
+The file is found by :func:`floatmoor.case.files.resolve_case_file` (inside the case file's
+folder, a regular file) and read up to :data:`~floatmoor.case.limits.MAX_MOTION_TABLE_BYTES`.
+Numbers are plain decimals (``1.5``, ``-2e-3``): Python's ``float()`` also takes ``1_0``,
+``inf`` and ``nan``, which in a measured record are typing errors. Errors name the file, the
+row and the column, and never repeat the file's contents.
 """
 
 from __future__ import annotations
@@ -20,76 +17,17 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.case.limits import MAX_CASE_FILE_BYTES, MAX_MOTION_TABLE_BYTES
+from floatmoor.case.files import file_kind, resolve_case_file
+from floatmoor.case.limits import MAX_MOTION_TABLE_BYTES
 from floatmoor.case.reader import TableReader, _Found
 
-__all__ = ["read_motion_table", "resolve_case_file", "read_case_text", "CaseFileKindError",
-           "HEADER"]
+__all__ = ["read_motion_table", "HEADER"]
 
 #: The header line a motion table must start with (after comment lines).
 HEADER = ("time", "x", "y", "z")
 #: A plain decimal number: digits, an optional fraction and exponent, no underscores.
 _DECIMAL = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _EXPECTED = "a CSV file with the header 'time,x,y,z' and rows of 4 decimal numbers"
-
-
-def _kind(mode: int) -> str:
-    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
-                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
-                       (stat.S_ISSOCK, "a socket")):
-        if test(mode):
-            return name
-    return "not a regular file"
-
-
-class CaseFileKindError(OSError):
-    """The case file is not a regular file, or is too large."""
-
-
-def read_case_text(path: Path) -> str:
-    """The UTF-8 text of a case file, refusing FIFOs, devices, folders and files larger
-    than :data:`~floatmoor.case.limits.MAX_CASE_FILE_BYTES` before reading them.
-
-    Raises
-    ------
-    CaseFileKindError, OSError, UnicodeDecodeError
-    """
-    mode = os.stat(path).st_mode
-    if not stat.S_ISREG(mode):
-        raise CaseFileKindError(_kind(mode))
-    with open(path, "rb") as stream:
-        data = stream.read(MAX_CASE_FILE_BYTES + 1)
-    if len(data) > MAX_CASE_FILE_BYTES:
-        raise CaseFileKindError(f"a file of more than {MAX_CASE_FILE_BYTES} bytes")
-    return data.decode("utf-8")
-
-
-def resolve_case_file(t: TableReader, key: str, base_dir: Path, name: str) -> Path:
-    """The regular file ``name`` inside ``base_dir`` (the case file's folder).
-
-    Raises
-    ------
-    CaseError
-        For an absolute path, a path leading out of the folder, a missing file or anything
-        that is not a regular file.
-    """
-    expected = "a path to a regular file inside the case file's folder, relative to it"
-    if Path(name).is_absolute():
-        raise t.error(key, expected, _Found(f'the absolute path "{name}"'))
-    folder = base_dir.resolve()
-    path = (folder / name).resolve()
-    if not path.is_relative_to(folder):
-        raise t.error(key, expected, _Found(f'"{name}", which leads out of {folder}'))
-    try:
-        mode = os.stat(path).st_mode
-    except FileNotFoundError:
-        raise t.error(key, expected, _Found(f"no file {folder / name}")) from None
-    except OSError as err:
-        raise t.error(key, expected, _Found(f"{folder / name} unreadable ({err.strerror})")) \
-            from None
-    if not stat.S_ISREG(mode):
-        raise t.error(key, expected, _Found(f"{folder / name}, {_kind(mode)}"))
-    return path
 
 
 def _read_bytes(t: TableReader, path: Path) -> bytes:
@@ -102,7 +40,7 @@ def _read_bytes(t: TableReader, path: Path) -> bytes:
     try:
         info = os.fstat(fd)
         if not stat.S_ISREG(info.st_mode):
-            raise t.error("file", _EXPECTED, _Found(f"{path}, {_kind(info.st_mode)}"))
+            raise t.error("file", _EXPECTED, _Found(f"{path}, {file_kind(info.st_mode)}"))
         if info.st_size > MAX_MOTION_TABLE_BYTES:
             raise t.error("file", f"{_EXPECTED}, at most {MAX_MOTION_TABLE_BYTES} bytes "
                           "(floatmoor.case.limits.MAX_MOTION_TABLE_BYTES)",
