@@ -30,10 +30,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
 from floatmoor._version import __version__
-from floatmoor.case.load import load_case
-from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.signals import exit_status, interrupt_handling, signal_name
+
+#: What a Ctrl-C before a command has started says (status 130).
+STARTUP_INTERRUPTED = "floatmoor: interrupted while starting; nothing was run or written"
+try:  # the numerical libraries load here: a Ctrl-C during it gets one line, no traceback
+    from floatmoor.case.load import load_case
+    from floatmoor.case.schema import Case
+except KeyboardInterrupt:
+    print(STARTUP_INTERRUPTED, file=sys.stderr)
+    raise SystemExit(130) from None
 
 if TYPE_CHECKING:
     from floatmoor.campaign.design import CampaignDesign
@@ -590,6 +597,9 @@ def run() -> None:  # pragma: no cover - console-script shim
     except FloatmoorError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
         sys.exit(EXIT_FAILED)
+    except KeyboardInterrupt:  # one a command did not handle: while loading, importing
+        print(STARTUP_INTERRUPTED.replace("while starting", "before running"), file=sys.stderr)
+        sys.exit(EXIT_INTERRUPTED)
 
 
 if __name__ == "__main__":  # pragma: no cover - ``python -m floatmoor.cli``

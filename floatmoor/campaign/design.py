@@ -90,7 +90,7 @@ def parse_axis_option(text: str, option: str) -> tuple[str, list[Any]]:
                         f"'{text}'")
     try:
         values = tomllib.loads(f"values = [{values_text}]")["values"]
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError):  # RecursionError: absurdly deep nesting
         raise CaseError(where, key, "a comma-separated list of TOML values (strings quoted)",
                         f"'{values_text}'") from None
     if not values:
@@ -112,12 +112,15 @@ def design_from_options(grid: Sequence[str] = (), zipped: Sequence[str] = (),
     """
     grid_axes: dict[str, list[Any]] = dict((table or {}).get("grid", {}))
     zip_axes: dict[str, list[Any]] = dict((table or {}).get("zip", {}))
-    for text in grid:
-        key, values = parse_axis_option(text, "--grid")
-        grid_axes[key] = values
-    for text in zipped:
-        key, values = parse_axis_option(text, "--zip")
-        zip_axes[key] = values
+    given: dict[str, str] = {}  # key -> the option that swept it on the command line
+    for option, texts, axes_of in (("--grid", grid, grid_axes), ("--zip", zipped, zip_axes)):
+        for text in texts:
+            key, values = parse_axis_option(text, option)
+            if key in given:  # two sweeps of one key: neither may silently win
+                raise CaseError(f"{option} {text}", key, "a key swept once (by one --grid or "
+                                "--zip)", f"it also in {given[key]}")
+            given[key] = f"{option} {text}"
+            axes_of[key] = values
     for key in set(grid_axes) & set(zip_axes):
         raise CaseError("--grid/--zip", key, "a key swept once", "it in both a grid and a zip")
     axes = [Axis((key,), (tuple(values),)) for key, values in grid_axes.items()]

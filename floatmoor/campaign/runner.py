@@ -25,6 +25,7 @@ import xarray as xr
 
 from floatmoor.campaign.design import CampaignDesign
 from floatmoor.campaign.reopen import move_aside
+from floatmoor.campaign.scheduler import check_address, connect
 from floatmoor.campaign.store import CampaignStore, run_file_is_complete, same_campaign
 from floatmoor.campaign.worker import run_one
 from floatmoor.case.load import load_case
@@ -108,6 +109,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         results; ``floatmoor sweep`` exits with 1 when it is not 0.
     """
     case_path = str(case_path)
+    if scheduler is not None:
+        check_address(scheduler)
     base = validate_campaign(case_path, design, base_overrides, timeseries=timeseries)
     runs = design.runs()
     files = _run_files(design, runs_dir, run_names)
@@ -350,9 +353,9 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
 
 def _execute_dask(case_path: str, todo: list[Job], scheduler: str, timeseries: bool,
                   record: Record, save: Callable[[], None]) -> None:
-    from distributed import Client, as_completed
+    from distributed import as_completed
 
-    with Client(scheduler) as client:
+    with connect(scheduler) as client:
         futures = {client.submit(run_one, case_path, overrides, timeseries,
                                  _absolute(run_file), pure=False): (index, run_file)
                    for index, overrides, run_file in todo}

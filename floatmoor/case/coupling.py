@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Environment
 from floatmoor.waves.realisation import SPACINGS
@@ -73,12 +75,19 @@ def read_waves(t: TableReader, environment: Environment, duration: float) -> Wav
         period = settings.tp
     ramp = t.number("ramp_duration", unit="s", ge=0.0, default=RAMP_PERIODS * period)
     try:
-        if isinstance(settings, JonswapSettings):
-            settings.validate(environment.water_depth, environment.gravity, duration)
-        else:
-            settings.validate(environment.water_depth, environment.gravity)
+        # an extreme period can defeat the dispersion relation's Newton iteration: that is a
+        # period out of range, said in one message (no overflow warnings before it)
+        with np.errstate(all="ignore"):
+            if isinstance(settings, JonswapSettings):
+                settings.validate(environment.water_depth, environment.gravity, duration)
+            else:
+                settings.validate(environment.water_depth, environment.gravity)
     except ValueError as err:
         raise t.error("kind", f"a physical sea ({err})", kind) from None
+    except (RuntimeError, ArithmeticError) as err:
+        key = "tp" if isinstance(settings, JonswapSettings) else "period"
+        raise t.error(key, f"a wave period for which the dispersion relation has a solution "
+                      f"({err}) [s]", period) from None
     t.finish()
     return WaveCase(settings, ramp)
 

@@ -180,6 +180,9 @@ def read_hydro(t: TableReader) -> HydroSettings:
                   and isinstance(item[2], int) and 0 < item[0] < item[1] and item[2] >= 2)
             if not ok:
                 raise t.error(("frequency_ranges", i), expected, item)
+            if item[2] > MAX_FREQUENCIES:  # checked before the frequencies are generated
+                raise t.error(("frequency_ranges", i, 2), f"a count of at most "
+                              f"{MAX_FREQUENCIES} frequencies", item[2])
             omegas.extend(np.linspace(float(item[0]), float(item[1]), int(item[2])).tolist())
     if t.has("frequencies"):
         raw = t.data["frequencies"]

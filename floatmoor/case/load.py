@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import copy
 import math
-import tomllib
 from pathlib import Path as FilePath
 from typing import Any, Sequence
 
@@ -18,6 +17,11 @@ import numpy as np
 
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import read_floater, read_hydro
+from floatmoor.case.limits import (
+    MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
+)
+from floatmoor.case.files import CaseFileKindError, read_case_text
+from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
@@ -39,6 +43,10 @@ MAX_STATIC_STRAIN = 0.30
 #: How far below the seabed an end may be and still count as on it [m]: TOML decimal input
 #: such as -3.0 against a depth of 3.0 is exact, so this only absorbs round-off of sums.
 SEABED_TOLERANCE = 1e-9
+#: Anchor and fairlead closer than this fraction of the line length count as one point [-]:
+#: the line has no direction, so no model (nor a circular motion's plane) is defined. 1e-9
+#: is round-off of sums of coordinates, far below any real mooring geometry.
+COINCIDENT_ENDS = 1e-9
 #: Newton tolerance of the quasi-static catenary, relative to the line length [-]. The
 #: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
 DEFAULT_CATENARY_TOLERANCE = 1e-12
@@ -79,15 +87,15 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
     """
     source = str(path)
     try:
-        text = FilePath(path).read_text(encoding="utf-8")
+        text = read_case_text(FilePath(path))
+    except CaseFileKindError as err:
+        raise CaseError(source, "", "a readable case file (a regular file of at most "
+                        f"{MAX_CASE_FILE_BYTES} bytes)", str(err)) from None
     except FileNotFoundError:
         raise CaseError(source, "", "a readable case file", "no such file") from None
     except (OSError, UnicodeDecodeError) as err:
         raise CaseError(source, "", "a readable UTF-8 case file", str(err)) from None
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise CaseError(source, "", "valid TOML", f"a syntax error ({err})") from None
+    raw = parse_toml(text, source)
     return parse_case(raw, source=source, text=text, overrides=tuple(overrides),
                       base_dir=FilePath(path).parent)
 
@@ -97,6 +105,9 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     """Validate a parsed case table (``raw`` is not modified)."""
     original, raw = raw, copy.deepcopy(raw)
     applied = apply_overrides(raw, overrides, source)
+    if nesting_depth(raw) > MAX_NESTING_DEPTH:
+        raise CaseError(source, "", f"tables and arrays nested at most {MAX_NESTING_DEPTH} "
+                        "deep", "deeper nesting (after the --set overrides)")
     context = ReadContext(source, {path: text for text, paths in applied for path in paths})
     root = TableReader(raw, (), context)
     title_template = root.string("title")
@@ -140,6 +151,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                 motion=motion, simulation=simulation, description=description,
                 campaign=campaign, floater=floater, hydro=hydro, waves=waves,
                 initial_offset=initial, wind=wind)
+    check_sizes(case, context)
     _check_lines(case, context)
     _check_motion(case, context)
     return case
@@ -290,8 +302,8 @@ def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motio
         )
     else:
         file_name = t.string("file")
-        time, disp = _read_motion_table(t, base_dir / file_name)
-        motion = TableMotion(file=str(base_dir / file_name), time=time, displacement=disp,
+        path, time, disp = read_motion_table(t, base_dir, file_name)
+        motion = TableMotion(file=str(path), time=time, displacement=disp,
                              ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=0.0))
         if time[-1] < simulation.duration:
             raise t.context.error(("simulation", "duration"),
@@ -324,42 +336,6 @@ def _campaign(t: TableReader) -> dict[str, dict[str, list[Any]]]:
     return out
 
 
-def _read_motion_table(t: TableReader, path: FilePath) -> tuple[np.ndarray, np.ndarray]:
-    """Read a ``time, x, y, z`` CSV of displacements [s, m]."""
-    try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError:
-        raise t.error("file", "a readable CSV file with columns time, x, y, z",
-                      f"no readable file {path}") from None
-    rows = [ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")]
-    header = [h.strip() for h in rows[0].split(",")] if rows else []
-    if header != ["time", "x", "y", "z"]:
-        raise t.error("file", f"{path}: a header line 'time,x,y,z'",
-                      _found(f"'{rows[0] if rows else ''}'"))
-    data = []
-    for number, row in enumerate(rows[1:], start=2):
-        try:
-            values = [float(v) for v in row.split(",")]
-        except ValueError:
-            values = []
-        if len(values) != 4 or not all(math.isfinite(v) for v in values):
-            raise t.error("file", f"{path}: data row {number} with 4 finite numbers",
-                          _found(f"'{row}'"))
-        data.append(values)
-    array = np.array(data, dtype=float).reshape(-1, 4)
-    if len(array) < 2 or np.any(np.diff(array[:, 0]) <= 0.0) or array[0, 0] > 0.0:
-        raise t.error("file", f"{path}: at least 2 rows with strictly increasing time from <= 0 s",
-                      _found(f"{len(array)} rows, times {array[:, 0].min(initial=np.nan):g} "
-                             f"to {array[:, 0].max(initial=np.nan):g} s"))
-    return array[:, 0].copy(), array[:, 1:].copy()
-
-
-def _found(text: str) -> Any:
-    from floatmoor.case.reader import _Found
-
-    return _Found(text)
-
-
 # -- cross checks -----------------------------------------------------------------------------
 
 def _check_lines(case: Case, context: ReadContext) -> None:
@@ -375,6 +351,12 @@ def _check_lines(case: Case, context: ReadContext) -> None:
             if z < seabed_z - SEABED_TOLERANCE:
                 raise context.error(path + (end,), f"a point on or above the seabed (z >= "
                                     f"{seabed_z:g} m)", f"z = {z!r} m")
+        if line.span <= COINCIDENT_ENDS * line.length:  # every model needs a direction
+            end, other = ("anchor", "fairlead") \
+                if context.origin(path + ("anchor",)) != context.source else ("fairlead", "anchor")
+            raise context.error(path + (end,), f"a point apart from the {other} "
+                                f"{list(getattr(line, other))} m",
+                                f"{list(getattr(line, end))} m, the same point")
         needed = line.span / line.length - 1.0
         if needed > MAX_STATIC_STRAIN:
             raise context.error(path + ("length",),

@@ -46,7 +46,7 @@ def parse_override(text: str, source: str) -> tuple[list[str], Any]:
                         f"'{key.strip()}'")
     try:
         value = tomllib.loads(f"value = {value_text.strip()}")["value"]
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError):  # a value nested past the parser's reach
         raise CaseError(where, ".".join(segments), _VALUE_HELP, f"'{value_text.strip()}'") from None
     return segments, value
 

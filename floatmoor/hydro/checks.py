@@ -30,9 +30,10 @@ from floatmoor.case.schema import Column, CylinderGeometry, FloaterGeometry, Mem
 from floatmoor.hydro.database import merge_complex
 from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_from_kernel, radiation_kernel
+from floatmoor.hydro.values import value_problems
 
 __all__ = [
-    "CheckResult", "run_checks", "describe_failures", "haskind_damping",
+    "CheckResult", "run_checks", "check_values", "describe_failures", "haskind_damping",
     "geometry_from_dataset",
     "RECIPROCITY_TOLERANCE", "PSD_TOLERANCE", "KRAMERS_KRONIG_TOLERANCE",
     "KERNEL_DECAY_THRESHOLD", "HASKIND_TOLERANCE", "HYDROSTATICS_TOLERANCE",
@@ -248,13 +249,18 @@ def check_haskind(ds: xr.Dataset) -> CheckResult:
     worst, where, pointwise = 0.0, "", 0.0
     for i in (0, 2):
         bem = b[:, i, i]
+        if not bem.max() > 0.0:  # no radiation at all (or negative damping): nothing to scale by
+            return CheckResult("haskind", False, math.inf, HASKIND_TOLERANCE,
+                               f"{_DOFS[i]} radiation damping is nowhere positive (largest "
+                               f"{bem.max():.3g})")
         diff = np.abs(haskind_damping(ds, i) - bem)
         err = diff / bem.max()
         j = int(np.argmax(err))
         if err[j] >= worst:
             worst, where = float(err[j]), f"{_DOFS[i]} at omega = {omega[j]:.4g} rad/s"
         strong = bem >= HASKIND_POINTWISE_REPORT * bem.max()
-        pointwise = max(pointwise, float((diff[strong] / bem[strong]).max()))
+        if np.any(strong):
+            pointwise = max(pointwise, float((diff[strong] / bem[strong]).max()))
     return CheckResult("haskind", worst <= HASKIND_TOLERANCE, worst, HASKIND_TOLERANCE,
                        f"largest |B_Haskind - B| / peak B (surge, heave): {worst:.2%} ({where}); "
                        f"pointwise |B_Haskind - B| / B where B >= half its peak: "
@@ -292,9 +298,43 @@ def check_hydrostatics(ds: xr.Dataset) -> CheckResult:
 def run_checks(ds: xr.Dataset) -> list[CheckResult]:
     """All checks on one database, in the order of the module docstring (their names are
     :data:`floatmoor.case.schema.HYDRO_CHECKS`)."""
-    kernel = radiation_kernel(ds)
-    return [check_symmetry(ds), check_damping_psd(ds), check_kramers_kronig(ds, kernel),
-            check_kernel_decay(ds, kernel), check_haskind(ds), check_hydrostatics(ds)]
+    try:
+        kernel = radiation_kernel(ds)
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:
+        kernel = err
+    checks = [("symmetry", RECIPROCITY_TOLERANCE, lambda: check_symmetry(ds)),
+              ("damping_psd", PSD_TOLERANCE, lambda: check_damping_psd(ds)),
+              ("kramers_kronig", KRAMERS_KRONIG_TOLERANCE,
+               lambda: check_kramers_kronig(ds, _kernel(kernel))),
+              ("kernel_decay", 1.0, lambda: check_kernel_decay(ds, _kernel(kernel))),
+              ("haskind", HASKIND_TOLERANCE, lambda: check_haskind(ds)),
+              ("hydrostatics", HYDROSTATICS_TOLERANCE, lambda: check_hydrostatics(ds))]
+    results = []
+    for name, tolerance, check in checks:
+        # values no BEM solver writes (an edited file) can break a check's arithmetic: that
+        # is a failed check, reported in its row, not a traceback
+        try:
+            with np.errstate(all="raise", under="ignore"):
+                results.append(check())
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:
+            results.append(CheckResult(name, False, math.inf, tolerance,
+                                       f"cannot be evaluated on these values ({err})"))
+    return results
+
+
+def _kernel(kernel):
+    if isinstance(kernel, Exception):
+        raise ValueError(f"no radiation kernel: {kernel}")
+    return kernel
+
+
+def check_values(ds: xr.Dataset) -> CheckResult:
+    """The physical-value checks of :mod:`floatmoor.hydro.values` as a row of ``hydro check``
+    (never accepted: a run refuses a database failing them)."""
+    problems = value_problems(ds)
+    return CheckResult("values", not problems, float(len(problems)), 0.0,
+                       "; ".join(problems) if problems else "finite, moderate, physically "
+                       "possible (volume, C33 > 0; A_inf PSD; B_ii >= 0)")
 
 
 def describe_failures(results: list[CheckResult]) -> str:

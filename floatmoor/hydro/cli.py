@@ -162,10 +162,10 @@ def _open(text: str):
 
 
 def _check(args: argparse.Namespace) -> int:
-    from floatmoor.hydro.checks import run_checks
+    from floatmoor.hydro.checks import check_values, run_checks
 
     path, ds, note = _open(args.database)
-    results = run_checks(ds)
+    results = [check_values(ds), *run_checks(ds)]
     ok = all(r.passed for r in results)
     if args.json:
         print(json.dumps({"database": str(path), "passed": ok, "staleness": note,

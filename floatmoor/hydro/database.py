@@ -326,8 +326,21 @@ def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,
                                  f"recorded inputs differ in {', '.join(differ)}; rebuild "
                                  "with 'floatmoor hydro build CASE --force'")
     if checks:
+        _enforce_values(ds, p, case)
         _enforce_checks(ds, p, case)
     return ds
+
+
+def _enforce_values(ds: xr.Dataset, path: Path, case: Case) -> None:
+    """Refuse values no body can have (floatmoor.hydro.values), whatever the case accepts."""
+    from floatmoor.hydro.values import value_problems
+
+    assert case.floater is not None
+    problems = value_problems(ds, case.floater.mass_matrix())
+    if problems:
+        raise HydroDatabaseError(f"{path}: hydrodynamic database with impossible values (not "
+                                 f"as built, whatever its recorded inputs): {'; '.join(problems)}"
+                                 "; rebuild it with 'floatmoor hydro build CASE --force'")
 
 
 #: Check results per database file version (resolved path, modification time, size).

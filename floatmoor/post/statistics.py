@@ -40,15 +40,23 @@ def cycle_maxima(time: NDArray[np.float64], values: NDArray[np.float64], *, star
     """
     time = np.asarray(time, dtype=float)
     values = np.asarray(values, dtype=float)
-    eps = _TIME_EPS * max(period, 1.0)
-    n_cycles = int(np.floor((time[-1] - start) / period + eps)) if time.size else 0
-    maxima = []
-    for k in range(max(n_cycles, 0)):
-        a, b = start + k * period, start + (k + 1) * period
-        inside = (time >= a - eps) & (time < b - eps)
-        if np.any(inside):
-            maxima.append(values[inside].max())
-    return np.array(maxima)
+    if time.size == 0 or not (np.isfinite(period) and period > 0.0):
+        return np.empty(0)
+    # round-off slack relative to the times (not the period: a period of 1e308 s must not
+    # make the slack, and with it the cycle count, astronomically large)
+    eps = _TIME_EPS * max(abs(float(time[-1])), abs(start), 1.0)
+    n_cycles = int(min(np.floor((time[-1] - start + eps) / period), time.size))
+    if n_cycles < 1:  # not one complete cycle: no cycle statistics
+        return np.empty(0)
+    # the cycle of each sample; cycles are counted once, whatever their number
+    cycle = np.floor((time - start + eps) / period)
+    inside = (cycle >= 0) & (cycle < n_cycles)
+    if not np.any(inside):
+        return np.empty(0)
+    index = cycle[inside].astype(np.int64)
+    maxima = np.full(n_cycles, -np.inf)
+    np.maximum.at(maxima, index, values[inside])
+    return maxima[np.isin(np.arange(n_cycles), index)]
 
 
 def channel_statistics(time: NDArray[np.float64], values: NDArray[np.float64], *, start: float,

@@ -106,6 +106,9 @@ def load_reference(path: str | Path) -> ReferenceValues:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise ReportInputError(name, "valid TOML", f"a syntax error ({err})") from None
+    except RecursionError:  # nesting deep enough to exhaust the parser
+        raise ReportInputError(name, "valid TOML", "nesting deeper than the parser can "
+                               "follow") from None
     _unknown(name, raw, ("title", "source", "duration", "nominal_diameter", "values"))
     title = raw.get("title", "reference values")
     source = raw.get("source", "")

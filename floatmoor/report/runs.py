@@ -160,7 +160,7 @@ def case_from_dataset(dataset: xr.Dataset) -> Case | None:
         raw = tomllib.loads(text)
         return parse_case(raw, source=source, text=text, overrides=overrides,
                           base_dir=Path(source).parent)
-    except (tomllib.TOMLDecodeError, CaseError, OSError, ValueError):
+    except (tomllib.TOMLDecodeError, CaseError, OSError, ValueError, RecursionError):
         return None
 
 
@@ -309,7 +309,7 @@ def _file_value(run: RunData, key: str) -> str:
     try:
         raw = tomllib.loads(str(run.dataset.attrs.get("case_toml", "")))
         return value_text(resolve_key(raw, key.split("."), "case")[1])
-    except (tomllib.TOMLDecodeError, CaseError):
+    except (tomllib.TOMLDecodeError, CaseError, RecursionError):
         return "(case file)"
 
 

@@ -273,6 +273,10 @@ class DynamicLine(PathStepper):
             dt = min(dt, st.cfl * 2.5 / (omega * (xi + math.sqrt(xi * xi + 1.0))))
         if st.max_time_step is not None:
             dt = min(dt, st.max_time_step)
+        if not (dt > 0.0 and math.isfinite(dt)):  # case loading bounds the wave speed
+            raise SolverError(f"line '{self.name}' (dynamic): no usable time step ({dt!r} s) "
+                              f"for an axial wave speed of {c:.3g} m/s; the axial stiffness "
+                              "or mass per length is out of range")
         return dt
 
     def settle(self, rate: float = SETTLE_RATE, tolerance: float = SETTLE_TOLERANCE,

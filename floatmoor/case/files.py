@@ -1,0 +1,81 @@
+"""The files a case names, and the case file itself: confined, regular and bounded.
+
+A case file may be shared like any data file, so a file it names (a motion table) is
+confined: the path is relative to the case file's folder and must stay inside it after
+symbolic links are resolved (absolute paths and ``..`` out of the folder are refused), and
+it must be a regular file. FIFOs, devices and folders are refused before they are opened, so
+a case cannot hang a run on a pipe or read ``/dev/zero`` until memory runs out. The case file
+given on the command line is held to the same kinds and to
+:data:`~floatmoor.case.limits.MAX_CASE_FILE_BYTES`.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+
+from floatmoor.case.limits import MAX_CASE_FILE_BYTES
+from floatmoor.case.reader import TableReader, _Found
+
+__all__ = ["CaseFileKindError", "read_case_text", "resolve_case_file", "file_kind"]
+
+
+def file_kind(mode: int) -> str:
+    """What a file of mode ``mode`` is, for a message ("a FIFO (named pipe)", ...)."""
+    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+class CaseFileKindError(OSError):
+    """The case file is not a regular file, or is too large."""
+
+
+def read_case_text(path: Path) -> str:
+    """The UTF-8 text of a case file, refusing FIFOs, devices, folders and files larger
+    than :data:`~floatmoor.case.limits.MAX_CASE_FILE_BYTES` before reading them.
+
+    Raises
+    ------
+    CaseFileKindError, OSError, UnicodeDecodeError
+    """
+    mode = os.stat(path).st_mode
+    if not stat.S_ISREG(mode):
+        raise CaseFileKindError(file_kind(mode))
+    with open(path, "rb") as stream:
+        data = stream.read(MAX_CASE_FILE_BYTES + 1)
+    if len(data) > MAX_CASE_FILE_BYTES:
+        raise CaseFileKindError(f"a file of more than {MAX_CASE_FILE_BYTES} bytes")
+    return data.decode("utf-8")
+
+
+def resolve_case_file(t: TableReader, key: str, base_dir: Path, name: str) -> Path:
+    """The regular file ``name`` inside ``base_dir`` (the case file's folder).
+
+    Raises
+    ------
+    CaseError
+        For an absolute path, a path leading out of the folder, a missing file or anything
+        that is not a regular file.
+    """
+    expected = "a path to a regular file inside the case file's folder, relative to it"
+    if Path(name).is_absolute():
+        raise t.error(key, expected, _Found(f'the absolute path "{name}"'))
+    folder = base_dir.resolve()
+    path = (folder / name).resolve()
+    if not path.is_relative_to(folder):
+        raise t.error(key, expected, _Found(f'"{name}", which leads out of {folder}'))
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise t.error(key, expected, _Found(f"no file {folder / name}")) from None
+    except OSError as err:
+        raise t.error(key, expected, _Found(f"{folder / name} unreadable ({err.strerror})")) \
+            from None
+    if not stat.S_ISREG(mode):
+        raise t.error(key, expected, _Found(f"{folder / name}, {file_kind(mode)}"))
+    return path
