@@ -127,8 +127,6 @@ def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path
 
 def test_run_stopped_in_its_first_chunk_resumes_from_the_start(tmp_path, monkeypatch) -> None:
     """Interrupted before any chunk is complete, the checkpoint is the initial state."""
-    import floatmoor.simulation.coupled_run as cr
-
     case = load_case(BUOY_CASE, [*QS, 'lines.line1.model="quasi-dynamic"',
                                  "simulation.duration=0.4",
                                  "simulation.output_interval=0.02",

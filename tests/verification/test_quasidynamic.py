@@ -13,7 +13,6 @@ import json
 import tomllib
 
 import numpy as np
-import pytest
 
 from floatmoor.case.load import load_case, parse_case
 from floatmoor.cli import main
