@@ -179,7 +179,7 @@ def _workers(pid: int) -> list[int]:
         return [int(p) for p in fh.read().split()]
 
 
-SWEEP = ["sweep", str(LINDAHL_CASE), *QS, "--grid", "simulation.duration=5,5.5,2000,2000",
+SWEEP = ["sweep", str(LINDAHL_CASE), "--grid", "simulation.duration=5,5.5,2000,2000",
          "--workers", "2"]
 
 
