@@ -166,10 +166,12 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                     if since > 0 else float("nan"))
             progress(count["done"], total, left)
 
+    existed = path is not None and path.exists()
     try:
         _execute(case_path, todo, workers, scheduler, timeseries, record, save)
     finally:
-        save()
+        if recorded or existed or not todo:  # no file for a campaign that ran nothing
+            save()
     return store.dataset()
 
 

@@ -149,6 +149,7 @@ def test_unreachable_scheduler_fails_fast_with_one_line(tmp_path):
     assert result.returncode == 1
     assert "cannot reach the Dask scheduler" in result.stderr
     assert "Traceback" not in result.stderr
+    assert not (tmp_path / "c.nc").exists()  # nothing ran: no campaign file of pending runs
 
 
 @pytest.mark.parametrize("module", ["numpy", "floatmoor.mooring.strength"])
