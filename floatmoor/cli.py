@@ -545,41 +545,30 @@ def _study(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _attributes(path: Path) -> dict[str, object]:
-    """The global attributes of a netCDF file, {} when it cannot be read."""
-    import xarray as xr
-
-    from floatmoor.io.netcdf import NETCDF_ENGINE
-
-    try:
-        with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
-            return dict(ds.attrs)
-    except Exception:  # noqa: BLE001 - only the message depends on it
-        return {}
-
-
 def _left_behind(output: Path, before: tuple[int, int, int] | None,
                  why: str = "the run stopped before recording") -> str:
     """What a stopped run left in ``output`` (``before``: its
     :func:`~floatmoor.io.output_files.file_state` when the run began): partial results up to
     some time, or nothing."""
+    from floatmoor.io.netcdf import read_attributes
     from floatmoor.io.output_files import written_since
 
     if not written_since(output, before):
         return ("nothing written" + (f" ({output} is unchanged)" if before is not None else "")
                 + f": {why}")
-    t = _attributes(output).get("simulated_time_s")
+    t = (read_attributes(output) or {}).get("simulated_time_s")
     upto = f" up to t = {float(t):.6g} s" if isinstance(t, (int, float)) else ""
     return f"partial results{upto} written to {output}"
 
 
 def _campaign_left_behind(output: Path, before: tuple[int, int, int] | None) -> str:
     """What a stopped sweep left in ``output``: how many runs it holds, or nothing."""
+    from floatmoor.io.netcdf import read_attributes
     from floatmoor.io.output_files import written_since
 
     if not written_since(output, before):
         return "nothing written" + (f" ({output} is unchanged)" if before is not None else "")
-    attrs = _attributes(output)
+    attrs = read_attributes(output) or {}
     complete = attrs.get("runs_complete")
     held = f"{int(complete)} finished runs are" if complete is not None else "finished runs are"
     return f"{held} in {output} (re-run the same command to resume)"

@@ -23,6 +23,7 @@ import xarray as xr
 from floatmoor.campaign.design import CampaignDesign
 from floatmoor.campaign.worker import BODY_STATISTICS, STRENGTH_STATISTICS, SUMMARY_STATISTICS
 from floatmoor.errors import CaseError
+from floatmoor.case.files import file_kind
 from floatmoor.io.netcdf import NETCDF_ENGINE
 
 __all__ = ["CampaignFileError", "read_campaign_file", "move_aside", "CAMPAIGN_TITLE",
@@ -54,8 +55,7 @@ def _dataset(path: Path) -> xr.Dataset:
     except OSError as err:
         raise CampaignFileError(path, f"a file that cannot be examined ({err.strerror or err})")
     if not stat.S_ISREG(mode):
-        kind = ("a folder" if stat.S_ISDIR(mode) else "a FIFO" if stat.S_ISFIFO(mode)
-                else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "not a file")
+        kind = file_kind(mode)
         raise CampaignFileError(path, kind)
     try:
         with open(path, "rb") as fh:

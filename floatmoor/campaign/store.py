@@ -28,7 +28,7 @@ from floatmoor.campaign.design import CampaignDesign
 from floatmoor.campaign.reopen import read_campaign_file
 from floatmoor.campaign.worker import BODY_STATISTICS, STRENGTH_STATISTICS, SUMMARY_STATISTICS
 from floatmoor.errors import CaseError
-from floatmoor.io.netcdf import NETCDF_ENGINE, write_dataset
+from floatmoor.io.netcdf import read_attributes, write_dataset
 from floatmoor.io.variables import attributes
 
 __all__ = ["CampaignStore", "run_file_is_complete", "same_campaign", "failed_runs"]
@@ -70,7 +70,7 @@ def run_file_is_complete(path: str | os.PathLike[str], case_text: str,
     Only the attributes are read: the run's status (``complete``), case text and overrides
     (so a file left by another run of the same name is not taken for this one).
     """
-    attrs = _attributes(path)
+    attrs = read_attributes(path)
     return (attrs is not None and attrs.get("status") == "complete"
             and attrs.get("case_toml") == case_text
             and attrs.get("case_overrides") == ("\n".join(overrides) or "none"))
@@ -92,7 +92,7 @@ def same_campaign(path: str | os.PathLike[str], design: CampaignDesign, case_tex
     """Whether the campaign file ``path`` holds this campaign (same case text, base overrides
     and design), so that a run into it resumes; False for another campaign or an unreadable
     file."""
-    attrs = _attributes(path)
+    attrs = read_attributes(path)
     wanted = _identity(design, case_text, base_overrides)
     return attrs is not None and all(attrs.get(key) == wanted[key] for key in _IDENTITY)
 
@@ -103,18 +103,6 @@ def failed_runs(dataset: xr.Dataset, design: CampaignDesign) -> list[tuple[str, 
     status = dataset["status"].values
     return [(", ".join(overrides), str(status[index])) for index, overrides in design.runs()
             if str(status[index]) != "complete"]
-
-
-def _attributes(path: str | os.PathLike[str]) -> dict[str, Any] | None:
-    """The global attributes of a netCDF file (only they are read), or None when it is missing,
-    unreadable or truncated."""
-    if not Path(path).is_file():
-        return None
-    try:
-        with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
-            return dict(ds.attrs)
-    except Exception:  # unreadable or truncated
-        return None
 
 
 class CampaignStore:

@@ -23,7 +23,8 @@ __all__ = ["CaseFileKindError", "read_case_text", "resolve_case_file", "file_kin
 
 def file_kind(mode: int) -> str:
     """What a file of mode ``mode`` is, for a message ("a FIFO (named pipe)", ...)."""
-    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISLNK, "a symbolic link"),
+                       (stat.S_ISFIFO, "a FIFO (named pipe)"),
                        (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
                        (stat.S_ISSOCK, "a socket")):
         if test(mode):

@@ -16,7 +16,7 @@ import xarray as xr
 
 from floatmoor.io.output_files import atomic_target
 
-__all__ = ["write_dataset", "read_dataset", "NETCDF_ENGINE", "NETCDF_FORMAT"]
+__all__ = ["write_dataset", "read_dataset", "read_attributes", "NETCDF_ENGINE", "NETCDF_FORMAT"]
 
 NETCDF_ENGINE = "scipy"
 NETCDF_FORMAT = "NETCDF3_64BIT"
@@ -39,6 +39,18 @@ def write_dataset(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
     """
     with atomic_target(path) as tmp:
         dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT)
+
+
+def read_attributes(path: str | os.PathLike[str]) -> dict | None:
+    """The global attributes of a netCDF file (only they are read), or None when it is
+    missing, unreadable or truncated."""
+    if not os.path.isfile(path):
+        return None
+    try:
+        with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
+            return dict(ds.attrs)
+    except Exception:  # noqa: BLE001 - unreadable or truncated: the callers say so
+        return None
 
 
 def read_dataset(path: str | os.PathLike[str]) -> xr.Dataset:

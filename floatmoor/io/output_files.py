@@ -28,6 +28,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
+from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError, FloatmoorError
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
@@ -47,9 +48,6 @@ IMAGE = ("image", (b"\x89PNG\r\n\x1a\n", b"%PDF", b"<?xml", b"<svg"))
 #: own validation, or moved aside with ``sweep --restart``).
 CAMPAIGN = ("campaign", (b"",))
 
-_FILE_TYPES = {stat.S_IFDIR: "a folder", stat.S_IFLNK: "a symbolic link",
-               stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
-               stat.S_IFIFO: "a FIFO", stat.S_IFSOCK: "a socket"}
 
 
 class OutputWriteError(FloatmoorError, OSError):
@@ -158,7 +156,7 @@ def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]])
     if file_type == stat.S_IFDIR:
         raise CaseError(option, "", "a file name (not a folder)", f"'{path}', a folder")
     if file_type != stat.S_IFREG:
-        what = _FILE_TYPES.get(file_type, "not a regular file")
+        what = file_kind(info.st_mode)
         raise CaseError(option, "", "a new or regular file to replace", f"'{path}', {what}")
     if info.st_size == 0:
         return 0
@@ -225,7 +223,7 @@ def atomic_target(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterato
     except OSError as err:
         raise OutputWriteError(f"cannot write {target}: {err.strerror}") from None
     if info is not None and not stat.S_ISREG(info.st_mode):
-        what = _FILE_TYPES.get(stat.S_IFMT(info.st_mode), "not a regular file")
+        what = file_kind(info.st_mode)
         raise OutputWriteError(f"cannot write {target}: it is {what}, not a regular file")
     tmp: str | None = None
     try:

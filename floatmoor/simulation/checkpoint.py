@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor._version import __version__
+from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError
 
 __all__ = ["CheckpointError", "RunIdentity", "write_checkpoint", "check_checkpoint",
@@ -145,8 +146,7 @@ def _open_zip(path: Path) -> zipfile.ZipFile:
     except OSError as err:
         raise CheckpointError(path, "a readable checkpoint", f"{err.strerror or err}")
     if not stat.S_ISREG(mode):
-        kind = ("a folder" if stat.S_ISDIR(mode) else "a FIFO" if stat.S_ISFIFO(mode)
-                else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "not a file")
+        kind = file_kind(mode)
         raise CheckpointError(path, "a checkpoint file (a regular file)", kind)
     try:
         with open(path, "rb") as fh:
