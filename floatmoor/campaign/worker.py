@@ -55,6 +55,7 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
     from floatmoor.case.load import load_case
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.post.summary import run_summary
+    from floatmoor.simulation.run import run_case
 
     cpu, wall = time.process_time(), time.perf_counter()
     out: dict[str, Any] = {"status": "complete", "statistics": {}, "compile_time_s": 0.0}
@@ -66,14 +67,7 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
         case = load_case(case_path, overrides)
         refuse_static_breaking(case)  # a line that breaks at rest: the run fails
         with watch_compilation(lambda: None, compiled):
-            if case.floater is not None:
-                from floatmoor.simulation.coupled_run import run_coupled
-
-                dataset = run_coupled(case, output=run_file).dataset
-            else:
-                from floatmoor.simulation.forced import run_forced_motion
-
-                dataset = run_forced_motion(case, output=run_file).dataset
+            dataset = run_case(case, output=run_file).dataset
         summary = run_summary(case, dataset)
         for name, entry in summary["lines"].items():
             stats = entry["fairlead_tension_N"]
