@@ -57,6 +57,8 @@ def estimated_output_bytes(case: Case) -> float:
     n_time = sim.duration / sim.output_interval + 1.0
     per_line = sum(size for _, size in _SERIES) + 2  # and the two tensions
     values = len(case.lines) * n_time * per_line
+    # the points' positions and forces, the sections' end tensions
+    values += (len(case.points) * 6 + len(case.sections) * 2) * n_time
     if case.floater is not None:
         values += n_time * _BODY_VALUES
     if sim.shape_output_interval is not None:
@@ -66,6 +68,34 @@ def estimated_output_bytes(case: Case) -> float:
         n_shapes = sim.duration / max(sim.shape_output_interval, sim.output_interval) + 1.0
         values += len(case.lines) * n_shapes * nodes * (3 + 1) + nodes * len(case.lines)
     return float(values * _VALUE_BYTES)
+
+
+def line_system_series(case: Case, variables: dict[str, NDArray[np.float64]]
+                       ) -> dict[str, NDArray[np.float64]]:
+    """The point and section series of a mooring of independent one-section lines, from the
+    lines' own: a section's tensions are its line's anchor and fairlead tensions, a body
+    point is where its lines' fairlead is, a point's force the sum of its lines' end forces.
+
+    Parameters
+    ----------
+    case
+        The case (its lines each one section from a fixed to a body point).
+    variables
+        The recorded line series, cut to the completed samples.
+    """
+    n = variables["fairlead_force"].shape[1]
+    index = {p.name: i for i, p in enumerate(case.points)}
+    position = np.zeros((len(case.points), n, 3))
+    force = np.zeros((len(case.points), n, 3))
+    for i, p in enumerate(case.points):
+        position[i] = p.position
+    for i, line in enumerate(case.lines):
+        position[index[line.end]] = variables["fairlead_position"][i]
+        force[index[line.end]] += variables["fairlead_force"][i]
+        force[index[line.start]] += variables["anchor_force"][i]
+    return {"point_position": position, "point_force": force,
+            "section_start_tension": variables["anchor_tension"],
+            "section_end_tension": variables["fairlead_tension"]}
 
 
 class Recorder:
@@ -173,8 +203,9 @@ class Recorder:
                       "shape_position": self.shape_position[:, :m],
                       "shape_tension": self.shape_tension[:, :m]}
         body = None if self.body is None else {k: v[:n] for k, v in self.body.items()}
+        system = line_system_series(self.case, variables)
         return build_result_dataset(self.case, self.time[:n], variables, status=status,
-                                    shapes=shapes, body=body,
+                                    shapes=shapes, body=body, system=system,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
 
