@@ -277,14 +277,16 @@ def lu_solve(A, b, x):
 
 @jit(error_model="numpy")
 def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, sec_tol,
-                      sec_maxit, dof, ext, step_cap, check_surface, force_rtol, max_iter,
-                      warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx, scale,
+                      sec_maxit, dof, ext, step_cap, z_min, check_surface, force_rtol,
+                      max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx, scale,
                       info):
     """Newton iteration for the free-point coordinates; ``pos`` holds the guess and the result.
 
     Globalised by a step limit (no point moves more than ``step_cap[p]`` in one step, the
     direction kept), a backtracking line search on |R|^2 that also rejects trial positions
-    where a section has no catenary solution (an end below the seabed), and a
+    where a section has no catenary solution, with free points projected to stay above
+    ``z_min``, just clear of the seabed (where the catenary's seabed contact switches and its vertical stiffness is
+    singular, VF ~ sqrt(ZF); a free point resting on the seabed is not modelled), and a
     Levenberg-Marquardt shift K + mu I raised whenever the line search fails (singular K of
     slack sections, points far off). Converged when every unknown's force residual is at most
     ``force_rtol`` times its point's force scale (|ext| + sum of section force magnitudes).
@@ -356,6 +358,8 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
                         for c in range(3):
                             i = dof[p, c]
                             trial_pos[p, c] = pos[p, c] + alpha * dx[i] if i >= 0 else pos[p, c]
+                        if dof[p, 2] >= 0 and trial_pos[p, 2] < z_min[p]:
+                            trial_pos[p, 2] = z_min[p]  # projected onto the allowed side
                     tf, tst, tsag, ci = assemble(trial_pos, sec_start, sec_end, sec_L, sec_EA,
                                                  sec_W, sec_CB, seabed_z, sec_tol, sec_maxit,
                                                  warm, dof, ext, trial_out, Rt, Kt, scale,
@@ -412,7 +416,7 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
 
 @jit(error_model="numpy")
 def statics_series(body_path, body_index, pos, sec_start, sec_end, sec_L, sec_EA, sec_W,
-                   sec_CB, seabed_z, sec_tol, sec_maxit, dof, ext, step_cap, check_surface,
+                   sec_CB, seabed_z, sec_tol, sec_maxit, dof, ext, step_cap, z_min, check_surface,
                    force_rtol, max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A,
                    rhs, dx, scale, info, out_pos, out_fa, out_fb, out_lb, out_iter, out_resid):
     """Equilibrium at every sample of a path of body-point positions, warm-started.
@@ -436,7 +440,7 @@ def statics_series(body_path, body_index, pos, sec_start, sec_end, sec_L, sec_EA
             for c in range(3):
                 pos[p, c] = body_path[k, j, c]
         st = solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z,
-                               sec_tol, sec_maxit, dof, ext, step_cap, check_surface,
+                               sec_tol, sec_maxit, dof, ext, step_cap, z_min, check_surface,
                                force_rtol, max_iter, warm, sec_out, trial_out, trial_pos, R, Rt,
                                K, Kt, A, rhs, dx, scale, info)
         if st != SYS_OK:

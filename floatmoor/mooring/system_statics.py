@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike, NDArray
 from floatmoor.case.schema import Environment, Seabed
 from floatmoor.errors import SolverError
 from floatmoor.mooring import _system_statics_kernels as _k
+from floatmoor.mooring._catenary_kernels import SEABED_CONTACT_TOL
 from floatmoor.mooring.catenary import PROFILE_NAMES, describe_failure
 
 __all__ = [
@@ -51,6 +52,10 @@ MAX_ITERATIONS = 200
 #: keeps a far-off start from jumping across the catenaries' regimes (MoorPy limits steps to
 #: 30 m for the same reason).
 MAX_STEP_FRACTION = 0.2
+#: Free points stay above the seabed by this many times the catenary's seabed-contact
+#: tolerance (1e-6 of their longest section): there a section's contact switches on and its
+#: vertical stiffness is singular; a free point resting on the seabed is not modelled.
+SEABED_CLEARANCE = 10.0
 
 _KIND_FIXED, _KIND_BODY, _KIND_FREE = "fixed", "body", "free"
 
@@ -351,6 +356,14 @@ class _Workspace:
             for p in (system.section_start[s], system.section_end[s]):
                 cap[p] = min(cap[p], MAX_STEP_FRACTION * system.length[s])
         self.step_cap = cap
+        # free points keep clear of the seabed by the catenary's contact tolerance of their
+        # longest section, times SEABED_CLEARANCE
+        z_min = np.full(n_pts, -np.inf)
+        for p in system.free_index:
+            attached = (system.section_start == p) | (system.section_end == p)
+            z_min[p] = system.seabed_z + SEABED_CLEARANCE * SEABED_CONTACT_TOL * float(
+                np.max(system.length[attached]))
+        self.z_min = z_min
         self.check_surface = np.array([k == _KIND_FREE for k in system.point_kinds])
 
 
@@ -424,7 +437,7 @@ class SystemStatics:
         return int(_k.solve_equilibrium(
             pos, s.section_start, s.section_end, s.length, s.axial_stiffness, s.weight,
             s.friction, s.seabed_z, s.tolerance, s.max_iterations, ws.dof, s.external_force,
-            ws.step_cap, ws.check_surface, self.force_rtol, self.max_iterations, warm,
+            ws.step_cap, ws.z_min, ws.check_surface, self.force_rtol, self.max_iterations, warm,
             ws.sec_out, ws.trial_out, ws.trial_pos, ws.R, ws.Rt, ws.K, ws.Kt, ws.A, ws.rhs,
             ws.dx, ws.scale, ws.info))
 
@@ -496,7 +509,7 @@ class SystemStatics:
         failed = int(_k.statics_series(
             path, s.body_index, pos, s.section_start, s.section_end, s.length,
             s.axial_stiffness, s.weight, s.friction, s.seabed_z, s.tolerance,
-            s.max_iterations, ws.dof, s.external_force, ws.step_cap, ws.check_surface,
+            s.max_iterations, ws.dof, s.external_force, ws.step_cap, ws.z_min, ws.check_surface,
             self.force_rtol, self.max_iterations, warm, ws.sec_out, ws.trial_out, ws.trial_pos,
             ws.R, ws.Rt, ws.K, ws.Kt, ws.A, ws.rhs, ws.dx, ws.scale, ws.info, positions,
             start_force, end_force, laid_length, iterations, res))
@@ -570,18 +583,24 @@ class SystemStatics:
             return (f"{head}free point '{name}' rises above the water surface to z = "
                     f"{pos[p, 2]:.6g} m, where the submerged catenary does not hold")
         p = int(info[_k.INFO_WORST_POINT])
+        for q in s.free_index:  # a point stopped on the seabed is the likelier cause
+            gap = pos[q, 2] - ws.z_min[q]
+            if gap <= ws.z_min[q] - s.seabed_z:
+                fz = ws.R[ws.dof[q, 2]]
+                if fz < 0.0:
+                    return (f"{head}free point '{s.point_names[q]}' is pressed onto the seabed "
+                            f"at {_vector(pos[q])} m with a net downward force of {-fz:.6g} N "
+                            "after "f"{int(info[_k.INFO_ITER])} Newton iterations: a free "
+                            "point resting on the seabed is not modelled (lighten it, or "
+                            "shorten what it hangs from)")
         name = s.point_names[p] if p >= 0 else "?"
-        force = ws.R  # residual at the last accepted iterate
-        comps = [force[ws.dof[p, c]] if ws.dof[p, c] >= 0 else 0.0 for c in range(3)] \
-            if p >= 0 else [np.nan] * 3
-        note = ""
-        if p >= 0 and pos[p, 2] - s.seabed_z < 1e-3 * float(np.max(s.length)) and comps[2] < 0:
-            note = (" (it is pressed onto the seabed: a free point resting on the seabed is not "
-                    "modelled)")
-        return (f"{head}no equilibrium found for free point '{name}' at {_vector(pos[p])} m "
-                f"after {int(info[_k.INFO_ITER])} Newton iterations: residual force "
-                f"{_vector(comps)} N, {info[_k.INFO_RESIDUAL]:.3g} of its force scale (tolerance "
-                f"{self.force_rtol:.0e}){note}")
+        comps = [ws.R[ws.dof[p, c]] if p >= 0 and ws.dof[p, c] >= 0 else np.nan
+                 for c in range(3)]
+        where = _vector(pos[p]) if p >= 0 else "?"
+        return (f"{head}no equilibrium found for free point '{name}' at {where} m after "
+                f"{int(info[_k.INFO_ITER])} Newton iterations: residual force {_vector(comps)} N, "
+                f"{info[_k.INFO_RESIDUAL]:.3g} of its force scale (tolerance "
+                f"{self.force_rtol:.0e})")
 
     def _surface_residual(self, p: int, pos: NDArray[np.float64],
                           warm: NDArray[np.float64]) -> str:
