@@ -61,7 +61,8 @@ _KIND_FIXED, _KIND_BODY, _KIND_FREE = "fixed", "body", "free"
 
 
 def section_name(line: str, index: int) -> str:
-    """Name of a section in outputs and messages: ``LINE[INDEX]``, 0 at the line's start."""
+    """Name of a section in outputs and messages: ``LINE[INDEX]``, 0 at the line's start
+    (as ``Section.label``)."""
     return f"{line}[{index}]"
 
 
@@ -250,7 +251,7 @@ def build_static_system(points: Sequence[Any], lines: Sequence[Any], environment
     for line in lines:
         qs = line.quasi_static
         for sec in line.sections:
-            name = section_name(line.name, sec.index)
+            name = section_name(sec.line, sec.index)
             for end_name in (sec.start, sec.end):
                 if end_name not in index:
                     raise SolverError(f"mooring system: section {name} ends at '{end_name}', "
