@@ -278,15 +278,16 @@ def lu_solve(A, b, x):
 @jit(error_model="numpy")
 def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, sec_tol,
                       sec_maxit, dof, ext, step_cap, z_min, check_surface, force_rtol,
-                      max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx, scale,
-                      info):
+                      max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx,
+                      scale, info):
     """Newton iteration for the free-point coordinates; ``pos`` holds the guess and the result.
 
     Globalised by a step limit (no point moves more than ``step_cap[p]`` in one step, the
     direction kept), a backtracking line search on |R|^2 that also rejects trial positions
     where a section has no catenary solution, with free points projected to stay above
-    ``z_min``, just clear of the seabed (where the catenary's seabed contact switches and its vertical stiffness is
-    singular, VF ~ sqrt(ZF); a free point resting on the seabed is not modelled), and a
+    ``z_min``, just clear of the seabed (where the catenary's seabed contact switches and its
+    vertical stiffness is singular, VF ~ sqrt(ZF); a free point resting on the seabed is not
+    modelled), and a
     Levenberg-Marquardt shift K + mu I raised whenever the line search fails (singular K of
     slack sections, points far off). Converged when every unknown's force residual is at most
     ``force_rtol`` times its point's force scale (|ext| + sum of section force magnitudes).

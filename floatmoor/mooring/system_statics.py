@@ -496,7 +496,7 @@ class SystemStatics:
         ------
         SolverError
             Naming the time, the point (or section) and why; the samples before are valid and
-            the warm start is that of the last valid sample.
+            the free points restart from their positions at the last valid sample.
         """
         s, ws = self.system, self._ws
         n = len(time)
