@@ -58,6 +58,11 @@ def read_body_motion(t: TableReader, base_dir: Path, simulation: Simulation) -> 
     CaseError
         Naming the file, the key path, what was expected and what was found.
     """
+    known = ("kind", "reference_point", "ramp_duration", "file") + BODY_DOFS
+    for key in t.data:  # first: a misspelt DOF table would read as no motion at all
+        if key not in known:
+            raise t.error(key, f"one of the known keys ({', '.join(sorted(known))})",
+                          _Found(f"the unknown key '{key}'"))
     reference = t.vector("reference_point", size=3, unit="m", default=DEFAULT_REFERENCE_POINT)
     harmonic = [dof for dof in BODY_DOFS if t.has(dof)]
     if t.has("file") and harmonic:
@@ -81,11 +86,14 @@ def _harmonic(t: TableReader, reference: tuple[float, float, float]) -> BodyHarm
             continue
         d = t.table(dof)
         if dof in _TRANSLATIONS:
+            if d.has("amplitude_deg"):
+                raise d.error("amplitude_deg", f"amplitude: the {dof} amplitude in metres (a "
+                              "translation)", d.data["amplitude_deg"])
             amplitude[i] = d.number("amplitude", unit="m", ge=0.0)
         else:
             if d.has("amplitude"):
-                raise d.error("amplitude", f"amplitude_deg: the {dof} amplitude in degrees, "
-                              "as every angle of a case file", d.data["amplitude"])
+                raise d.error("amplitude", f"amplitude_deg: the {dof} amplitude in degrees, as "
+                              "every angle of a case file", d.data["amplitude"])
             amplitude[i] = math.radians(d.number("amplitude_deg", unit="deg", ge=0.0))
         period[i] = d.number("period", unit="s", gt=0.0)
         phase[i] = math.radians(d.number("phase_deg", unit="deg", default=0.0))
