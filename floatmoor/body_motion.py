@@ -24,6 +24,17 @@ the Euler angles, with the interpolant's slopes as rates.
 
 A motion without rotations moves every point exactly as the translational motions of
 :mod:`floatmoor.motion` do: the same numbers, bit for bit.
+
+Other programs. MoorDyn-F (OpenFAST) builds the same matrix for its bodies (the transpose of
+OpenFAST's EulerConstruct, Rz Ry Rx). MoorDyn-C v2 builds its body quaternion as
+Rx(roll) Ry(pitch) Rz(yaw) (Euler2Quat in its Misc.hpp): the reverse order, equal to first
+order in the angles and different at second order (products of two angles), so a record
+with two large rotations at once is a different attitude there. Both MoorDyn versions take
+the rotational rates a coupled body is given as its angular velocity for the points'
+velocities (v = v0 + w x r), the small-angle identification floatmoor's floater also makes;
+a prescribed motion here converts Euler-angle rates exactly. OrcaFlex documents right-handed
+rotations ("clockwise" looking along the axis) applied in a stated order on rotating axes,
+for vessels yaw (heading) first, then pitch, then roll: the convention used here.
 """
 
 from __future__ import annotations
