@@ -319,3 +319,51 @@ def test_bad_body_motions_are_clear_errors(tmp_path, name):
     assert err.key == key, err
     assert expected in err.expected, err
     assert found in err.found, err
+
+
+def test_every_body_point_is_checked_above_the_seabed(tmp_path):
+    # a rope from a clump to the body point: no fixed-to-body line ends there, the body
+    # point's own path is checked
+    text = (Path(__file__).parents[1] / "data" / "systems" / "clump_buoy.toml").read_text()
+    text = text[:text.index("[[lines]]")] + """[[lines]]
+name = "lower"
+start = "anchor"
+end = "clump"
+type = "chain"
+length = 150.0
+model = "quasi-static"
+
+[[lines]]
+name = "upper"
+start = "clump"
+end = "fairlead"
+type = "chain"
+length = 290.0
+model = "quasi-static"
+
+[motion]
+kind = "body"
+reference_point = [-150.0, 0.0, -10.0]
+[motion.roll]
+amplitude_deg = 1.0
+period = 10.0
+[motion.pitch]
+amplitude_deg = {pitch}
+period = 10.0
+
+[simulation]
+duration = 30.0
+output_interval = 0.1
+"""
+    text = text.replace("[[points]]\nname = \"buoy\"", "[[unused]]\nname = \"buoy\"")
+    head, _, rest = text.partition("[[unused]]")
+    text = head + rest[rest.index("[[points]]"):]
+    case = tmp_path / "system.toml"
+    case.write_text(text.replace("{pitch}", "5.0"))
+    motion = load_case(case).motion
+    assert isinstance(motion, BodyHarmonicMotion)
+    case.write_text(text.replace("{pitch}", "60.0"))  # swings the fairlead 130 m down
+    with pytest.raises(CaseError) as info:
+        load_case(case)
+    assert info.value.key == "motion"
+    assert "keeps body point 'fairlead' above the seabed" in info.value.expected
