@@ -20,6 +20,7 @@ __all__ = [
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
     "RADIATION_METHODS", "HYDRO_CHECKS", "POINT_KINDS", "Point", "Section",
+    "BODY_DOFS", "BodyHarmonicMotion", "BodyTableMotion", "BodyMotion",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
@@ -273,7 +274,50 @@ class TableMotion:
         return None
 
 
-Motion = CircularMotion | HarmonicMotion | TableMotion
+#: The six DOFs of a prescribed body motion, in the order of its arrays (as capytaine's).
+BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+@dataclass(frozen=True)
+class BodyHarmonicMotion:
+    """Rigid-body motion of the body points, harmonic per DOF: x_i = a_i sin(2 pi t / T_i +
+    phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.body_motion` for the
+    rotation convention). DOFs that do not move have amplitude 0 (and period 1 s)."""
+
+    reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
+    amplitude: tuple[float, ...]  #: (6,) [m, m, m, rad, rad, rad]
+    period: tuple[float, ...]  #: (6,) [s]
+    phase: tuple[float, ...]  #: (6,) [rad]
+    ramp_duration: float  #: [s]
+    kind: str = "body"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """Common period of the moving DOFs [s], or None when they differ."""
+        periods = {p for a, p in zip(self.amplitude, self.period) if a != 0.0}
+        return periods.pop() if len(periods) == 1 else None
+
+
+@dataclass(frozen=True)
+class BodyTableMotion:
+    """Rigid-body motion of the body points from a CSV file (columns time, the six DOFs of
+    :data:`BODY_DOFS`), linearly interpolated in each DOF (rotations in the Euler angles)."""
+
+    reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
+    file: str  #: resolved path of the CSV file
+    time: NDArray[np.float64] = field(repr=False)  #: [s]
+    displacement: NDArray[np.float64] = field(repr=False)  #: (n, 6) [m, m, m, rad, rad, rad]
+    ramp_duration: float = 0.0  #: [s]
+    kind: str = "body"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """A table has no declared period."""
+        return None
+
+
+BodyMotion = BodyHarmonicMotion | BodyTableMotion
+Motion = CircularMotion | HarmonicMotion | TableMotion | BodyHarmonicMotion | BodyTableMotion
 
 
 @dataclass(frozen=True)

@@ -48,6 +48,15 @@ VARIABLE_ATTRIBUTES: dict[str, dict[str, str]] = {
                           "Sway, Heave [m], Roll, Pitch, Yaw [rad]", "units": "m or rad"},
     "body_velocity": {"long_name": "floater velocity: Surge, Sway, Heave [m/s], Roll, Pitch, "
                       "Yaw [rad/s]", "units": "m/s or rad/s"},
+    # prescribed body motion (forced runs with [motion] kind = "body")
+    "prescribed_displacement": {"long_name": "prescribed body displacement about the motion's "
+                                "reference point: Surge, Sway, Heave [m], Roll, Pitch, Yaw [rad] "
+                                "(Euler angles of R = Rz(yaw) Ry(pitch) Rx(roll))",
+                                "units": "m or rad"},
+    "prescribed_displacement_rate": {"long_name": "time derivative of the prescribed body "
+                                     "displacement: Surge, Sway, Heave [m/s], Roll, Pitch, Yaw "
+                                     "Euler-angle rates [rad/s] (not the angular velocity)",
+                                     "units": "m/s or rad/s"},
     "wave_elevation": {"long_name": "undisturbed incident wave elevation at the floater's "
                        "reference point", "units": "m"},
     # line shapes at the coarser shape interval

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Simulation
 from floatmoor.errors import CaseError, SolverError
-from floatmoor.motion import fairlead_state
+from floatmoor.body_motion import body_motion_state, is_body_motion, prescribed_fairlead_state
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.assembly import LineModel, assemble
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
@@ -134,7 +134,7 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     stride = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval,
                         shape_nodes=[m.arc_length for m in models] if stride else None,
-                        shape_stride=stride)
+                        shape_stride=stride, prescribed=is_body_motion(case.motion))
     start_wall = _time.perf_counter()
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
@@ -163,7 +163,7 @@ def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start:
     for i, (line, model) in enumerate(zip(case.lines, models)):
         if limit <= start:
             break
-        path, velocity = fairlead_state(case.motion, line, t[:limit - start])
+        path, velocity = prescribed_fairlead_state(case.motion, line, t[:limit - start])
         series["fairlead_position"][i, start:limit] = path
         cuts = {start, limit}
         if stride:
@@ -190,6 +190,10 @@ def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start:
                     positions, tension = model.profile(path[b - 1 - start],
                                                        recorder.shape_arc_length[i])
                     recorder.store_shape(i, (b - 1) // stride, positions, tension)
+    if recorder.prescribed is not None:
+        x, dx = body_motion_state(case.motion, t[:limit - start])
+        recorder.prescribed["prescribed_displacement"][start:limit] = x
+        recorder.prescribed["prescribed_displacement_rate"][start:limit] = dx
     recorder.advance(limit)
     if failure is not None:
         raise failure

@@ -61,6 +61,8 @@ def estimated_output_bytes(case: Case) -> float:
     values += (len(case.points) * 6 + len(case.sections) * 2) * n_time
     if case.floater is not None:
         values += n_time * _BODY_VALUES
+    if getattr(case.motion, "kind", None) == "body":  # the prescribed DOFs and their rates
+        values += n_time * 12
     if sim.shape_output_interval is not None:
         nodes = max((line.dynamic.elements * (line.dynamic.order + 1)
                      if line.model == "dynamic" else max(SHAPE_NODES, SHAPE_POINTS))
@@ -116,7 +118,7 @@ class Recorder:
     def __init__(self, case: Case, time: NDArray[np.float64], path: str | Path | None = None,
                  flush_interval: float = FLUSH_INTERVAL_S, *,
                  shape_nodes: list[NDArray[np.float64]] | None = None,
-                 shape_stride: int = 0, body: bool = False) -> None:
+                 shape_stride: int = 0, body: bool = False, prescribed: bool = False) -> None:
         self.case = case
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
@@ -132,6 +134,12 @@ class Recorder:
             self.body = {"body_displacement": np.zeros((n_time, 6)),
                          "body_velocity": np.zeros((n_time, 6)),
                          "wave_elevation": np.zeros(n_time)}
+        #: prescribed body motion (forced runs with [motion] kind = "body"): its 6 DOFs and
+        #: their rates (time, 6)
+        self.prescribed: dict[str, NDArray[np.float64]] | None = None
+        if prescribed:
+            self.prescribed = {"prescribed_displacement": np.zeros((n_time, 6)),
+                               "prescribed_displacement_rate": np.zeros((n_time, 6))}
         self.n_done = 0
         # line shapes every shape_stride samples, on each line's nodes; lines with fewer
         # nodes than the longest repeat their last node so every line shares the node axis
@@ -204,6 +212,8 @@ class Recorder:
                       "shape_tension": self.shape_tension[:, :m]}
         body = None if self.body is None else {k: v[:n] for k, v in self.body.items()}
         system = line_system_series(self.case, variables)
+        if self.prescribed is not None:
+            body = {**(body or {}), **{k: v[:n] for k, v in self.prescribed.items()}}
         return build_result_dataset(self.case, self.time[:n], variables, status=status,
                                     shapes=shapes, body=body, system=system,
                                     extra_attrs={"wall_time_s": wall,
