@@ -205,6 +205,12 @@ class Line:
         return self.sections[0].line_type
 
     @property
+    def end_type(self) -> LineType:
+        """The line type at the line's end (its fairlead): what the fairlead tension is
+        judged against."""
+        return self.sections[-1].line_type
+
+    @property
     def length(self) -> float:
         """Unstretched length, the sum of the sections' [m]."""
         return float(sum(s.length for s in self.sections))
@@ -513,11 +519,13 @@ class Case:
         """Every line's sections, line by line from start to end."""
         return tuple(s for line in self.lines for s in line.sections)
 
+    def is_independent(self, line: Line) -> bool:
+        """Whether ``line`` is one section from a fixed to a body point, solved on its own
+        (every other line belongs to a system of lines solved together)."""
+        return (len(line.sections) == 1 and self.point(line.start).kind == "fixed"
+                and self.point(line.end).kind == "body")
+
     @property
     def is_system(self) -> bool:
-        """Whether the mooring is more than independent one-section lines from a fixed
-        point to a body point (the lines of a free point or of several sections are
-        solved together)."""
-        kinds = {p.name: p.kind for p in self.points}
-        return any(len(line.sections) != 1 or kinds.get(line.start) != "fixed"
-                   or kinds.get(line.end) != "body" for line in self.lines)
+        """Whether the mooring is more than independent lines (:meth:`is_independent`)."""
+        return not all(self.is_independent(line) for line in self.lines)

@@ -41,7 +41,7 @@ _DIMS = {
 def _line_mbl(line) -> float | None:
     """A line's MBL for the per-line variable, which the fairlead tension is checked against:
     the type's of its section at the fairlead (None when it gives none)."""
-    return line.sections[-1].line_type.minimum_breaking_load
+    return line.end_type.minimum_breaking_load
 
 
 def build_result_dataset(case: Case, time: NDArray[np.float64],

@@ -402,6 +402,7 @@ class SystemStatics:
         self._pos = np.array(system.positions, dtype=float)
         self._warm = np.full((len(system.section_names), 2), np.nan)
         self._ws = _Workspace(system, _dof_table(system))
+        self.failed_index = -1
 
     # ------------------------------------------------------------------ state
     def state_arrays(self) -> dict[str, NDArray[np.float64]]:
@@ -514,6 +515,8 @@ class SystemStatics:
             self.force_rtol, self.max_iterations, warm, ws.sec_out, ws.trial_out, ws.trial_pos,
             ws.R, ws.Rt, ws.K, ws.Kt, ws.A, ws.rhs, ws.dx, ws.scale, ws.info, positions,
             start_force, end_force, laid_length, iterations, res))
+        #: the first sample of the last path not solved, -1 when all were
+        self.failed_index = int(failed)
         if failed >= 0:
             info_status = self._status_from_info(ws)
             fail_pos, fail_warm = pos.copy(), warm.copy()
