@@ -408,6 +408,12 @@ class DynamicSystem:
         fluxes answer the velocity at once through the axial impedance)."""
         return self._body_forces(*self._end_forces(body_velocities))
 
+    def section_end_forces(self, body_velocities: NDArray[np.float64]
+                           ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces of every section on its start and end point [N], (sections, 3) each, in the
+        current state with the body points moving at ``body_velocities`` (bodies, 3)."""
+        return self._end_forces(body_velocities)
+
     def _end_forces(self, body_velocities: NDArray[np.float64]
                     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         w, S = self._w, len(self.sections)
