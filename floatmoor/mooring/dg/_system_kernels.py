@@ -276,12 +276,325 @@ def dgs_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q
                 Nstar, faces, slack, a, ue)
 
 
+_EYE3 = np.eye(3)  # unit velocities of a free point (read-only constant inside the kernels)
+
+
+@jit
+def _band_solve(band, e, n, kl, ku):
+    """Solve with the in-place banded LU of ``_kernels._damping_system`` (unit lower factor),
+    the right-hand side ``e`` overwritten by the solution."""
+    for row in range(n):
+        acc = e[row]
+        for cc in range(max(0, row - kl), row):
+            acc -= band[row, kl + cc - row] * e[cc]
+        e[row] = acc
+    for row in range(n - 1, -1, -1):
+        acc = e[row]
+        for cc in range(row + 1, min(n, row + ku + 1)):
+            acc -= band[row, kl + cc - row] * e[cc]
+        e[row] = acc / band[row, kl]
+
+
+@jit
+def _damping_rhs(v, avel, fvel, prm, D, LIFT, qt, faces, tng, cn, e):
+    """Right-hand side C T^T Grad(v) of the damping system, the end values of Grad ``avel`` and
+    ``fvel`` (as ``_kernels._damping_solve_ends``)."""
+    K, Np = v.shape[0], v.shape[1]
+    jac = 2.0 / prm[_k.P_H]
+    _k._gradient(v, avel, fvel, D, LIFT, jac, faces, qt)
+    for k in range(K):
+        for i in range(Np):
+            e[k * Np + i] = cn[k, i] * (tng[k, i, 0] * qt[k, i, 0] + tng[k, i, 1] * qt[k, i, 1]
+                                        + tng[k, i, 2] * qt[k, i, 2])
+
+
+@jit
+def _damping_apply(v, prm, D, LIFT, dt, qt, N, faces, tng, minv, e):
+    """v += dt M_eff^-1 Div(t s) for the damping tension s = ``e`` (traces from the end side,
+    each end face the end node's own: the second half of ``_kernels._damping_solve_ends``)."""
+    K, Np = v.shape[0], v.shape[1]
+    jac = 2.0 / prm[_k.P_H]
+    for k in range(K):
+        for i in range(Np):
+            s = e[k * Np + i]
+            for c in range(3):
+                N[k, i, c] = tng[k, i, c] * s
+    for f in range(K):
+        for c in range(3):
+            faces[f, c] = N[f, 0, c]
+    for c in range(3):
+        faces[K, c] = N[K - 1, Np - 1, c]
+    _k._strong_derivative(N, faces, D, LIFT, jac, qt)
+    for k in range(K):
+        for i in range(Np):
+            ax, ay, az = qt[k, i, 0], qt[k, i, 1], qt[k, i, 2]
+            dot = minv[k, i, 1] * (tng[k, i, 0] * ax + tng[k, i, 1] * ay + tng[k, i, 2] * az)
+            v[k, i, 0] += dt * (minv[k, i, 0] * ax + dot * tng[k, i, 0])
+            v[k, i, 1] += dt * (minv[k, i, 0] * ay + dot * tng[k, i, 1])
+            v[k, i, 2] += dt * (minv[k, i, 0] * az + dot * tng[k, i, 2])
+
+
+@jit
+def _end_lift(v, prm, LIFT, dt, tng, minv, at_start, Z, du):
+    """v += dt M_eff^-1 d(dN)/ds of the end-face flux change of a free point's velocity change
+    ``du``: the penalty Z (v_end - u) of the end flux moves by Z du at either end (with the sign
+    of the face), which the strong-form lift spreads over the end element."""
+    K, Np = v.shape[0], v.shape[1]
+    jac = 2.0 / prm[_k.P_H]
+    k = 0 if at_start else K - 1
+    col = 0 if at_start else 1
+    for i in range(Np):
+        f = dt * jac * LIFT[i, col] * Z
+        fx, fy, fz = f * du[0], f * du[1], f * du[2]
+        dot = minv[k, i, 1] * (tng[k, i, 0] * fx + tng[k, i, 1] * fy + tng[k, i, 2] * fz)
+        v[k, i, 0] += minv[k, i, 0] * fx + dot * tng[k, i, 0]
+        v[k, i, 1] += minv[k, i, 0] * fy + dot * tng[k, i, 1]
+        v[k, i, 2] += minv[k, i, 0] * fz + dot * tng[k, i, 2]
+
+
+@jit
+def _end_masses(r, q, prm, tng, minv, K, Np):
+    """Tangents and inverse Morison masses (as ``_kernels._damping_system``) of the end
+    elements' nodes, from the tangent field q of the state r: for :func:`_end_lift` on a
+    section without implicit damping."""
+    m = prm[_k.P_M]
+    for k in (0, K - 1):
+        for i in range(Np):
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            for c in range(3):
+                tng[k, i, c] = q[k, i, c] / ql if ql > 0.0 else 0.0
+            sub = r[k, i, 2] < 0.0
+            mn = m + (prm[_k.P_MAN] if sub else 0.0)
+            mt = m + (prm[_k.P_MAT] if sub else 0.0)
+            minv[k, i, 0] = 1.0 / mn
+            minv[k, i, 1] = 1.0 / mt - 1.0 / mn
+
+
+@jit
+def _dense_solve(A, b, n):
+    """Solve A[:n, :n] x = b[:n] in place (Gaussian elimination, partial pivoting); x in b."""
+    for col in range(n):
+        piv = col
+        big = abs(A[col, col])
+        for rr in range(col + 1, n):
+            if abs(A[rr, col]) > big:
+                big = abs(A[rr, col])
+                piv = rr
+        if piv != col:
+            for cc in range(n):
+                A[col, cc], A[piv, cc] = A[piv, cc], A[col, cc]
+            b[col], b[piv] = b[piv], b[col]
+        for rr in range(col + 1, n):
+            lf = A[rr, col] / A[col, col]
+            if lf == 0.0:
+                continue
+            for cc in range(col, n):
+                A[rr, cc] -= lf * A[col, cc]
+            b[rr] -= lf * b[col]
+    for rr in range(n - 1, -1, -1):
+        acc = b[rr]
+        for cc in range(rr + 1, n):
+            acc -= A[rr, cc] * b[cc]
+        b[rr] = acc / A[rr, rr]
+
+
+@jit
+def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q, qt, N, faces,
+                   slack, tmp, tng, minv, cn, flags, Y, band, e, info, resp, coupling):
+    """After the SSP-RK3 step: each section's implicit seabed contact, its backward-Euler
+    Kelvin-Voigt step, and its slack filter, with the free points' velocities in the
+    damping step (``ppos``/``pvel`` hold every point's data at t + dt).
+
+    A section between fixed and body points takes ``_kernels._damping_solve_ends`` as a line.
+    At a free point the sections' damping steps and the point's are one backward-Euler step:
+    with the factored system frozen, each section's damping tension is affine in the velocity
+    changes du of its free end points, s = s0 + W du (``resp`` caches W, three solves per free
+    end, made again with the factors); each free point takes
+
+        (M_eff + dt sum_j Z_j) du = dt sum_j (+-) t_j s_j,
+
+    the damping fluxes t s of its sections' end nodes (+ at a section's start, - at its end)
+    answered as the Riemann junction answers the elastic ones: the point's velocity change
+    moves each section's end flux by Z_j du (``_end_lift``, which enters W), so every section
+    sees the same flux, the point the reaction of what it exerts, and a massless joint carries
+    its sections' damping forces across. The free points joined through sections (groups,
+    ``coupling``) each solve one small dense system. Without implicit damping at any free
+    point this is the sections' own step (``du`` = 0), bit for bit."""
+    sact, H, hrhs, du, gpts, goff, gidx = coupling
+    S = sec.shape[0]
+    coupled = False
+    for s in range(S):
+        ps = prm[s]
+        if ps[_k.P_IMPLICIT_DAMPING] != 0.0 and ps[_k.P_CINT] > 0.0 and (
+                kind[sec[s, S_START]] == FREE or kind[sec[s, S_END]] == FREE):
+            coupled = True
+    for s in range(S):
+        K, Np = sec[s, S_K], sec[s, S_NP]
+        ps = prm[s]
+        D, LIFT, F, w = _ops(ops, sec, s)
+        rs, vs = _nodes(r, sec, s), _nodes(v, sec, s)
+        no, fo, eo = sec[s, S_NODE], sec[s, S_FACE], sec[s, S_ELEM]
+        sp, ep = sec[s, S_START], sec[s, S_END]
+        nn = K * Np
+        deferred = coupled and (kind[sp] == FREE or kind[ep] == FREE)
+        sact[s] = 0.0
+        if ps[_k.P_IMPLICIT_CONTACT] != 0.0:
+            _k._implicit_contact(rs, vs, ps, dt)
+        tngs = _nodes(tng, sec, s)
+        minvs = minv[no:no + nn].reshape((K, Np, 2))
+        qs, qts, Ns = _nodes(q, sec, s), _nodes(qt, sec, s), _nodes(N, sec, s)
+        fcs = faces[fo:fo + K + 1]
+        if ps[_k.P_IMPLICIT_DAMPING] != 0.0 and ps[_k.P_CINT] > 0.0:
+            yo, bo = sec[s, S_Y], sec[s, S_BAND]
+            Ys = Y[yo:yo + nn * (Np + 1) * 3].reshape((K, Np, Np + 1, 3))
+            bs = band[bo:bo + nn * 3 * Np].reshape((nn, 3 * Np))
+            cns = cn[no:no + nn].reshape((K, Np))
+            flg = flags[no:no + nn].reshape((K, Np))
+            es = e[no:no + nn]
+            if _k._damping_system(rs, ppos[sp], ppos[ep], ps, D, LIFT, dt, qs, fcs, tngs,
+                                  minvs, cns, flg, Ys, bs, info[s]):
+                if not deferred:
+                    _k._damping_solve_ends(vs, pvel[sp], pvel[ep], ps, D, LIFT, dt, qts, Ns,
+                                           fcs, tngs, minvs, cns, bs, es)
+                else:
+                    sact[s] = 1.0
+                    kl, ku = 2 * Np - 1, Np
+                    if info[s, 4] != info[s, 3]:  # responses of the new factors
+                        for end in range(2):
+                            pt = sp if end == 0 else ep
+                            if kind[pt] != FREE:
+                                continue
+                            Z = _end_impedance(rs, ps, end == 0)
+                            for c in range(3):
+                                for k in range(K):
+                                    for i in range(Np):
+                                        for cc in range(3):
+                                            Ns[k, i, cc] = 0.0
+                                _end_lift(Ns, ps, LIFT, dt, tngs, minvs, end == 0, Z, _EYE3[c])
+                                col = resp[end, c, no:no + nn]
+                                if end == 0:
+                                    _damping_rhs(Ns, _EYE3[c], _k._ZERO3, ps, D, LIFT, qts, fcs,
+                                                 tngs, cns, col)
+                                else:
+                                    _damping_rhs(Ns, _k._ZERO3, _EYE3[c], ps, D, LIFT, qts, fcs,
+                                                 tngs, cns, col)
+                                _band_solve(bs, col, nn, kl, ku)
+                        info[s, 4] = info[s, 3]
+                    _damping_rhs(vs, pvel[sp], pvel[ep], ps, D, LIFT, qts, fcs, tngs, cns, es)
+                    _band_solve(bs, es, nn, kl, ku)
+        elif deferred:
+            _k._gradient(rs, ppos[sp], ppos[ep], D, LIFT, 2.0 / ps[_k.P_H], fcs, qs)
+            _end_masses(rs, qs, ps, tngs, minvs, K, Np)
+        if not deferred and ps[_k.P_FILTER] != 0.0:
+            _k._filter_slack(vs, F, slack[eo:eo + K], tmp)
+    if not coupled:
+        return
+    # the free points' velocity changes, group by group
+    P = kind.shape[0]
+    rho_w = env[E_RHO_W]
+    for g in range(goff.shape[0] - 1):
+        m3 = 3 * (goff[g + 1] - goff[g])
+        for i in range(m3):
+            hrhs[i] = 0.0
+            for j in range(m3):
+                H[i, j] = 0.0
+        for li in range(goff[g + 1] - goff[g]):
+            p = gpts[goff[g] + li]
+            meff = pprm[p, PP_MASS] + (pprm[p, PP_CA] * rho_w * pprm[p, PP_VOLUME]
+                                       if x[p, 2] < 0.0 else 0.0)
+            for a in range(3):
+                H[3 * li + a, 3 * li + a] = meff
+        for s in range(S):
+            K, Np = sec[s, S_K], sec[s, S_NP]
+            rs = _nodes(r, sec, s)
+            no, nn = sec[s, S_NODE], K * Np
+            for end in range(2):
+                pt = sec[s, S_START] if end == 0 else sec[s, S_END]
+                if kind[pt] != FREE or gidx[pt, 0] != g:
+                    continue
+                li = gidx[pt, 1]
+                Z = _end_impedance(rs, prm[s], end == 0)
+                for a in range(3):
+                    H[3 * li + a, 3 * li + a] += dt * Z
+                if sact[s] == 0.0:
+                    continue
+                node = no if end == 0 else no + nn - 1
+                sigma = dt if end == 0 else -dt
+                for a in range(3):
+                    hrhs[3 * li + a] += sigma * tng[node, a] * e[node]
+                for end2 in range(2):
+                    pt2 = sec[s, S_START] if end2 == 0 else sec[s, S_END]
+                    if kind[pt2] != FREE:
+                        continue
+                    lj = gidx[pt2, 1]
+                    for a in range(3):
+                        for c in range(3):
+                            H[3 * li + a, 3 * lj + c] -= (sigma * tng[node, a]
+                                                          * resp[end2, c, node])
+        _dense_solve(H, hrhs, m3)
+        for li in range(goff[g + 1] - goff[g]):
+            p = gpts[goff[g] + li]
+            for c in range(3):
+                du[p, c] = hrhs[3 * li + c]
+    # the sections at free points: damping tension s0 + W du, the penalty's share, filter
+    for s in range(S):
+        K, Np = sec[s, S_K], sec[s, S_NP]
+        sp, ep = sec[s, S_START], sec[s, S_END]
+        if kind[sp] != FREE and kind[ep] != FREE:
+            continue
+        ps = prm[s]
+        D, LIFT, F, w = _ops(ops, sec, s)
+        rs, vs = _nodes(r, sec, s), _nodes(v, sec, s)
+        no, fo, eo = sec[s, S_NODE], sec[s, S_FACE], sec[s, S_ELEM]
+        nn = K * Np
+        tngs = _nodes(tng, sec, s)
+        minvs = minv[no:no + nn].reshape((K, Np, 2))
+        if sact[s] != 0.0:
+            for end in range(2):
+                pt = sp if end == 0 else ep
+                if kind[pt] != FREE:
+                    continue
+                for i in range(nn):
+                    e[no + i] += (resp[end, 0, no + i] * du[pt, 0]
+                                  + resp[end, 1, no + i] * du[pt, 1]
+                                  + resp[end, 2, no + i] * du[pt, 2])
+            _damping_apply(vs, ps, D, LIFT, dt, _nodes(qt, sec, s), _nodes(N, sec, s),
+                           faces[fo:fo + K + 1], tngs, minvs, e[no:no + nn])
+        for end in range(2):
+            pt = sp if end == 0 else ep
+            if kind[pt] == FREE:
+                _end_lift(vs, ps, LIFT, dt, tngs, minvs, end == 0,
+                          _end_impedance(rs, ps, end == 0), du[pt])
+        if ps[_k.P_FILTER] != 0.0:
+            _k._filter_slack(vs, F, slack[eo:eo + K], tmp)
+    for p in range(P):
+        if kind[p] == FREE:
+            for c in range(3):
+                u[p, c] += du[p, c]
+
+
+@jit
+def dgs_damping_step(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N,
+                     faces, slack, tmp, tng, minv, cn, flags, Y, band, e, info, resp, coupling):
+    """The step after SSP-RK3 alone (:func:`_damping_phase`) at the state (r, v, x, u):
+    ``ppos``/``pvel`` give the body points; fixed and free points take their state. For the
+    tests against the NumPy reference (``system_damping_step``)."""
+    for p in range(kind.shape[0]):
+        if kind[p] != BODY:
+            for c in range(3):
+                ppos[p, c] = x[p, c]
+                pvel[p, c] = u[p, c] if kind[p] == FREE else 0.0
+    _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q, qt, N, faces,
+                   slack, tmp, tng, minv, cn, flags, Y, band, e, info, resp, coupling)
+
+
 @jit
 def _system_step(r, v, x, u, t, dt, t0, t1, bp0, bw0, bp1, bw1, sec, prm, ops, kind, body,
                  pprm, env, work, pwork, q, qt, N, Nstar, faces, slack, ppos, pvel, G, Zs, tmp,
-                 bcd, tng, minv, cn, flags, Y, band, e, info):
+                 bcd, tng, minv, cn, flags, Y, band, e, info, resp, coupling):
     """One SSP-RK3 step of every section and free point from t to t + dt, then each
-    section's implicit contact, implicit internal damping and slack filter."""
+    section's implicit contact, the implicit internal damping (with the free points,
+    :func:`_damping_phase`) and slack filter."""
     r1, v1, r2, v2, a = work[0], work[1], work[2], work[3], work[4]
     x1, u1, x2, u2, ue = pwork[0], pwork[1], pwork[2], pwork[3], pwork[4]
     n = r.shape[0]
@@ -346,47 +659,103 @@ def _system_step(r, v, x, u, t, dt, t0, t1, bp0, bw0, bp1, bw1, sec, prm, ops, k
             for c in range(3):
                 ppos[p, c] = x[p, c]
                 pvel[p, c] = u[p, c] if kind[p] == FREE else 0.0
-    for s in range(sec.shape[0]):
-        K, Np = sec[s, S_K], sec[s, S_NP]
-        ps = prm[s]
-        D, LIFT, F, w = _ops(ops, sec, s)
-        rs, vs = _nodes(r, sec, s), _nodes(v, sec, s)
-        if ps[_k.P_IMPLICIT_CONTACT] != 0.0:
-            _k._implicit_contact(rs, vs, ps, dt)
-        if ps[_k.P_IMPLICIT_DAMPING] != 0.0 and ps[_k.P_CINT] > 0.0:
-            no, fo, eo = sec[s, S_NODE], sec[s, S_FACE], sec[s, S_ELEM]
-            sp, ep = sec[s, S_START], sec[s, S_END]
-            nn = K * Np
-            yo, bo = sec[s, S_Y], sec[s, S_BAND]
-            Ys = Y[yo:yo + nn * (Np + 1) * 3].reshape((K, Np, Np + 1, 3))
-            bs = band[bo:bo + nn * 3 * Np].reshape((nn, 3 * Np))
-            tngs = _nodes(tng, sec, s)
-            minvs = minv[no:no + nn].reshape((K, Np, 2))
-            cns = cn[no:no + nn].reshape((K, Np))
-            flg = flags[no:no + nn].reshape((K, Np))
-            es = e[no:no + nn]
-            qs, qts, Ns = _nodes(q, sec, s), _nodes(qt, sec, s), _nodes(N, sec, s)
-            fcs = faces[fo:fo + K + 1]
-            if _k._damping_system(rs, ppos[sp], ppos[ep], ps, D, LIFT, dt, qs, fcs, tngs,
-                                  minvs, cns, flg, Ys, bs, info[s]):
-                _k._damping_solve_ends(vs, pvel[sp], pvel[ep], ps, D, LIFT, dt, qts, Ns, fcs,
-                                       tngs, minvs, cns, bs, es)
-        if ps[_k.P_FILTER] != 0.0:
-            eo = sec[s, S_ELEM]
-            _k._filter_slack(vs, F, slack[eo:eo + K], tmp)
+    _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q, qt, N, faces,
+                   slack, tmp, tng, minv, cn, flags, Y, band, e, info, resp, coupling)
+
+
+#: Passes of the recorded balance of a massless joint whose sections' damping tensions depend
+#: on its velocity (``dgs_record``): the balance is affine in it but for the clip of a tension
+#: at zero and a one-element section's other end, so the second pass normally confirms it.
+RECORD_PASSES = 6
+#: The balance velocity has converged when a pass changes it by less than this [m/s] (far
+#: below anything the end forces can resolve: Z du is then ~1e-10 N for a chain).
+RECORD_VELOCITY_TOL = 1e-14
 
 
 @jit
-def _record_velocities(x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, v, r, ue):
-    """Free points' velocities for the recorded end fluxes: the state's for points with mass,
-    the balance velocity (sum of the end fluxes zero) for massless joints. ``ppos`` must hold
-    every point's position and ``pvel`` the others' velocities; G and Zs need the nodal
-    forces of the sections in N (the caller's first pass)."""
-    for p in range(kind.shape[0]):
-        if kind[p] == FREE:
-            _free_velocity(x[p], u[p], pprm[p], env, G[p], Zs[p], 0.0, ue[p])
-            for c in range(3):
-                pvel[p, c] = ue[p, c]
+def _damped_balance(p, x, u, sec, prm, ops, kind, pprm, env, pvel, G, Zs, q, qt):
+    """Balance velocity of the massless free point p (sum of its end fluxes zero) with the
+    damping tensions of its sections' end nodes linearised in it: an end node's strain rate
+    moves with the end velocity w by jac L (L the lift entry of the end node, L > 0), so its
+    flux on p by -(Z I + c_int jac L t t^T) w. Linearised about ``pvel[p]`` (G, Zs and the
+    fields q, qt from a pass with it); returns the change of ``pvel[p]``, or -1.0 when p has
+    mass or no damped section end (then ``pvel[p]`` is left to ``_free_velocity``)."""
+    rho_w, g = env[E_RHO_W], env[E_G]
+    sub = x[p, 2] < 0.0
+    M = pprm[p, PP_MASS]
+    if M + (pprm[p, PP_CA] * rho_w * pprm[p, PP_VOLUME] if sub else 0.0) != 0.0:
+        return -1.0
+    dxx, dyy, dzz, dxy, dxz, dyz = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    damped = False
+    for s in range(sec.shape[0]):
+        ps = prm[s]
+        cint = ps[_k.P_CINT]
+        if cint <= 0.0:
+            continue
+        K, Np = sec[s, S_K], sec[s, S_NP]
+        D, LIFT, F, w = _ops(ops, sec, s)
+        qs, qts = _nodes(q, sec, s), _nodes(qt, sec, s)
+        jac = 2.0 / ps[_k.P_H]
+        for end in range(2):
+            if (sec[s, S_START] if end == 0 else sec[s, S_END]) != p:
+                continue
+            k, i = (0, 0) if end == 0 else (K - 1, Np - 1)
+            L = LIFT[0, 0] if end == 0 else LIFT[Np - 1, 1]
+            ql = math.sqrt(qs[k, i, 0] ** 2 + qs[k, i, 1] ** 2 + qs[k, i, 2] ** 2)
+            if ql <= 1.0:
+                continue
+            deps = (qs[k, i, 0] * qts[k, i, 0] + qs[k, i, 1] * qts[k, i, 1]
+                    + qs[k, i, 2] * qts[k, i, 2]) / ql
+            if ps[_k.P_EA] * (ql - 1.0) + cint * deps <= 0.0:
+                continue  # clipped at zero: the tension does not move with w
+            damped = True
+            d = cint * jac * L
+            tx, ty, tz = qs[k, i, 0] / ql, qs[k, i, 1] / ql, qs[k, i, 2] / ql
+            dxx += d * tx * tx
+            dyy += d * ty * ty
+            dzz += d * tz * tz
+            dxy += d * tx * ty
+            dxz += d * tx * tz
+            dyz += d * ty * tz
+    if not damped:
+        return -1.0
+    # the other forces as _free_velocity's (drag and friction linearised about the state u)
+    fz = ((rho_w * pprm[p, PP_VOLUME] if sub else 0.0) - M) * g
+    cd = 0.0
+    if sub and pprm[p, PP_DRAG_AREA] > 0.0:
+        w2 = 0.0
+        for c in range(3):
+            w2 += (env[E_U + c] - u[p, c]) ** 2
+        cd = 0.5 * rho_w * pprm[p, PP_DRAG_AREA] * math.sqrt(w2)
+    cf = 0.0
+    if x[p, 2] < env[E_ZB] and pprm[p, PP_FRICTION] > 0.0:
+        speed = math.sqrt(u[p, 0] ** 2 + u[p, 1] ** 2)
+        vc = env[E_VC]
+        if speed > 0.0:
+            cf = pprm[p, PP_FRICTION] * math.sin(0.5 * math.pi * speed / max(vc, speed)) / speed
+        else:
+            cf = pprm[p, PP_FRICTION] * 0.5 * math.pi / vc
+    w0x, w0y, w0z = pvel[p, 0], pvel[p, 1], pvel[p, 2]
+    bx = G[p, 0] + cd * env[E_U] + dxx * w0x + dxy * w0y + dxz * w0z
+    by = G[p, 1] + cd * env[E_U + 1] + dxy * w0x + dyy * w0y + dyz * w0z
+    bz = G[p, 2] + cd * env[E_U + 2] + fz + dxz * w0x + dyz * w0y + dzz * w0z
+    axx = Zs[p] + cd + cf + dxx
+    ayy = Zs[p] + cd + cf + dyy
+    azz = Zs[p] + cd + dzz
+    # Cramer's rule of the symmetric 3x3 system
+    c00 = ayy * azz - dyz * dyz
+    c01 = dxz * dyz - dxy * azz
+    c02 = dxy * dyz - dxz * ayy
+    det = axx * c00 + dxy * c01 + dxz * c02
+    c11 = axx * azz - dxz * dxz
+    c12 = dxy * dxz - axx * dyz
+    c22 = axx * ayy - dxy * dxy
+    wx = (c00 * bx + c01 * by + c02 * bz) / det
+    wy = (c01 * bx + c11 * by + c12 * bz) / det
+    wz = (c02 * bx + c12 * by + c22 * bz) / det
+    change = max(abs(wx - w0x), abs(wy - w0y), abs(wz - w0z))
+    pvel[p, 0], pvel[p, 1], pvel[p, 2] = wx, wy, wz
+    return change
 
 
 @jit
@@ -395,8 +764,9 @@ def dgs_record(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q,
     """End forces of every section on its start and end point [N] (``start_out``,
     ``end_out``: (sections, 3)) and laid lengths [m] at the current state, with the internal
     damping in the tension. ``ppos``/``pvel`` hold the body points' data; fixed points take
-    their position at rest, free points their state (massless ones their balance
-    velocity)."""
+    their position at rest, free points their state, massless ones their balance velocity:
+    the sum of their end fluxes is zero, the damping tensions included (``_damped_balance``,
+    up to ``RECORD_PASSES`` passes)."""
     S = sec.shape[0]
     P = kind.shape[0]
     for p in range(P):
@@ -404,31 +774,46 @@ def dgs_record(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q,
             for c in range(3):
                 ppos[p, c] = x[p, c]
                 pvel[p, c] = u[p, c] if kind[p] == FREE else 0.0
-        Zs[p] = 0.0
-        for c in range(3):
-            G[p, c] = 0.0
-    for s in range(S):  # first pass: nodal forces, G and Z of the free points
-        K, Np = sec[s, S_K], sec[s, S_NP]
-        ps = prm[s]
-        D, LIFT, F, w = _ops(ops, sec, s)
-        rs, vs = _nodes(r, sec, s), _nodes(v, sec, s)
-        Ns = _nodes(N, sec, s)
-        fo, eo = sec[s, S_FACE], sec[s, S_ELEM]
-        sp, ep = sec[s, S_START], sec[s, S_END]
-        _k._tension_field(rs, vs, ppos[sp], pvel[sp], ppos[ep], pvel[ep], ps, D, LIFT,
-                          _nodes(q, sec, s), _nodes(qt, sec, s), Ns, Nstar[fo:fo + K + 1],
-                          faces[fo:fo + K + 1], slack[eo:eo + K], ps[_k.P_CINT])
-        if kind[sp] == FREE:
-            Z = _end_impedance(rs, ps, True)
-            Zs[sp] += Z
+    for it in range(RECORD_PASSES):
+        for p in range(P):
+            Zs[p] = 0.0
             for c in range(3):
-                G[sp, c] += Ns[0, 0, c] + Z * vs[0, 0, c]
-        if kind[ep] == FREE:
-            Z = _end_impedance(rs, ps, False)
-            Zs[ep] += Z
-            for c in range(3):
-                G[ep, c] += -Ns[K - 1, Np - 1, c] + Z * vs[K - 1, Np - 1, c]
-    _record_velocities(x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, v, r, ue)
+                G[p, c] = 0.0
+        for s in range(S):  # first pass: nodal forces, G and Z of the free points
+            K, Np = sec[s, S_K], sec[s, S_NP]
+            ps = prm[s]
+            D, LIFT, F, w = _ops(ops, sec, s)
+            rs, vs = _nodes(r, sec, s), _nodes(v, sec, s)
+            Ns = _nodes(N, sec, s)
+            fo, eo = sec[s, S_FACE], sec[s, S_ELEM]
+            sp, ep = sec[s, S_START], sec[s, S_END]
+            _k._tension_field(rs, vs, ppos[sp], pvel[sp], ppos[ep], pvel[ep], ps, D, LIFT,
+                              _nodes(q, sec, s), _nodes(qt, sec, s), Ns, Nstar[fo:fo + K + 1],
+                              faces[fo:fo + K + 1], slack[eo:eo + K], ps[_k.P_CINT])
+            if kind[sp] == FREE:
+                Z = _end_impedance(rs, ps, True)
+                Zs[sp] += Z
+                for c in range(3):
+                    G[sp, c] += Ns[0, 0, c] + Z * vs[0, 0, c]
+            if kind[ep] == FREE:
+                Z = _end_impedance(rs, ps, False)
+                Zs[ep] += Z
+                for c in range(3):
+                    G[ep, c] += -Ns[K - 1, Np - 1, c] + Z * vs[K - 1, Np - 1, c]
+        change = 0.0
+        for p in range(P):
+            if kind[p] != FREE:
+                continue
+            dp = _damped_balance(p, x, u, sec, prm, ops, kind, pprm, env, pvel, G, Zs, q, qt)
+            if dp < 0.0:
+                if it == 0:  # mass, or no damped end: the state's or the elastic balance
+                    _free_velocity(x[p], u[p], pprm[p], env, G[p], Zs[p], 0.0, ue[p])
+                    for c in range(3):
+                        pvel[p, c] = ue[p, c]
+            else:
+                change = max(change, dp)
+        if change <= RECORD_VELOCITY_TOL:
+            break
     for s in range(S):
         K, Np = sec[s, S_K], sec[s, S_NP]
         ps = prm[s]
@@ -465,7 +850,7 @@ def _check(r, v, q, x, u, sec, prm, kind, where):
 def dgs_run_path(r, v, x, u, time, bpos, bvel, sec, prm, ops, kind, body, pprm, env, dt_max,
                  start_force, end_force, laid, point_pos, steps, shape_every, shape_r, shape_t,
                  work, pwork, q, qt, N, Nstar, faces, slack, ppos, pvel, G, Zs, tmp, bcd, tng,
-                 minv, cn, flags, Y, band, e, info, where):
+                 minv, cn, flags, Y, band, e, info, resp, coupling, where):
     """Advance the system along its body points' paths, recording at every sample.
 
     ``time`` (n,), ``bpos``/``bvel`` (n, bodies, 3) give the body points at the samples (the
@@ -513,7 +898,7 @@ def dgs_run_path(r, v, x, u, time, bpos, bvel, sec, prm, ops, kind, body, pprm, 
             _system_step(r, v, x, u, t0 + j * dt, dt, t0, t1, bpos[s], bvel[s], bpos[s + 1],
                          bvel[s + 1], sec, prm, ops, kind, body, pprm, env, work, pwork, q, qt,
                          N, Nstar, faces, slack, ppos, pvel, G, Zs, tmp, bcd, tng, minv, cn,
-                         flags, Y, band, e, info)
+                         flags, Y, band, e, info, resp, coupling)
         for p in range(P):
             if kind[p] == BODY:
                 for c in range(3):

@@ -28,8 +28,8 @@ from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RAT
                                        SettleReport)
 from floatmoor.mooring.system_statics import SystemStatics, build_static_system
 
-__all__ = ["DynamicSystem", "SystemSection", "point_contact", "section_properties",
-           "static_start"]
+__all__ = ["DynamicSystem", "SystemSection", "free_point_groups", "point_contact",
+           "section_properties", "static_start"]
 
 _STATUS_TEXT = {
     _k.DG_NOT_FINITE: "the position or velocity is not finite",
@@ -252,7 +252,8 @@ class DynamicSystem:
                 self._section(self.r, j)[:] = _catenary(sec.properties, a, b, ln.arc_length)
         else:
             self.r[:] = np.asarray(initial_positions, dtype=float).reshape(node, 3)
-        self._w = _SystemWorkspace(self.sec, P, len(body_points), node, elem, face, yoff, boff)
+        self._w = _SystemWorkspace(self.sec, self.kind, len(body_points), node, elem, face,
+                                   yoff, boff)
         #: outcome of :meth:`settle`, None if not settled
         self.settle_report: SettleReport | None = None
         #: sample index of the last failure in :meth:`solve_path`, -1 if none
@@ -455,7 +456,7 @@ class DynamicSystem:
             np.ascontiguousarray(bv), self.sec, self.prm, self.ops, self.kind, self.body,
             self.pprm, self.env, self.time_step, sf, ef, lb, pp, st, shape_every, sr, sten,
             w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.ppos, w.pvel, w.G,
-            w.Zs, w.tmp, w.bcd, *w.damping, w.where)
+            w.Zs, w.tmp, w.bcd, *w.damping, w.coupling, w.where)
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         start_force[:done - first] = sf[first:done]
@@ -610,9 +611,9 @@ class DynamicSystem:
 class _SystemWorkspace:
     """Preallocated arrays of the system kernels (no allocation inside the time loop)."""
 
-    def __init__(self, sec: NDArray[np.int64], P: int, nb: int, nodes: int, elems: int,
-                 faces: int, ysize: int, bandsize: int) -> None:
-        S = sec.shape[0]
+    def __init__(self, sec: NDArray[np.int64], kind: NDArray[np.int64], nb: int, nodes: int,
+                 elems: int, faces: int, ysize: int, bandsize: int) -> None:
+        S, P = sec.shape[0], kind.shape[0]
         npmax = int(sec[:, _s.S_NP].max())
         self.stages = np.zeros((5, nodes, 3))
         self.pstages = np.zeros((5, P, 3))
@@ -630,7 +631,54 @@ class _SystemWorkspace:
         self.bcd = np.zeros((max(nb, 1), 4, 3))
         self.where = np.zeros(3, dtype=np.int64)
         # the implicit damping systems of all sections: tangents, inverse masses,
-        # coefficients, flags, Y, band, rhs, info (per section; info[:, 0] = 0: invalid)
+        # coefficients, flags, Y, band, rhs, info (per section: valid, dt, any node taut,
+        # factorisations, factorisation of the responses; info[:, 0] = 0: invalid), and the
+        # responses of the damping tensions to the velocity of a free end point (start / end,
+        # component, node): frozen data of the state, kept in checkpoints
         self.damping = (np.zeros((nodes, 3)), np.zeros((nodes, 2)), np.zeros(nodes),
                         np.zeros(nodes), np.zeros(max(ysize, 1)), np.zeros(max(bandsize, 1)),
-                        np.zeros(nodes), np.zeros((S, 4)))
+                        np.zeros(nodes), np.zeros((S, 5)), np.zeros((2, 3, nodes)))
+        gpts, goff, gidx = free_point_groups(sec, kind)
+        m3 = 3 * int(np.max(np.diff(goff), initial=1))
+        # scratch of the free points' damping step: active sections, the group's dense
+        # system and right-hand side, velocity changes; and the groups (points, offsets,
+        # (group, slot) of every point)
+        self.coupling = (np.zeros(S), np.zeros((m3, m3)), np.zeros(m3), np.zeros((P, 3)),
+                         gpts, goff, gidx)
+
+
+def free_point_groups(sec: NDArray[np.int64], kind: NDArray[np.int64]
+                      ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """The free points in groups joined through sections between free points (each group's
+    damping step is one dense solve, ``_system_kernels._damping_phase``).
+
+    Returns
+    -------
+    points, offsets, index
+        The free points group by group, the groups' offsets into them (groups + 1), and of
+        every point its (group, slot in the group), -1 for fixed and body points.
+    """
+    P = kind.shape[0]
+    parent = list(range(P))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for a, b in sec[:, [_s.S_START, _s.S_END]]:
+        if kind[a] == _s.FREE and kind[b] == _s.FREE:
+            parent[root(int(a))] = root(int(b))
+    groups: dict[int, list[int]] = {}
+    for p in range(P):
+        if kind[p] == _s.FREE:
+            groups.setdefault(root(p), []).append(p)
+    index = np.full((P, 2), -1, dtype=np.int64)
+    points, offsets = [], [0]
+    for g, members in enumerate(groups.values()):
+        for slot, p in enumerate(members):
+            index[p] = (g, slot)
+        points.extend(members)
+        offsets.append(len(points))
+    return (np.array(points, dtype=np.int64), np.array(offsets, dtype=np.int64), index)
