@@ -242,16 +242,18 @@ def rhs(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *, D: Array
 
 def damping_acceleration(v: Array, r: Array, anchor: Array, fpos: Array, fvel: Array, *,
                          D: Array, LIFT: Array, h: float, m: float, c_int: float,
-                         m_an: float = 0.0, m_at: float = 0.0) -> Array:
+                         m_an: float = 0.0, m_at: float = 0.0,
+                         avel: Array | None = None) -> Array:
     """The acceleration of the Kelvin-Voigt term alone at velocities v, linear in v for the
     geometry r: damping tension s = c_int t . q_t on taut nodes (eps > 0, not clipped),
     force d(s t)/ds with traces from the fairlead side (N* = N of the fairlead-side node
     inside, the node's own at both ends: the explicit fluxes without the elastic part and
-    the penalty), divided by the Morison-augmented mass."""
+    the penalty), divided by the Morison-augmented mass; ``avel`` the start end's velocity
+    (default at rest)."""
     q = dg_derivative(r, anchor, fpos, D, LIFT, h)
     ql = np.linalg.norm(q, axis=-1)
     t = np.where(ql[..., None] > 0.0, q / np.where(ql > 0.0, ql, 1.0)[..., None], 0.0)
-    qt = dg_derivative(v, np.zeros(3), fvel, D, LIFT, h)
+    qt = dg_derivative(v, np.zeros(3) if avel is None else avel, fvel, D, LIFT, h)
     s = np.where(ql > 1.0, c_int * np.sum(t * qt, axis=-1), 0.0)
     N = s[..., None] * t
     Nstar = np.empty((r.shape[0] + 1, 3))
@@ -284,6 +286,101 @@ def implicit_damping_step(v: Array, r: Array, anchor: Array, fpos: Array, fvel: 
         e[j] = 1.0
         A[:, j] = a(e, np.zeros(3))
     return np.linalg.solve(np.eye(n) - dt * A, v.ravel() + dt * b).reshape(shape)
+
+
+def _morison_inverse(f: Array, r: Array, t: Array, m: float, m_an: float, m_at: float) -> Array:
+    """M_eff^-1 f at the nodes (tangents t, Morison masses below z = 0)."""
+    wet = r[..., 2] < 0.0
+    mn = m + np.where(wet, m_an, 0.0)
+    mt = m + np.where(wet, m_at, 0.0)
+    ft = np.sum(f * t, axis=-1)
+    return (f - ft[..., None] * t) / mn[..., None] + (ft / mt)[..., None] * t
+
+
+def system_damping_step(sections: list[dict], x: Array, velocities: Array, free: Array,
+                        point_mass: Array, dt: float) -> tuple[list[Array], Array]:
+    """Backward Euler of the Kelvin-Voigt terms of sections joined at points, with the free
+    points' velocities among the unknowns (the step after SSP-RK3 of
+    ``_system_kernels._damping_phase``), as one dense solve of the affine map, built column by
+    column, without the kernels' cached responses or banded factors.
+
+    The unknowns are every section's node velocities v and every free point's velocity u:
+
+    * v = v* + dt a_d(v; u_start, u_end) + dt M_eff^-1 lift(Z (u - u*)) for each section:
+      the damping acceleration (:func:`damping_acceleration`, the end values of its strain
+      rate the end points' velocities) and, at a free end, the change of the Lax-Friedrichs
+      end flux N* by Z (u - u*) (sign of the face: -Z du at the start, + Z du at the end)
+      lifted into the end element as in the divergence;
+    * (M_eff + dt sum_j Z_j)(u - u*) = dt sum_j (+-) t s_j for each free point, s_j the damping
+      tension c_int t . q_t of the section's end node at the point (taut nodes), + at a
+      section's start, - at its end.
+
+    ``sections``: dicts of r, v (K, Np, 3), start, end (point indices), D, LIFT, h, m, EA,
+    c_int, m_an, m_at; ``x``, ``velocities`` (points, 3): positions and velocities of every
+    point (free points: u*); ``free`` (points,) bool; ``point_mass``: M_eff of the points.
+    Returns the sections' v and the points' velocities after the step.
+    """
+    free_idx = np.flatnonzero(free)
+    sizes = [sec["v"].size for sec in sections]
+    n = sum(sizes) + 3 * free_idx.size
+    slot = {int(p): sum(sizes) + 3 * i for i, p in enumerate(free_idx)}
+    geo = []
+    for sec in sections:
+        q = dg_derivative(sec["r"], x[sec["start"]], x[sec["end"]], sec["D"], sec["LIFT"],
+                          sec["h"])
+        ql = np.linalg.norm(q, axis=-1)
+        t = q / ql[..., None]
+        c = math.sqrt(sec["EA"] / sec["m"])
+        Z = [(sec["m"] + (sec["m_at"] if sec["r"][i][2] < 0.0 else 0.0)) * c
+             for i in ((0, 0), (-1, -1))]
+        geo.append((t, ql, Z))
+
+    def unpack(X: Array) -> tuple[list[Array], Array]:
+        vs, o = [], 0
+        for sec, size in zip(sections, sizes):
+            vs.append(X[o:o + size].reshape(sec["v"].shape))
+            o += size
+        u = velocities.copy()
+        for p, o in slot.items():
+            u[p] = X[o:o + 3]
+        return vs, u
+
+    def residual(X: Array) -> Array:
+        vs, u = unpack(X)
+        out = np.zeros(n)
+        du = u - velocities
+        force = np.zeros_like(u)
+        o = 0
+        for sec, v, (t, ql, Z), size in zip(sections, vs, geo, sizes):
+            a, b = sec["start"], sec["end"]
+            acc = damping_acceleration(v, sec["r"], x[a], x[b], u[b], D=sec["D"],
+                                       LIFT=sec["LIFT"], h=sec["h"], m=sec["m"],
+                                       c_int=sec["c_int"], m_an=sec["m_an"], m_at=sec["m_at"],
+                                       avel=u[a])
+            flux = np.zeros_like(v)
+            jac = 2.0 / sec["h"]
+            if free[a]:
+                flux[0] += jac * sec["LIFT"][:, 0, None] * Z[0] * du[a]
+            if free[b]:
+                flux[-1] += jac * sec["LIFT"][:, 1, None] * Z[1] * du[b]
+            lift = _morison_inverse(flux, sec["r"], t, sec["m"], sec["m_an"], sec["m_at"])
+            out[o:o + size] = (v - sec["v"] - dt * acc - dt * lift).ravel()
+            o += size
+            qt = dg_derivative(v, u[a], u[b], sec["D"], sec["LIFT"], sec["h"])
+            s = np.where(ql > 1.0, sec["c_int"] * np.sum(t * qt, axis=-1), 0.0)
+            force[a] += t[0, 0] * s[0, 0] - Z[0] * du[a]
+            force[b] += -t[-1, -1] * s[-1, -1] - Z[1] * du[b]
+        for p, o in slot.items():
+            out[o:o + 3] = point_mass[p] * du[p] - dt * force[p]
+        return out
+
+    b0 = residual(np.zeros(n))
+    A = np.empty((n, n))
+    for j in range(n):
+        e = np.zeros(n)
+        e[j] = 1.0
+        A[:, j] = residual(e) - b0
+    return unpack(np.linalg.solve(A, -b0))
 
 
 def hermite(t0: float, t1: float, p0: Array, v0: Array, p1: Array, v1: Array,

@@ -183,3 +183,76 @@ def test_instability_names_the_section_time_and_quantity() -> None:
     with pytest.raises(SolverError, match=r"line 'moor' section \d .*t = .* s"):
         _run(system, np.linspace(0.0, 5.0, 51))
     assert system.failed_index > 0
+
+
+def test_damping_step_with_free_points_matches_the_numpy_oracle(rng: np.random.Generator
+                                                                 ) -> None:
+    """The backward-Euler Kelvin-Voigt step with the free points' velocities among the
+    unknowns (``_damping_phase``: frozen factors, cached responses, one dense solve per group)
+    against the oracle's dense solve of the whole affine step: fixed anchor - damped section
+    (K = 3, p = 3) - massive buoy - damped one-element section (p = 2, both ends free) -
+    massless joint - undamped section (p = 4) - body fairlead, and a damped section (p = 3)
+    from the joint to a second anchor; a random state, some nodes slack."""
+    cint = 3e5
+    props = [_water_props(30.0, internal_damping=cint),
+             _water_props(20.0, mass_per_length=5.0, axial_stiffness=1e6,
+                          internal_damping=cint / 3),
+             _water_props(25.0), _water_props(30.0, internal_damping=cint)]
+    orders, elems = [3, 2, 4, 3], [3, 1, 2, 2]
+    pts = [point("a", "fixed", (0.0, 0.0, -50.0)),
+           point("b", "free", (25.0, 1.0, -35.0), mass=300.0, volume=0.8, drag_area=1.5,
+                 added_mass_coefficient=0.8),
+           point("j", "free", (45.0, -1.0, -25.0)),
+           point("f", "body", (70.0, 0.0, -5.0)),
+           point("c", "fixed", (60.0, -20.0, -50.0))]
+    ends = [(0, 1), (1, 2), (2, 3), (2, 4)]
+    names = "abjfc"
+    secs = [SystemSection("l", i, props[i], settings(elems[i], orders[i], slack_filter=False,
+                                                     internal_damping="implicit"),
+                          names[s], names[e]) for i, (s, e) in enumerate(ends)]
+    system = DynamicSystem(pts, secs)
+    r = system.r + rng.normal(scale=0.02, size=system.r.shape)
+    v = rng.normal(scale=0.3, size=system.r.shape)
+    x = system.x.copy()
+    u = rng.normal(scale=0.3, size=x.shape)
+    u[[0, 4]] = 0.0
+    fvel = rng.normal(scale=0.3, size=3)
+    w = system._w
+    w.ppos[3], w.pvel[3] = x[3], fvel
+    dt = 2e-3
+    r1, v1, u1 = r.copy(), v.copy(), u.copy()
+    sk.dgs_damping_step(r1, v1, x, u1, dt, system.sec, system.prm, system.ops, system.kind,
+                        system.pprm, system.env, w.ppos, w.pvel, w.q, w.qt, w.N, w.faces,
+                        w.slack, w.tmp, *w.damping, w.coupling)
+    assert np.array_equal(r1, r)  # no node below the seabed
+    vel = u.copy()
+    vel[3] = fvel
+    meff = np.array([0.0, 300.0 + 0.8 * 1000.0 * 0.8, 0.0, 0.0, 0.0])
+    oracle_secs = []
+    for i, pr in enumerate(props):
+        A_c = pr.mass_per_length / pr.material_density
+        op = oracle.operators(orders[i])
+        sl = system.section_slice(i)
+        shape = (elems[i], orders[i] + 1, 3)
+        oracle_secs.append(dict(r=r[sl].reshape(shape), v=v[sl].reshape(shape),
+                                start=ends[i][0], end=ends[i][1], D=op.D, LIFT=op.LIFT,
+                                h=pr.length / elems[i], m=pr.mass_per_length,
+                                EA=pr.axial_stiffness, c_int=pr.internal_damping,
+                                m_an=1000.0 * A_c, m_at=0.2 * 1000.0 * A_c))
+    vo, uo = oracle.system_damping_step(oracle_secs, x, vel, system.kind == sk.FREE, meff, dt)
+    # the step's changes, relative to the largest
+    dvo = np.concatenate([vs.reshape(-1, 3) for vs in vo]) - v
+    assert np.abs(dvo).max() > 1e-3  # the damping acts
+    # observed 1.3e-14 (nodes) and 5.7e-15 (points) of the largest change
+    assert np.abs((v1 - v) - dvo).max() <= ORACLE_RTOL * np.abs(dvo).max()
+    duo = uo[1:3] - u[1:3]
+    assert np.abs(duo).max() > 1e-3
+    assert np.abs((u1[1:3] - u[1:3]) - duo).max() <= ORACLE_RTOL * np.abs(duo).max()
+    # the step again with the factors and responses kept (no rebuild): the same
+    r2, v2, u2 = r.copy(), v.copy(), u.copy()
+    count = w.damping[7][:, 3].copy()
+    sk.dgs_damping_step(r2, v2, x, u2, dt, system.sec, system.prm, system.ops, system.kind,
+                        system.pprm, system.env, w.ppos, w.pvel, w.q, w.qt, w.N, w.faces,
+                        w.slack, w.tmp, *w.damping, w.coupling)
+    assert np.array_equal(w.damping[7][:, 3], count)
+    assert np.array_equal(v2, v1) and np.array_equal(u2, u1)
