@@ -13,7 +13,7 @@ from floatmoor.case.load import load_case
 from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.system_statics import build_static_system, solve_statics
 
-SYSTEM = Path(__file__).parents[1] / "data" / "systems" / "clump_buoy.toml"
+SYSTEM = Path(__file__).parents[1] / "data" / "systems" / "clump_buoy_seabed.toml"
 #: The test line, dynamic; the anchor moved out 30 m so that the clump hangs 12 m above the
 #: seabed (the file's clump rests on it, which the statics refuse), and a stiff seabed
 #: (penetration of the laid chain 5e-5 m) so that what differs from the rigid-seabed
