@@ -20,7 +20,10 @@ point takes exactly the reaction of the forces it exerts (momentum is conserved)
 M_eff = 0 (a massless joint) u* is the upwind (Riemann) junction velocity and the force balance
 is algebraic; for a large M_eff it is the explicit update. Each substep is then dissipative in
 the junction terms whatever the mass, so SSP-RK3 keeps the sections' stability limit. The
-point's position takes the explicit step x + dt u, like the nodes'.
+point's position takes the explicit step x + dt u, like the nodes'. The implicit Kelvin-Voigt
+damping after each step takes the free points' velocities with the sections' in one backward
+Euler step, answered through the same impedances (:func:`_damping_phase`), so a massless
+joint carries its sections' damping forces across.
 
 Seabed contact of a free point: a point with a displaced volume V rests on the seabed through
 a normal spring-damper of stiffness k_p = K_b A_p (K_b the case's seabed stiffness per unit
