@@ -29,8 +29,6 @@ from contextlib import nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
-import numpy as np
-
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.signals import exit_status, interrupt_handling, signal_name
@@ -204,6 +202,8 @@ def _check(args: argparse.Namespace) -> int:
 def _describe_system(case: Case) -> list[str]:
     """The static equilibrium at rest of the lines joined through free points or of several
     sections: point positions and net loads, section end tensions and laid lengths."""
+    import numpy as np
+
     from floatmoor.errors import SolverError
     from floatmoor.mooring.strength import system_statics_at_rest
 
@@ -355,10 +355,6 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     from floatmoor.simulation.forced import run_forced_motion
     from floatmoor.ui.progress import ProgressReporter
 
-    if case.floater is not None:
-        from floatmoor.simulation.forced import check_independent_lines
-
-        check_independent_lines(case)
     refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
 
     if args.resume and case.floater is None:

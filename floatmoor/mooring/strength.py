@@ -22,9 +22,7 @@ import numpy as np
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.system_statics import (
-    StaticSolution, SystemStatics, build_static_system,
-)
+from floatmoor.mooring.system_statics import StaticSolution, case_statics
 
 __all__ = ["StaticLineLoad", "static_line_loads", "system_statics_at_rest", "check_static_below_mbl",
            "refuse_static_breaking", "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]
@@ -120,13 +118,8 @@ def system_statics_at_rest(case: Case) -> StaticSolution | None:
     SolverError
         When there is none (naming the point), or a section floats.
     """
-    lines = [ln for ln in case.lines if not case.is_independent(ln)]
-    if not lines:
-        return None
-    used = {n for ln in lines for s in ln.sections for n in (s.start, s.end)}
-    points = [p for p in case.points if p.name in used]
-    return SystemStatics(build_static_system(points, lines, case.environment,
-                                             case.seabed)).solve()
+    statics = case_statics(case)
+    return None if statics is None else statics.solve()
 
 
 def _section_loads(case: Case) -> list[StaticLineLoad]:

@@ -735,3 +735,21 @@ def coupled_stiffness(system: StaticSystem, solution: StaticSolution,
         T[3 * j:3 * j + 3, 3:] = -_skew(r)
         K6[3:, 3:] -= _skew(solution.point_force[p]) @ _skew(r)
     return K6 + T.T @ kc @ T
+
+
+def case_statics(case: Any) -> SystemStatics | None:
+    """The statics of a case's lines that are not independent (``case.is_independent``: one
+    section from a fixed to a body point), every model's (the static equilibrium is the same
+    physics), or None when every line is independent.
+
+    Raises
+    ------
+    SolverError
+        As :func:`build_static_system`.
+    """
+    lines = [ln for ln in case.lines if not case.is_independent(ln)]
+    if not lines:
+        return None
+    used = {n for ln in lines for s in ln.sections for n in (s.start, s.end)}
+    points = [p for p in case.points if p.name in used]
+    return SystemStatics(build_static_system(points, lines, case.environment, case.seabed))

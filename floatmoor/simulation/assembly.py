@@ -11,22 +11,25 @@ their time loops builds models.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case, Point
-from floatmoor.errors import CaseError
+from floatmoor.errors import CaseError, SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.hydro.state_space import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.system_statics import case_statics
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.groups import SystemGroup, system_groups
 from floatmoor.waves.excitation import WaveExcitation
@@ -163,6 +166,33 @@ def _excitation(sea: WaveField, ds: "xr.Dataset") -> WaveExcitation | None:
     return WaveExcitation(sea, X)
 
 
+def _system_force(case: Case, centre: NDArray[np.float64]
+                  ) -> Callable[[NDArray[np.float64]], NDArray[np.float64]] | None:
+    """The 6-DOF static force on the body of the lines solved as systems, as a function of
+    the body's displacement (None without such lines); the statics warm-start from the
+    last call, as the equilibrium's Newton steps are small."""
+    try:
+        statics = case_statics(case)
+    except SolverError as err:
+        raise CaseError(case.source, "lines", "a mooring system with a static equilibrium",
+                        str(err)) from None
+    if statics is None:
+        return None
+    system = statics.system
+    arms = system.positions[system.body_index] - centre
+
+    def force(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        positions, _ = points_state(x, np.zeros(6), arms, centre)
+        try:
+            solution = statics.solve(positions)
+        except SolverError as err:
+            raise CaseError(case.source, "lines", "a mooring system with a static "
+                            "equilibrium with the floater", str(err)) from None
+        return generalised_force(x, solution.point_force[system.body_index], arms)
+
+    return force
+
+
 def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSystem:
     """Assemble a case's moored system.
 
@@ -205,9 +235,12 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     loads = BodyLoads(_excitation(sea, ds), rotor, None, settings.ramp_duration, dt)
     centre = np.asarray(case.floater.reference_point, dtype=float)
     # built as for a fresh start, so that a checkpoint's state fits the same operators
-    moored = MooredBody(body, case.lines, env, case.seabed, centre, loads)
-    x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
-                       mean_force=None if rotor is None else rotor.steady_force())
+    moored = MooredBody(body, case.lines, env, case.seabed, centre, loads, case=case)
+    solo = np.array([case.is_independent(ln) for ln in case.lines], dtype=bool)
+    x_eq = equilibrium(body, [ln for ln, s in zip(case.lines, solo) if s],
+                       moored.arms[solo] if len(solo) else moored.arms, centre, env, case.seabed,
+                       mean_force=None if rotor is None else rotor.steady_force(),
+                       system_force=_system_force(case, centre))
     moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
     moored.equilibrium_position = x_eq
     if case.floater.drag is not None:

@@ -35,12 +35,14 @@ from numpy.typing import NDArray
 
 from floatmoor.body.cummins import CumminsBody
 from floatmoor.body.kinematics import generalised_force, points_state
-from floatmoor.case.schema import Environment, Line, Seabed
+from floatmoor.case.schema import Case, Environment, Line, Seabed
 from floatmoor.mooring.catenary import solve_catenary
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.stepping import PathStepper
+from floatmoor.simulation.groups import GroupSamples, SystemGroup, system_groups
 
 __all__ = ["MooredBody", "equilibrium", "line_force_quasi_static"]
 
@@ -66,10 +68,14 @@ def line_force_quasi_static(line: Line, environment: Environment, seabed: Seabed
 
 def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float64],
                 centre: NDArray[np.float64], environment: Environment, seabed: Seabed,
-                mean_force: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+                mean_force: NDArray[np.float64] | None = None,
+                system_force: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None
+                ) -> NDArray[np.float64]:
     """The static equilibrium position x (6,) of the body on its lines (quasi-static
     catenaries): F_0 - C x + F_lines(x) + mean_force = 0, by Newton with a finite-difference
-    mooring stiffness; DOFs without stiffness stay at zero (least-squares steps)."""
+    mooring stiffness; DOFs without stiffness stay at zero (least-squares steps). ``lines``
+    are the independent lines (``arms`` their fairleads'); ``system_force(x)`` is the 6-DOF
+    static force of the lines solved as systems, if any."""
     mean = np.zeros(6) if mean_force is None else np.asarray(mean_force, float)
 
     def residual(x: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -77,6 +83,8 @@ def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float
         forces = np.array([line_force_quasi_static(ln, environment, seabed, p)
                            for ln, p in zip(lines, pos)]).reshape(-1, 3)
         moor = generalised_force(x, forces, arms) if len(lines) else np.zeros(6)
+        if system_force is not None:
+            moor = moor + system_force(x)
         return body.static_force - body.stiffness @ x + moor + mean
 
     x = np.zeros(6)
@@ -119,14 +127,26 @@ class MooredBody:
         The body's reference point at rest [m].
     external
         f(t, x, v) -> 6-DOF force of everything but the lines (excitation, drag, wind).
+    case
+        The case, when its mooring has lines solved as systems (free points, sections:
+        :mod:`floatmoor.simulation.groups`); their body points follow the body as the
+        fairleads do.
     """
 
     def __init__(self, body: CumminsBody, lines: Sequence[Line], environment: Environment,
                  seabed: Seabed, centre: NDArray[np.float64],
                  external: Callable[[float, NDArray[np.float64], NDArray[np.float64]],
-                                    NDArray[np.float64]] | None = None) -> None:
+                                    NDArray[np.float64]] | None = None,
+                 case: Case | None = None) -> None:
         self.body = body
+        self.case = case
         self.lines = list(lines)
+        #: which lines are solved on their own (the others: by the groups)
+        self.independent = [case is None or case.is_independent(ln) for ln in self.lines]
+        self._solo = all(self.independent)
+        #: the system groups (built by :meth:`start`) and their body points' arms
+        self.groups: list[SystemGroup] = []
+        self.group_arms: list[NDArray[np.float64]] = []
         self.environment = environment
         self.seabed = seabed
         self.centre = np.asarray(centre, dtype=float)
@@ -149,7 +169,25 @@ class MooredBody:
         self.body.start(time, position)
         fairleads, _ = points_state(self.body.x, np.zeros(6), self.arms, self.centre)
         self.models, self._qs = [], []
-        for ln, p in zip(self.lines, fairleads):
+        if not self._solo:
+            body_points = {p.name: np.subtract(p.position, self.centre)
+                           for p in self.case.points if p.kind == "body"}
+            names = list(body_points)
+            moved_points, _ = points_state(self.body.x, np.zeros(6),
+                                           np.array([body_points[n] for n in names]),
+                                           self.centre)
+            self.groups = system_groups(self.case, dict(zip(names, moved_points)))
+            self.group_arms = [np.array([body_points[self.case.points[k].name]
+                                         for k in g.body_points]).reshape(-1, 3)
+                               for g in self.groups]
+            for g in self.groups:
+                if isinstance(g.solver, DynamicSystem):
+                    g.solver.time = float(time)
+        for ln, p, solo in zip(self.lines, fairleads, self.independent):
+            if not solo:
+                self.models.append(None)
+                self._qs.append(None)
+                continue
             moved = replace(ln, fairlead=tuple(float(c) for c in p))
             if ln.model in _STEPPERS:
                 model = _STEPPERS[ln.model](moved, self.environment, self.seabed)
@@ -168,7 +206,11 @@ class MooredBody:
         out = {f"body/{k}": np.array(v) for k, v in self.body.state_arrays().items()}
         for i, (model, qs) in enumerate(zip(self.models, self._qs)):
             line = qs if model is None else model
+            if line is None:  # a line of a group
+                continue
             out.update({f"line{i}/{k}": np.array(v) for k, v in line.state_arrays().items()})
+        for g, group in enumerate(self.groups):
+            out.update({f"group{g}/{k}": np.array(v) for k, v in group.state_arrays().items()})
         out["laid_length"] = self.laid_length.copy()
         return out
 
@@ -181,23 +223,30 @@ class MooredBody:
 
         self.body.set_state_arrays(part("body/"))
         for i, (model, qs) in enumerate(zip(self.models, self._qs)):
-            (qs if model is None else model).set_state_arrays(part(f"line{i}/"))
+            if model is not None or qs is not None:
+                (qs if model is None else model).set_state_arrays(part(f"line{i}/"))
+        for g, group in enumerate(self.groups):
+            group.set_state_arrays(part(f"group{g}/"))
         self.laid_length[:] = arrays["laid_length"]
 
     # -- line shapes -----------------------------------------------------------------------
     def shape_arc_lengths(self) -> list[NDArray[np.float64]]:
         """Arc lengths of each line's recorded shape [m] (each model's ``arc_length``, as in
         forced-motion runs)."""
-        return [np.asarray((qs if model is None else model).arc_length, dtype=float)
-                for qs, model in zip(self._qs, self.models)]
+        arcs = {i: g.arc_lengths[i] for g in self.groups for i in g.lines}
+        return [np.asarray(arcs[i] if i in arcs else (qs if model is None else model).arc_length,
+                           dtype=float) for i, (qs, model) in enumerate(zip(self._qs, self.models))]
 
     def line_shapes(self, fairleads: NDArray[np.float64]
                     ) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
         """(positions (n, 3) [m], effective tensions (n,) [N]) of every line now: the memory
         models' states, the quasi-static catenaries at the fairleads (n_lines, 3)."""
         out = []
+        owner = {i: g for g in self.groups for i in g.lines}
         for i, model in enumerate(self.models):
-            if model is None:
+            if i in owner:
+                out.append(owner[i].line_shape(self.case, i))
+            elif model is None:
                 out.append(self._qs[i].profile(fairleads[i], self._qs[i].arc_length))
             else:
                 out.append((model.r.reshape(-1, 3), model.tension()))
@@ -220,6 +269,8 @@ class MooredBody:
         ff = np.zeros((len(self.lines), 3))
         af = np.zeros((len(self.lines), 3))
         for i, model in enumerate(self.models):
+            if not self.independent[i]:  # recorded from its group (group_samples)
+                continue
             if model is None:
                 ff[i], af[i] = self._quasi_static(i, pos[i])
             elif v is None:
@@ -228,9 +279,35 @@ class MooredBody:
                 ff[i], af[i] = model.end_forces_moving(vel[i])
         return ff, af
 
+    def group_samples(self, x: NDArray[np.float64], v: NDArray[np.float64]
+                      ) -> list["GroupSamples"]:
+        """Each group now (one sample), its body points where the body state (x, v) puts
+        them (:meth:`SystemGroup.current`)."""
+        out = []
+        for group, arms in zip(self.groups, self.group_arms):
+            pos, vel = points_state(x, v, arms, self.centre)
+            out.append(group.current(pos, vel))
+        return out
+
+    def mooring_force(self, x: NDArray[np.float64], v: NDArray[np.float64]
+                      ) -> NDArray[np.float64]:
+        """The 6-DOF force of every line on the body at (x, v): the independent lines' at
+        their fairleads, the groups' at their body points."""
+        ff, _ = self.line_forces(x, v)
+        if self._solo:
+            return generalised_force(x, ff, self.arms)
+        solo = np.array(self.independent, dtype=bool)
+        f = generalised_force(x, ff[solo], self.arms[solo]) if solo.any() else np.zeros(6)
+        for group, arms, sample in zip(self.groups, self.group_arms, self.group_samples(x, v)):
+            f = f + generalised_force(x, group.body_forces(sample), arms)
+        return f
+
     def _advance_memory_lines(self, time: float, x: NDArray, v: NDArray) -> None:
         """Advance the lines with memory to ``time``, the fairleads moving to where the body
         state (x, v) puts them."""
+        for group, arms in zip(self.groups, self.group_arms):
+            pos, vel = points_state(x, v, arms, self.centre)
+            group.advance(time, pos, vel)
         if not any(m is not None for m in self.models):
             return
         pos, vel = points_state(x, v, self.arms, self.centre)
@@ -262,8 +339,7 @@ class MooredBody:
                                            v0 + a0 * dt)
             f = self.external(t + tau, x, v)
             if len(self.lines):
-                ff, _ = self.line_forces(x, v)
-                f = f + generalised_force(x, ff, self.arms)
+                f = f + self.mooring_force(x, v)
             return f
 
         body.step(force)

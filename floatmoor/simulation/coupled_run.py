@@ -22,9 +22,7 @@ from floatmoor.simulation.checkpoint import (
 )
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled import MooredBody
-from floatmoor.simulation.forced import (
-    RunResult, check_independent_lines, output_times, shape_stride,
-)
+from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.signals import deferred_interrupts
 from floatmoor.waves.synthesis import harmonic_sum
@@ -164,7 +162,6 @@ def check_coupled_case(case: Case) -> None:
     if case.motion is not None:
         raise CaseError(case.source, "motion", "no [motion] in a case run by run_coupled (the "
                         "floater's motion follows from its dynamics)", "a [motion] table")
-    check_independent_lines(case)
 
 
 def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
@@ -242,6 +239,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             series["anchor_force"][i, index] = af[i]
             series["fairlead_position"][i, index] = pos[i]
             series["laid_length"][i, index] = moored.laid_length[i]
+        for group, sample in zip(moored.groups, moored.group_samples(body.x, body.v)):
+            recorder.store_group(case, group, sample, index, index + 1)
         bseries["body_displacement"][index] = body.x - x_eq
         bseries["body_velocity"][index] = body.v
         if recorder.shape_stride and index % recorder.shape_stride == 0:

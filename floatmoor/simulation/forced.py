@@ -25,7 +25,7 @@ from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_li
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
 __all__ = ["RunResult", "run_forced_motion", "check_forced_case", "output_times",
-           "check_independent_lines"]
+           "body_points_state"]
 
 #: Output samples solved per chunk between progress reports and checks: large enough to make
 #: the per-chunk Python overhead negligible, small enough to report progress every ~0.1 s.
@@ -53,25 +53,6 @@ def shape_stride(case: Case) -> int:
     if interval is None:
         return 0
     return max(1, int(round(interval / case.simulation.output_interval)))
-
-
-def check_independent_lines(case: Case) -> None:
-    """Refuse a mooring system (free points, lines of several sections) in the runners of
-    independent one-section lines, which would move a free end as a fairlead.
-
-    Raises
-    ------
-    CaseError
-        Naming the first line that is not one section from a fixed to a body point.
-    """
-    kinds = {p.name: p.kind for p in case.points}
-    for i, line in enumerate(case.lines):
-        if not case.is_independent(line):
-            raise CaseError(case.source, f"lines[{i}]", "lines of one section from a fixed to "
-                            "a body point (the runs of mooring systems with free points and "
-                            "sections are not wired to the runners yet)",
-                            f"line '{line.name}': {len(line.sections)} section(s) from a "
-                            f"{kinds[line.start]} to a {kinds[line.end]} point")
 
 
 def check_forced_case(case: Case) -> None:

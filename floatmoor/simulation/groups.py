@@ -12,7 +12,7 @@ section on its two points, every point's position and the sections' laid lengths
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -32,8 +32,6 @@ def body_point_line(case: Case, name: str) -> Line:
     """A line as the prescribed motions see body point ``name``: one of the lines at the
     point, with its ``fairlead`` at the point (at rest) and its ``anchor`` at the line's
     other end (the direction of a circular motion's plane)."""
-    from dataclasses import replace
-
     for line in case.lines:
         if name in (line.start, line.end):
             other = line.anchor if line.end == name else line.fairlead
@@ -87,6 +85,11 @@ class SystemGroup:
     #: the last solved point positions (quasi-static shapes are drawn between them)
     last_positions: NDArray[np.float64] | None = None
     failed_index: int = -1
+    #: solver point index of each section's start and end (solver order)
+    _start: tuple[int, ...] = ()
+    _end: tuple[int, ...] = ()
+    #: a dynamic group's laid lengths at its last step [m]
+    _laid: NDArray[np.float64] | None = None
 
     def solve_path(self, time: NDArray[np.float64], body_positions: NDArray[np.float64],
                    body_velocities: NDArray[np.float64], out: GroupSamples) -> None:
@@ -110,6 +113,55 @@ class SystemGroup:
             raise
         self.failed_index = -1
         self.last_positions = out.positions[-1].copy()
+
+    # -- coupled runs: one body step at a time ------------------------------------------------
+    def advance(self, t1: float, body_positions: NDArray[np.float64],
+                body_velocities: NDArray[np.float64]) -> None:
+        """Advance a dynamic group to ``t1``, its body points moving to the given positions
+        and velocities (bodies, 3); a quasi-static group has no memory (nothing to do)."""
+        if isinstance(self.solver, DynamicSystem):
+            sample = self._one()
+            self.solver.solve_path(np.array([float(t1)]), body_positions[None],
+                                   body_velocities[None], sample.start_force,
+                                   sample.end_force, sample.laid_length, sample.positions,
+                                   sample.iterations)
+            self._laid = sample.laid_length[0].copy()
+
+    def current(self, body_positions: NDArray[np.float64],
+                body_velocities: NDArray[np.float64]) -> GroupSamples:
+        """The group now (one sample), its body points at ``body_positions`` moving at
+        ``body_velocities`` (bodies, 3): a quasi-static group's equilibrium there (warm
+        started), a dynamic group's state with the end fluxes answering those velocities."""
+        sample = self._one()
+        if isinstance(self.solver, SystemStatics):
+            sol = self.solver.solve(body_positions)
+            sample.positions[0] = sol.positions
+            sample.start_force[0], sample.end_force[0] = sol.start_force, sol.end_force
+            sample.laid_length[0] = sol.laid_length
+            sample.iterations[0] = sol.iterations
+            self.last_positions = sol.positions.copy()
+        else:
+            sf, ef = self.solver.section_end_forces(body_velocities)
+            sample.positions[0] = self.solver.x
+            sample.start_force[0], sample.end_force[0] = sf, ef
+            sample.laid_length[0] = self._laid
+        return sample
+
+    def body_forces(self, sample: GroupSamples) -> NDArray[np.float64]:
+        """Forces of the group's sections on each of its body points [N], (bodies, 3), from
+        a sample of :meth:`current`."""
+        where = {k: j for j, k in enumerate(self.points)}
+        body = {where[k]: b for b, k in enumerate(self.body_points)}
+        out = np.zeros((len(self.body_points), 3))
+        for j in range(len(self.sections)):
+            for column, force in ((self._start[j], sample.start_force[0, j]),
+                                  (self._end[j], sample.end_force[0, j])):
+                if column in body:
+                    out[body[column]] += force
+        return out
+
+    def _one(self) -> GroupSamples:
+        return GroupSamples.empty(1, len(self.points), len(self.sections))
 
     def line_shape(self, case: Case, line_index: int
                    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -181,9 +233,11 @@ def _components(case: Case, lines: list[int]) -> list[list[int]]:
     return sorted(groups.values())
 
 
-def system_groups(case: Case) -> list[SystemGroup]:
+def system_groups(case: Case, body_positions: dict[str, NDArray[np.float64]] | None = None
+                  ) -> list[SystemGroup]:
     """The case's lines that are not independent, grouped and given their solvers (the
-    quasi-static ones solved at rest, the dynamic ones settled).
+    quasi-static ones solved at rest, the dynamic ones settled), with the body points at rest
+    or where ``body_positions`` (name -> position) puts them (a floater's equilibrium).
 
     Raises
     ------
@@ -199,7 +253,9 @@ def system_groups(case: Case) -> list[SystemGroup]:
         lines = [case.lines[i] for i in members]
         model = lines[0].model
         used = {n for ln in lines for s in ln.sections for n in (s.start, s.end)}
-        points = [p for p in case.points if p.name in used]
+        moved = body_positions or {}
+        points = [replace(p, position=tuple(float(c) for c in moved[p.name]))
+                  if p.name in moved else p for p in case.points if p.name in used]
         sections = [s for ln in lines for s in ln.sections]
         if model == "quasi-static":
             try:
@@ -222,8 +278,12 @@ def system_groups(case: Case) -> list[SystemGroup]:
             point_order = [index[p.name] for p in solver.points]
         else:  # the loader admits quasi-dynamic lines only as independent lines
             raise ValueError(f"no system solver for model {model!r}")
+        where = {k: j for j, k in enumerate(point_order)}
         group = SystemGroup(model=model, lines=tuple(members), points=tuple(point_order),
-                            sections=tuple(order), body_points=tuple(body), solver=solver)
+                            sections=tuple(order), body_points=tuple(body), solver=solver,
+                            _start=tuple(where[index[case.sections[k].start]] for k in order),
+                            _end=tuple(where[index[case.sections[k].end]] for k in order),
+                            _laid=np.zeros(len(order)))
         for i, line in zip(members, lines):
             arcs, offset = [], 0.0
             for s in line.sections:

@@ -223,7 +223,7 @@ def test_folder_without_room_for_the_output_is_refused_before_the_run(case, tmpf
     folder = tmpfs("small", "size=64k")
     assert main(["run", str(case), *SHORT, "-o", str(folder / "r.nc"), "--quiet"]) == 2
     err = capsys.readouterr().err
-    assert "expected a folder with room for the output (about 1.1" in err
+    assert "expected a folder with room for the output (about 1.31" in err
     assert "free in" in err and os.listdir(folder) == []
 
 

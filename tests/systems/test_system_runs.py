@@ -83,7 +83,8 @@ def test_line_split_by_a_massless_joint_is_the_same_catenary(tmp_path):
 
 @pytest.mark.parametrize("model", ["quasi-static", "dynamic"])
 def test_system_run_records_points_sections_and_shapes(model):
-    case = load_case(SYSTEM, [MOTION, "simulation.duration=2.0", f'lines.*.model="{model}"',
+    case = load_case(SYSTEM, [MOTION, "simulation.duration=2.0", "motion.ramp_duration=1.0",
+                              f'lines.*.model="{model}"',
                               "simulation.shape_output_interval=1.0"])
     ds = run_forced_motion(case).dataset
     assert ds.attrs["status"] == "complete"
@@ -93,14 +94,16 @@ def test_system_run_records_points_sections_and_shapes(model):
                  "section_end_tension"):
         assert np.all(np.isfinite(ds[name].values)), name
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
-    # the line's shape runs from the anchor through the clump and buoy to the fairlead
+    # the line's shape runs from the anchor through the clump and buoy to the fairlead (the
+    # DG nodes meet their end points weakly, to the discretisation error: ~1e-4 m here)
+    tol = 1e-6 if model == "quasi-static" else 1e-3
     shape = ds["shape_position"].sel(line="line1").values[-1]
     points = ds["point_position"].isel(time=-1)
-    np.testing.assert_allclose(shape[0], points.sel(point="anchor").values, atol=1e-6)
-    np.testing.assert_allclose(shape[-1], points.sel(point="fairlead").values, atol=1e-6)
+    np.testing.assert_allclose(shape[0], points.sel(point="anchor").values, atol=tol)
+    np.testing.assert_allclose(shape[-1], points.sel(point="fairlead").values, atol=tol)
     for name in ("clump", "buoy"):
         distance = np.linalg.norm(shape - points.sel(point=name).values, axis=1).min()
-        assert distance < 1e-6, (name, distance)
+        assert distance < tol, (name, distance)
 
 
 def test_section_breaking_at_rest_is_bad_input(tmp_path, capsys):

@@ -22,6 +22,16 @@ is algebraic; for a large M_eff it is the explicit update. Each substep is then 
 the junction terms whatever the mass, so SSP-RK3 keeps the sections' stability limit. The
 point's position takes the explicit step x + dt u, like the nodes'.
 
+Seabed contact of a free point: a point with a displaced volume V rests on the seabed through
+a normal spring-damper of stiffness k_p = K_b A_p (K_b the case's seabed stiffness per unit
+contact area, A_p = pi (3 V / 4 pi)^(2/3) the projected area of the sphere of volume V) and
+damping 2 xi sqrt(M_eff k_p), taken like the nodes' contact as a backward-Euler step after each
+SSP-RK3 step (unconditionally stable), and a Coulomb friction mu (M - rho_w V) g ramped in up
+to the slip speed as the nodes' (physics.md section 1), linearised about u in the substep like
+the drag. A point without volume has no contact of its own: its sections' end nodes carry it,
+which is all a point has in MoorDyn-C 2.x (its ``Point::doRHS`` has no seabed term; the line
+end nodes' contact reaches the point through ``getEndStuff``).
+
 Data layout (no allocation inside the time loop): the nodes of all sections in one (nodes, 3)
 array, each section's slice reshaped to (K, Np, 3); ``sec`` holds per section K, Np, the node,
 element, face, operator, Y and band offsets and the start and end point; ``ops`` the reference
@@ -38,7 +48,8 @@ from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
 
 __all__ = ["FIXED", "FREE", "BODY", "S_K", "S_NP", "N_SEC", "PP_MASS", "PP_VOLUME",
-           "PP_DRAG_AREA", "PP_CA", "N_PP", "E_RHO_W", "E_G", "E_U", "N_ENV", "dgs_rhs",
+           "PP_DRAG_AREA", "PP_CA", "PP_KB", "PP_CB", "PP_FRICTION", "N_PP", "E_RHO_W", "E_G", "E_U", "E_ZB", "E_VC",
+           "N_ENV", "dgs_rhs",
            "dgs_run_path", "dgs_record"]
 
 # -- point kinds ----------------------------------------------------------------------------
@@ -64,14 +75,19 @@ PP_MASS = 0  #: [kg]
 PP_VOLUME = 1  #: displaced volume [m^3]
 PP_DRAG_AREA = 2  #: C_d A [m^2]
 PP_CA = 3  #: added-mass coefficient on the displaced volume [-]
-N_PP = 4
+PP_KB = 4  #: seabed contact stiffness of the point [N/m] (0: no contact of its own)
+PP_CB = 5  #: seabed contact damping of the point [N s/m]
+PP_FRICTION = 6  #: full seabed friction force of the point [N]
+N_PP = 7
 
 # -- ``env`` ---------------------------------------------------------------------------------
 E_RHO_W = 0  #: water density [kg/m^3]
 E_G = 1  #: gravity [m/s^2]
 E_U = 2  #: current velocity [m/s], 3 entries
 E_RELAX = 5  #: relaxation rate of the free points [1/s] (settling only; 0)
-N_ENV = 6
+E_ZB = 6  #: seabed elevation [m]
+E_VC = 7  #: slip speed of the seabed friction [m/s]
+N_ENV = 8
 
 #: statuses beyond ``_kernels``': a free point is not finite
 DGS_POINT = 10
@@ -111,7 +127,8 @@ def _end_impedance(r, prm, start):
 @jit
 def _free_velocity(x, u, pprm, env, G, Zs, dt, out):
     """u* of a free point (module docstring); ``dt = 0`` gives u for a point with mass and
-    the balance velocity of a massless one."""
+    the balance velocity of a massless one. Below the seabed a point with a contact of its
+    own (``PP_KB`` > 0) feels the seabed friction, linearised about u like the drag."""
     rho_w, g = env[E_RHO_W], env[E_G]
     sub = x[2] < 0.0
     M = pprm[PP_MASS]
@@ -123,12 +140,40 @@ def _free_velocity(x, u, pprm, env, G, Zs, dt, out):
         for c in range(3):
             w2 += (env[E_U + c] - u[c]) ** 2
         cd = 0.5 * rho_w * pprm[PP_DRAG_AREA] * math.sqrt(w2)
+    cf = 0.0  # friction over the horizontal speed [N s/m]
+    if x[2] < env[E_ZB] and pprm[PP_FRICTION] > 0.0:
+        speed = math.sqrt(u[0] * u[0] + u[1] * u[1])
+        vc = env[E_VC]
+        if speed > 0.0:
+            cf = pprm[PP_FRICTION] * math.sin(0.5 * math.pi * speed / max(vc, speed)) / speed
+        else:  # the ramp's slope at rest
+            cf = pprm[PP_FRICTION] * 0.5 * math.pi / vc
     for c in range(3):
         f = G[c] + cd * env[E_U + c] + (fz if c == 2 else 0.0)
+        ch = cd + (cf if c < 2 else 0.0)
         if meff == 0.0:
-            out[c] = f / (Zs + cd)
+            out[c] = f / (Zs + ch)
         else:
-            out[c] = (meff * u[c] + dt * f) / (meff + dt * (Zs + cd + env[E_RELAX] * meff))
+            out[c] = (meff * u[c] + dt * f) / (meff + dt * (Zs + ch + env[E_RELAX] * meff))
+
+
+@jit
+def _point_contact(x, u, pprm, env, dt):
+    """Backward-Euler seabed spring-damper of a free point below the seabed after a step,
+    as ``_kernels._implicit_contact`` for the nodes (unconditionally stable)."""
+    zb = env[E_ZB]
+    kb = pprm[PP_KB]
+    if kb <= 0.0 or x[2] >= zb:
+        return
+    mz = pprm[PP_MASS] + pprm[PP_CA] * env[E_RHO_W] * pprm[PP_VOLUME]
+    cb = pprm[PP_CB]
+    ws = u[2]
+    num = mz * ws - dt * kb * (x[2] - dt * ws - zb)
+    w1 = num / (mz + dt * cb + dt * dt * kb)
+    if w1 >= 0.0:
+        w1 = num / (mz + dt * dt * kb)
+    x[2] = x[2] + dt * (w1 - ws)
+    u[2] = w1
 
 
 @jit
@@ -291,6 +336,7 @@ def _system_step(r, v, x, u, t, dt, t0, t1, bp0, bw0, bp1, bw1, sec, prm, ops, k
             for c in range(3):
                 x[p, c] = third * x[p, c] + two_thirds * (x2[p, c] + dt * u2[p, c])
                 u[p, c] = third * u[p, c] + two_thirds * ue[p, c]
+            _point_contact(x[p], u[p], pprm[p], env, dt)
     # the end data at t + dt for the damping step
     for p in range(P):
         if kind[p] == BODY:

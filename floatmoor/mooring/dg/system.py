@@ -26,14 +26,26 @@ from floatmoor.mooring.dg import _system_kernels as _s
 from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RATE,
                                        SETTLE_TOLERANCE, CableProperties, DynamicLine,
                                        SettleReport)
+from floatmoor.mooring.system_statics import SystemStatics, build_static_system
 
-__all__ = ["DynamicSystem", "SystemSection", "section_properties"]
+__all__ = ["DynamicSystem", "SystemSection", "point_contact", "section_properties",
+           "static_start"]
 
 _STATUS_TEXT = {
     _k.DG_NOT_FINITE: "the position or velocity is not finite",
     _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
     _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
 }
+#: Viscous relaxation rate of a system with free points [1/s], with the kinetic damping: low
+#: enough that the slow modes of the free points (~1 rad/s) are not overdamped (they decay
+#: in a few periods under the kinetic damping), high enough to take the lines' higher modes
+#: out: the chain-rope-chain test line (tests/unit/test_dg_system_start.py) settles from the
+#: statics in 1.3 s of simulated time (p = 5); at the lines' rate of 20 alone it crept for 18 s
+#: (p = 4), and a clump started off its equilibrium for more than 40 s.
+SYSTEM_SETTLE_RATE = 2.0
+#: Simulated time between the kinetic-energy checks of the kinetic damping [s]: well below a
+#: quarter period of the modes it is for (~1.5 s at 1 rad/s).
+KINETIC_CHUNK = 0.02
 _KINDS = {"fixed": _s.FIXED, "free": _s.FREE, "body": _s.BODY}
 
 
@@ -89,6 +101,45 @@ def section_properties(section: Any, environment: Environment, seabed: Seabed
         friction_coefficient=seabed.friction_coefficient, slip_speed=seabed.slip_speed)
 
 
+def point_contact(point: PointLike, props: CableProperties) -> tuple[float, float, float]:
+    """Seabed contact of a free point (``_system_kernels`` docstring): stiffness k_p = K_b A_p
+    [N/m] with A_p the projected area of the sphere of its displaced volume, damping
+    2 xi sqrt(M_eff k_p) [N s/m] and the full friction force mu (M - rho_w V) g [N] (zero for
+    a point without volume, or that floats). ``props`` carries the sea and the seabed."""
+    V = float(point.volume)
+    if point.kind != "free" or V <= 0.0:
+        return 0.0, 0.0, 0.0
+    area = math.pi * (3.0 * V / (4.0 * math.pi)) ** (2.0 / 3.0)
+    k = props.seabed_stiffness * area
+    meff = point.mass + point.added_mass_coefficient * props.water_density * V
+    c = 2.0 * props.seabed_damping_ratio * math.sqrt(meff * k)
+    weight = (point.mass - props.water_density * V) * props.gravity
+    return k, c, props.friction_coefficient * max(weight, 0.0)
+
+
+def static_start(points: Sequence[PointLike], lines: Sequence[Any], environment: Environment,
+                 seabed: Seabed) -> tuple[NDArray[np.float64] | None, str]:
+    """Point positions of the system's static equilibrium (``SystemStatics``, body points at
+    rest), to start the dynamic model from.
+
+    Returns
+    -------
+    positions, why
+        The positions (points in the order given, (points, 3)) and "statics"; or None and
+        the statics' message when they cannot give the equilibrium: a section that floats,
+        a free point resting on the seabed or held at the surface (the dynamic model handles
+        all of these; it then starts from the case's positions and relaxes).
+    """
+    if not any(p.kind == "free" for p in points):
+        return None, "no free point"
+    try:
+        system = build_static_system(points, lines, environment, seabed)
+        solution = SystemStatics(system).solve()
+    except SolverError as exc:
+        return None, str(exc)
+    return np.array(solution.positions, dtype=float), "statics"
+
+
 def _catenary(props: CableProperties, start: NDArray, end: NDArray, s: NDArray) -> NDArray:
     """Node positions of the frictionless static catenary between two ends (inverted for a
     buoyant section, straight for a weightless one)."""
@@ -122,6 +173,9 @@ class DynamicSystem:
     initial_positions
         Node positions (nodes of all sections in order, 3) to start from instead of the
         catenaries.
+    point_positions
+        Positions of the points (points, 3) to start from instead of theirs (the statics'
+        equilibrium, :func:`static_start`); the catenaries run between them.
     time
         Initial time [s].
     """
@@ -130,6 +184,7 @@ class DynamicSystem:
 
     def __init__(self, points: Sequence[PointLike], sections: Sequence[SystemSection], *,
                  initial_positions: NDArray[np.float64] | None = None,
+                 point_positions: NDArray[np.float64] | None = None,
                  time: float = 0.0) -> None:
         if not sections:
             raise ValueError("a dynamic system needs at least one section")
@@ -142,13 +197,15 @@ class DynamicSystem:
         self.body_points = tuple(body_points)  #: point indices of the body axis
         self.body = np.full(P, -1, dtype=np.int64)
         self.body[body_points] = np.arange(len(body_points))
+        pr0 = self.sections[0].properties
         self.pprm = np.zeros((P, _s.N_PP))
         for i, p in enumerate(self.points):
-            self.pprm[i] = (p.mass, p.volume, p.drag_area, p.added_mass_coefficient)
-        pr0 = self.sections[0].properties
+            self.pprm[i, :_s.PP_KB] = (p.mass, p.volume, p.drag_area, p.added_mass_coefficient)
+            self.pprm[i, _s.PP_KB:] = point_contact(p, pr0)
         self.env = np.zeros(_s.N_ENV)
         self.env[_s.E_RHO_W], self.env[_s.E_G] = pr0.water_density, pr0.gravity
         self.env[_s.E_U:_s.E_U + 3] = pr0.current_velocity
+        self.env[_s.E_ZB], self.env[_s.E_VC] = pr0.seabed_z, pr0.slip_speed
         # per-section layout
         self.lines = [DynamicLine(sec.properties, sec.settings,
                                   np.zeros(3), np.zeros(3), name=sec.label,
@@ -180,6 +237,10 @@ class DynamicSystem:
         self.arc_length = np.concatenate([ln.arc_length for ln in self.lines])
         self.time = float(time)
         self.x = np.array([p.position for p in self.points], dtype=float).reshape(P, 3)
+        if point_positions is not None:
+            self.x[:] = np.asarray(point_positions, dtype=float).reshape(P, 3)
+        #: how the points were started: "statics" (:func:`static_start`), or why not
+        self.static_start = "given" if point_positions is not None else "case positions"
         self.u = np.zeros((P, 3))
         self.body_velocity = np.zeros((len(body_points), 3))
         self.r = np.zeros((node, 3))
@@ -199,15 +260,31 @@ class DynamicSystem:
 
     @classmethod
     def from_case(cls, case: Any, *, settle: bool | None = None) -> "DynamicSystem":
-        """The dynamic model of a case's system (``case.points``, ``case.sections``, every
-        line of model "dynamic"), settled unless every line says ``settle = false``."""
-        lines = {ln.name: ln for ln in case.lines}
+        """The dynamic model of a case's system: the sections of its lines of model "dynamic"
+        (a case may mix models across unconnected groups of lines) and the points they join.
+
+        Each section's internal damping ratio refers to the section's own first longitudinal
+        mode, c_int = 2 zeta L sqrt(EA m) / pi with L the section's length
+        (:func:`section_properties`; the MoorDyn exporter uses the same).
+
+        Start: the free points at the static equilibrium of the system (``SystemStatics``,
+        every section's catenary, body points at rest) when the statics hold it, else at the
+        case's positions (initial guesses) -- for sections that float, or a free point the
+        statics refuse (resting on the seabed, lifted to the surface); then each section on
+        its catenary between its ends, and the dynamic relaxation (:meth:`settle`) unless
+        every line says ``settle = false``. :attr:`static_start` says which start was taken.
+        """
+        dynamic = [ln for ln in case.lines if ln.model == "dynamic"]
+        names = {ln.name for ln in dynamic}
         sections = [SystemSection(s.line, s.index,
                                   section_properties(s, case.environment, case.seabed),
                                   s.dynamic, s.start, s.end)
-                    for s in case.sections if lines[s.line].model == "dynamic"]
+                    for s in case.sections if s.line in names]
         used = {n for s in sections for n in (s.start, s.end)}
-        obj = cls([p for p in case.points if p.name in used], sections)
+        points = [p for p in case.points if p.name in used]
+        start, why = static_start(points, dynamic, case.environment, case.seabed)
+        obj = cls(points, sections, point_positions=start)
+        obj.static_start = why
         if settle if settle is not None else any(s.settings.settle for s in sections):
             obj.settle_report = obj.settle()
         return obj
@@ -232,18 +309,31 @@ class DynamicSystem:
         return self.x[list(self.body_points)]
 
     # -- set-up --------------------------------------------------------------------------------
-    def settle(self, rate: float = SETTLE_RATE, tolerance: float = SETTLE_TOLERANCE,
+    def settle(self, rate: float | None = None, tolerance: float = SETTLE_TOLERANCE,
                max_time: float = SETTLE_MAX_TIME) -> SettleReport:
-        """Relax the system to the static equilibrium of its discretisation, body points held:
-        :meth:`DynamicLine.settle`'s dynamic relaxation (dv/dt -= ``rate`` v on every node and
-        free point) in chunks of ``SETTLE_CHUNK``, until every section's end tensions change
-        by less than ``tolerance`` (relative) and every free point moves by less than
-        ``tolerance`` times its longest section over a chunk."""
-        if not (rate > 0.0 and tolerance > 0.0 and max_time > 0.0):
-            raise ValueError("settle needs a positive rate, tolerance and max_time")
+        """Relax the system to the static equilibrium of its discretisation, body points held.
+
+        Dynamic relaxation with two dampers: a viscous one, dv/dt -= ``rate`` v on every node
+        and free point (default :data:`SYSTEM_SETTLE_RATE` with free points, else
+        :meth:`DynamicLine.settle`'s ``SETTLE_RATE``), and, with free points, kinetic damping
+        (every velocity zeroed when the kinetic energy has passed a peak, checked every
+        :data:`KINETIC_CHUNK`): the free points and the line masses they carry make slow
+        modes (~1 rad/s) that a viscous rate high enough for the lines' axial and
+        transverse modes overdamps into a creep of tens of seconds. Runs in chunks of
+        ``SETTLE_CHUNK`` until every section's end tensions change by less than
+        ``tolerance`` (relative) and every free point moves by less than ``tolerance`` times
+        its longest section over a chunk."""
+        free = self.kind == _s.FREE
+        kinetic = bool(free.any())
+        if rate is None:
+            rate = SYSTEM_SETTLE_RATE if kinetic else SETTLE_RATE
+        if not (rate >= 0.0 and tolerance > 0.0 and max_time > 0.0):
+            raise ValueError("settle needs a rate >= 0 and a positive tolerance and max_time")
         start = self.time
         n = max(int(math.ceil(SETTLE_CHUNK / self.time_step)), 2)
-        nb, S, P = len(self.body_points), len(self.sections), len(self.points)
+        sub = max(int(round(KINETIC_CHUNK / self.time_step)), 1) if kinetic else n
+        sub = min(sub, n)
+        S, P = len(self.sections), len(self.points)
         still = np.repeat(self.body_positions[None], 2, axis=0)
         zero = np.zeros_like(still)
         sf, ef = np.zeros((2, S, 3)), np.zeros((2, S, 3))
@@ -252,16 +342,27 @@ class DynamicSystem:
         for j, sec in enumerate(self.sections):
             for p in (self.sec[j, _s.S_START], self.sec[j, _s.S_END]):
                 scale[p] = max(scale[p], sec.properties.length)
-        free = self.kind == _s.FREE
         previous = np.full(2 * S, np.inf)
-        change, converged = np.inf, False
+        change, converged, peak = np.inf, False, 0.0
         self.prm[:, _k.P_RELAX] = rate
         self.env[_s.E_RELAX] = rate
         try:
             while self.time - start < max_time:
                 x0 = self.x.copy()
-                t = self.time + np.array([0.0, n * self.time_step])
-                self.solve_path(t, still, zero, sf, ef, laid, pp, steps)
+                done = 0
+                while done < n:
+                    m = min(sub, n - done)
+                    t = self.time + np.array([0.0, m * self.time_step])
+                    self.solve_path(t, still, zero, sf, ef, laid, pp, steps)
+                    done += m
+                    if kinetic:
+                        ke = self._kinetic_energy()
+                        if ke < peak:
+                            self.v[:] = 0.0
+                            self.u[:] = 0.0
+                            peak = 0.0
+                        else:
+                            peak = ke
                 ends = np.concatenate([np.linalg.norm(sf[1], axis=1),
                                        np.linalg.norm(ef[1], axis=1)])
                 change = float(np.max(np.abs(ends - previous) / np.maximum(ends, 1e-300)))
@@ -281,8 +382,19 @@ class DynamicSystem:
         self.v[:] = 0.0
         self.u[:] = 0.0
         self.time = start
-        del nb
         return SettleReport(elapsed, converged, change, speed)
+
+    def _kinetic_energy(self) -> float:
+        """Kinetic energy of the nodes (mass per length, quadrature weights) and free points
+        (their mass) [J], without added mass."""
+        out = 0.0
+        for j, ln in enumerate(self.lines):
+            wq = np.tile(ln.element.weights * 0.5 * ln.element_length, ln.settings.elements)
+            out += 0.5 * ln.properties.mass_per_length * float(
+                wq @ np.einsum("ij,ij->i", self.v[self.section_slice(j)],
+                               self.v[self.section_slice(j)]))
+        M = self.pprm[:, _s.PP_MASS]
+        return out + 0.5 * float(M @ np.einsum("ij,ij->i", self.u, self.u))
 
     # -- stepping ------------------------------------------------------------------------------
     def solve_path(self, time: NDArray[np.float64], body_positions: NDArray[np.float64],
@@ -408,6 +520,12 @@ class DynamicSystem:
         fluxes answer the velocity at once through the axial impedance)."""
         return self._body_forces(*self._end_forces(body_velocities))
 
+    def section_end_forces(self, body_velocities: NDArray[np.float64]
+                           ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces of every section on its start and end point [N], (sections, 3) each, in the
+        current state with the body points moving at ``body_velocities`` (bodies, 3)."""
+        return self._end_forces(body_velocities)
+
     def _end_forces(self, body_velocities: NDArray[np.float64]
                     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         w, S = self._w, len(self.sections)
@@ -420,6 +538,24 @@ class DynamicSystem:
                       self.pprm, self.env, w.ppos, w.pvel, w.G, w.Zs, w.q, w.qt, w.N, w.Nstar,
                       w.faces, w.slack, w.pstages[4], sf, ef, laid)
         return sf, ef
+
+    def seabed_forces(self) -> NDArray[np.float64]:
+        """Force of the seabed on every point in the current state [N], (points, 3): the
+        normal spring-damper and the friction of free points resting on it (zero for other
+        points, and for free points without volume, which rest on their sections' nodes)."""
+        out = np.zeros((len(self.points), 3))
+        zb, vc = self.env[_s.E_ZB], self.env[_s.E_VC]
+        for p in np.flatnonzero((self.kind == _s.FREE) & (self.pprm[:, _s.PP_KB] > 0.0)):
+            z = self.x[p, 2]
+            if z >= zb:
+                continue
+            kb, cb, mu = self.pprm[p, _s.PP_KB:_s.PP_KB + 3]
+            out[p, 2] = -kb * (z - zb) - cb * min(self.u[p, 2], 0.0)
+            speed = float(np.hypot(self.u[p, 0], self.u[p, 1]))
+            if speed > 0.0:
+                mag = mu * math.sin(0.5 * math.pi * speed / max(vc, speed))
+                out[p, :2] = -mag * self.u[p, :2] / speed
+        return out
 
     def energy(self) -> dict[str, float]:
         """Kinetic, strain and gravitational energy [J] of the sections and free points (the
