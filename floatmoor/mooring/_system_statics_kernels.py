@@ -180,7 +180,8 @@ def assemble(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, se
     """Evaluate every section at ``pos`` and assemble the free-point residual and stiffness.
 
     R[i] is the net force on unknown i < ``n_dof`` (sections + ``ext``); K = -dR/dx over the
-    unknowns (filled when ``with_k``); ``scale[p]`` = |ext_p| + sum of |section forces on p|.
+    unknowns (filled when ``with_k``); ``scale[p]`` = |ext_p| + the sum over the sections at
+    p of their larger end tension.
     Returns (index of the first section without a solution or -1, its status, index of a
     section sagging below the seabed or -1, catenary iterations).
     """
@@ -211,8 +212,13 @@ def assemble(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, se
                 sag = s
         elif st != CAT_OK:
             return s, st, sag, cat_iter
-        scale[a] += math.sqrt(o[S_FA] ** 2 + o[S_FA + 1] ** 2 + o[S_FA + 2] ** 2)
-        scale[b] += math.sqrt(o[S_FB] ** 2 + o[S_FB + 1] ** 2 + o[S_FB + 2] ** 2)
+        # a section's force error is relative to its largest tension (at its upper end), also
+        # at an end that carries little: a joint beyond which seabed friction has taken
+        # nearly all the tension
+        t = max(math.sqrt(o[S_FA] ** 2 + o[S_FA + 1] ** 2 + o[S_FA + 2] ** 2),
+                math.sqrt(o[S_FB] ** 2 + o[S_FB + 1] ** 2 + o[S_FB + 2] ** 2))
+        scale[a] += t
+        scale[b] += t
         for c in range(3):
             ia = dof[a, c]
             ib = dof[b, c]
@@ -460,7 +466,7 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
     positions where a section has no catenary solution, and a Levenberg-Marquardt shift
     K + mu I raised whenever the line search fails (singular K of slack sections, points far
     off). Converged when every unknown's force residual is at most ``force_rtol`` times its
-    point's force scale (|ext| + sum of section force magnitudes). Free points on the seabed
+    point's force scale (|ext| + its sections' larger end tensions). Free points on the seabed
     form an active set (module docstring): a free point starting at or below the seabed, or
     that a step would carry through it, rests on it; after convergence the pinned point the
     seabed would pull down the most (beyond ``force_rtol`` of its force scale) lifts off and

@@ -49,8 +49,8 @@ __all__ = [
 ]
 
 #: Convergence of the equilibrium: every free-point force component within FORCE_RTOL of the
-#: point's force scale (|weight + buoyancy| + the magnitudes of its sections' end forces). The
-#: sections' forces carry the catenary's error, ~1e-12 L of end position (its tolerance) times
+#: point's force scale (|weight + buoyancy| + the larger end tension of each of its sections).
+#: The sections' forces carry the catenary's error, ~1e-12 L of end position (its tolerance) times
 #: the end stiffness, which for a taut section (EA/L) is ~1e-12 EA, ~1e-9 of its tension at a
 #: strain of 1e-3; 1e-9 sits at that floor and keeps point positions within ~1e-9 of the span
 #: of the converged answer, far inside the 1e-6 agreement asked against MoorPy.
