@@ -195,8 +195,10 @@ def _command(args: argparse.Namespace) -> int:
 
 def _check(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
+    from floatmoor.simulation.forced import check_independent_lines
 
     case = load_case(args.case, args.overrides)
+    check_independent_lines(case)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
     print(f"{args.case}: valid case \"{case.title}\"")
@@ -316,9 +318,10 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor._numba import watch_compilation
     from floatmoor.io.output_files import OutputWriteError, file_state
-    from floatmoor.simulation.forced import run_forced_motion
+    from floatmoor.simulation.forced import check_independent_lines, run_forced_motion
     from floatmoor.ui.progress import ProgressReporter
 
+    check_independent_lines(case)
     refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
 
     if args.resume and case.floater is None:

@@ -142,8 +142,9 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
                             f"duration {sim.duration!r} with output_interval "
                             f"{sim.output_interval!r} ({count_text(samples)} samples)")
     if sim.shape_output_interval is not None:
-        nodes = sum(line.dynamic.elements * (line.dynamic.order + 1)
-                    if line.model == "dynamic" else _OTHER_SHAPE_NODES for line in case.lines)
+        nodes = sum(sum(s.dynamic.elements * (s.dynamic.order + 1) for s in line.sections)
+                    if line.model == "dynamic" else _OTHER_SHAPE_NODES * len(line.sections)
+                    for line in case.lines)
         points = (sim.duration / sim.shape_output_interval + 1.0) * nodes
         if not points <= MAX_SHAPE_POINTS:
             raise context.error(("simulation", "shape_output_interval"), "at most "
@@ -154,7 +155,8 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
     steps = [(("simulation", "time_step"), sim.time_step)]
     for i, line in enumerate(case.lines):
         if line.model == "dynamic":
-            steps.append((("lines", i, "dynamic", "max_time_step"), line.dynamic.max_time_step))
+            steps.extend((("lines", i, "dynamic", "max_time_step"), s.dynamic.max_time_step)
+                         for s in line.sections)
         elif line.model == "quasi-dynamic":
             steps.append((("lines", i, "quasi_dynamic", "max_time_step"),
                           line.quasi_dynamic.max_time_step))
@@ -164,19 +166,19 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
                                 f"simulation.duration ({sim.duration:g} s; floatmoor.case.limits"
                                 ".MAX_TIME_STEPS) [s]", f"{step!r} "
                                 f"({count_text(sim.duration / step)} steps)")
-    for i, line in enumerate(case.lines):
-        lt = line.line_type
-        speed = math.sqrt(lt.axial_stiffness / lt.mass_per_length) \
-            if lt.axial_stiffness / lt.mass_per_length < math.inf else math.inf
-        if line.model == "dynamic" and not speed <= MAX_AXIAL_WAVE_SPEED:
-            key, unit = ("mass_per_length", "kg/m") if context.origin(
-                ("line_types", lt.name, "mass_per_length")) != context.source \
-                else ("axial_stiffness", "N")  # the one set on the command line, if either
-            raise context.error(("line_types", lt.name, key),
-                                "an axial wave speed sqrt(EA / mass_per_length) of at most "
-                                f"{MAX_AXIAL_WAVE_SPEED:g} m/s for the dynamic model of line "
-                                f"'{line.name}' (its time step shrinks with the speed) [{unit}]",
-                                f"{getattr(lt, key)!r} ({count_text(speed)} m/s)")
+    for line in case.lines:
+        for lt in {s.line_type.name: s.line_type for s in line.sections}.values():
+            speed = math.sqrt(lt.axial_stiffness / lt.mass_per_length) \
+                if lt.axial_stiffness / lt.mass_per_length < math.inf else math.inf
+            if line.model == "dynamic" and not speed <= MAX_AXIAL_WAVE_SPEED:
+                key, unit = ("mass_per_length", "kg/m") if context.origin(
+                    ("line_types", lt.name, "mass_per_length")) != context.source \
+                    else ("axial_stiffness", "N")  # the one set on the command line, if either
+                raise context.error(("line_types", lt.name, key),
+                                    "an axial wave speed sqrt(EA / mass_per_length) of at most "
+                                    f"{MAX_AXIAL_WAVE_SPEED:g} m/s for the dynamic model of line "
+                                    f"'{line.name}' (its time step shrinks with the speed) [{unit}]",
+                                    f"{getattr(lt, key)!r} ({count_text(speed)} m/s)")
     _check_components(case, context)
     _check_panels(case, context)
 

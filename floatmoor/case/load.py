@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 import math
+from dataclasses import replace
 from pathlib import Path as FilePath
 from typing import Any, Sequence
 
@@ -26,8 +27,8 @@ from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, INTERNAL_DAMPING_METHODS, LINE_MODELS,
-    SEABED_CONTACT_METHODS, Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion,
-    Line, LineType, Motion,
+    POINT_KINDS, SEABED_CONTACT_METHODS, Case, CircularMotion, DynamicSettings, Environment,
+    HarmonicMotion, Line, LineType, Motion, Point, Section,
     QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
 from floatmoor.case.title import render_title
@@ -118,9 +119,13 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     has_floater = root.has("floater")
     line_types = {name: _line_type(name, reader) for name, reader in root.named_tables("line_types")} \
         if root.has("line_types") or not has_floater else {}
+    user_points = _points(root, environment) \
+        if root.has("points") else []
+    implicit: list[Point] = []
     # A floater case may have no lines (a free-floating body); other cases need lines.
-    lines = tuple(_line(reader, line_types) for reader in root.tables("lines")) \
-        if root.has("lines") or not has_floater else ()
+    parsed = [_line(reader, line_types, implicit) for reader in root.tables("lines")] \
+        if root.has("lines") or not has_floater else []
+    lines, points = _resolve_points(parsed, user_points, implicit, context)
     simulation = _simulation(root.table("simulation"))
     if simulation.time_step is not None and not has_floater:
         raise root.error(("simulation", "time_step"), "no body time step in a case without a "
@@ -150,9 +155,10 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                 environment=environment, seabed=seabed, line_types=line_types, lines=lines,
                 motion=motion, simulation=simulation, description=description,
                 campaign=campaign, floater=floater, hydro=hydro, waves=waves,
-                initial_offset=initial, wind=wind)
+                initial_offset=initial, wind=wind, points=points)
     check_sizes(case, context)
-    _check_lines(case, context)
+    _check_system(case, context, {line.name: paths for line, paths in parsed}, user_points)
+    _check_lines(case, context, {line.name: paths for line, paths in parsed})
     _check_motion(case, context)
     return case
 
@@ -201,15 +207,82 @@ def _line_type(name: str, t: TableReader) -> LineType:
     return line_type
 
 
-def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
-    name = t.string("name")
-    type_name = t.string("type")
+def _points(root: TableReader, environment: Environment) -> list[Point]:
+    """``[[points]]``: named fixed, free and body points."""
+    points: list[Point] = []
+    for t in root.tables("points"):
+        name = t.string("name")
+        if "." in name:  # implicit points are "LINE.anchor", ...; --set addresses by name
+            raise t.error("name", "a name without '.'", name)
+        kind = t.string("kind", choices=POINT_KINDS)
+        position = t.vector("position", size=3, unit="m")
+        loads = {}
+        for key, unit in (("mass", "kg"), ("volume", "m^3"), ("drag_area", "m^2"),
+                          ("added_mass_coefficient", "-")):
+            if t.has(key) and kind != "free":
+                raise t.error(key, f"no {key} on a {kind} point (only free points carry "
+                              "clump weights and buoys"
+                              + ("; a body's mass is the [floater]'s)" if kind == "body"
+                                 else ")"), t.data[key])
+            loads[key] = t.number(key, unit=unit, ge=0.0, default=0.0)
+        t.finish()
+        if position[2] < environment.seabed_z - SEABED_TOLERANCE:
+            raise t.error("position", f"a point on or above the seabed (z >= "
+                          f"{environment.seabed_z:g} m)", f"z = {position[2]!r} m")
+        points.append(Point(name=name, kind=kind, position=position, **loads))
+    return points
+
+
+def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> DynamicSettings:
+    """``[lines.dynamic]`` (defaults: floatmoor's), or a section's ``dynamic`` table
+    (defaults: its line's)."""
+    d = defaults
+    settings = DynamicSettings(
+        elements=dg.integer("elements", ge=1, le=10_000,
+                            default=d.elements if d else DEFAULT_DG_ELEMENTS),
+        order=dg.integer("order", ge=1, le=8, default=d.order if d else DEFAULT_DG_ORDER),
+        cfl=dg.number("cfl", unit="-", gt=0.0, le=1.0, default=d.cfl if d else DEFAULT_DG_CFL),
+        max_time_step=dg.number("max_time_step", unit="s", gt=0.0,
+                                default=d.max_time_step if d else None),
+        slack_filter=dg.boolean("slack_filter", default=d.slack_filter if d else True),
+        seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
+                                 default=d.seabed_contact if d else "implicit"),
+        settle=dg.boolean("settle", default=d.settle if d else True),
+        internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
+                                   default=d.internal_damping if d else "implicit"),
+    )
+    dg.finish()
+    return settings
+
+
+def _line_type_named(t: TableReader, key: str, line_types: dict[str, LineType]) -> LineType:
+    type_name = t.string(key)
     if type_name not in line_types:
-        raise t.error("type", "the name of a [line_types.NAME] table ("
+        raise t.error(key, "the name of a [line_types.NAME] table ("
                       + ", ".join(f'"{n}"' for n in line_types) + ")", type_name)
-    length = t.number("length", unit="m", gt=0.0)
-    anchor = t.vector("anchor", size=3, unit="m")
-    fairlead = t.vector("fairlead", size=3, unit="m")
+    return line_types[type_name]
+
+
+def _end(t: TableReader, point_key: str, short_key: str, kind: str, name: str,
+         implicit: list[Point]) -> str:
+    """The point a line end names (``start`` / ``end``), or the implicit ``kind`` point of
+    its short form (``anchor`` / ``fairlead`` = [x, y, z])."""
+    if t.has(point_key) and t.has(short_key):
+        raise t.error(short_key, f"either {point_key} (a point's name) or {short_key} "
+                      "(a position), not both", t.data[short_key])
+    if t.has(point_key):
+        return t.string(point_key)
+    position = t.vector(short_key, size=3, unit="m")
+    implicit.append(Point(name=f"{name}.{short_key}", kind=kind, position=position))
+    return implicit[-1].name
+
+
+def _line(t: TableReader, line_types: dict[str, LineType],
+          implicit: list[Point]) -> tuple[Line, dict[str, Any]]:
+    """A ``[[lines]]`` entry; also the key paths of its point names (``ends``, start to end)
+    and of its last section's ``length`` (for errors)."""
+    name = t.string("name")
+    start = _end(t, "start", "anchor", "fixed", name, implicit)
     model = t.string("model", choices=LINE_MODELS)
     if model not in AVAILABLE_LINE_MODELS:
         raise t.error("model", "one of " + ", ".join(f'"{m}"' for m in AVAILABLE_LINE_MODELS)
@@ -223,20 +296,7 @@ def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
         seabed_friction=qs.boolean("seabed_friction", default=True),
     )
     qs.finish()
-    dg = t.table("dynamic", required=False)
-    dynamic = DynamicSettings(
-        elements=dg.integer("elements", ge=1, le=10_000, default=DEFAULT_DG_ELEMENTS),
-        order=dg.integer("order", ge=1, le=8, default=DEFAULT_DG_ORDER),
-        cfl=dg.number("cfl", unit="-", gt=0.0, le=1.0, default=DEFAULT_DG_CFL),
-        max_time_step=dg.number("max_time_step", unit="s", gt=0.0, default=None),
-        slack_filter=dg.boolean("slack_filter", default=True),
-        seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
-                                 default="implicit"),
-        settle=dg.boolean("settle", default=True),
-        internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
-                                   default="implicit"),
-    )
-    dg.finish()
+    dynamic = _dynamic_settings(t.table("dynamic", required=False), None)
     qd = t.table("quasi_dynamic", required=False)
     points = qd.integer("integration_points", ge=3, le=MAX_QD_INTEGRATION_POINTS,
                         default=DEFAULT_QD_INTEGRATION_POINTS)
@@ -249,10 +309,51 @@ def _line(t: TableReader, line_types: dict[str, LineType]) -> Line:
         max_time_step=qd.number("max_time_step", unit="s", gt=0.0, default=None),
     )
     qd.finish()
+    # sections: the short form (type, length) or the array; (type, length, end, path)
+    if t.has("sections"):
+        for key in ("type", "length"):
+            if t.has(key):
+                raise t.error(key, "either sections or type and length, not both",
+                              t.data[key])
+        raw_sections = []
+        entries = list(t.tables("sections"))
+        for i, st in enumerate(entries):
+            line_type = _line_type_named(st, "type", line_types)
+            length = st.number("length", unit="m", gt=0.0)
+            joint = None
+            if st.has("end"):
+                if i == len(entries) - 1:
+                    raise st.error("end", "no end on the last section (the line's end point "
+                                   "is its end)", st.data["end"])
+                joint = st.string("end")
+            section_dynamic = _dynamic_settings(st.table("dynamic", required=False), dynamic)
+            st.finish()
+            raw_sections.append((line_type, length, joint, section_dynamic, st.path))
+    else:
+        raw_sections = [(_line_type_named(t, "type", line_types),
+                         t.number("length", unit="m", gt=0.0), None, dynamic, t.path)]
+    end = _end(t, "end", "fairlead", "body", name, implicit)
     t.finish()
-    return Line(name=name, line_type=line_types[type_name], length=length, anchor=anchor,
-                fairlead=fairlead, model=model, quasi_static=settings, dynamic=dynamic,
-                quasi_dynamic=quasi_dynamic)
+    # unnamed joints between sections: implicit massless free points (placed by
+    # _resolve_points on the chord, at their fraction of the line's length)
+    joints = []
+    for i, (_, _, joint, _, _) in enumerate(raw_sections[:-1]):
+        if joint is None:
+            joint = f"{name}.joint{i + 1}"
+            implicit.append(Point(name=joint, kind="free", position=(math.nan,) * 3))
+        joints.append(joint)
+    names = [start] + joints + [end]
+    sections = tuple(Section(line=name, index=i, line_type=lt, length=length,
+                             start=names[i], end=names[i + 1], dynamic=dg)
+                     for i, (lt, length, _, dg, _) in enumerate(raw_sections))
+    paths = {"ends": [t.path + (("start",) if t.has("start") else ("anchor",))]
+             + [s[4] + ("end",) for s in raw_sections[:-1]]
+             + [t.path + (("end",) if t.has("end") else ("fairlead",))],
+             "length": raw_sections[-1][4] + ("length",)}
+    line = Line(name=name, sections=sections, anchor=(math.nan,) * 3,
+                fairlead=(math.nan,) * 3, model=model, quasi_static=settings,
+                dynamic=dynamic, quasi_dynamic=quasi_dynamic, start=start, end=end)
+    return line, paths
 
 
 def _simulation(t: TableReader) -> Simulation:
@@ -336,47 +437,175 @@ def _campaign(t: TableReader) -> dict[str, dict[str, list[Any]]]:
     return out
 
 
+def _resolve_points(parsed: list[tuple[Line, dict[str, Any]]], user_points: list[Point],
+                    implicit: list[Point], context: ReadContext
+                    ) -> tuple[tuple[Line, ...], tuple[Point, ...]]:
+    """Check the point names the lines give, place the implicit joints (on the chord between
+    their line's end points, at their fraction of its length) and give each line its end
+    positions. Returns the lines and every point (the ``[[points]]``, then the implicit ones)."""
+    known: dict[str, Point] = {}
+    for i, p in enumerate(user_points):
+        if p.name in known:
+            raise context.error(("points", i, "name"), "a name no other point has",
+                                f'"{p.name}" again')
+        known[p.name] = p
+    seen: set[str] = set()
+    for i, (line, _) in enumerate(parsed):
+        if line.name in seen:  # implicit point names would clash too
+            raise context.error(("lines", i, "name"), "a name no other line has",
+                                f'"{line.name}" again')
+        seen.add(line.name)
+    known.update((p.name, p) for p in implicit)
+    names = ", ".join(f'"{p.name}"' for p in user_points) or "none: no [[points]] table"
+    for line, paths in parsed:
+        chain = [line.start] + [s.end for s in line.sections]
+        for name, path in zip(chain, paths["ends"]):
+            if name not in known:
+                raise context.error(path, f"the name of a [[points]] entry ({names})",
+                                    f'"{name}"')
+    placed: dict[str, Point] = {}
+    lines = []
+    for line, _ in parsed:
+        a = np.asarray(known[line.start].position)
+        b = np.asarray(known[line.end].position)
+        along = 0.0
+        for section in line.sections[:-1]:
+            along += section.length
+            joint = known[section.end]
+            if math.isnan(joint.position[0]):
+                xyz = a + (b - a) * (along / line.length)
+                placed[joint.name] = replace(joint, position=tuple(float(c) for c in xyz))
+        lines.append(replace(line, anchor=known[line.start].position,
+                             fairlead=known[line.end].position))
+    points = tuple(user_points) + tuple(placed.get(p.name, p) for p in implicit)
+    return tuple(lines), points
+
+
 # -- cross checks -----------------------------------------------------------------------------
 
-def _check_lines(case: Case, context: ReadContext) -> None:
-    names: set[str] = set()
-    seabed_z = case.environment.seabed_z
+def _check_system(case: Case, context: ReadContext, paths: dict[str, dict[str, Any]],
+                  user_points: list[Point]) -> None:
+    """Refuse a mooring system no model can solve: a line or section from a point to itself,
+    a point no line uses, a group of free points held by no fixed or body point, a free point
+    joining lines of different models, a quasi-dynamic line that is not one section from a
+    fixed to a body point."""
+    kinds = {p.name: p.kind for p in case.points}
+    user_index = {p.name: i for i, p in enumerate(user_points)}
+    used: dict[str, list[Section]] = {p.name: [] for p in case.points}
     for i, line in enumerate(case.lines):
-        path = ("lines", i)
-        if line.name in names:
-            raise context.error(path + ("name",), "a name no other line has", f'"{line.name}" again')
-        names.add(line.name)
+        for section, path in zip(line.sections, paths[line.name]["ends"][1:]):
+            if section.start == section.end:
+                raise context.error(path, f"a point other than the section's start "
+                                    f'"{section.start}"', f'"{section.end}", the same point')
+            used[section.start].append(section)
+            used[section.end].append(section)
+        if line.model == "quasi-dynamic" and (
+                len(line.sections) != 1 or kinds[line.start] != "fixed"
+                or kinds[line.end] != "body"):
+            raise context.error(("lines", i, "model"), "a model for this line: the "
+                                "quasi-dynamic model solves one section from a fixed point to a"
+                                ' body point; use "dynamic" or "quasi-static" for a line with '
+                                "sections or free points",
+                                f'"quasi-dynamic" on a line of {len(line.sections)} section(s) '
+                                f"from a {kinds[line.start]} point to a {kinds[line.end]} point")
+    for name, sections in used.items():
+        if sections or name not in user_index:
+            continue
+        raise context.error(("points", user_index[name], "name"), "a point that a line starts "
+                            "or ends at (or a section's end)", f'"{name}", which no line uses')
+    # free points: one model per point; every group of free points held by a fixed or body one
+    line_of = {line.name: line for line in case.lines}
+    for name, sections in used.items():
+        if kinds[name] != "free":
+            continue
+        models = {line_of[s.line].model for s in sections}
+        if len(models) > 1:
+            where = ("points", user_index[name], "name") if name in user_index else \
+                ("lines", case.lines.index(line_of[sections[0].line]), "model")
+            raise context.error(where, "a free point joining lines of one model (they are "
+                                "solved together)", f'"{name}" joining '
+                                + ", ".join(sorted(f"{s.line} ({line_of[s.line].model})"
+                                                   for s in sections)))
+    group = {name: name for name in kinds}
+
+    def root(name: str) -> str:
+        while group[name] != name:
+            group[name] = group[group[name]]
+            name = group[name]
+        return name
+
+    for section in case.sections:
+        if kinds[section.start] == "free" and kinds[section.end] == "free":
+            group[root(section.start)] = root(section.end)
+    held = {root(s.start) for s in case.sections if kinds[s.end] != "free"} | \
+        {root(s.end) for s in case.sections if kinds[s.start] != "free"}
+    for name, kind in kinds.items():
+        if kind == "free" and root(name) not in held:
+            members = sorted(n for n in kinds if kinds[n] == "free" and root(n) == root(name))
+            lines = sorted({s.line for s in case.sections
+                            if s.start in members or s.end in members})
+            raise context.error(("lines", case.lines.index(line_of[lines[0]]), "name"),
+                                "lines held by at least one fixed or body point",
+                                "free points " + ", ".join(f'"{m}"' for m in members)
+                                + " held by nothing (lines " + ", ".join(lines) + ")")
+
+
+def _end_path(case: Case, i: int, which: str) -> tuple:
+    """The key path of a line end's position: the short-form ``anchor`` / ``fairlead``, or
+    the named point's ``position``."""
+    line = case.lines[i]
+    name = line.start if which == "anchor" else line.end
+    if name == f"{line.name}.{which}":
+        return ("lines", i, which)
+    names = [p.name for p in case.points]
+    return ("points", names.index(name), "position")
+
+
+def _check_lines(case: Case, context: ReadContext, paths: dict[str, dict[str, Any]]) -> None:
+    seabed_z = case.environment.seabed_z
+    kinds = {p.name: p.kind for p in case.points}
+    for i, line in enumerate(case.lines):
         for end in ("anchor", "fairlead"):
             z = getattr(line, end)[2]
             if z < seabed_z - SEABED_TOLERANCE:
-                raise context.error(path + (end,), f"a point on or above the seabed (z >= "
-                                    f"{seabed_z:g} m)", f"z = {z!r} m")
+                raise context.error(_end_path(case, i, end), f"a point on or above the seabed "
+                                    f"(z >= {seabed_z:g} m)", f"z = {z!r} m")
+        for section in line.sections:
+            lt = section.line_type
+            if line.model in _CATENARY_MODELS and \
+                    lt.material_density <= case.environment.water_density:
+                raise context.error(("line_types", lt.name, "material_density"),
+                                    f"a density > water_density "
+                                    f"({case.environment.water_density:g} kg/m^3): the "
+                                    f"{line.model} catenary of line '{line.name}' needs a line "
+                                    "that sinks", f"{lt.material_density!r}")
+        if "free" in (kinds[line.start], kinds[line.end]):
+            continue  # where a free end goes is the statics' answer
         if line.span <= COINCIDENT_ENDS * line.length:  # every model needs a direction
             end, other = ("anchor", "fairlead") \
-                if context.origin(path + ("anchor",)) != context.source else ("fairlead", "anchor")
-            raise context.error(path + (end,), f"a point apart from the {other} "
+                if context.origin(_end_path(case, i, "anchor")) != context.source \
+                else ("fairlead", "anchor")
+            raise context.error(_end_path(case, i, end), f"a point apart from the {other} "
                                 f"{list(getattr(line, other))} m",
                                 f"{list(getattr(line, end))} m, the same point")
         needed = line.span / line.length - 1.0
         if needed > MAX_STATIC_STRAIN:
-            raise context.error(path + ("length",),
+            raise context.error(paths[line.name]["length"],
                                 f"a length that reaches the fairlead {line.span:.6g} m away "
                                 f"without more than {MAX_STATIC_STRAIN:.0%} strain [m]",
                                 f"{line.length!r} (needs {needed:.1%} strain)")
-        if line.model in _CATENARY_MODELS and \
-                line.line_type.material_density <= case.environment.water_density:
-            raise context.error(("line_types", line.line_type.name, "material_density"),
-                                f"a density > water_density ({case.environment.water_density:g}"
-                                f" kg/m^3): the {line.model} catenary of line '{line.name}' "
-                                "needs a line that sinks",
-                                f"{line.line_type.material_density!r}")
 
 
 def _check_motion(case: Case, context: ReadContext) -> None:
     motion = case.motion
     if motion is None:
         return
-    for i, line in enumerate(case.lines):
+    kinds = {p.name: p.kind for p in case.points}
+    # the motion moves body points; a line from a fixed to a body point must follow it (lines
+    # with free points: the system's statics and dynamics answer where they go)
+    moved = [line for line in case.lines
+             if kinds[line.start] == "fixed" and kinds[line.end] == "body"]
+    for line in moved:
         if isinstance(motion, CircularMotion) and horizontal_direction(line) is None:
             raise context.error(("motion", "kind"), "a motion other than circular: line "
                                 f"'{line.name}' is vertical, so it has no vertical plane",
@@ -388,7 +617,7 @@ def _check_motion(case: Case, context: ReadContext) -> None:
     t = np.linspace(0.0, case.simulation.duration, n)
     key = ("motion", "radius" if isinstance(motion, CircularMotion) else
            "amplitude" if isinstance(motion, HarmonicMotion) else "file")
-    for line in case.lines:
+    for line in moved:
         path = fairlead_path(motion, line, t)
         lowest = float(path[:, 2].min())
         if lowest < case.environment.seabed_z - SEABED_TOLERANCE:

@@ -19,7 +19,7 @@ __all__ = [
     "SEABED_CONTACT_METHODS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
-    "RADIATION_METHODS", "HYDRO_CHECKS",
+    "RADIATION_METHODS", "HYDRO_CHECKS", "POINT_KINDS", "Point", "Section",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
@@ -30,6 +30,10 @@ AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
 #: Treatments of the dynamic model's Kelvin-Voigt internal damping.
 INTERNAL_DAMPING_METHODS = ("implicit", "explicit")
+#: Kinds of points (``points[].kind``): fixed in space (anchors), free (joints, clump weights,
+#: buoys: in equilibrium of their lines and loads), or carried by the body (fairleads: moved by
+#: the prescribed motion or the floater).
+POINT_KINDS = ("fixed", "free", "body")
 #: Rotation senses of circular motion, defined by where the end moves at the top of the circle.
 CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")
 
@@ -129,18 +133,80 @@ DEFAULT_QUASI_DYNAMIC = QuasiDynamicSettings()
 
 
 @dataclass(frozen=True)
-class Line:
-    """One mooring line; ``fairlead`` is the mean position in a forced-motion run."""
+class Point:
+    """A point of the mooring system (``[[points]]``, or implicit: a line's short-form anchor
+    or fairlead, an unnamed joint between sections).
+
+    A free point carries a clump weight (``mass``) or a buoy (``volume``): its weight
+    m g acts down and its buoyancy rho_w g V up, its added mass is C_a rho_w V and its drag
+    0.5 rho_w (C_d A) |u| u, as MoorDyn's points (Hall, MoorDyn v2 theory).
+    """
 
     name: str
+    kind: str  #: one of :data:`POINT_KINDS`
+    #: [m]: fixed points' position, body points' position at rest, free points' initial guess
+    position: tuple[float, float, float]
+    mass: float = 0.0  #: [kg]
+    volume: float = 0.0  #: displaced volume [m^3]
+    drag_area: float = 0.0  #: C_d A [m^2]
+    added_mass_coefficient: float = 0.0  #: C_a, on the displaced volume [-]
+
+
+@dataclass(frozen=True)
+class Section:
+    """One line type over part of a line, from point ``start`` to point ``end``."""
+
+    line: str  #: the line's name
+    index: int  #: 0 at the line's start
     line_type: LineType
     length: float  #: unstretched [m]
+    start: str  #: point names
+    end: str
+    dynamic: DynamicSettings  #: the line's ``[lines.dynamic]`` with the section's own keys
+
+    @property
+    def label(self) -> str:
+        """``line[index]``, as messages and outputs name a section."""
+        return f"{self.line}[{self.index}]"
+
+
+@dataclass(frozen=True)
+class Line:
+    """One mooring line from point ``start`` (arc length 0) to point ``end``, a series of
+    sections. ``anchor`` and ``fairlead`` are the positions of its end points (a body point's
+    at rest, a free point's initial guess); ``fairlead`` is the mean position in a
+    forced-motion run."""
+
+    name: str
+    sections: tuple[Section, ...]
     anchor: tuple[float, float, float]  #: [m]
     fairlead: tuple[float, float, float]  #: [m]
     model: str
     quasi_static: QuasiStaticSettings
-    dynamic: DynamicSettings
+    dynamic: DynamicSettings  #: the line-level numerics (each section has its merged copy)
     quasi_dynamic: QuasiDynamicSettings = DEFAULT_QUASI_DYNAMIC
+    start: str = ""  #: name of the start point
+    end: str = ""  #: name of the end point
+
+    @property
+    def line_type(self) -> LineType:
+        """The line type of a one-section line.
+
+        Raises
+        ------
+        ValueError
+            For a line of several sections, which has no one line type: code for systems
+            uses :attr:`sections`.
+        """
+        if len(self.sections) != 1:
+            raise ValueError(f"line '{self.name}' has {len(self.sections)} sections, not one "
+                             "line type")
+        return self.sections[0].line_type
+
+    @property
+    def length(self) -> float:
+        """Unstretched length, the sum of the sections' [m]."""
+        return float(sum(s.length for s in self.sections))
 
     @property
     def span(self) -> float:
@@ -383,8 +449,31 @@ class Case:
     wind: Any = None
     #: the title as the case file gives it, placeholders unfilled ("" = same as ``title``)
     title_template: str = ""
+    #: every point of the mooring system, the ``[[points]]`` then the lines' implicit ones
+    points: tuple[Point, ...] = ()
 
     @property
     def line_names(self) -> list[str]:
         """Names of the lines, in file order."""
         return [line.name for line in self.lines]
+
+    def point(self, name: str) -> Point:
+        """The point called ``name`` (KeyError if none is)."""
+        for p in self.points:
+            if p.name == name:
+                return p
+        raise KeyError(name)
+
+    @property
+    def sections(self) -> tuple[Section, ...]:
+        """Every line's sections, line by line from start to end."""
+        return tuple(s for line in self.lines for s in line.sections)
+
+    @property
+    def is_system(self) -> bool:
+        """Whether the mooring is more than independent one-section lines from a fixed
+        point to a body point (the lines of a free point or of several sections are
+        solved together)."""
+        kinds = {p.name: p.kind for p in self.points}
+        return any(len(line.sections) != 1 or kinds.get(line.start) != "fixed"
+                   or kinds.get(line.end) != "body" for line in self.lines)

@@ -5,7 +5,6 @@ the database's state-space realisation (whose states are in the checkpoint with 
 
 from __future__ import annotations
 
-import math
 import time as _time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -16,26 +15,21 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import points_state
-from floatmoor.body.model import build_body
-from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, SolverError
-from floatmoor.hydro.database import load_for_case
-from floatmoor.hydro.excitation import ExcitationInterpolator
-from floatmoor.hydro.state_space import has_state_space
 from floatmoor.simulation.checkpoint import (
     CheckpointError, RunIdentity, check_checkpoint, read_checkpoint, write_checkpoint,
 )
-from floatmoor.simulation.coupled import MooredBody, equilibrium
-from floatmoor.simulation.forced import RunResult, output_times, shape_stride
+from floatmoor.simulation.assembly import assemble
+from floatmoor.simulation.coupled import MooredBody
+from floatmoor.simulation.forced import (
+    RunResult, check_independent_lines, output_times, shape_stride,
+)
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.signals import deferred_interrupts
-from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.synthesis import harmonic_sum
-from floatmoor.waves.realisation import WaveField
-from floatmoor.wind.force import RotorThrust
 from floatmoor.waves.settings import (
-    JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
+    JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
 
 __all__ = ["CoupledSettings", "run_coupled", "check_coupled_case", "settings_from_case"]
@@ -71,30 +65,6 @@ def settings_from_case(case: Case) -> CoupledSettings:
         waves=waves.settings if waves is not None else StillWaterSettings(),
         ramp_duration=waves.ramp_duration if waves is not None else 0.0,
         initial_offset=tuple(case.initial_offset))
-
-
-def _excitation(case: Case, sea: WaveField, ds) -> WaveExcitation | None:
-    if sea.n_components == 0:
-        return None
-    interp = ExcitationInterpolator(ds)
-    w_db = ds["omega"].values
-    inside = (sea.omega >= w_db[0]) & (sea.omega <= w_db[-1])
-    X = np.zeros((sea.n_components, 6), dtype=complex)
-    for beta in np.unique(sea.direction):
-        sel = inside & (sea.direction == beta)
-        if np.any(sel):
-            X[sel] = interp(sea.omega[sel], float(beta))
-    return WaveExcitation(sea, X)
-
-
-def _key_origin(case: Case, key: str) -> str:
-    """The case file, with the ``--set`` that last set ``key`` (or a table above it)."""
-    origin = case.source
-    for text in case.overrides:
-        path = text.split("=", 1)[0].strip()
-        if key == path or key.startswith(path + "."):
-            origin = f"{case.source} (--set {text})"
-    return origin
 
 
 def checkpoint_path(output: str | Path) -> Path:
@@ -194,6 +164,7 @@ def check_coupled_case(case: Case) -> None:
     if case.motion is not None:
         raise CaseError(case.source, "motion", "no [motion] in a case run by run_coupled (the "
                         "floater's motion follows from its dynamics)", "a [motion] table")
+    check_independent_lines(case)
 
 
 def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
@@ -247,50 +218,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     if stride < 1 or abs(stride * dt - case.simulation.output_interval) > 1e-9 * dt:
         raise ValueError(f"the output interval {case.simulation.output_interval} s must be a "
                          f"multiple of the body time step {dt} s")
-    env = case.environment
-    # the case's database, refused when missing, damaged or built from other inputs
-    ds = load_for_case(case, settings.database)
-    if case.floater.radiation == "state-space" and not has_state_space(ds):
-        raise CaseError(_key_origin(case, "floater.radiation"), "floater.radiation",
-                        '"convolution", or "state-space" with a database holding a state-space '
-                        "realisation of K(t) (add one with 'floatmoor hydro fit-state-space "
-                        f"{case.hydro.database if case.hydro else 'NAME'}')",
-                        f'"state-space" with {ds.attrs.get("path", "the database")}, which '
-                        "holds none")
-    body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
-                      quadratic_damping=settings.quadratic_damping)
-    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
-    excitation = _excitation(case, sea, ds)
-    centre = np.asarray(case.floater.reference_point, dtype=float)
-    ramp = settings.ramp_duration
-
-    def ramp_factor(t: float) -> float:
-        if ramp <= 0.0 or t >= ramp:
-            return 1.0
-        return 0.5 - 0.5 * math.cos(math.pi * t / ramp)
-
-    cache: dict[str, NDArray[np.float64] | float] = {"t0": math.nan, "f": np.zeros((1, 6))}
-
-    rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
-    parts: dict[str, MorisonDrag | None] = {"drag": None}
-
-    def external(t: float, x, v) -> NDArray[np.float64]:
-        k = int(round((t - cache["t0"]) / (0.5 * dt)))
-        f = ramp_factor(t) * cache["f"][k] if excitation is not None else np.zeros(6)
-        if rotor is not None:  # unramped: the body starts at the mean-thrust equilibrium
-            f = f + rotor.force(k, x, v)
-        if parts["drag"] is not None:
-            f = f + parts["drag"].force(k, x, v)
-        return f
-
+    system = assemble(case, settings)
+    moored, loads = system.moored, system.loads
+    body, x_eq = moored.body, system.equilibrium
+    sea, centre = system.sea, moored.centre
     n_lines = len(case.lines)
     ckpt_every = flush_interval if checkpoint_interval is None else checkpoint_interval
-    # built as for a fresh start, so that a checkpoint's state fits the same operators
-    moored = MooredBody(body, case.lines, env, case.seabed, centre, external)
-    x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
-                       mean_force=None if rotor is None else rotor.steady_force())
-    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
-    moored.equilibrium_position = x_eq
     stride_shapes = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval, body=True,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
@@ -300,9 +233,6 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     done = 0
     if resume:
         done = _load_checkpoint(ckpt, identity, moored, recorder, stride, n_steps)
-    if case.floater.drag is not None:  # rebuilt, never pickled: the same on resume
-        parts["drag"] = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,
-                                    current=env.current_velocity, mean_displacement=x_eq)
 
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x, body.v)
@@ -346,14 +276,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
             fill_elevation(done // stride + 1, (done + chunk) // stride)
-            t0 = body.time
-            cache["t0"] = t0
-            if excitation is not None:
-                cache["f"] = excitation.series(t0 + 0.5 * dt * np.arange(2 * chunk + 1))
-            if rotor is not None:
-                rotor.prepare(t0, 2 * chunk + 1, 0.5 * dt)
-            if parts["drag"] is not None:
-                parts["drag"].prepare(t0, 2 * chunk + 1, 0.5 * dt, ramp=ramp_factor)
+            loads.prepare(body.time, chunk)
             for _ in range(chunk):
                 moored.step()
                 done += 1

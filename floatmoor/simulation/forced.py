@@ -19,23 +19,16 @@ from numpy.typing import NDArray
 from floatmoor.case.schema import Case, Simulation
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.motion import fairlead_state
-from floatmoor.mooring.dg.line import DynamicLine
-from floatmoor.mooring.quasidynamic import QuasiDynamicLine
-from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
+from floatmoor.simulation.assembly import LineModel, assemble
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
 __all__ = ["RunResult", "run_forced_motion", "check_forced_case", "output_times",
-           "build_line_models"]
+           "check_independent_lines"]
 
 #: Output samples solved per chunk between progress reports and checks: large enough to make
 #: the per-chunk Python overhead negligible, small enough to report progress every ~0.1 s.
 CHUNK_SAMPLES = 2000
-
-LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
-_MODELS = {"quasi-static": QuasiStaticLine.from_case,
-           "quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
-
 
 @dataclass(frozen=True)
 class RunResult:
@@ -53,17 +46,33 @@ def output_times(simulation: Simulation) -> NDArray[np.float64]:
     return np.arange(n) * simulation.output_interval
 
 
-def build_line_models(case: Case) -> list[LineModel]:
-    """One model object per line, as the case chooses."""
-    return [_MODELS[line.model](line, case.environment, case.seabed) for line in case.lines]
-
-
 def shape_stride(case: Case) -> int:
     """Output samples between line-shape samples (0: no shapes)."""
     interval = case.simulation.shape_output_interval
     if interval is None:
         return 0
     return max(1, int(round(interval / case.simulation.output_interval)))
+
+
+def check_independent_lines(case: Case) -> None:
+    """Refuse a mooring system (free points, lines of several sections) in the runners of
+    independent one-section lines, which would move a free end as a fairlead.
+
+    Raises
+    ------
+    CaseError
+        Naming the first line that is not one section from a fixed to a body point.
+    """
+    if not case.is_system:
+        return
+    kinds = {p.name: p.kind for p in case.points}
+    for i, line in enumerate(case.lines):
+        if len(line.sections) != 1 or kinds[line.start] != "fixed" or kinds[line.end] != "body":
+            raise CaseError(case.source, f"lines[{i}]", "lines of one section from a fixed to "
+                            "a body point (the runs of mooring systems with free points and "
+                            "sections are not wired to the runners yet)",
+                            f"line '{line.name}': {len(line.sections)} section(s) from a "
+                            f"{kinds[line.start]} to a {kinds[line.end]} point")
 
 
 def check_forced_case(case: Case) -> None:
@@ -91,6 +100,7 @@ def check_forced_case(case: Case) -> None:
             raise CaseError(case.source, key, "a case without a floater for run_forced_motion "
                             "(a case with a [floater] runs coupled: floatmoor.run_coupled, or "
                             "floatmoor.run_case, which picks the runner)", found)
+    check_independent_lines(case)
 
 
 def run_forced_motion(case: Case, *, output: str | Path | None = None,
@@ -120,7 +130,7 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     """
     check_forced_case(case)
     times = output_times(case.simulation)
-    models = build_line_models(case)
+    models = assemble(case).line_models
     stride = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval,
                         shape_nodes=[m.arc_length for m in models] if stride else None,

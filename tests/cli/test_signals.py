@@ -19,7 +19,7 @@ import pytest
 
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_dataset
-from floatmoor.simulation import forced, recorder
+from floatmoor.simulation import assembly, forced, recorder
 from floatmoor.ui.progress import ProgressReporter
 from tests.conftest import LINDAHL_CASE, REPO
 
@@ -133,7 +133,7 @@ def test_interrupt_before_recording_says_nothing_written(tmp_path, capsys, monke
     def interrupted_build(case):
         os.kill(os.getpid(), signal.SIGTERM)
 
-    monkeypatch.setattr(forced, "build_line_models", interrupted_build)
+    monkeypatch.setattr(assembly, "build_line_models", interrupted_build)
     out = tmp_path / "none.nc"
     if existing:  # an earlier result (floatmoor replaces netCDF files only)
         import xarray as xr

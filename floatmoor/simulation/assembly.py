@@ -1,0 +1,210 @@
+"""A case assembled once into the moored system a run advances (issue 15).
+
+:func:`assemble` turns a validated case into a :class:`MooredSystem`: its points, its lines
+(each model object built from the line's sections), and for a case with a ``[floater]`` the
+Cummins body on those lines at its static equilibrium, the sea, and the loads on the body
+other than the lines (:class:`BodyLoads`: ramped wave excitation, rotor thrust, Morison drag).
+The forced-motion and coupled runs take that object and only step and record it; nothing in
+their time loops builds models.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.body.model import build_body
+from floatmoor.body.morison import MorisonDrag
+from floatmoor.case.schema import Case, Point
+from floatmoor.errors import CaseError
+from floatmoor.hydro.database import load_for_case
+from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.state_space import has_state_space
+from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.mooring.quasidynamic import QuasiDynamicLine
+from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.simulation.coupled import MooredBody, equilibrium
+from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.realisation import WaveField
+from floatmoor.waves.settings import build
+from floatmoor.wind.force import RotorThrust
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from floatmoor.simulation.coupled_run import CoupledSettings
+
+__all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "LineModel",
+           "key_origin"]
+
+LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
+_MODELS = {"quasi-static": QuasiStaticLine.from_case,
+           "quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
+
+
+def build_line_models(case: Case) -> list[LineModel]:
+    """One model object per line, as the case chooses (lines of one section from a fixed to
+    a body point)."""
+    return [_MODELS[line.model](line, case.environment, case.seabed) for line in case.lines]
+
+
+def key_origin(case: Case, key: str) -> str:
+    """The case file, with the ``--set`` that last set ``key`` (or a table above it)."""
+    origin = case.source
+    for text in case.overrides:
+        path = text.split("=", 1)[0].strip()
+        if key == path or key.startswith(path + "."):
+            origin = f"{case.source} (--set {text})"
+    return origin
+
+
+class BodyLoads:
+    """The loads on the body other than its lines: the wave excitation (with its cosine ramp),
+    the rotor thrust (unramped: the body starts at the mean-thrust equilibrium) and the Morison
+    drag, each tabulated at the body's half-steps of a chunk by :meth:`prepare` and looked up
+    by :meth:`__call__` at the Runge-Kutta stage times."""
+
+    def __init__(self, excitation: WaveExcitation | None, rotor: RotorThrust | None,
+                 drag: MorisonDrag | None, ramp_duration: float, time_step: float) -> None:
+        self.excitation = excitation
+        self.rotor = rotor
+        self.drag = drag
+        self.ramp_duration = float(ramp_duration)
+        self.time_step = float(time_step)
+        self._t0 = math.nan
+        self._wave = np.zeros((1, 6))
+
+    def ramp(self, t: float) -> float:
+        """The excitation's cosine ramp factor at ``t`` [-]."""
+        ramp = self.ramp_duration
+        if ramp <= 0.0 or t >= ramp:
+            return 1.0
+        return 0.5 - 0.5 * math.cos(math.pi * t / ramp)
+
+    def prepare(self, t0: float, steps: int) -> None:
+        """Tabulate the loads at the half-steps of ``steps`` body steps from ``t0``."""
+        h = 0.5 * self.time_step
+        self._t0 = t0
+        if self.excitation is not None:
+            self._wave = self.excitation.series(t0 + h * np.arange(2 * steps + 1))
+        if self.rotor is not None:
+            self.rotor.prepare(t0, 2 * steps + 1, h)
+        if self.drag is not None:
+            self.drag.prepare(t0, 2 * steps + 1, h, ramp=self.ramp)
+
+    def __call__(self, t: float, x: NDArray[np.float64], v: NDArray[np.float64]
+                 ) -> NDArray[np.float64]:
+        """The 6-DOF load at stage time ``t`` (a half-step of the prepared chunk) [N, N m]."""
+        k = int(round((t - self._t0) / (0.5 * self.time_step)))
+        f = self.ramp(t) * self._wave[k] if self.excitation is not None else np.zeros(6)
+        if self.rotor is not None:
+            f = f + self.rotor.force(k, x, v)
+        if self.drag is not None:
+            f = f + self.drag.force(k, x, v)
+        return f
+
+
+@dataclass
+class MooredSystem:
+    """A case's mooring system, and its floater when it has one, ready to run.
+
+    Attributes
+    ----------
+    case
+        The case it was assembled from.
+    points
+        Every point of the system (``case.points``).
+    line_models
+        Forced-motion runs: one model per line; empty for a floater case, whose lines are
+        in ``moored``.
+    moored
+        The body on its lines (started at its equilibrium plus the initial offset), or None.
+    loads
+        The body's loads other than the lines, or None.
+    sea
+        The wave field of a coupled run, or None.
+    equilibrium
+        The body's static equilibrium on its lines (6,) [m, rad], or None.
+    database
+        The hydrodynamic database of the floater, or None.
+    """
+
+    case: Case
+    points: tuple[Point, ...]
+    line_models: list[LineModel] = field(default_factory=list)
+    moored: MooredBody | None = None
+    loads: BodyLoads | None = None
+    sea: WaveField | None = None
+    equilibrium: NDArray[np.float64] | None = None
+    database: "xr.Dataset | None" = None
+
+
+def _excitation(sea: WaveField, ds: "xr.Dataset") -> WaveExcitation | None:
+    if sea.n_components == 0:
+        return None
+    interp = ExcitationInterpolator(ds)
+    w_db = ds["omega"].values
+    inside = (sea.omega >= w_db[0]) & (sea.omega <= w_db[-1])
+    X = np.zeros((sea.n_components, 6), dtype=complex)
+    for beta in np.unique(sea.direction):
+        sel = inside & (sea.direction == beta)
+        if np.any(sel):
+            X[sel] = interp(sea.omega[sel], float(beta))
+    return WaveExcitation(sea, X)
+
+
+def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSystem:
+    """Assemble a case's moored system.
+
+    Parameters
+    ----------
+    case
+        A validated case.
+    settings
+        A floater case's coupled-run settings (:class:`~floatmoor.simulation.coupled_run.
+        CoupledSettings`); required when the case has a ``[floater]``, ignored otherwise.
+
+    Raises
+    ------
+    CaseError
+        When the floater asks for a state-space radiation its database does not hold.
+    HydroDatabaseError
+        When the floater's database is missing, damaged, stale or fails a check the case
+        does not accept.
+    """
+    if case.floater is None:
+        return MooredSystem(case=case, points=case.points, line_models=build_line_models(case))
+    if settings is None:
+        raise ValueError("a floater case is assembled with its CoupledSettings")
+    env = case.environment
+    dt = float(settings.time_step)
+    # the case's database, refused when missing, damaged or built from other inputs
+    ds = load_for_case(case, settings.database)
+    if case.floater.radiation == "state-space" and not has_state_space(ds):
+        raise CaseError(key_origin(case, "floater.radiation"), "floater.radiation",
+                        '"convolution", or "state-space" with a database holding a state-space '
+                        "realisation of K(t) (add one with 'floatmoor hydro fit-state-space "
+                        f"{case.hydro.database if case.hydro else 'NAME'}')",
+                        f'"state-space" with {ds.attrs.get("path", "the database")}, which '
+                        "holds none")
+    body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
+                      quadratic_damping=settings.quadratic_damping)
+    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
+    rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
+    loads = BodyLoads(_excitation(sea, ds), rotor, None, settings.ramp_duration, dt)
+    centre = np.asarray(case.floater.reference_point, dtype=float)
+    # built as for a fresh start, so that a checkpoint's state fits the same operators
+    moored = MooredBody(body, case.lines, env, case.seabed, centre, loads)
+    x_eq = equilibrium(body, case.lines, moored.arms, centre, env, case.seabed,
+                       mean_force=None if rotor is None else rotor.steady_force())
+    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    moored.equilibrium_position = x_eq
+    if case.floater.drag is not None:
+        loads.drag = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,
+                                 current=env.current_velocity, mean_displacement=x_eq)
+    return MooredSystem(case=case, points=case.points, moored=moored, loads=loads, sea=sea,
+                        equilibrium=x_eq, database=ds)
