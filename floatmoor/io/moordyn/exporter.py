@@ -5,23 +5,29 @@ Every section is a MoorDyn line, its points (section joints included) MoorDyn po
 Fixed, body -> Coupled, free -> Free with mass, volume, CdA and Ca. Line types by
 :mod:`.line_types`; a section's internal damping ratio becomes MoorDyn's ``-zeta_md`` for its
 segment count (one MoorDyn type per floatmoor type and BA, named ``NAME``, ``NAME_2``, ...).
-NumSegs = elements x order of the section's DG discretisation (its nodal intervals). dtM is the
-smallest DG time step of the sections (cfl x the SSP-RK3 limit of the axial wave, as
-floatmoor.mooring.dg.line computes it with implicit internal damping) and of MoorDyn's explicit
-seabed spring (:data:`SEABED_STEP_FRACTION`).
+NumSegs = elements x order of the section's DG discretisation (its nodal intervals). The internal
+damping coefficient c_int = 2 zeta L sqrt(EA m) / pi of a section takes L = the section's own
+length (its ratio zeta is that of the section's first axial mode, as the DG sections are built:
+CableProperties.from_section). dtM is the smallest DG time step of the sections
+(CableProperties.time_step, the function the DG line steps with: the axial wave, explicit
+internal damping and explicit seabed contact, ``max_time_step``) and
+:data:`SEABED_STEP_FRACTION` of the RK2 limit of MoorDyn's explicit seabed spring (tScheme
+RK2 is written). The deck's title is the case's title; the simulation's output interval is
+MoorDyn's dtOut (MoorDyn has no run length: its driver steps it).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
 from floatmoor.io.moordyn.deck import (POINT_COUPLED, POINT_FIXED, POINT_FREE, Deck, DeckLine,
                                        DeckLineType, DeckOption, DeckPoint)
-from floatmoor.io.moordyn.line_types import (friction_damping, internal_damping_coefficient,
-                                             moordyn_line_type, seabed_to_moordyn)
-from floatmoor.mooring.dg.reference import STABLE_STEP_FACTOR
+from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type,
+                                             seabed_to_moordyn)
+from floatmoor.mooring.dg.line import CableProperties
 
 __all__ = ["ExportResult", "export_case", "SEABED_STEP_FRACTION"]
 
@@ -31,6 +37,8 @@ __all__ = ["ExportResult", "export_case", "SEABED_STEP_FRACTION"]
 SEABED_STEP_FRACTION = 0.5
 _KINDS = {"fixed": POINT_FIXED, "body": POINT_COUPLED, "free": POINT_FREE}
 _SAME_VALUE_RTOL = 1e-12
+#: Characters a MoorDyn line type name cannot hold (it reads whitespace-separated columns).
+_TYPE_NAME_CHARACTERS = re.compile(r"[^A-Za-z0-9_.+-]")
 
 
 @dataclass
@@ -43,12 +51,6 @@ class ExportResult:
 
 def _segments(section: Any) -> int:
     return int(section.dynamic.elements * section.dynamic.order)
-
-
-def _dg_step(section: Any) -> float:
-    st, lt = section.dynamic, section.line_type
-    h = section.length / st.elements
-    return st.cfl * STABLE_STEP_FACTOR[st.order] * h / lt.axial_wave_speed
 
 
 def export_case(case: Any) -> ExportResult:
@@ -69,16 +71,27 @@ def export_case(case: Any) -> ExportResult:
     types: dict[tuple[str, float], DeckLineType] = {}
     count: dict[str, int] = {}
     deck_lines: list[DeckLine] = []
+    used_names: set[str] = set()
     for k, sec in enumerate(sections, start=1):
         lt = sec.line_type
         n = _segments(sec)
-        c_int = internal_damping_coefficient(lt.internal_damping_ratio, sec.length,
-                                             lt.axial_stiffness, lt.mass_per_length)
-        ba = -c_int * n / (sec.length * math.sqrt(lt.axial_stiffness * lt.mass_per_length))
+        # floatmoor's c_int = 2 zeta L sqrt(EA m) / pi takes L = the section's own length
+        # (CableProperties.from_section); MoorDyn's -zeta_md gives c_int = zeta_md (L / N)
+        # sqrt(EA m) on the same L and its N segments: zeta_md = 2 zeta N / pi, L cancels (so
+        # sections of one type and N share one MoorDyn type, whatever their lengths)
+        ba = -2.0 * lt.internal_damping_ratio * n / math.pi
         key = (lt.name, ba)
         if key not in types:
-            count[lt.name] = count.get(lt.name, 0) + 1
-            name = lt.name if count[lt.name] == 1 else f"{lt.name}_{count[lt.name]}"
+            base = _TYPE_NAME_CHARACTERS.sub("_", lt.name) or "type"
+            if base != lt.name and base not in used_names:
+                notes.append(f"line type '{lt.name}' is MoorDyn's '{base}' (a MoorDyn name is "
+                             "one word)")
+            count[base] = count.get(base, 0) + 1
+            name = base if count[base] == 1 else f"{base}_{count[base]}"
+            while name in used_names:  # a floatmoor type may already be called NAME_2
+                count[base] += 1
+                name = f"{base}_{count[base]}"
+            used_names.add(name)
             md = moordyn_line_type(lt, ba)
             types[key] = DeckLineType(
                 name=name, diameter=md.diameter, mass_per_length=md.mass_per_length,
@@ -106,13 +119,26 @@ def export_case(case: Any) -> ExportResult:
            * max(c_bot, 1e-300) for k, c in other.values()):
         notes.append(f"seabed: MoorDyn has one kBot and cBot per unit of its diameter; those "
                      f"of line type {first.name} are written (exact for it only)")
-    fric = friction_damping(first.weight_in_water(env), sections[0].length,
-                            _segments(sections[0]), bed.slip_speed)
+    friction: tuple[DeckOption, ...] = ()
     if bed.friction_coefficient > 0.0:
-        notes.append("friction: floatmoor's smoothed Coulomb friction is MoorDyn's "
-                     "FrictionCoefficient with FricDamp saturating at the slip speed on a "
-                     f"resting node of {sections[0].line} (MoorDyn: min(mu FricDamp |v|, "
-                     "mu |F_z|), linear ramp per node)")
+        # FricDamp saturates MoorDyn's friction at the slip speed on a resting node of the
+        # first section that sinks (a buoyant one never rests on the seabed)
+        resting = [s for s in sections if s.line_type.weight_in_water(env) > 0.0]
+        if resting:
+            sec = resting[0]
+            where = sec.line if len(line_of[sec.line].sections) == 1 else \
+                f"{sec.line} section {sec.index + 1}"
+            fric = friction_damping(sec.line_type.weight_in_water(env), sec.length,
+                                    _segments(sec), bed.slip_speed)
+            friction = (DeckOption("FricDamp", repr(fric)),
+                        DeckOption("StatDynFricScale", "1.0"))
+            notes.append("friction: floatmoor's smoothed Coulomb friction is MoorDyn's "
+                         "FrictionCoefficient with FricDamp saturating at the slip speed on a "
+                         f"resting node of {where} (MoorDyn: min(mu FricDamp |v|, mu |F_z|), "
+                         "linear ramp per node)")
+        else:
+            notes.append("friction: no section sinks, so none rests on the seabed; FricDamp "
+                         "is MoorDyn's default")
     if any(env.current_velocity):
         notes.append("current: not exported (MoorDyn takes currents from its own files)")
     if getattr(case, "floater", None) is not None:
@@ -122,7 +148,8 @@ def export_case(case: Any) -> ExportResult:
         notes.append(f"motion ({case.motion.kind}): not exported; drive the Coupled points "
                      "with it through MoorDyn's coupling (Step)")
 
-    dt = min(_dg_step(s) for s in sections)
+    dt = min(CableProperties.from_section(sec, env, bed).time_step(sec.dynamic)
+             for sec in sections)
     for sec in sections:
         lt = sec.line_type
         omega = math.sqrt(bed.stiffness * lt.diameter / lt.mass_per_length)
@@ -131,18 +158,22 @@ def export_case(case: Any) -> ExportResult:
     options = (
         DeckOption("writeLog", "0"),
         DeckOption("dtM", repr(dt)),
+        DeckOption("tScheme", "RK2"),
+        DeckOption("dtOut", repr(float(case.simulation.output_interval))),
         DeckOption("g", repr(float(env.gravity))),
         DeckOption("WtrDnsty", repr(float(env.water_density))),
         DeckOption("WtrDpth", repr(float(env.water_depth))),
         DeckOption("kBot", repr(k_bot)),
         DeckOption("cBot", repr(c_bot)),
         DeckOption("FrictionCoefficient", repr(float(bed.friction_coefficient))),
-        DeckOption("FricDamp", repr(fric)),
-        DeckOption("StatDynFricScale", "1.0"),
+        *friction,
     )
     notes.insert(0, f"dtM: the smallest floatmoor DG time step of the sections and "
                  f"{SEABED_STEP_FRACTION:g} x MoorDyn's RK2 limit of the seabed spring")
-    deck = Deck(source="", title=f"floatmoor case: {case.title}".replace("---", "- - -"),
+    notes.insert(1, f"duration {case.simulation.duration:g} s: not exported (MoorDyn has no run "
+                 "length; its driver steps it); dtOut is the output interval")
+    notes.insert(0, f"written by floatmoor export moordyn from {case.source}")
+    deck = Deck(source="", title=case.title.replace("---", "- - -").replace("\n", " "),
                 line_types=tuple(types.values()), points=points, lines=tuple(deck_lines),
                 options=options)
     return ExportResult(deck=deck, notes=notes)

@@ -10,7 +10,7 @@ Choices (stated in the file written):
   at the body's position plus their offset (the body itself is not modelled: listed);
 - line types by :mod:`.line_types` (exact); NumSegs N -> DG order min(5, N) and
   ceil(N / order) elements (the export writes elements x order segments back);
-- internal damping: floatmoor's ratio is that of the line's first axial mode, MoorDyn's
+- internal damping: floatmoor's ratio is that of the line's (its one section's) first axial mode, MoorDyn's
   negative BA that of a segment: one floatmoor ratio per (type, number of segments), the type
   split into ``NAME``, ``NAME_2``, ... when its lines need different ratios;
 - seabed: MoorDyn's kBot, cBot and FricDamp are per contact diameter; floatmoor's stiffness is

@@ -14,7 +14,9 @@ added mass and a separate drag diameter ``d`` (the nominal chain diameter). Henc
 - ``BA`` = floatmoor's Kelvin-Voigt coefficient ``c_int`` [N s] (a positive BA is divided by
   MoorDyn's area and multiplied back); a negative BA (``-zeta_md``) means
   ``c_int = zeta_md (L / N) sqrt(EA m)`` for a line of length L in N segments, while floatmoor's
-  ratio is that of the line's first axial mode, ``c_int = 2 zeta L sqrt(EA m) / pi``;
+  ratio is that of the section's first axial mode, ``c_int = 2 zeta L sqrt(EA m) / pi``
+  (floatmoor.mooring.dg.line.CableProperties.from_section; L the section's length, one MoorDyn
+  line being one section);
 - ``EI = 0`` (floatmoor's lines have no bending stiffness).
 
 Seabed: MoorDyn's vertical contact force per length is ``(kBot (z_b - z) - cBot v_z) d_v``;
@@ -35,7 +37,7 @@ from dataclasses import dataclass
 from typing import Protocol
 
 __all__ = ["LineDescription", "MoorDynLineType", "moordyn_line_type", "floatmoor_line_type",
-           "internal_damping_coefficient", "damping_ratio_from_moordyn", "seabed_to_moordyn",
+           "damping_ratio_from_moordyn", "seabed_to_moordyn",
            "seabed_from_moordyn", "friction_damping", "slip_speed_from_moordyn"]
 
 
@@ -101,13 +103,6 @@ def floatmoor_line_type(md: MoorDynLineType) -> dict[str, float]:
         "added_mass_coefficient": md.added_mass_coefficient,
         "tangential_added_mass_coefficient": md.tangential_added_mass_coefficient,
     }
-
-
-def internal_damping_coefficient(ratio: float, length: float, axial_stiffness: float,
-                                 mass_per_length: float) -> float:
-    """floatmoor's c_int [N s] of a line of ``length`` for its damping ``ratio`` (that of the
-    first axial mode, floatmoor.mooring.dg.line.CableProperties.from_case)."""
-    return 2.0 * ratio * length * math.sqrt(axial_stiffness * mass_per_length) / math.pi
 
 
 def damping_ratio_from_moordyn(ba: float, length: float, segments: int, axial_stiffness: float,

@@ -9,7 +9,8 @@ could not say where a value came from, nor refuse a malformed deck. This reader 
 with its line number and raises :class:`floatmoor.errors.CaseError` naming the file and line,
 what was expected and what was found.
 
-Layout read (MoorDyn-C 2.7): a title, then sections opened by a line of dashes naming them.
+Layout read (MoorDyn-C 2.7): a title (lines starting with ``#`` before the first section are
+comments, not title), then sections opened by a line of dashes naming them.
 Tables (LINE TYPES, POINTS, LINES, and the kept-as-text ROD TYPES, BODIES, RODS) have a row of
 column names and a row of units in parentheses, then one row per item; OPTIONS rows are
 ``value key [description]``; OUTPUTS rows are channel names. A line of dashes naming no section
@@ -152,8 +153,8 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
                                 f"a second {section} heading")
             blocks.append((section, stripped, n, []))
         elif not blocks:
-            if stripped:
-                title.append(stripped)
+            if stripped and not stripped.startswith("#"):  # "#" lines: comments (the export's
+                title.append(stripped)                     # notes); MoorDyn reads none of it
         elif stripped:
             blocks[-1][3].append((n, stripped))
     if closed_at:
