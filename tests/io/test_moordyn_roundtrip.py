@@ -6,7 +6,6 @@ independent lines run with every line model, and the system ones are refused cle
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
 
