@@ -30,6 +30,8 @@ from contextlib import nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
+import numpy as np
+
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.signals import exit_status, interrupt_handling, signal_name
@@ -195,15 +197,44 @@ def _command(args: argparse.Namespace) -> int:
 
 def _check(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
-    from floatmoor.simulation.forced import check_independent_lines
 
     case = load_case(args.case, args.overrides)
-    check_independent_lines(case)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
     print(f"{args.case}: valid case \"{case.title}\"")
     print(_describe(case, loads))
     return EXIT_OK
+
+
+def _describe_system(case: Case) -> list[str]:
+    """The static equilibrium at rest of the lines joined through free points or of several
+    sections: point positions and net loads, section end tensions and laid lengths."""
+    from floatmoor.errors import SolverError
+    from floatmoor.mooring.strength import system_statics_at_rest
+
+    try:
+        sol = system_statics_at_rest(case)
+    except SolverError as err:
+        return [f"  mooring system: no static solution: {err}"]
+    if sol is None:
+        return []
+    rows = [f"  mooring system at rest ({sol.iterations} Newton iterations, force residual "
+            f"{sol.residual:.2g}):",
+            f"    {'point':<18}{'kind':<7}{'x [m]':>10}{'y [m]':>10}{'z [m]':>10}"
+            f"{'F_lines [kN]':>14}"]
+    kinds = {p.name: p.kind for p in case.points}
+    for k, name in enumerate(sol.point_names):
+        x, y, z = sol.positions[k]
+        rows.append(f"    {name:<18}{kinds[name]:<7}{x:>10.3f}{y:>10.3f}{z:>10.3f}"
+                    f"{np.linalg.norm(sol.point_force[k]) / 1e3:>14.4g}")
+    rows.append(f"    {'section':<18}{'type':<12}{'profile':<11}{'T_start [kN]':>13}"
+                f"{'T_end [kN]':>12}{'on seabed [m]':>15}")
+    types = {s.label: s.line_type.name for s in case.sections}
+    for j, name in enumerate(sol.section_names):
+        rows.append(f"    {name:<18}{types[name]:<12}{sol.profile_types[j]:<11}"
+                    f"{sol.start_tension[j] / 1e3:>13.5g}{sol.end_tension[j] / 1e3:>12.5g}"
+                    f"{sol.laid_length[j]:>15.4g}")
+    return rows
 
 
 def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
@@ -215,7 +246,14 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     rows = [f"  {'line':<14}{'model':<14}{'length':>9}{'span':>9}{'w [N/m]':>10}"
             f"{'c_axial':>10}{'T_fair':>11}{'T_anch':>11}{'on seabed':>11}"]
     notes = []
-    for line, load in zip(case.lines, loads):
+    by_name = {load.line: load for load in loads}
+    for line in case.lines:
+        if not case.is_independent(line):
+            types = " + ".join(f"{s.line_type.name} {s.length:g} m" for s in line.sections)
+            rows.append(f"  {line.name:<14}{line.model:<14}{line.length:>9.4g}"
+                        f"{line.span:>9.4g}  system: {types} (statics below)")
+            continue
+        load = by_name[line.name]
         if load.failure:
             static = f"  static solution failed: {load.failure}"
         else:
@@ -230,6 +268,7 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
             notes.append(f"  {line.name}: {st.elements} elements of order {st.order} "
                          f"({st.elements * (st.order + 1)} nodes), time step {dg.time_step:.3g} s "
                          f"(cfl {st.cfl:g}), seabed contact {st.seabed_contact}")
+    notes.extend(_describe_system(case))
     rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
     rows.extend(notes)
     rows.append(f"  {'line':<14}{'T_fair [N]':>12}{'strain T/EA':>13}{'MBL [N]':>12}"
@@ -318,10 +357,13 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor._numba import watch_compilation
     from floatmoor.io.output_files import OutputWriteError, file_state
-    from floatmoor.simulation.forced import check_independent_lines, run_forced_motion
+    from floatmoor.simulation.forced import run_forced_motion
     from floatmoor.ui.progress import ProgressReporter
 
-    check_independent_lines(case)
+    if case.floater is not None:
+        from floatmoor.simulation.forced import check_independent_lines
+
+        check_independent_lines(case)
     refuse_static_breaking(case)  # a line that breaks at rest is bad input (exit 2)
 
     if args.resume and case.floater is None:

@@ -22,6 +22,7 @@ from floatmoor.case.limits import (
     MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
 )
 from floatmoor.case.files import CaseFileKindError, read_case_text
+from floatmoor.case.motion_body import read_body_motion
 from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
@@ -33,7 +34,8 @@ from floatmoor.case.schema import (
 )
 from floatmoor.case.title import render_title
 from floatmoor.errors import CaseError
-from floatmoor.motion import fairlead_path, horizontal_direction
+from floatmoor.body_motion import body_points_state, is_body_motion, prescribed_fairlead_state
+from floatmoor.motion import horizontal_direction
 
 __all__ = ["load_case", "parse_case", "MAX_STATIC_STRAIN", "SEABED_TOLERANCE"]
 
@@ -378,9 +380,11 @@ def _simulation(t: TableReader) -> Simulation:
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:
-    kind = t.string("kind", choices=("circular", "harmonic", "table"))
+    kind = t.string("kind", choices=("circular", "harmonic", "table", "body"))
     motion: Motion
-    if kind == "circular":
+    if kind == "body":
+        motion = read_body_motion(t, base_dir, simulation)
+    elif kind == "circular":
         period = t.number("period", unit="s", gt=0.0)
         motion = CircularMotion(
             radius=t.number("radius", unit="m", gt=0.0),
@@ -615,10 +619,12 @@ def _check_motion(case: Case, context: ReadContext) -> None:
     n = int(min(200_000, max(1000, case.simulation.duration / period
                              * _MOTION_CHECK_SAMPLES_PER_PERIOD)))
     t = np.linspace(0.0, case.simulation.duration, n)
-    key = ("motion", "radius" if isinstance(motion, CircularMotion) else
-           "amplitude" if isinstance(motion, HarmonicMotion) else "file")
+    # a harmonic body motion: no one key moves the point, so the error names [motion]
+    key = ("motion",) + (("radius",) if isinstance(motion, CircularMotion) else
+                         ("amplitude",) if isinstance(motion, HarmonicMotion) else
+                         ("file",) if hasattr(motion, "file") else ())
     for line in moved:
-        path = fairlead_path(motion, line, t)
+        path = prescribed_fairlead_state(motion, line, t)[0]
         lowest = float(path[:, 2].min())
         if lowest < case.environment.seabed_z - SEABED_TOLERANCE:
             raise context.error(key, f"a motion that keeps the fairlead of line '{line.name}' "
@@ -630,3 +636,13 @@ def _check_motion(case: Case, context: ReadContext) -> None:
             raise context.error(key, f"a motion that keeps the fairlead of line '{line.name}' "
                                 f"within reach (at most {MAX_STATIC_STRAIN:.0%} strain)",
                                 f"a fairlead {span:.6g} m from its anchor ({needed:.1%} strain)")
+    if is_body_motion(motion):  # every body point, also those of lines with free points
+        body = [p for p in case.points if p.kind == "body"]
+        if body:
+            positions = body_points_state(motion, np.array([p.position for p in body]), t)[0]
+            lowest = positions[:, :, 2].min(axis=0)
+            k = int(np.argmin(lowest))
+            if lowest[k] < case.environment.seabed_z - SEABED_TOLERANCE:
+                raise context.error(key, f"a motion that keeps body point '{body[k].name}' "
+                                    f"above the seabed (z >= {case.environment.seabed_z:g} m)",
+                                    f"the point reaching z = {lowest[k]:.6g} m")

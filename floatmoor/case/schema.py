@@ -20,6 +20,7 @@ __all__ = [
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
     "RADIATION_METHODS", "HYDRO_CHECKS", "POINT_KINDS", "Point", "Section",
+    "BODY_DOFS", "BodyHarmonicMotion", "BodyTableMotion", "BodyMotion",
 ]
 
 #: Every line model name a case file may give (``lines[].model``).
@@ -204,6 +205,12 @@ class Line:
         return self.sections[0].line_type
 
     @property
+    def end_type(self) -> LineType:
+        """The line type at the line's end (its fairlead): what the fairlead tension is
+        judged against."""
+        return self.sections[-1].line_type
+
+    @property
     def length(self) -> float:
         """Unstretched length, the sum of the sections' [m]."""
         return float(sum(s.length for s in self.sections))
@@ -273,7 +280,50 @@ class TableMotion:
         return None
 
 
-Motion = CircularMotion | HarmonicMotion | TableMotion
+#: The six DOFs of a prescribed body motion, in the order of its arrays (as capytaine's).
+BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+@dataclass(frozen=True)
+class BodyHarmonicMotion:
+    """Rigid-body motion of the body points, harmonic per DOF: x_i = a_i sin(2 pi t / T_i +
+    phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.body_motion` for the
+    rotation convention). DOFs that do not move have amplitude 0 (and period 1 s)."""
+
+    reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
+    amplitude: tuple[float, ...]  #: (6,) [m, m, m, rad, rad, rad]
+    period: tuple[float, ...]  #: (6,) [s]
+    phase: tuple[float, ...]  #: (6,) [rad]
+    ramp_duration: float  #: [s]
+    kind: str = "body"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """Common period of the moving DOFs [s], or None when they differ."""
+        periods = {p for a, p in zip(self.amplitude, self.period) if a != 0.0}
+        return periods.pop() if len(periods) == 1 else None
+
+
+@dataclass(frozen=True)
+class BodyTableMotion:
+    """Rigid-body motion of the body points from a CSV file (columns time, the six DOFs of
+    :data:`BODY_DOFS`), linearly interpolated in each DOF (rotations in the Euler angles)."""
+
+    reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
+    file: str  #: resolved path of the CSV file
+    time: NDArray[np.float64] = field(repr=False)  #: [s]
+    displacement: NDArray[np.float64] = field(repr=False)  #: (n, 6) [m, m, m, rad, rad, rad]
+    ramp_duration: float = 0.0  #: [s]
+    kind: str = "body"
+
+    @property
+    def cycle_period(self) -> float | None:
+        """A table has no declared period."""
+        return None
+
+
+BodyMotion = BodyHarmonicMotion | BodyTableMotion
+Motion = CircularMotion | HarmonicMotion | TableMotion | BodyHarmonicMotion | BodyTableMotion
 
 
 @dataclass(frozen=True)
@@ -469,11 +519,13 @@ class Case:
         """Every line's sections, line by line from start to end."""
         return tuple(s for line in self.lines for s in line.sections)
 
+    def is_independent(self, line: Line) -> bool:
+        """Whether ``line`` is one section from a fixed to a body point, solved on its own
+        (every other line belongs to a system of lines solved together)."""
+        return (len(line.sections) == 1 and self.point(line.start).kind == "fixed"
+                and self.point(line.end).kind == "body")
+
     @property
     def is_system(self) -> bool:
-        """Whether the mooring is more than independent one-section lines from a fixed
-        point to a body point (the lines of a free point or of several sections are
-        solved together)."""
-        kinds = {p.name: p.kind for p in self.points}
-        return any(len(line.sections) != 1 or kinds.get(line.start) != "fixed"
-                   or kinds.get(line.end) != "body" for line in self.lines)
+        """Whether the mooring is more than independent lines (:meth:`is_independent`)."""
+        return not all(self.is_independent(line) for line in self.lines)

@@ -1,7 +1,10 @@
 """Assembly of result datasets: labelled variables, units and provenance.
 
-Dimensions: ``line`` (names, with the line model as a ``model`` coordinate), ``time`` [s] and
-``component`` (x, y, z). When a line type of the case gives a minimum breaking load, the
+Dimensions: ``line`` (names, with the line model as a ``model`` coordinate), ``time`` [s],
+``component`` (x, y, z), and the mooring system's ``point`` (names, with ``point_kind``) and
+``section`` (``line[index]``, with ``section_line`` and ``section_type``): point positions and
+the net line force on each point, section tensions at both ends, and the sections' minimum
+breaking loads when a line type gives one. When a line type of the case gives a minimum breaking load, the
 variable ``minimum_breaking_load`` holds it per line (NaN for lines whose type gives none).
 Attributes: the title, the case file's path and text, the ``--set``
 overrides, the floatmoor and numba versions, the creation time (ISO 8601, UTC) and the run
@@ -35,10 +38,17 @@ _DIMS = {
 }
 
 
+def _line_mbl(line) -> float | None:
+    """A line's MBL for the per-line variable, which the fairlead tension is checked against:
+    the type's of its section at the fairlead (None when it gives none)."""
+    return line.end_type.minimum_breaking_load
+
+
 def build_result_dataset(case: Case, time: NDArray[np.float64],
                          variables: Mapping[str, NDArray[np.floating]], *, status: str,
                          shapes: Mapping[str, NDArray[np.floating]] | None = None,
                          body: Mapping[str, NDArray[np.floating]] | None = None,
+                         system: Mapping[str, NDArray[np.floating]] | None = None,
                          extra_attrs: Mapping[str, str | float | int] | None = None) -> xr.Dataset:
     """Label the arrays of a run.
 
@@ -59,6 +69,9 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
     body
         Optional floater series: ``body_displacement`` and ``body_velocity`` (time, dof),
         ``wave_elevation`` (time,).
+    system
+        Optional point and section series: ``point_position``, ``point_force`` (point, time,
+        component), ``section_start_tension``, ``section_end_tension`` (section, time).
     extra_attrs
         More dataset attributes (e.g. wall time).
     """
@@ -75,7 +88,29 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
         if values.dtype.kind == "i":
             values = values.astype(np.int32)  # netCDF-3 has no 64-bit integers
         data_vars[name] = (_DIMS[values.ndim], values, attributes(name))
-    mbl = [ln.line_type.minimum_breaking_load for ln in case.lines]
+    if system is not None:
+        coords["point"] = ("point", np.array([p.name for p in case.points], dtype=str),
+                           attributes("point"))
+        coords["point_kind"] = ("point", np.array([p.kind for p in case.points], dtype=str),
+                                attributes("point_kind"))
+        sections = case.sections
+        coords["section"] = ("section", np.array([s.label for s in sections], dtype=str),
+                             attributes("section"))
+        coords["section_line"] = ("section", np.array([s.line for s in sections], dtype=str),
+                                  attributes("section_line"))
+        coords["section_type"] = ("section", np.array([s.line_type.name for s in sections],
+                                                      dtype=str), attributes("section_type"))
+        for name, array in system.items():
+            values = np.asarray(array, dtype=float)
+            dim = "point" if name.startswith("point") else "section"
+            data_vars[name] = ((dim, "time", "component")[:values.ndim], values,
+                               attributes(name))
+        section_mbl = [s.line_type.minimum_breaking_load for s in sections]
+        if any(m is not None for m in section_mbl):
+            data_vars["section_minimum_breaking_load"] = (
+                ("section",), np.array([np.nan if m is None else m for m in section_mbl],
+                                       dtype=float), attributes("section_minimum_breaking_load"))
+    mbl = [_line_mbl(ln) for ln in case.lines]
     if any(m is not None for m in mbl):
         data_vars["minimum_breaking_load"] = (
             ("line",), np.array([np.nan if m is None else m for m in mbl], dtype=float),

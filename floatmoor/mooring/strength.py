@@ -22,8 +22,11 @@ import numpy as np
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.mooring.system_statics import (
+    StaticSolution, SystemStatics, build_static_system,
+)
 
-__all__ = ["StaticLineLoad", "static_line_loads", "check_static_below_mbl",
+__all__ = ["StaticLineLoad", "static_line_loads", "system_statics_at_rest", "check_static_below_mbl",
            "refuse_static_breaking", "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]
 
 #: Static fairlead strain T / EA above which a line without an MBL gets a warning [-].
@@ -61,26 +64,38 @@ class StaticLineLoad:
         return self.fairlead_tension / self.axial_stiffness
 
     @property
-    def ratio(self) -> float | None:
-        """Fairlead tension over the MBL [-]."""
-        if self.fairlead_tension is None or self.minimum_breaking_load is None:
+    def tension(self) -> float | None:
+        """The larger end tension [N]: the fairlead's for a line that sinks (the effective
+        tension grows with height), either end's for a section between free points."""
+        if self.fairlead_tension is None or self.anchor_tension is None:
             return None
-        return self.fairlead_tension / self.minimum_breaking_load
+        return max(self.fairlead_tension, self.anchor_tension)
+
+    @property
+    def ratio(self) -> float | None:
+        """Largest end tension over the MBL [-]."""
+        if self.tension is None or self.minimum_breaking_load is None:
+            return None
+        return self.tension / self.minimum_breaking_load
 
     @property
     def safety_factor(self) -> float | None:
         """MBL over the fairlead tension [-]."""
-        if self.fairlead_tension is None or self.minimum_breaking_load is None:
+        if self.tension is None or self.minimum_breaking_load is None:
             return None
-        if self.fairlead_tension <= 0.0:
+        if self.tension <= 0.0:
             return math.inf
-        return self.minimum_breaking_load / self.fairlead_tension
+        return self.minimum_breaking_load / self.tension
 
 
 def static_line_loads(case: Case) -> list[StaticLineLoad]:
-    """The static catenary of every line of ``case`` at its mean (or rest) fairlead."""
+    """The static catenary of every independent line of ``case`` at its mean (or rest)
+    fairlead, then every section of the other lines from the system's static equilibrium
+    (:func:`system_statics_at_rest`)."""
     out = []
     for line in case.lines:
+        if not case.is_independent(line):
+            continue
         base = dict(line=line.name, line_type=line.line_type.name,
                     axial_stiffness=line.line_type.axial_stiffness,
                     minimum_breaking_load=line.line_type.minimum_breaking_load)
@@ -93,6 +108,45 @@ def static_line_loads(case: Case) -> list[StaticLineLoad]:
         out.append(StaticLineLoad(**base, fairlead_tension=float(sol.fairlead_tension),
                                   anchor_tension=float(sol.anchor_tension),
                                   laid_length=float(sol.laid_length)))
+    return out + _section_loads(case)
+
+
+def system_statics_at_rest(case: Case) -> StaticSolution | None:
+    """The static equilibrium at rest of the lines that are not independent (every model:
+    the equilibrium is the same physics), or None when every line is independent.
+
+    Raises
+    ------
+    SolverError
+        When there is none (naming the point), or a section floats.
+    """
+    lines = [ln for ln in case.lines if not case.is_independent(ln)]
+    if not lines:
+        return None
+    used = {n for ln in lines for s in ln.sections for n in (s.start, s.end)}
+    points = [p for p in case.points if p.name in used]
+    return SystemStatics(build_static_system(points, lines, case.environment,
+                                             case.seabed)).solve()
+
+
+def _section_loads(case: Case) -> list[StaticLineLoad]:
+    sections = [s for ln in case.lines if not case.is_independent(ln) for s in ln.sections]
+    try:
+        solution = system_statics_at_rest(case)
+    except SolverError as err:
+        solution, failure = None, str(err)
+    out = []
+    for s in sections:
+        base = dict(line=s.label, line_type=s.line_type.name,
+                    axial_stiffness=s.line_type.axial_stiffness,
+                    minimum_breaking_load=s.line_type.minimum_breaking_load)
+        if solution is None:
+            out.append(StaticLineLoad(**base, failure=failure))
+            continue
+        j = solution.section_names.index(s.label)
+        out.append(StaticLineLoad(**base, fairlead_tension=float(solution.end_tension[j]),
+                                  anchor_tension=float(solution.start_tension[j]),
+                                  laid_length=float(solution.laid_length[j])))
     return out
 
 
@@ -107,9 +161,10 @@ def check_static_below_mbl(case: Case, loads: list[StaticLineLoad]) -> None:
     for load in loads:
         ratio = load.ratio
         if ratio is not None and ratio >= 1.0:
+            what = "section" if "[" in load.line else "line"
             raise CaseError(case.source, f"line_types.{load.line_type}.minimum_breaking_load",
-                            f"a minimum breaking load above the static fairlead tension of "
-                            f"line '{load.line}' ({load.fairlead_tension:.6g} N)",
+                            f"a minimum breaking load above the static tension of "
+                            f"{what} '{load.line}' ({load.tension:.6g} N)",
                             f"{load.minimum_breaking_load!r} N (T / MBL = {ratio:.3g}: the "
                             "line breaks at rest)")
 
@@ -123,7 +178,7 @@ def refuse_static_breaking(case: Case) -> None:
     CaseError
         As :func:`check_static_below_mbl`.
     """
-    if any(line.line_type.minimum_breaking_load is not None for line in case.lines):
+    if any(s.line_type.minimum_breaking_load is not None for s in case.sections):
         check_static_below_mbl(case, static_line_loads(case))
 
 

@@ -51,7 +51,7 @@ def line_mbl(dataset: xr.Dataset, line: str, case: Case | None = None) -> float 
     if case is not None:
         for ln in case.lines:
             if ln.name == line:
-                return ln.line_type.minimum_breaking_load
+                return ln.end_type.minimum_breaking_load
     return None
 
 

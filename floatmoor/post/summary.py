@@ -39,7 +39,7 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         lines[line.name] = {
             "model": line.model, "fairlead_tension_N": stats,
             "strength": line_strength(dataset, line.name,
-                                      line.line_type.minimum_breaking_load,
+                                      line.end_type.minimum_breaking_load,
                                       start=float(stats["window_start"]))}
     out = {
         "title": case.title,

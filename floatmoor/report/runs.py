@@ -178,8 +178,8 @@ def default_start(case: Case | None) -> tuple[float, str]:
 def _chains(case: Case | None) -> dict[str, LineChain]:
     if case is None:
         return {}
-    return {ln.name: LineChain(ln.name, ln.line_type.name, float(ln.line_type.diameter),
-                               float(ln.line_type.mass_per_length)) for ln in case.lines}
+    return {ln.name: LineChain(ln.name, ln.end_type.name, float(ln.end_type.diameter),
+                               float(ln.end_type.mass_per_length)) for ln in case.lines}
 
 
 def _decay_dofs(case: Case | None, dataset: xr.Dataset) -> tuple[str, ...]:

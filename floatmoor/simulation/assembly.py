@@ -28,6 +28,7 @@ from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.simulation.coupled import MooredBody, equilibrium
+from floatmoor.simulation.groups import SystemGroup, system_groups
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.settings import build
@@ -46,10 +47,11 @@ _MODELS = {"quasi-static": QuasiStaticLine.from_case,
            "quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
 
 
-def build_line_models(case: Case) -> list[LineModel]:
-    """One model object per line, as the case chooses (lines of one section from a fixed to
-    a body point)."""
-    return [_MODELS[line.model](line, case.environment, case.seabed) for line in case.lines]
+def build_line_models(case: Case) -> list[LineModel | None]:
+    """One model object per independent line (one section from a fixed to a body point), as
+    the case chooses; None for the lines of a system group (:mod:`.groups`)."""
+    return [_MODELS[line.model](line, case.environment, case.seabed)
+            if case.is_independent(line) else None for line in case.lines]
 
 
 def key_origin(case: Case, key: str) -> str:
@@ -119,8 +121,11 @@ class MooredSystem:
     points
         Every point of the system (``case.points``).
     line_models
-        Forced-motion runs: one model per line; empty for a floater case, whose lines are
-        in ``moored``.
+        Forced-motion runs: the model of each independent line (None for a line of a system
+        group); empty for a floater case, whose lines are in ``moored``.
+    groups
+        Forced-motion runs: the lines joined through free points or of several sections,
+        with their solvers (:func:`~floatmoor.simulation.groups.system_groups`).
     moored
         The body on its lines (started at its equilibrium plus the initial offset), or None.
     loads
@@ -135,7 +140,8 @@ class MooredSystem:
 
     case: Case
     points: tuple[Point, ...]
-    line_models: list[LineModel] = field(default_factory=list)
+    line_models: list[LineModel | None] = field(default_factory=list)
+    groups: list[SystemGroup] = field(default_factory=list)
     moored: MooredBody | None = None
     loads: BodyLoads | None = None
     sea: WaveField | None = None
@@ -177,7 +183,8 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
         does not accept.
     """
     if case.floater is None:
-        return MooredSystem(case=case, points=case.points, line_models=build_line_models(case))
+        return MooredSystem(case=case, points=case.points, line_models=build_line_models(case),
+                            groups=system_groups(case))
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
     env = case.environment

@@ -18,9 +18,10 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Simulation
 from floatmoor.errors import CaseError, SolverError
-from floatmoor.motion import fairlead_state
+from floatmoor.body_motion import body_motion_state, is_body_motion, prescribed_fairlead_state
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.assembly import LineModel, assemble
+from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_line
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
 __all__ = ["RunResult", "run_forced_motion", "check_forced_case", "output_times",
@@ -63,11 +64,9 @@ def check_independent_lines(case: Case) -> None:
     CaseError
         Naming the first line that is not one section from a fixed to a body point.
     """
-    if not case.is_system:
-        return
     kinds = {p.name: p.kind for p in case.points}
     for i, line in enumerate(case.lines):
-        if len(line.sections) != 1 or kinds[line.start] != "fixed" or kinds[line.end] != "body":
+        if not case.is_independent(line):
             raise CaseError(case.source, f"lines[{i}]", "lines of one section from a fixed to "
                             "a body point (the runs of mooring systems with free points and "
                             "sections are not wired to the runners yet)",
@@ -100,7 +99,6 @@ def check_forced_case(case: Case) -> None:
             raise CaseError(case.source, key, "a case without a floater for run_forced_motion "
                             "(a case with a [floater] runs coupled: floatmoor.run_coupled, or "
                             "floatmoor.run_case, which picks the runner)", found)
-    check_independent_lines(case)
 
 
 def run_forced_motion(case: Case, *, output: str | Path | None = None,
@@ -130,16 +128,17 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     """
     check_forced_case(case)
     times = output_times(case.simulation)
-    models = assemble(case).line_models
+    system = assemble(case)
+    models, groups = system.line_models, system.groups
     stride = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval,
-                        shape_nodes=[m.arc_length for m in models] if stride else None,
-                        shape_stride=stride)
+                        shape_nodes=_shape_nodes(models, groups) if stride else None,
+                        shape_stride=stride, prescribed=is_body_motion(case.motion))
     start_wall = _time.perf_counter()
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
             stop = min(start + CHUNK_SAMPLES, times.size)
-            _solve_chunk(case, models, recorder, start, stop)
+            _solve_chunk(case, models, groups, recorder, start, stop)
             if progress is not None:
                 progress(float(times[stop - 1]))
     dataset = recorder.write(status="complete")
@@ -148,9 +147,17 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
                      simulated_time_s=recorder.simulated_time)
 
 
-def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start: int,
-                 stop: int) -> None:
-    """Solve samples [start, stop) of every line; on failure keep what every line completed.
+def _shape_nodes(models: list[LineModel | None], groups: list[SystemGroup]
+                 ) -> list[NDArray[np.float64]]:
+    """Arc lengths of every line's shape nodes: its model's, or its group's."""
+    arcs = {i: g.arc_lengths[i] for g in groups for i in g.lines}
+    return [m.arc_length if m is not None else arcs[i] for i, m in enumerate(models)]
+
+
+def _solve_chunk(case: Case, models: list[LineModel | None], groups: list[SystemGroup],
+                 recorder: Recorder, start: int, stop: int) -> None:
+    """Solve samples [start, stop) of every line and group; on failure keep what every one
+    completed.
 
     With shape output, each line is solved in segments ending at the shape samples, whose
     node positions and tensions are then taken from the model's state.
@@ -163,7 +170,9 @@ def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start:
     for i, (line, model) in enumerate(zip(case.lines, models)):
         if limit <= start:
             break
-        path, velocity = fairlead_state(case.motion, line, t[:limit - start])
+        if model is None:  # a line of a system group
+            continue
+        path, velocity = prescribed_fairlead_state(case.motion, line, t[:limit - start])
         series["fairlead_position"][i, start:limit] = path
         cuts = {start, limit}
         if stride:
@@ -190,6 +199,71 @@ def _solve_chunk(case: Case, models: list[LineModel], recorder: Recorder, start:
                     positions, tension = model.profile(path[b - 1 - start],
                                                        recorder.shape_arc_length[i])
                     recorder.store_shape(i, (b - 1) // stride, positions, tension)
+    for group in groups:
+        if limit <= start:
+            break
+        try:
+            _solve_group_chunk(case, group, recorder, start, limit)
+        except SolverError as err:
+            failure = failure or err
+            limit = start + group.failed_index
+    if recorder.prescribed is not None:
+        x, dx = body_motion_state(case.motion, t[:limit - start])
+        recorder.prescribed["prescribed_displacement"][start:limit] = x
+        recorder.prescribed["prescribed_displacement_rate"][start:limit] = dx
     recorder.advance(limit)
     if failure is not None:
         raise failure
+
+
+def body_points_state(case: Case, names: list[str], t: NDArray[np.float64]
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Positions and velocities (n, points, 3) of the body points ``names`` under the case's
+    prescribed motion (a body point moves as the fairlead of a line at it)."""
+    pos = np.zeros((t.size, len(names), 3))
+    vel = np.zeros((t.size, len(names), 3))
+    for k, name in enumerate(names):
+        pos[:, k], vel[:, k] = prescribed_fairlead_state(case.motion, body_point_line(case, name),
+                                                         t)
+    return pos, vel
+
+
+def _solve_group_chunk(case: Case, group: SystemGroup, recorder: Recorder, start: int,
+                       stop: int) -> None:
+    """Solve samples [start, stop) of a system group, in segments ending at the shape
+    samples, and record its lines, points and sections.
+
+    Raises
+    ------
+    SolverError
+        As the group's solver, after recording the samples it solved
+        (``group.failed_index`` counts from ``start``).
+    """
+    t = recorder.time[start:stop]
+    names = [case.points[k].name for k in group.body_points]
+    path, velocity = body_points_state(case, names, t)
+    samples = GroupSamples.empty(t.size, len(group.points), len(group.sections))
+    stride = recorder.shape_stride
+    cuts = {start, stop}
+    if stride:
+        cuts.update(k + 1 for k in range(start, stop) if k % stride == 0)
+    bounds = sorted(cuts)
+    done = start
+    try:
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            seg = slice(a - start, b - start)
+            part = GroupSamples(samples.positions[seg], samples.start_force[seg],
+                                samples.end_force[seg], samples.laid_length[seg],
+                                samples.iterations[seg])
+            try:
+                group.solve_path(t[seg], path[seg], velocity[seg], part)
+            except SolverError:
+                done = a + group.failed_index
+                raise
+            done = b
+            if stride and (b - 1) % stride == 0:
+                for i in group.lines:
+                    recorder.store_shape(i, (b - 1) // stride, *group.line_shape(case, i))
+    finally:
+        recorder.store_group(case, group, samples, start, done)
+        group.failed_index = done - start

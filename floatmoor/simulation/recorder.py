@@ -18,11 +18,16 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from typing import TYPE_CHECKING
+
 from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
 from floatmoor.io.dataset import build_result_dataset
 from floatmoor.io.netcdf import write_dataset
 from floatmoor.signals import deferred_interrupts, signal_name
+
+if TYPE_CHECKING:
+    from floatmoor.simulation.groups import GroupSamples, SystemGroup
 
 __all__ = ["Recorder", "FLUSH_INTERVAL_S", "estimated_output_bytes"]
 
@@ -57,8 +62,12 @@ def estimated_output_bytes(case: Case) -> float:
     n_time = sim.duration / sim.output_interval + 1.0
     per_line = sum(size for _, size in _SERIES) + 2  # and the two tensions
     values = len(case.lines) * n_time * per_line
+    # the points' positions and forces, the sections' end tensions
+    values += (len(case.points) * 6 + len(case.sections) * 2) * n_time
     if case.floater is not None:
         values += n_time * _BODY_VALUES
+    if getattr(case.motion, "kind", None) == "body":  # the prescribed DOFs and their rates
+        values += n_time * 12
     if sim.shape_output_interval is not None:
         nodes = max((line.dynamic.elements * (line.dynamic.order + 1)
                      if line.model == "dynamic" else max(SHAPE_NODES, SHAPE_POINTS))
@@ -66,6 +75,43 @@ def estimated_output_bytes(case: Case) -> float:
         n_shapes = sim.duration / max(sim.shape_output_interval, sim.output_interval) + 1.0
         values += len(case.lines) * n_shapes * nodes * (3 + 1) + nodes * len(case.lines)
     return float(values * _VALUE_BYTES)
+
+
+def line_system_series(case: Case, variables: dict[str, NDArray[np.float64]],
+                       lines: NDArray[np.bool_] | None = None) -> dict[str, NDArray[np.float64]]:
+    """The point and section series that follow from independent one-section lines' own: a
+    section's tensions are its line's anchor and fairlead tensions, a body point is where its
+    lines' fairlead is, a point's force the sum of its lines' end forces (other points and
+    sections: at rest, zero).
+
+    Parameters
+    ----------
+    case
+        The case.
+    variables
+        The recorded line series, cut to the completed samples.
+    lines
+        Which lines are independent (default: all).
+    """
+    n = variables["fairlead_force"].shape[1]
+    index = {p.name: i for i, p in enumerate(case.points)}
+    first = {(s.line, s.index): k for k, s in enumerate(case.sections)}
+    position = np.zeros((len(case.points), n, 3))
+    force = np.zeros((len(case.points), n, 3))
+    start_tension = np.zeros((len(case.sections), n))
+    end_tension = np.zeros((len(case.sections), n))
+    for i, p in enumerate(case.points):
+        position[i] = p.position
+    for i, line in enumerate(case.lines):
+        if lines is not None and not lines[i]:
+            continue
+        position[index[line.end]] = variables["fairlead_position"][i]
+        force[index[line.end]] += variables["fairlead_force"][i]
+        force[index[line.start]] += variables["anchor_force"][i]
+        start_tension[first[(line.name, 0)]] = variables["anchor_tension"][i]
+        end_tension[first[(line.name, 0)]] = variables["fairlead_tension"][i]
+    return {"point_position": position, "point_force": force,
+            "section_start_tension": start_tension, "section_end_tension": end_tension}
 
 
 class Recorder:
@@ -86,7 +132,7 @@ class Recorder:
     def __init__(self, case: Case, time: NDArray[np.float64], path: str | Path | None = None,
                  flush_interval: float = FLUSH_INTERVAL_S, *,
                  shape_nodes: list[NDArray[np.float64]] | None = None,
-                 shape_stride: int = 0, body: bool = False) -> None:
+                 shape_stride: int = 0, body: bool = False, prescribed: bool = False) -> None:
         self.case = case
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
@@ -102,6 +148,25 @@ class Recorder:
             self.body = {"body_displacement": np.zeros((n_time, 6)),
                          "body_velocity": np.zeros((n_time, 6)),
                          "wave_elevation": np.zeros(n_time)}
+        #: prescribed body motion (forced runs with [motion] kind = "body"): its 6 DOFs and
+        #: their rates (time, 6)
+        self.prescribed: dict[str, NDArray[np.float64]] | None = None
+        if prescribed:
+            self.prescribed = {"prescribed_displacement": np.zeros((n_time, 6)),
+                               "prescribed_displacement_rate": np.zeros((n_time, 6))}
+        #: point and section series of the system groups (their rows only; the rest follow
+        #: from the independent lines' series), None without groups
+        self.system: dict[str, NDArray[np.float64]] | None = None
+        self._owned_points = np.zeros(len(case.points), dtype=bool)
+        self._independent = np.array([case.is_independent(ln) for ln in case.lines],
+                                     dtype=bool)
+        self._owned_sections = np.zeros(len(case.sections), dtype=bool)
+        if case.is_system:
+            n_points, n_sections = len(case.points), len(case.sections)
+            self.system = {"point_position": np.zeros((n_points, n_time, 3)),
+                           "point_force": np.zeros((n_points, n_time, 3)),
+                           "section_start_tension": np.zeros((n_sections, n_time)),
+                           "section_end_tension": np.zeros((n_sections, n_time))}
         self.n_done = 0
         # line shapes every shape_stride samples, on each line's nodes; lines with fewer
         # nodes than the longest repeat their last node so every line shares the node axis
@@ -143,6 +208,46 @@ class Recorder:
         if self.path is not None and _time.perf_counter() - self._last_flush > self.flush_interval:
             self.write(status=f"running: partial results up to t = {self.simulated_time:.6g} s")
 
+    def store_group(self, case: Case, group: "SystemGroup", samples: "GroupSamples",
+                    start: int, stop: int) -> None:
+        """Record samples [start, stop) of a system group (``samples`` from ``start``): its
+        lines' series (fairlead and anchor forces: of the end sections on the line's end
+        points; laid length: the sections' sum), its points' positions and net line forces,
+        its sections' end tensions."""
+        n = stop - start
+        if n <= 0 or self.system is None:
+            return
+        where = {k: j for j, k in enumerate(group.points)}
+        section_at = {k: j for j, k in enumerate(group.sections)}
+        flat = {(s.line, s.index): k for k, s in enumerate(case.sections)}
+        series, system = self.series, self.system
+        for i in group.lines:
+            line = case.lines[i]
+            first = section_at[flat[(line.name, 0)]]
+            last = section_at[flat[(line.name, len(line.sections) - 1)]]
+            series["fairlead_force"][i, start:stop] = samples.end_force[:n, last]
+            series["anchor_force"][i, start:stop] = samples.start_force[:n, first]
+            series["fairlead_position"][i, start:stop] = \
+                samples.positions[:n, where[case.points.index(case.point(line.end))]]
+            series["laid_length"][i, start:stop] = sum(
+                samples.laid_length[:n, section_at[flat[(line.name, k)]]]
+                for k in range(len(line.sections)))
+            series["solver_iterations"][i, start:stop] = samples.iterations[:n]
+        force = np.zeros((n, len(group.points), 3))
+        for j, k in enumerate(group.sections):
+            s = case.sections[k]
+            force[:, where[case.points.index(case.point(s.start))]] += samples.start_force[:n, j]
+            force[:, where[case.points.index(case.point(s.end))]] += samples.end_force[:n, j]
+            system["section_start_tension"][k, start:stop] = np.linalg.norm(
+                samples.start_force[:n, j], axis=-1)
+            system["section_end_tension"][k, start:stop] = np.linalg.norm(
+                samples.end_force[:n, j], axis=-1)
+            self._owned_sections[k] = True
+        for j, k in enumerate(group.points):
+            system["point_position"][k, start:stop] = samples.positions[:n, j]
+            system["point_force"][k, start:stop] = force[:, j]
+            self._owned_points[k] = True
+
     def store_shape(self, line: int, index: int, positions: NDArray[np.float64],
                     tension: NDArray[np.float64]) -> None:
         """Store the shape of ``line`` at shape sample ``index``."""
@@ -173,8 +278,17 @@ class Recorder:
                       "shape_position": self.shape_position[:, :m],
                       "shape_tension": self.shape_tension[:, :m]}
         body = None if self.body is None else {k: v[:n] for k, v in self.body.items()}
+        system = line_system_series(self.case, variables, self._independent)
+        if self.system is not None:  # the groups' rows from their own series
+            for name, rows in (("point_position", self._owned_points),
+                               ("section_start_tension", self._owned_sections),
+                               ("section_end_tension", self._owned_sections)):
+                system[name][rows] = self.system[name][rows, :n]
+            system["point_force"] += self.system["point_force"][:, :n]
+        if self.prescribed is not None:
+            body = {**(body or {}), **{k: v[:n] for k, v in self.prescribed.items()}}
         return build_result_dataset(self.case, self.time[:n], variables, status=status,
-                                    shapes=shapes, body=body,
+                                    shapes=shapes, body=body, system=system,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
 

@@ -154,15 +154,20 @@ class Fields:
 
 def tension_field(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *, D: Array,
                   LIFT: Array, h: float, m: float, EA: float, c_int: float = 0.0,
-                  m_at: float = 0.0) -> Fields:
-    """Tangent, axial force and Lax-Friedrichs fluxes."""
+                  m_at: float = 0.0, avel: Array | None = None,
+                  flux_velocities: tuple[Array, Array] | None = None) -> Fields:
+    """Tangent, axial force and Lax-Friedrichs fluxes; ``avel`` the start end's velocity
+    (default at rest), ``flux_velocities`` (start, end) the end velocities of the end fluxes
+    when they differ from those of the strain rate (a section's end at a free point)."""
+    avel = np.zeros(3) if avel is None else np.asarray(avel, dtype=float)
+    va, vf = (avel, fvel) if flux_velocities is None else flux_velocities
     q = dg_derivative(r, anchor, fpos, D, LIFT, h)
     ql = np.linalg.norm(q, axis=-1)
     eps = ql - 1.0
     taut = eps > 0.0
     T = np.where(taut, EA * eps, 0.0)
     if c_int > 0.0:
-        qt = dg_derivative(v, np.zeros(3), fvel, D, LIFT, h)
+        qt = dg_derivative(v, avel, fvel, D, LIFT, h)
         with np.errstate(invalid="ignore", divide="ignore"):
             eps_t = np.sum(q * qt, axis=-1) / ql
         T = np.where(taut, np.maximum(T + c_int * np.where(taut, eps_t, 0.0), 0.0), 0.0)
@@ -174,8 +179,8 @@ def tension_field(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *
     z_face = np.concatenate(([r[0, 0, 2]], 0.5 * (r[:-1, -1, 2] + r[1:, 0, 2]), [r[-1, -1, 2]]))
     Z = (m + np.where(z_face < 0.0, m_at, 0.0)) * c
     Nstar = np.empty((r.shape[0] + 1, 3))
-    Nstar[0] = N[0, 0] + Z[0] * (v[0, 0] - 0.0)
-    Nstar[-1] = N[-1, -1] + Z[-1] * (fvel - v[-1, -1])
+    Nstar[0] = N[0, 0] + Z[0] * (v[0, 0] - va)
+    Nstar[-1] = N[-1, -1] + Z[-1] * (vf - v[-1, -1])
     Nstar[1:-1] = N[1:, 0] + 0.5 * Z[1:-1, None] * (v[1:, 0] - v[:-1, -1])
     return Fields(q, N, Nstar, slack)
 
@@ -186,11 +191,13 @@ def rhs(r: Array, v: Array, anchor: Array, fpos: Array, fvel: Array, *, D: Array
         c_int: float = 0.0, w_sub: float = 0.0, z_b: float = -1e300, k_b: float = 0.0,
         c_b: float = 0.0, mu: float = 0.0, v_c: float = 0.01,
         current: tuple[float, float, float] = (0.0, 0.0, 0.0),
-        explicit_contact: bool = False, relax: float = 0.0) -> tuple[Array, Fields]:
+        explicit_contact: bool = False, relax: float = 0.0, avel: Array | None = None,
+        flux_velocities: tuple[Array, Array] | None = None) -> tuple[Array, Fields]:
     """Acceleration dv/dt of every node, and the fields it came from (``relax``: the settling
-    damping rate gamma, dv/dt -= gamma v)."""
+    damping rate gamma, dv/dt -= gamma v; ``avel``, ``flux_velocities``: as
+    :func:`tension_field`)."""
     fl = tension_field(r, v, anchor, fpos, fvel, D=D, LIFT=LIFT, h=h, m=m, EA=EA, c_int=c_int,
-                       m_at=m_at)
+                       m_at=m_at, avel=avel, flux_velocities=flux_velocities)
     q, N, Nstar = fl.q, fl.N, fl.Nstar
     # divergence of N with the face fluxes
     jump_left = Nstar[:-1] - N[:, 0]

@@ -34,7 +34,7 @@ def test_sections_points_and_merged_numerics():
     assert [(s.start, s.end) for s in line.sections] == [
         ("anchor", "clump"), ("clump", "buoy"), ("buoy", "fairlead")]
     assert [s.line_type.name for s in line.sections] == ["chain", "rope", "chain"]
-    assert line.length == 440.0
+    assert line.length == 412.0
     # the line's numerics are every section's defaults; a section's own keys override them
     assert [(s.dynamic.elements, s.dynamic.order) for s in line.sections] == [
         (10, 3), (20, 3), (10, 3)]
@@ -43,7 +43,7 @@ def test_sections_points_and_merged_numerics():
         line.line_type
     clump = case.point("clump")
     assert (clump.kind, clump.mass, clump.volume, clump.drag_area,
-            clump.added_mass_coefficient) == ("free", 4000.0, 0.51, 1.0, 1.0)
+            clump.added_mass_coefficient) == ("free", 2000.0, 0.26, 1.0, 1.0)
 
 
 def test_points_no_line_uses_are_refused():

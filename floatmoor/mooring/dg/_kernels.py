@@ -177,20 +177,22 @@ def dg_tension_field(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.
 
     ``slack[k]`` is set to 1.0 when element k has a node in compression.
     """
-    _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
-                   prm[P_CINT])
+    _tension_field(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                   slack, prm[P_CINT])
 
 
 @jit
-def _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+def _tension_field(r, v, anchor, avel, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
                    cint):
-    """:func:`dg_tension_field` with the internal damping coefficient ``cint`` [N s]."""
+    """:func:`dg_tension_field` with the start end moving at ``avel`` (the anchor's velocity,
+    zero for a fixed anchor: then bit-identical, v - 0.0 == v) and the internal damping
+    coefficient ``cint`` [N s]."""
     K, Np = r.shape[0], r.shape[1]
     jac = 2.0 / prm[P_H]
     EA = prm[P_EA]
     _gradient(r, anchor, fpos, D, LIFT, jac, faces, q)
     if cint > 0.0:
-        _gradient(v, _ZERO3, fvel, D, LIFT, jac, faces, qt)
+        _gradient(v, avel, fvel, D, LIFT, jac, faces, qt)
     for k in range(K):
         slack[k] = 0.0
         for i in range(Np):
@@ -218,7 +220,7 @@ def _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, face
             sub = 1.0 if r[0, 0, 2] < 0.0 else 0.0
             Z = (m + sub * prm[P_MAT]) * c_wave
             for c in range(3):
-                Nstar[0, c] = N[0, 0, c] + Z * v[0, 0, c]
+                Nstar[0, c] = N[0, 0, c] + Z * (v[0, 0, c] - avel[c])
         elif f == K:
             sub = 1.0 if r[K - 1, Np - 1, 2] < 0.0 else 0.0
             Z = (m + sub * prm[P_MAT]) * c_wave
@@ -239,7 +241,15 @@ def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
     """Acceleration dv/dt of every node (dr/dt = v needs no computation); without the
     internal damping when it is implicit (``P_IMPLICIT_DAMPING``, :func:`_implicit_damping`)."""
     cint = prm[P_CINT] if prm[P_IMPLICIT_DAMPING] == 0.0 else 0.0
-    _tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, cint)
+    _tension_field(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                   slack, cint)
+    _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv)
+
+
+@jit
+def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv):
+    """dv/dt from the tangent q, nodal force N and face fluxes N* of :func:`_tension_field`
+    (the part of :func:`dg_rhs` after the tension field; ``dv`` may not alias them)."""
     K, Np = r.shape[0], r.shape[1]
     jac = 2.0 / prm[P_H]
     m = prm[P_M]
@@ -476,11 +486,17 @@ def _damping_system(r, anchor, fpos, prm, D, LIFT, dt, q, faces, tng, minv, cn, 
 def _damping_solve(v, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv, cn, band, e):
     """The backward-Euler velocity update of the Kelvin-Voigt term with the factored system of
     :func:`_damping_system` (its frozen tangents, taut set and masses)."""
+    _damping_solve_ends(v, _ZERO3, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv, cn, band, e)
+
+
+@jit
+def _damping_solve_ends(v, avel, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv, cn, band, e):
+    """:func:`_damping_solve` with the start end moving at ``avel``."""
     K, Np = v.shape[0], v.shape[1]
     n = K * Np
     jac = 2.0 / prm[P_H]
     kl, ku = 2 * Np - 1, Np
-    _gradient(v, _ZERO3, fvel, D, LIFT, jac, faces, qt)
+    _gradient(v, avel, fvel, D, LIFT, jac, faces, qt)
     for k in range(K):
         for i in range(Np):
             e[k * Np + i] = cn[k, i] * (tng[k, i, 0] * qt[k, i, 0] + tng[k, i, 1] * qt[k, i, 1]
@@ -596,7 +612,16 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
 def _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, weights,
             fair_out, anch_out):
     """End forces at the current state; returns the laid length [m]."""
-    dg_tension_field(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack)
+    return _record_ends(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                        slack, weights, fair_out, anch_out)
+
+
+@jit
+def _record_ends(r, v, anchor, avel, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                 weights, fair_out, anch_out):
+    """:func:`_record` with the start end moving at ``avel``."""
+    _tension_field(r, v, anchor, avel, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                   prm[P_CINT])
     K, Np = r.shape[0], r.shape[1]
     for c in range(3):
         fair_out[c] = -Nstar[K, c]

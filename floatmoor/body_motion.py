@@ -1,0 +1,168 @@
+"""Prescribed 6-DOF rigid-body motion of the body points (``[motion] kind = "body"``).
+
+The body's displacement x = (surge, sway, heave, roll, pitch, yaw) [m, m, m, rad, rad, rad]
+is given about a reference point c0 (the rotation centre at rest, global coordinates). With
+the convention floatmoor's floater uses (:mod:`floatmoor.body.kinematics`),
+
+    R = Rz(yaw) Ry(pitch) Rx(roll),    p = c0 + x[:3] + R (p0 - c0),
+
+right-handed rotations about global axes parallel to x, y, z: yaw first about z, pitch about
+the yawed y, roll about the body's own x (intrinsic z-y'-x''; the same matrix as extrinsic
+x, then y, then z). The angles are large-angle Euler angles, not small rotations: every
+point p0 keeps its distance to the reference point exactly. The velocity is exact,
+
+    v = x'[:3] + omega x R (p0 - c0),
+    omega = (roll' cos(yaw) cos(pitch) - pitch' sin(yaw),
+             roll' sin(yaw) cos(pitch) + pitch' cos(yaw),
+             yaw' - roll' sin(pitch)),
+
+omega the angular velocity in global axes from the Euler-angle rates (omega x = R' R^T),
+not the small-angle identification omega = (roll', pitch', yaw') of the floater's linear
+hydrodynamics. The displacement is ramped DOF by DOF as every prescribed motion is
+(:func:`floatmoor.motion.ramp`); a table is interpolated linearly in each DOF, rotations in
+the Euler angles, with the interpolant's slopes as rates.
+
+A motion without rotations moves every point exactly as the translational motions of
+:mod:`floatmoor.motion` do: the same numbers, bit for bit.
+
+Other programs. MoorDyn-F (OpenFAST) builds the same matrix for its bodies (the transpose of
+OpenFAST's EulerConstruct, Rz Ry Rx). MoorDyn-C v2 builds its body quaternion as
+Rx(roll) Ry(pitch) Rz(yaw) (Euler2Quat in its Misc.hpp): the reverse order, equal to first
+order in the angles and different at second order (products of two angles), so a record
+with two large rotations at once is a different attitude there. Both MoorDyn versions take
+the rotational rates a coupled body is given as its angular velocity for the points'
+velocities (v = v0 + w x r), the small-angle identification floatmoor's floater also makes;
+a prescribed motion here converts Euler-angle rates exactly. OrcaFlex documents right-handed
+rotations ("clockwise" looking along the axis) applied in a stated order on rotating axes,
+for vessels yaw (heading) first, then pitch, then roll: the convention used here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.case.schema import BodyHarmonicMotion, BodyMotion, BodyTableMotion, Line, Motion
+from floatmoor.motion import fairlead_state, ramp, ramp_rate
+
+__all__ = ["rotation_matrices", "angular_velocity", "body_motion_state", "body_points_state",
+           "prescribed_fairlead_state", "is_body_motion"]
+
+
+def is_body_motion(motion: Motion | None) -> bool:
+    """Whether ``motion`` is a 6-DOF body motion (``[motion] kind = "body"``)."""
+    return isinstance(motion, (BodyHarmonicMotion, BodyTableMotion))
+
+
+def rotation_matrices(angles: NDArray[np.float64]) -> NDArray[np.float64]:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (body axes to global axes) for angles (n, 3)
+    (roll, pitch, yaw) [rad]; shape (n, 3, 3)."""
+    angles = np.asarray(angles, dtype=float).reshape(-1, 3)
+    cr, sr = np.cos(angles[:, 0]), np.sin(angles[:, 0])
+    cp, sp = np.cos(angles[:, 1]), np.sin(angles[:, 1])
+    cy, sy = np.cos(angles[:, 2]), np.sin(angles[:, 2])
+    R = np.empty((angles.shape[0], 3, 3))
+    R[:, 0, 0] = cy * cp
+    R[:, 0, 1] = cy * sp * sr - sy * cr
+    R[:, 0, 2] = cy * sp * cr + sy * sr
+    R[:, 1, 0] = sy * cp
+    R[:, 1, 1] = sy * sp * sr + cy * cr
+    R[:, 1, 2] = sy * sp * cr - cy * sr
+    R[:, 2, 0] = -sp
+    R[:, 2, 1] = cp * sr
+    R[:, 2, 2] = cp * cr
+    return R
+
+
+def angular_velocity(angles: NDArray[np.float64], rates: NDArray[np.float64]
+                     ) -> NDArray[np.float64]:
+    """Angular velocity [rad/s] in global axes, (n, 3), of the rotation R = Rz Ry Rx with
+    Euler angles ``angles`` (n, 3) [rad] changing at ``rates`` (n, 3) [rad/s]."""
+    angles = np.asarray(angles, dtype=float).reshape(-1, 3)
+    rates = np.asarray(rates, dtype=float).reshape(-1, 3)
+    cp, sp = np.cos(angles[:, 1]), np.sin(angles[:, 1])
+    cy, sy = np.cos(angles[:, 2]), np.sin(angles[:, 2])
+    droll, dpitch, dyaw = rates[:, 0], rates[:, 1], rates[:, 2]
+    return np.stack([droll * cy * cp - dpitch * sy,
+                     droll * sy * cp + dpitch * cy,
+                     dyaw - droll * sp], axis=1)
+
+
+def body_motion_state(motion: BodyMotion, t: NDArray[np.float64]
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Ramped displacement x and its time derivative at times ``t``.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        x (n, 6) [m, rad] and x' (n, 6) [m/s, rad/s]: the rotational rates are the
+        Euler-angle rates (:func:`angular_velocity` turns them into omega).
+    """
+    t = np.asarray(t, dtype=float)
+    d = np.zeros((t.size, 6))
+    dd = np.zeros((t.size, 6))
+    if isinstance(motion, BodyHarmonicMotion):
+        # the same expressions as floatmoor.motion's harmonic motion, so that translations
+        # are bit-identical to it
+        for axis in range(6):
+            omega = 2.0 * np.pi / motion.period[axis]
+            phase = omega * t + motion.phase[axis]
+            d[:, axis] = motion.amplitude[axis] * np.sin(phase)
+            dd[:, axis] = motion.amplitude[axis] * omega * np.cos(phase)
+    elif isinstance(motion, BodyTableMotion):
+        slopes = np.diff(motion.displacement, axis=0) / np.diff(motion.time)[:, None]
+        index = np.clip(np.searchsorted(motion.time, t, side="right") - 1, 0, len(slopes) - 1)
+        for axis in range(6):
+            d[:, axis] = np.interp(t, motion.time, motion.displacement[:, axis])
+            dd[:, axis] = slopes[index, axis]
+    else:  # pragma: no cover - the loader admits no other kind
+        raise TypeError(f"not a body motion: {motion!r}")
+    r = ramp(t, motion.ramp_duration)[:, None]
+    dr = ramp_rate(t, motion.ramp_duration)[:, None]
+    return r * d, r * dd + dr * d
+
+
+def body_points_state(motion: BodyMotion, rest_positions: NDArray[np.float64],
+                      t: NDArray[np.float64]
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Positions [m] and velocities [m/s] of body points at times ``t``.
+
+    Parameters
+    ----------
+    motion
+        The body motion.
+    rest_positions
+        The points at rest p0 (k, 3) [m], global coordinates.
+    t
+        Times [s], shape (n,).
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Positions and velocities, shape (n, k, 3) each.
+    """
+    p0 = np.asarray(rest_positions, dtype=float).reshape(-1, 3)
+    x, dx = body_motion_state(motion, t)
+    positions = p0[None, :, :] + x[:, None, :3]
+    velocities = np.broadcast_to(dx[:, None, :3], positions.shape).copy()
+    # samples with a rotation; the others keep the pure translation's exact numbers
+    turned = np.any(x[:, 3:] != 0.0, axis=1) | np.any(dx[:, 3:] != 0.0, axis=1)
+    if np.any(turned):
+        arms = p0 - np.asarray(motion.reference_point, dtype=float)  # (k, 3)
+        R = rotation_matrices(x[turned, 3:])
+        rotated = np.einsum("nij,kj->nki", R, arms)  # R (p0 - c0), (m, k, 3)
+        omega = angular_velocity(x[turned, 3:], dx[turned, 3:])
+        positions[turned] += rotated - arms[None, :, :]
+        velocities[turned] += np.cross(omega[:, None, :], rotated)
+    return positions, velocities
+
+
+def prescribed_fairlead_state(motion: Motion | None, line: Line, t: NDArray[np.float64]
+                              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Fairlead positions [m] and velocities [m/s] of ``line`` at times ``t``, (n, 3) each,
+    under any prescribed motion: a body motion moves the fairlead as a body point, the other
+    motions as :func:`floatmoor.motion.fairlead_state` does."""
+    if is_body_motion(motion):
+        positions, velocities = body_points_state(motion, np.asarray([line.fairlead]), t)
+        return positions[:, 0], velocities[:, 0]
+    return fairlead_state(motion, line, t)

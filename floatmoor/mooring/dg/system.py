@@ -1,0 +1,500 @@
+"""The dynamic model of a mooring system: DG sections joined at points.
+
+:class:`DynamicSystem` owns the DG state of every section (node positions and velocities, each
+section with its own elements and order) and the free points' positions and velocities, starts
+them from each section's catenary between its ends, settles them, and advances them together
+(``_system_kernels``) at the smallest of the sections' stable steps, with the body points
+driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
+:meth:`DynamicSystem.advance` once per rigid-body step.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.case.schema import DynamicSettings, Environment, Seabed
+from floatmoor.errors import SolverError
+from floatmoor.mooring.catenary import catenary_profile, solve_catenary
+from floatmoor.mooring.dg import _kernels as _k
+from floatmoor.mooring.dg import _system_kernels as _s
+from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RATE,
+                                       SETTLE_TOLERANCE, CableProperties, DynamicLine,
+                                       SettleReport)
+
+__all__ = ["DynamicSystem", "SystemSection", "section_properties"]
+
+_STATUS_TEXT = {
+    _k.DG_NOT_FINITE: "the position or velocity is not finite",
+    _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
+    _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
+}
+_KINDS = {"fixed": _s.FIXED, "free": _s.FREE, "body": _s.BODY}
+
+
+class PointLike(Protocol):
+    """What the system reads of a point (``floatmoor.case.schema.Point``)."""
+
+    name: str
+    kind: str
+    position: tuple[float, float, float]
+    mass: float
+    volume: float
+    drag_area: float
+    added_mass_coefficient: float
+
+
+@dataclass(frozen=True)
+class SystemSection:
+    """One DG section of a system: its line's name, index from the line's start, properties,
+    numerics and the names of the points at its start (s = 0) and end."""
+
+    line: str
+    index: int
+    properties: CableProperties
+    settings: DynamicSettings
+    start: str
+    end: str
+
+    @property
+    def label(self) -> str:
+        """How messages name it: line name and section index."""
+        return f"line '{self.line}' section {self.index}"
+
+
+def section_properties(section: Any, environment: Environment, seabed: Seabed
+                       ) -> CableProperties:
+    """The :class:`CableProperties` of a case's section (``schema.Section``): its line type and
+    length, with the internal damping ratio on the section's own first longitudinal mode."""
+    lt = section.line_type
+    c_int = (2.0 * lt.internal_damping_ratio * section.length
+             * math.sqrt(lt.axial_stiffness * lt.mass_per_length) / math.pi)
+    return CableProperties(
+        length=section.length, mass_per_length=lt.mass_per_length,
+        axial_stiffness=lt.axial_stiffness, diameter=lt.diameter,
+        material_density=lt.material_density,
+        normal_drag_coefficient=lt.normal_drag_coefficient,
+        tangential_drag_coefficient=lt.tangential_drag_coefficient,
+        added_mass_coefficient=lt.added_mass_coefficient,
+        tangential_added_mass_coefficient=lt.tangential_added_mass_coefficient,
+        internal_damping=c_int, water_density=environment.water_density,
+        gravity=environment.gravity, current_velocity=environment.current_velocity,
+        seabed_z=environment.seabed_z, seabed_stiffness=seabed.stiffness,
+        seabed_damping_ratio=seabed.damping_ratio,
+        friction_coefficient=seabed.friction_coefficient, slip_speed=seabed.slip_speed)
+
+
+def _catenary(props: CableProperties, start: NDArray, end: NDArray, s: NDArray) -> NDArray:
+    """Node positions of the frictionless static catenary between two ends (inverted for a
+    buoyant section, straight for a weightless one)."""
+    w = props.submerged_weight
+    if w == 0.0:
+        return start + np.outer(s / props.length, end - start)
+    flip = np.array([1.0, 1.0, 1.0 if w > 0.0 else -1.0])
+    bed = props.seabed_z if w > 0.0 else -math.inf
+    a, f = start * flip, end * flip
+    try:
+        sol = solve_catenary(a, f, props.length, props.axial_stiffness, abs(w), 0.0,
+                             seabed_z=bed)
+        pos, _ = catenary_profile(a, f, props.length, props.axial_stiffness, abs(w), 0.0,
+                                  seabed_z=bed, arc_lengths=s, solution=sol)
+    except SolverError:
+        return start + np.outer(s / props.length, end - start)
+    return pos * flip
+
+
+class DynamicSystem:
+    """Sections and points of a mooring system solved by the DG cable model.
+
+    Parameters
+    ----------
+    points
+        Every point (``schema.Point`` or alike): fixed, free (mass, displaced volume, drag
+        area, added-mass coefficient) or body (driven by :meth:`solve_path`; in the order
+        given here, the body axis of the paths).
+    sections
+        The sections, each joining two of the points.
+    initial_positions
+        Node positions (nodes of all sections in order, 3) to start from instead of the
+        catenaries.
+    time
+        Initial time [s].
+    """
+
+    model = "dynamic"
+
+    def __init__(self, points: Sequence[PointLike], sections: Sequence[SystemSection], *,
+                 initial_positions: NDArray[np.float64] | None = None,
+                 time: float = 0.0) -> None:
+        if not sections:
+            raise ValueError("a dynamic system needs at least one section")
+        self.points = tuple(points)
+        self.sections = tuple(sections)
+        self.point_index = {p.name: i for i, p in enumerate(self.points)}
+        P, S = len(self.points), len(self.sections)
+        self.kind = np.array([_KINDS[p.kind] for p in self.points], dtype=np.int64)
+        body_points = [i for i in range(P) if self.kind[i] == _s.BODY]
+        self.body_points = tuple(body_points)  #: point indices of the body axis
+        self.body = np.full(P, -1, dtype=np.int64)
+        self.body[body_points] = np.arange(len(body_points))
+        self.pprm = np.zeros((P, _s.N_PP))
+        for i, p in enumerate(self.points):
+            self.pprm[i] = (p.mass, p.volume, p.drag_area, p.added_mass_coefficient)
+        pr0 = self.sections[0].properties
+        self.env = np.zeros(_s.N_ENV)
+        self.env[_s.E_RHO_W], self.env[_s.E_G] = pr0.water_density, pr0.gravity
+        self.env[_s.E_U:_s.E_U + 3] = pr0.current_velocity
+        # per-section layout
+        self.lines = [DynamicLine(sec.properties, sec.settings,
+                                  np.zeros(3), np.zeros(3), name=sec.label,
+                                  initial_positions=np.zeros(
+                                      (sec.settings.elements * (sec.settings.order + 1), 3)))
+                      for sec in self.sections]
+        self.sec = np.zeros((S, _s.N_SEC), dtype=np.int64)
+        ops, node, elem, face, yoff, boff = [], 0, 0, 0, 0, 0
+        op_off = 0
+        for j, (sec, ln) in enumerate(zip(self.sections, self.lines)):
+            K, Np = sec.settings.elements, sec.settings.order + 1
+            e = ln.element
+            block = np.concatenate([e.differentiation.ravel(), e.lift.ravel(),
+                                    e.filter.ravel(), e.weights])
+            self.sec[j] = (K, Np, node, elem, face, op_off, yoff, boff,
+                           self.point_index[sec.start], self.point_index[sec.end])
+            ops.append(block)
+            op_off += block.size
+            node += K * Np
+            elem += K
+            face += K + 1
+            yoff += K * Np * (Np + 1) * 3
+            boff += K * Np * 3 * Np
+        self.ops = np.concatenate(ops)
+        self.prm = np.ascontiguousarray(np.stack([ln.prm for ln in self.lines]))
+        self.n_nodes = node
+        self.time_step = min(ln.time_step for ln in self.lines)
+        #: unstretched arc length of every node from its section's start [m]
+        self.arc_length = np.concatenate([ln.arc_length for ln in self.lines])
+        self.time = float(time)
+        self.x = np.array([p.position for p in self.points], dtype=float).reshape(P, 3)
+        self.u = np.zeros((P, 3))
+        self.body_velocity = np.zeros((len(body_points), 3))
+        self.r = np.zeros((node, 3))
+        self.v = np.zeros((node, 3))
+        if initial_positions is None:
+            for j, (sec, ln) in enumerate(zip(self.sections, self.lines)):
+                a = self.x[self.sec[j, _s.S_START]]
+                b = self.x[self.sec[j, _s.S_END]]
+                self._section(self.r, j)[:] = _catenary(sec.properties, a, b, ln.arc_length)
+        else:
+            self.r[:] = np.asarray(initial_positions, dtype=float).reshape(node, 3)
+        self._w = _SystemWorkspace(self.sec, P, len(body_points), node, elem, face, yoff, boff)
+        #: outcome of :meth:`settle`, None if not settled
+        self.settle_report: SettleReport | None = None
+        #: sample index of the last failure in :meth:`solve_path`, -1 if none
+        self.failed_index = -1
+
+    @classmethod
+    def from_case(cls, case: Any, *, settle: bool | None = None) -> "DynamicSystem":
+        """The dynamic model of a case's system (``case.points``, ``case.sections``, every
+        line of model "dynamic"), settled unless every line says ``settle = false``."""
+        lines = {ln.name: ln for ln in case.lines}
+        sections = [SystemSection(s.line, s.index,
+                                  section_properties(s, case.environment, case.seabed),
+                                  s.dynamic, s.start, s.end)
+                    for s in case.sections if lines[s.line].model == "dynamic"]
+        used = {n for s in sections for n in (s.start, s.end)}
+        obj = cls([p for p in case.points if p.name in used], sections)
+        if settle if settle is not None else any(s.settings.settle for s in sections):
+            obj.settle_report = obj.settle()
+        return obj
+
+    # -- views ---------------------------------------------------------------------------------
+    def _section(self, a: NDArray[np.float64], j: int) -> NDArray[np.float64]:
+        o, n = self.sec[j, _s.S_NODE], self.sec[j, _s.S_K] * self.sec[j, _s.S_NP]
+        return a[o:o + n]
+
+    def section_positions(self, j: int) -> NDArray[np.float64]:
+        """Node positions of section j [m], (nodes, 3) (a view of the state)."""
+        return self._section(self.r, j)
+
+    def section_tensions(self, j: int) -> NDArray[np.float64]:
+        """Effective tension at every node of section j in the current state [N]."""
+        self.end_forces()
+        return np.linalg.norm(self._section(self._w.N, j), axis=-1)
+
+    @property
+    def body_positions(self) -> NDArray[np.float64]:
+        """Current positions of the body points [m], (bodies, 3)."""
+        return self.x[list(self.body_points)]
+
+    # -- set-up --------------------------------------------------------------------------------
+    def settle(self, rate: float = SETTLE_RATE, tolerance: float = SETTLE_TOLERANCE,
+               max_time: float = SETTLE_MAX_TIME) -> SettleReport:
+        """Relax the system to the static equilibrium of its discretisation, body points held:
+        :meth:`DynamicLine.settle`'s dynamic relaxation (dv/dt -= ``rate`` v on every node and
+        free point) in chunks of ``SETTLE_CHUNK``, until every section's end tensions change
+        by less than ``tolerance`` (relative) and every free point moves by less than
+        ``tolerance`` times its longest section over a chunk."""
+        if not (rate > 0.0 and tolerance > 0.0 and max_time > 0.0):
+            raise ValueError("settle needs a positive rate, tolerance and max_time")
+        start = self.time
+        n = max(int(math.ceil(SETTLE_CHUNK / self.time_step)), 2)
+        nb, S, P = len(self.body_points), len(self.sections), len(self.points)
+        still = np.repeat(self.body_positions[None], 2, axis=0)
+        zero = np.zeros_like(still)
+        sf, ef = np.zeros((2, S, 3)), np.zeros((2, S, 3))
+        laid, pp, steps = np.zeros((2, S)), np.zeros((2, P, 3)), np.zeros(2)
+        scale = np.zeros(P)
+        for j, sec in enumerate(self.sections):
+            for p in (self.sec[j, _s.S_START], self.sec[j, _s.S_END]):
+                scale[p] = max(scale[p], sec.properties.length)
+        free = self.kind == _s.FREE
+        previous = np.full(2 * S, np.inf)
+        change, converged = np.inf, False
+        self.prm[:, _k.P_RELAX] = rate
+        self.env[_s.E_RELAX] = rate
+        try:
+            while self.time - start < max_time:
+                x0 = self.x.copy()
+                t = self.time + np.array([0.0, n * self.time_step])
+                self.solve_path(t, still, zero, sf, ef, laid, pp, steps)
+                ends = np.concatenate([np.linalg.norm(sf[1], axis=1),
+                                       np.linalg.norm(ef[1], axis=1)])
+                change = float(np.max(np.abs(ends - previous) / np.maximum(ends, 1e-300)))
+                if free.any():
+                    moved = np.linalg.norm(self.x - x0, axis=1)[free] / scale[free]
+                    change = max(change, float(np.max(moved)))
+                previous = ends
+                if change < tolerance:
+                    converged = True
+                    break
+        finally:
+            self.prm[:, _k.P_RELAX] = 0.0
+            self.env[_s.E_RELAX] = 0.0
+        elapsed = self.time - start
+        speed = float(max(np.max(np.linalg.norm(self.v, axis=-1)),
+                          np.max(np.linalg.norm(self.u, axis=-1), initial=0.0)))
+        self.v[:] = 0.0
+        self.u[:] = 0.0
+        self.time = start
+        del nb
+        return SettleReport(elapsed, converged, change, speed)
+
+    # -- stepping ------------------------------------------------------------------------------
+    def solve_path(self, time: NDArray[np.float64], body_positions: NDArray[np.float64],
+                   body_velocities: NDArray[np.float64], start_force: NDArray[np.float64],
+                   end_force: NDArray[np.float64], laid_length: NDArray[np.float64],
+                   point_positions: NDArray[np.float64], steps: NDArray[np.float64], *,
+                   shape_every: int = 0, shape_positions: NDArray[np.float64] | None = None,
+                   shape_tension: NDArray[np.float64] | None = None) -> None:
+        """Advance along the body points' paths, recording at every sample.
+
+        Parameters
+        ----------
+        time
+            Sample times [s], increasing, ``time[0] >= self.time`` (equal: sample 0 is the
+            current state).
+        body_positions, body_velocities
+            The body points (in :attr:`body_points` order) at the samples [m], [m/s],
+            (n, bodies, 3).
+        start_force, end_force
+            Outputs: force of each section on its start / end point [N], (n, sections, 3).
+        laid_length
+            Output: each section's length on the seabed [m], (n, sections).
+        point_positions
+            Output: every point's position [m], (n, points, 3).
+        steps
+            Output: time steps taken to reach each sample, (n,).
+        shape_every, shape_positions, shape_tension
+            Every ``shape_every``-th sample, all nodes' positions (m, nodes, 3) and tensions
+            (m, nodes), sections one after another (:meth:`section_slice`).
+
+        Raises
+        ------
+        SolverError
+            When the solution goes unstable, naming the section (line and index) or point,
+            the time and the quantity; the outputs before that sample are valid.
+        """
+        time = np.asarray(time, dtype=float)
+        nb = len(self.body_points)
+        bp = np.asarray(body_positions, dtype=float).reshape(time.size, nb, 3)
+        bv = np.asarray(body_velocities, dtype=float).reshape(time.size, nb, 3)
+        prepend = time[0] > self.time
+        if prepend:
+            time = np.concatenate(([self.time], time))
+            bp = np.concatenate((self.body_positions[None], bp))
+            bv = np.concatenate((self.body_velocity[None], bv))
+        n, S, P = time.size, len(self.sections), len(self.points)
+        w = self._w
+        sf, ef = np.zeros((n, S, 3)), np.zeros((n, S, 3))
+        lb, pp, st = np.zeros((n, S)), np.zeros((n, P, 3)), np.zeros(n)
+        if shape_every > 0 and shape_positions is not None and shape_tension is not None:
+            sr, sten = shape_positions, shape_tension
+            if prepend:
+                raise ValueError("shape output needs time[0] == the system's time")
+        else:
+            shape_every, sr, sten = 0, np.zeros((1, 1, 3)), np.zeros((1, 1))
+        status, index = _s.dgs_run_path(
+            self.r, self.v, self.x, self.u, time, np.ascontiguousarray(bp),
+            np.ascontiguousarray(bv), self.sec, self.prm, self.ops, self.kind, self.body,
+            self.pprm, self.env, self.time_step, sf, ef, lb, pp, st, shape_every, sr, sten,
+            w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.ppos, w.pvel, w.G,
+            w.Zs, w.tmp, w.bcd, *w.damping, w.where)
+        first = 1 if prepend else 0
+        done = index if status != _k.DG_OK else n
+        start_force[:done - first] = sf[first:done]
+        end_force[:done - first] = ef[first:done]
+        laid_length[:done - first] = lb[first:done]
+        point_positions[:done - first] = pp[first:done]
+        steps[:done - first] = st[first:done]
+        if status != _k.DG_OK:
+            self.failed_index = index - first
+            j, k, i = (int(c) for c in w.where)
+            if j < 0:
+                raise SolverError(f"point '{self.points[k].name}' (dynamic system): its position "
+                                  f"or velocity is not finite at t = {time[index]:.6g} s; the "
+                                  f"solution went unstable (time step {self.time_step:.3g} s)")
+            sec = self.sections[j]
+            s = self.lines[j].arc_length[k * (sec.settings.order + 1) + i]
+            raise SolverError(f"{sec.label} (dynamic): {_STATUS_TEXT[status]} at arc length "
+                              f"s = {s:.4g} m from its start, t = {time[index]:.6g} s; the "
+                              f"solution went unstable (time step {self.time_step:.3g} s)")
+        self.failed_index = -1
+        self.time = float(time[-1])
+        for b, p in enumerate(self.body_points):
+            self.x[p] = bp[-1, b]
+        self.body_velocity = np.array(bv[-1], dtype=float)
+
+    def section_slice(self, j: int) -> slice:
+        """The nodes of section j in the system's node axis."""
+        o = int(self.sec[j, _s.S_NODE])
+        return slice(o, o + int(self.sec[j, _s.S_K] * self.sec[j, _s.S_NP]))
+
+    def advance(self, t1: float, body_positions: NDArray[np.float64],
+                body_velocities: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Advance to ``t1``, the body points moving (cubic Hermite) to the given positions and
+        velocities (bodies, 3); returns the force of the lines on each body point at ``t1``
+        [N], (bodies, 3)."""
+        S, P, nb = len(self.sections), len(self.points), len(self.body_points)
+        sf, ef = np.zeros((1, S, 3)), np.zeros((1, S, 3))
+        self.solve_path(np.array([float(t1)]),
+                        np.asarray(body_positions, dtype=float).reshape(1, nb, 3),
+                        np.asarray(body_velocities, dtype=float).reshape(1, nb, 3), sf, ef,
+                        np.zeros((1, S)), np.zeros((1, P, 3)), np.zeros(1))
+        return self._body_forces(sf[0], ef[0])
+
+    def _body_forces(self, sf: NDArray[np.float64], ef: NDArray[np.float64]
+                     ) -> NDArray[np.float64]:
+        out = np.zeros((len(self.body_points), 3))
+        for j in range(len(self.sections)):
+            for col, f in ((_s.S_START, sf[j]), (_s.S_END, ef[j])):
+                b = self.body[self.sec[j, col]]
+                if b >= 0:
+                    out[b] += f
+        return out
+
+    def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces of every section on its start and end point in the current state [N],
+        (sections, 3) each."""
+        return self._end_forces(self.body_velocity)
+
+    def end_forces_moving(self, body_velocities: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Forces of the lines on each body point [N], (bodies, 3), in the current state with
+        the body points' velocities replaced (as ``PathStepper.end_forces_moving``: the end
+        fluxes answer the velocity at once through the axial impedance)."""
+        return self._body_forces(*self._end_forces(body_velocities))
+
+    def _end_forces(self, body_velocities: NDArray[np.float64]
+                    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        w, S = self._w, len(self.sections)
+        bv = np.asarray(body_velocities, dtype=float).reshape(-1, 3)
+        for p in range(len(self.points)):
+            w.ppos[p] = self.x[p]
+            w.pvel[p] = bv[self.body[p]] if self.kind[p] == _s.BODY else 0.0
+        sf, ef, laid = np.zeros((S, 3)), np.zeros((S, 3)), np.zeros(S)
+        _s.dgs_record(self.r, self.v, self.x, self.u, self.sec, self.prm, self.ops, self.kind,
+                      self.pprm, self.env, w.ppos, w.pvel, w.G, w.Zs, w.q, w.qt, w.N, w.Nstar,
+                      w.faces, w.slack, w.pstages[4], sf, ef, laid)
+        return sf, ef
+
+    def energy(self) -> dict[str, float]:
+        """Kinetic, strain and gravitational energy [J] of the sections and free points (the
+        sections' gravity with their submerged weight below z = 0, the points' with
+        (M - rho_w V) g below z = 0; added mass not counted)."""
+        self.end_forces()
+        out = {"kinetic": 0.0, "strain": 0.0, "gravity": 0.0}
+        for j, ln in enumerate(self.lines):
+            sl = self.section_slice(j)
+            pr = ln.properties
+            wq = np.tile(ln.element.weights * 0.5 * ln.element_length, ln.settings.elements)
+            v2 = np.sum(self.v[sl] ** 2, axis=1)
+            ql = np.linalg.norm(self._w.q[sl], axis=1)
+            eps = np.maximum(ql - 1.0, 0.0)
+            z = self.r[sl, 2]
+            weight = pr.mass_per_length * pr.gravity * np.where(
+                z < 0.0, 1.0 - pr.water_density / pr.material_density, 1.0)
+            out["kinetic"] += float(0.5 * pr.mass_per_length * np.sum(wq * v2))
+            out["strain"] += float(0.5 * pr.axial_stiffness * np.sum(wq * eps ** 2))
+            out["gravity"] += float(np.sum(wq * weight * z))
+        rho_w, g = self.env[_s.E_RHO_W], self.env[_s.E_G]
+        for p in np.flatnonzero(self.kind == _s.FREE):
+            M, V = self.pprm[p, _s.PP_MASS], self.pprm[p, _s.PP_VOLUME]
+            z = self.x[p, 2]
+            out["kinetic"] += 0.5 * M * float(self.u[p] @ self.u[p])
+            out["gravity"] += (M - (rho_w * V if z < 0.0 else 0.0)) * g * z
+        return out
+
+    # -- state ---------------------------------------------------------------------------------
+    def state_arrays(self) -> dict[str, NDArray[np.float64]]:
+        """The state as named arrays (time 0-d), for a checkpoint: node positions and
+        velocities, point positions and velocities, body velocities, and the implicit
+        damping's frozen factors."""
+        out = {"time": np.array(self.time, dtype=np.float64), "positions": self.r.copy(),
+               "velocities": self.v.copy(), "point_positions": self.x.copy(),
+               "point_velocities": self.u.copy(), "body_velocities": self.body_velocity.copy()}
+        out.update({f"damping_{i}": a.copy() for i, a in enumerate(self._w.damping)})
+        return out
+
+    def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
+        """Restore a state of :meth:`state_arrays` (shapes checked by the caller)."""
+        self.time = float(arrays["time"])
+        self.r[:] = arrays["positions"]
+        self.v[:] = arrays["velocities"]
+        self.x[:] = arrays["point_positions"]
+        self.u[:] = arrays["point_velocities"]
+        self.body_velocity = np.array(arrays["body_velocities"], dtype=float)
+        for i, a in enumerate(self._w.damping):
+            a[...] = arrays[f"damping_{i}"]
+
+
+class _SystemWorkspace:
+    """Preallocated arrays of the system kernels (no allocation inside the time loop)."""
+
+    def __init__(self, sec: NDArray[np.int64], P: int, nb: int, nodes: int, elems: int,
+                 faces: int, ysize: int, bandsize: int) -> None:
+        S = sec.shape[0]
+        npmax = int(sec[:, _s.S_NP].max())
+        self.stages = np.zeros((5, nodes, 3))
+        self.pstages = np.zeros((5, P, 3))
+        self.q = np.zeros((nodes, 3))
+        self.qt = np.zeros((nodes, 3))
+        self.N = np.zeros((nodes, 3))
+        self.Nstar = np.zeros((faces, 3))
+        self.faces = np.zeros((faces, 3))
+        self.slack = np.zeros(elems)
+        self.ppos = np.zeros((P, 3))
+        self.pvel = np.zeros((P, 3))
+        self.G = np.zeros((P, 3))
+        self.Zs = np.zeros(P)
+        self.tmp = np.zeros(max(npmax, 6))
+        self.bcd = np.zeros((max(nb, 1), 4, 3))
+        self.where = np.zeros(3, dtype=np.int64)
+        # the implicit damping systems of all sections: tangents, inverse masses,
+        # coefficients, flags, Y, band, rhs, info (per section; info[:, 0] = 0: invalid)
+        self.damping = (np.zeros((nodes, 3)), np.zeros((nodes, 2)), np.zeros(nodes),
+                        np.zeros(nodes), np.zeros(max(ysize, 1)), np.zeros(max(bandsize, 1)),
+                        np.zeros(nodes), np.zeros((S, 4)))

@@ -1,0 +1,245 @@
+"""Mooring systems solved as one: the lines joined by free points (or of several sections).
+
+A case's lines are independent when each is one section from a fixed to a body point; every
+other line belongs to a :class:`SystemGroup`, the lines connected through free points, of one
+model (the loader refuses a free point joining lines of two models). A quasi-static group is
+solved by the system statics (:class:`~floatmoor.mooring.system_statics.SystemStatics`: the
+equilibrium of its free points at every instant), a dynamic one by the DG system
+(:class:`~floatmoor.mooring.dg.system.DynamicSystem`: sections and points advanced together).
+Both take the positions (and velocities) of their body points and give the forces of every
+section on its two points, every point's position and the sections' laid lengths.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from types import SimpleNamespace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.case.schema import Case, Line
+from floatmoor.errors import CaseError, SolverError
+from floatmoor.mooring.catenary import catenary_profile
+from floatmoor.mooring.dg.system import DynamicSystem
+from floatmoor.mooring.quasistatic import SHAPE_POINTS
+from floatmoor.mooring.system_statics import SystemStatics, build_static_system
+
+__all__ = ["SystemGroup", "GroupSamples", "system_groups", "body_point_line"]
+
+
+def body_point_line(case: Case, name: str) -> Line:
+    """A line as the prescribed motions see body point ``name``: one of the lines at the
+    point, with its ``fairlead`` at the point (at rest) and its ``anchor`` at the line's
+    other end (the direction of a circular motion's plane)."""
+    from dataclasses import replace
+
+    for line in case.lines:
+        if name in (line.start, line.end):
+            other = line.anchor if line.end == name else line.fairlead
+            return replace(line, anchor=other, fairlead=case.point(name).position)
+    raise KeyError(name)
+
+
+@dataclass
+class GroupSamples:
+    """A group's outputs over a run of samples (the solvers' arrays, solver order)."""
+
+    positions: NDArray[np.float64]  #: (n, points, 3) [m]
+    start_force: NDArray[np.float64]  #: (n, sections, 3) on each section's start point [N]
+    end_force: NDArray[np.float64]  #: (n, sections, 3) on each section's end point [N]
+    laid_length: NDArray[np.float64]  #: (n, sections) [m]
+    iterations: NDArray[np.float64]  #: (n,) Newton iterations or time steps per sample
+
+    @classmethod
+    def empty(cls, n: int, points: int, sections: int) -> "GroupSamples":
+        return cls(np.zeros((n, points, 3)), np.zeros((n, sections, 3)),
+                   np.zeros((n, sections, 3)), np.zeros((n, sections)), np.zeros(n))
+
+
+@dataclass
+class SystemGroup:
+    """Lines of one model joined through free points, with their solver.
+
+    Attributes
+    ----------
+    model
+        "quasi-static" or "dynamic".
+    lines
+        Indices of its lines in ``case.lines``.
+    points, sections
+        Indices in ``case.points`` / ``case.sections`` of the solver's points and sections,
+        in the solver's order.
+    body_points
+        Indices in ``case.points`` of its body points, in the order the solver takes them.
+    solver
+        The statics (quasi-static) or the DG system (dynamic).
+    """
+
+    model: str
+    lines: tuple[int, ...]
+    points: tuple[int, ...]
+    sections: tuple[int, ...]
+    body_points: tuple[int, ...]
+    solver: SystemStatics | DynamicSystem
+    #: unstretched arc length of every shape node of each of its lines, from the line's start
+    arc_lengths: dict[int, NDArray[np.float64]] = field(default_factory=dict)
+    #: the last solved point positions (quasi-static shapes are drawn between them)
+    last_positions: NDArray[np.float64] | None = None
+    failed_index: int = -1
+
+    def solve_path(self, time: NDArray[np.float64], body_positions: NDArray[np.float64],
+                   body_velocities: NDArray[np.float64], out: GroupSamples) -> None:
+        """Solve along the body points' paths (n, body points, 3), writing ``out``.
+
+        Raises
+        ------
+        SolverError
+            As the solver; :attr:`failed_index` is the first sample not solved.
+        """
+        try:
+            if isinstance(self.solver, SystemStatics):
+                self.solver.solve_path(time, body_positions, out.positions, out.start_force,
+                                       out.end_force, out.laid_length, out.iterations)
+            else:
+                self.solver.solve_path(time, body_positions, body_velocities, out.start_force,
+                                       out.end_force, out.laid_length, out.positions,
+                                       out.iterations)
+        except SolverError:
+            self.failed_index = _failed_index(self.solver, time.size)
+            raise
+        self.failed_index = -1
+        self.last_positions = out.positions[-1].copy()
+
+    def line_shape(self, case: Case, line_index: int
+                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Node positions (n, 3) [m] and tensions (n,) [N] of one of its lines now, its
+        sections one after another."""
+        line = case.lines[line_index]
+        positions, tensions = [], []
+        for section in line.sections:
+            j = self._solver_section(case, section.line, section.index)
+            if isinstance(self.solver, DynamicSystem):
+                positions.append(self.solver.section_positions(j))
+                tensions.append(self.solver.section_tensions(j))
+            else:
+                s = self.solver.system
+                a = self.last_positions[s.section_start[j]]
+                b = self.last_positions[s.section_end[j]]
+                p, t = catenary_profile(a, b, s.length[j], s.axial_stiffness[j], s.weight[j],
+                                        s.friction[j], seabed_z=s.seabed_z,
+                                        n_points=SHAPE_POINTS)
+                positions.append(p)
+                tensions.append(t)
+        return np.concatenate(positions), np.concatenate(tensions)
+
+    def _solver_section(self, case: Case, line: str, index: int) -> int:
+        labels = [case.sections[k] for k in self.sections]
+        for j, s in enumerate(labels):
+            if s.line == line and s.index == index:
+                return j
+        raise KeyError((line, index))
+
+    def state_arrays(self) -> dict[str, NDArray[np.float64]]:
+        """The solver's state (warm start, or the DG state) for a checkpoint."""
+        return self.solver.state_arrays()
+
+    def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
+        """Restore a state of :meth:`state_arrays`."""
+        self.solver.set_state_arrays(arrays)
+
+
+def _failed_index(solver: SystemStatics | DynamicSystem, n: int) -> int:
+    """The first sample the solver's last path did not solve."""
+    return max(int(solver.failed_index), 0)
+
+
+def _components(case: Case, lines: list[int]) -> list[list[int]]:
+    """The lines (indices) joined through free points, in file order."""
+    kinds = {p.name: p.kind for p in case.points}
+    parent = {i: i for i in lines}
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    owner: dict[str, int] = {}
+    for i in lines:
+        for s in case.lines[i].sections:
+            for name in (s.start, s.end):
+                if kinds[name] != "free":
+                    continue
+                if name in owner:
+                    parent[root(i)] = root(owner[name])
+                else:
+                    owner[name] = i
+    groups: dict[int, list[int]] = {}
+    for i in lines:
+        groups.setdefault(root(i), []).append(i)
+    return sorted(groups.values())
+
+
+def system_groups(case: Case) -> list[SystemGroup]:
+    """The case's lines that are not independent, grouped and given their solvers (the
+    quasi-static ones solved at rest, the dynamic ones settled).
+
+    Raises
+    ------
+    CaseError
+        When a group has no static equilibrium at rest (the system as given cannot hold
+        itself: a buoy that would surface, a clump pressed on the seabed), naming the point.
+    """
+    rest = [i for i, line in enumerate(case.lines) if not case.is_independent(line)]
+    index = {p.name: k for k, p in enumerate(case.points)}
+    section_index = {(s.line, s.index): k for k, s in enumerate(case.sections)}
+    groups = []
+    for members in _components(case, rest):
+        lines = [case.lines[i] for i in members]
+        model = lines[0].model
+        used = {n for ln in lines for s in ln.sections for n in (s.start, s.end)}
+        points = [p for p in case.points if p.name in used]
+        sections = [s for ln in lines for s in ln.sections]
+        if model == "quasi-static":
+            try:
+                statics = SystemStatics(build_static_system(points, lines, case.environment,
+                                                            case.seabed))
+                statics.solve()
+            except SolverError as err:
+                raise CaseError(case.source, f"lines[{members[0]}]", "a mooring system with a "
+                                "static equilibrium at rest", str(err)) from None
+            solver: SystemStatics | DynamicSystem = statics
+            body = [index[n] for n in statics.system.body_point_names]
+            order = [section_index[_label_key(n)] for n in statics.system.section_names]
+            point_order = [index[n] for n in statics.system.point_names]
+        elif model == "dynamic":
+            sub = SimpleNamespace(lines=lines, sections=tuple(sections), points=tuple(points),
+                                  environment=case.environment, seabed=case.seabed)
+            solver = DynamicSystem.from_case(sub)
+            body = [index[solver.points[p].name] for p in solver.body_points]
+            order = [section_index[(s.line, s.index)] for s in solver.sections]
+            point_order = [index[p.name] for p in solver.points]
+        else:  # the loader admits quasi-dynamic lines only as independent lines
+            raise ValueError(f"no system solver for model {model!r}")
+        group = SystemGroup(model=model, lines=tuple(members), points=tuple(point_order),
+                            sections=tuple(order), body_points=tuple(body), solver=solver)
+        for i, line in zip(members, lines):
+            arcs, offset = [], 0.0
+            for s in line.sections:
+                j = group._solver_section(case, s.line, s.index)
+                local = solver.lines[j].arc_length if isinstance(solver, DynamicSystem) \
+                    else np.linspace(0.0, s.length, SHAPE_POINTS)
+                arcs.append(offset + local)
+                offset += s.length
+            group.arc_lengths[i] = np.concatenate(arcs)
+        if isinstance(solver, SystemStatics):
+            group.last_positions = solver.state_arrays()["positions"]
+        groups.append(group)
+    return groups
+
+
+def _label_key(name: str) -> tuple[str, int]:
+    """``line[3]`` -> ("line", 3)."""
+    line, _, rest = name.rpartition("[")
+    return line, int(rest.rstrip("]"))

@@ -1,0 +1,55 @@
+"""The moving-start generalisation of the DG kernels leaves a fixed-anchor line bit-identical.
+
+``tests/data/dg_system/lindahl_baseline.npz`` was written by :func:`run` with the kernels as
+they were before the start end could move (commit efa0522, the head of main when issue 15
+began): regenerate it only from such a commit (``python -m tests.unit.test_dg_system_bits
+FILE``). The Lindahl chain (cases.md) runs 0.5 s of harmonic fairlead motion with the
+Kelvin-Voigt damping implicit and explicit.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+import pytest
+
+from floatmoor.case.load import load_case
+from floatmoor.mooring.dg.line import DynamicLine
+from tests.conftest import CASES, REPO
+
+BASELINE = REPO / "tests" / "data" / "dg_system" / "lindahl_baseline.npz"
+
+
+def run(damping: str) -> dict[str, np.ndarray]:
+    """End forces, laid length and final state of the Lindahl line over 0.5 s."""
+    case = load_case(CASES / "lindahl" / "lindahl_r0.20_T1.25.toml",
+                     ["lines.chain.dynamic.elements=12",
+                      f'lines.chain.dynamic.internal_damping="{damping}"',
+                      "line_types.chain.internal_damping_ratio=0.05"])
+    ln = case.lines[0]
+    line = DynamicLine.from_case(ln, case.environment, case.seabed)
+    t = np.linspace(0.0, 0.5, 51)
+    f0 = np.asarray(ln.fairlead)
+    w = 2 * np.pi / 1.25
+    path = f0 + 0.2 * np.outer(np.sin(w * t), [1.0, 0.0, 0.3])
+    vel = 0.2 * w * np.outer(np.cos(w * t), [1.0, 0.0, 0.3])
+    n = t.size
+    ff, af, lb, st = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n), np.zeros(n)
+    line.solve_path(t, path, vel, ff, af, lb, st)
+    return dict(fairlead_force=ff, anchor_force=af, laid=lb, r=line.r, v=line.v)
+
+
+@pytest.mark.parametrize("damping", ["implicit", "explicit"])
+def test_fixed_anchor_line_is_bit_identical_to_the_old_kernels(damping: str) -> None:
+    base = np.load(BASELINE)
+    out = run(damping)
+    for key, value in out.items():
+        ref = base[f"{damping}_{key}"]
+        assert value.shape == ref.shape
+        assert value.tobytes() == ref.tobytes(), key
+
+
+if __name__ == "__main__":
+    np.savez(sys.argv[1], **{f"{d}_{k}": a for d in ("implicit", "explicit")
+                            for k, a in run(d).items()})
