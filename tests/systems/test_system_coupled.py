@@ -50,11 +50,8 @@ def test_quasi_static_line_split_by_a_joint_runs_as_the_unsplit_line(tmp_path):
     assert np.abs(joint).max() <= TENSION_RTOL * peak  # a massless joint carries nothing
 
 
-@pytest.mark.parametrize("model", ["quasi-static", "dynamic"])
-def test_clump_weight_on_a_buoy_line_runs_coupled(tmp_path, model):
-    """A 20 g clump at a joint of line 1 pulls the buoy towards line 1's anchor; the body's
-    mean offset follows the static equilibrium with the clump."""
-    sets = ["simulation.duration=1.0", f'lines.*.model="{model}"']
+def _clump_case(tmp_path, sets: list[str]):
+    """The buoy case with a 20 g clump at a joint of line 1."""
     text = BUOY.read_text().replace(
         _LINE1, 'sections = [{ type = "chain", length = 5.8, end = "clump", dynamic = '
         '{ elements = 8 } }, { type = "chain", length = 1.15, dynamic = { elements = 2 } }]\n'
@@ -65,9 +62,15 @@ def test_clump_weight_on_a_buoy_line_runs_coupled(tmp_path, model):
     path = BUOY.parent / f"_test_clump_{tmp_path.name}.toml"
     path.write_text(text)
     try:
-        case = load_case(path, sets)
+        return load_case(path, sets)
     finally:
         path.unlink()
+
+
+@pytest.mark.parametrize("model", ["quasi-static", "dynamic"])
+def test_clump_weight_on_a_buoy_line_runs_coupled(tmp_path, model):
+    """A 20 g clump at a joint of line 1, held by its lines."""
+    case = _clump_case(tmp_path, ["simulation.duration=1.0", f'lines.*.model="{model}"'])
     ds = run_coupled(case).dataset
     assert ds.attrs["status"] == "complete"
     for name in ("point_position", "point_force", "section_end_tension", "body_displacement"):
@@ -80,3 +83,26 @@ def test_clump_weight_on_a_buoy_line_runs_coupled(tmp_path, model):
     force = ds["point_force"].sel(point="clump").values
     tol = 1e-6 * submerged if model == "quasi-static" else 0.05 * submerged
     np.testing.assert_allclose(force[:, 2], submerged, rtol=0, atol=tol)
+
+
+@pytest.mark.parametrize("model", ["quasi-static", "dynamic"])
+def test_system_run_resumes_bit_identically(tmp_path, monkeypatch, model):
+    """The checkpoint holds the groups' states (the statics' warm start, the DG system's
+    nodes, points and damping factors): a resumed run is the uninterrupted one bit for bit."""
+    import floatmoor.simulation.coupled_run as cr
+    from tests.body.interrupted import interrupt_run
+
+    monkeypatch.setattr(cr, "CHUNK_STEPS", 5)
+    case = _clump_case(tmp_path, [f'lines.*.model="{model}"', "simulation.duration=0.2",
+                                  "simulation.output_interval=0.01",
+                                  "line_types.chain.internal_damping_ratio=0.2",
+                                  'waves={kind = "still"}', "initial={surge = 0.002}"])
+    out = tmp_path / "cut.nc"
+    interrupt_run(case, out, after_chunks=2)
+    with np.load(cr.checkpoint_path(out), allow_pickle=False) as npz:
+        assert any(k.startswith("state/group0/") for k in npz.files)
+    resumed = run_coupled(case, output=out, resume=True).dataset
+    whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
+    for name in ("body_displacement", "fairlead_tension", "point_position", "point_force",
+                 "section_end_tension", "laid_length"):
+        assert np.array_equal(resumed[name].values, whole[name].values), name
