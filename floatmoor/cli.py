@@ -221,12 +221,13 @@ def _describe_system(case: Case) -> list[str]:
     rows = [f"  mooring system at rest ({sol.iterations} Newton iterations, force residual "
             f"{sol.residual:.2g}):",
             f"    {'point':<18}{'kind':<7}{'x [m]':>10}{'y [m]':>10}{'z [m]':>10}"
-            f"{'F_lines [kN]':>14}"]
+            f"{'F_lines [kN]':>14}{'seabed [kN]':>13}"]
     kinds = {p.name: p.kind for p in case.points}
     for k, name in enumerate(sol.point_names):
         x, y, z = sol.positions[k]
+        seabed = f"{sol.seabed_reaction[k] / 1e3:>13.4g}" if sol.on_seabed[k] else f"{'-':>13}"
         rows.append(f"    {name:<18}{kinds[name]:<7}{x:>10.3f}{y:>10.3f}{z:>10.3f}"
-                    f"{np.linalg.norm(sol.point_force[k]) / 1e3:>14.4g}")
+                    f"{np.linalg.norm(sol.point_force[k]) / 1e3:>14.4g}{seabed}")
     rows.append(f"    {'section':<18}{'type':<12}{'profile':<11}{'T_start [kN]':>13}"
                 f"{'T_end [kN]':>12}{'on seabed [m]':>15}")
     types = {s.label: s.line_type.name for s in case.sections}
