@@ -6,7 +6,8 @@ qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md cas
 ``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
 ``floatmoor hydro check NAME`` checks one (both exit 1 when a check fails), ``floatmoor hydro
 info NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space
-realisation of its radiation kernel; a missing, damaged or stale database, or one failing a
+realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
+``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; a missing, damaged or stale database, or one failing a
 check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
 (exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
 exits with status 2, without a traceback and without writing output. A run that fails (no
@@ -143,9 +144,11 @@ def _parser() -> argparse.ArgumentParser:
                       help="replace a realisation the database already holds, or overwrite "
                       "an existing -o file")
     hfit.add_argument("--json", action="store_true", help="the fit's errors as JSON")
+    from floatmoor.io.moordyn.cli import add_moordyn_parsers
     from floatmoor.report.cli import add_report_parsers
 
     add_report_parsers(sub)
+    add_moordyn_parsers(sub)
     return parser
 
 
@@ -174,6 +177,8 @@ def _command(args: argparse.Namespace) -> int:
             return hydro_command(args)
         if args.command in ("report", "compare"):
             return args.report_handler(args)
+        if args.command in ("import", "export"):
+            return args.moordyn_handler(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -216,12 +221,13 @@ def _describe_system(case: Case) -> list[str]:
     rows = [f"  mooring system at rest ({sol.iterations} Newton iterations, force residual "
             f"{sol.residual:.2g}):",
             f"    {'point':<18}{'kind':<7}{'x [m]':>10}{'y [m]':>10}{'z [m]':>10}"
-            f"{'F_lines [kN]':>14}"]
+            f"{'F_lines [kN]':>14}{'seabed [kN]':>13}"]
     kinds = {p.name: p.kind for p in case.points}
     for k, name in enumerate(sol.point_names):
         x, y, z = sol.positions[k]
+        seabed = f"{sol.seabed_reaction[k] / 1e3:>13.4g}" if sol.on_seabed[k] else f"{'-':>13}"
         rows.append(f"    {name:<18}{kinds[name]:<7}{x:>10.3f}{y:>10.3f}{z:>10.3f}"
-                    f"{np.linalg.norm(sol.point_force[k]) / 1e3:>14.4g}")
+                    f"{np.linalg.norm(sol.point_force[k]) / 1e3:>14.4g}{seabed}")
     rows.append(f"    {'section':<18}{'type':<12}{'profile':<11}{'T_start [kN]':>13}"
                 f"{'T_end [kN]':>12}{'on seabed [m]':>15}")
     types = {s.label: s.line_type.name for s in case.sections}

@@ -24,8 +24,17 @@ friction, part of the horizontal load: the lower end sees only HA = max(HF - CB 
 VA = 0, so h = (k11 + CB k21, k12 + CB k22; 0, 0) while the anchor is loaded (zero once
 friction takes the whole load), and the matrix is no longer symmetric. The rows of the lower
 end are then one-sided derivatives (lifting that end off the seabed is a change of regime);
-the system's unknowns never rest on the seabed (a free point there is a failure), so only a
-body point on the seabed would see them.
+a free point resting on the seabed has its z held (below), so only its horizontal rows enter
+the Newton matrix, and the one-sided z rows only a body point on the seabed would see.
+
+Free points on the seabed (an active set). A free point whose equilibrium would lie below the
+seabed rests on it: its z is pinned at the seabed (``pinned[p] = PIN_SEABED``; the unknowns
+are its x and y) and the seabed carries the vertical force left over, R_z = -(its reaction).
+A Newton step that would carry an unpinned free point through the seabed pins it there
+(landing); once the equilibrium with the current pins has converged, a pinned point the
+seabed would have to pull down (R_z > 0 beyond the force tolerance) is released (lift-off)
+and the solve goes on. The point itself has no seabed friction: its horizontal force balance
+is exact (its sections carry their own friction on their laid lengths).
 
 All kernels write into preallocated arrays and allocate nothing.
 """
@@ -62,6 +71,12 @@ SYS_NOT_CONVERGED = 1  # the Newton iteration stalled or ran out of iterations
 SYS_SECTION_FAILED = 2  # a section has no catenary solution at the given (not trial) positions
 SYS_ABOVE_SURFACE = 3  # converged, but a free point lies above the water surface (z > 0)
 SYS_SAG_BELOW_SEABED = 4  # converged, but a section free of the seabed sags below it
+SYS_CONTACT_CYCLING = 5  # the free points kept landing on and lifting off the seabed
+
+# --------------------------------------------------------------------------- pins of a point's z
+PIN_NONE = 0  # z is an unknown (free points) or given (fixed, body points)
+PIN_SEABED = 1  # a free point resting on the seabed: z = seabed, released when pulled up
+PIN_HELD = 2  # a free point's z held where it is (never released; for diagnostics)
 
 # --------------------------------------------------------------------------- info layout
 INFO_ITER = 0  # Newton iterations
@@ -71,7 +86,8 @@ INFO_SECTION = 3  # failing section (SYS_SECTION_FAILED, SYS_SAG_BELOW_SEABED)
 INFO_CAT_STATUS = 4  # its catenary status
 INFO_POINT = 5  # the point above the surface (SYS_ABOVE_SURFACE)
 INFO_CATENARY_ITER = 6  # catenary iterations summed over sections and Newton evaluations
-N_INFO = 7
+INFO_CONTACT_CHANGES = 7  # landings and lift-offs of free points during the solve
+N_INFO = 8
 
 # --------------------------------------------------------------------------- numerics
 #: Armijo constant of the backtracking line search on |R|^2 (the usual 1e-4: accept any step
@@ -84,6 +100,10 @@ MAX_BACKTRACK = 30
 LM_SHIFT0 = 1e-8
 LM_GROWTH = 10.0
 MAX_SHIFTS = 12
+#: Landings and lift-offs of free points allowed in one equilibrium, per free point, beyond
+#: one each: a point's contact settles after one landing and at most one lift-off unless the
+#: iteration cycles between the two (a point balanced within the tolerance of the seabed).
+MAX_CONTACT_CHANGES_PER_POINT = 4
 
 
 @jit(error_model="numpy")
@@ -156,15 +176,15 @@ def section_solve(pa, pb, L, EA, W, CB, seabed_z, HF0, VF0, tol, max_iter, out):
 
 @jit(error_model="numpy")
 def assemble(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, sec_tol,
-             sec_maxit, warm, dof, ext, sec_out, R, K, scale, with_k):
+             sec_maxit, warm, dof, n_dof, ext, sec_out, R, K, scale, with_k):
     """Evaluate every section at ``pos`` and assemble the free-point residual and stiffness.
 
-    R[i] is the net force on unknown i (sections + ``ext``); K = -dR/dx over the unknowns
-    (filled when ``with_k``); ``scale[p]`` = |ext_p| + sum of |section forces on p|.
+    R[i] is the net force on unknown i < ``n_dof`` (sections + ``ext``); K = -dR/dx over the
+    unknowns (filled when ``with_k``); ``scale[p]`` = |ext_p| + the sum over the sections at
+    p of their larger end tension.
     Returns (index of the first section without a solution or -1, its status, index of a
     section sagging below the seabed or -1, catenary iterations).
     """
-    n_dof = R.shape[0]
     n_pts = pos.shape[0]
     for i in range(n_dof):
         R[i] = 0.0
@@ -192,8 +212,13 @@ def assemble(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, se
                 sag = s
         elif st != CAT_OK:
             return s, st, sag, cat_iter
-        scale[a] += math.sqrt(o[S_FA] ** 2 + o[S_FA + 1] ** 2 + o[S_FA + 2] ** 2)
-        scale[b] += math.sqrt(o[S_FB] ** 2 + o[S_FB + 1] ** 2 + o[S_FB + 2] ** 2)
+        # a section's force error is relative to its largest tension (at its upper end), also
+        # at an end that carries little: a joint beyond which seabed friction has taken
+        # nearly all the tension
+        t = max(math.sqrt(o[S_FA] ** 2 + o[S_FA + 1] ** 2 + o[S_FA + 2] ** 2),
+                math.sqrt(o[S_FB] ** 2 + o[S_FB + 1] ** 2 + o[S_FB + 2] ** 2))
+        scale[a] += t
+        scale[b] += t
         for c in range(3):
             ia = dof[a, c]
             ib = dof[b, c]
@@ -236,12 +261,12 @@ def _residual_measure(R, dof, scale):
 
 
 @jit(error_model="numpy")
-def lu_solve(A, b, x):
-    """Solve A x = b by Gaussian elimination with partial pivoting, in place (A, b overwritten).
+def lu_solve(A, b, x, n):
+    """Solve A x = b over the leading ``n`` unknowns by Gaussian elimination with partial
+    pivoting, in place (A, b overwritten).
 
     Returns False when a pivot is zero or the result is not finite.
     """
-    n = b.shape[0]
     for k in range(n):
         piv = k
         big = abs(A[k, k])
@@ -276,55 +301,68 @@ def lu_solve(A, b, x):
 
 
 @jit(error_model="numpy")
-def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, sec_tol,
-                      sec_maxit, dof, ext, step_cap, z_min, check_surface, force_rtol,
-                      max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx,
-                      scale, info):
-    """Newton iteration for the free-point coordinates; ``pos`` holds the guess and the result.
+def build_dof(free, pinned, dof):
+    """Number the unknowns: x, y, z of each free point (``free[p]``), z left out while
+    ``pinned[p]``. Writes ``dof`` (n_points, 3; -1 for a given coordinate), returns the count."""
+    n = 0
+    for p in range(dof.shape[0]):
+        for c in range(3):
+            if free[p] and not (c == 2 and pinned[p] != PIN_NONE):
+                dof[p, c] = n
+                n += 1
+            else:
+                dof[p, c] = -1
+    return n
 
-    Globalised by a step limit (no point moves more than ``step_cap[p]`` in one step, the
-    direction kept), a backtracking line search on |R|^2 that also rejects trial positions
-    where a section has no catenary solution, with free points projected to stay above
-    ``z_min``, just clear of the seabed (where the catenary's seabed contact switches and its
-    vertical stiffness is singular, VF ~ sqrt(ZF); a free point resting on the seabed is not
-    modelled), and a
-    Levenberg-Marquardt shift K + mu I raised whenever the line search fails (singular K of
-    slack sections, points far off). Converged when every unknown's force residual is at most
-    ``force_rtol`` times its point's force scale (|ext| + sum of section force magnitudes).
 
-    ``warm`` (n_sections, 2) holds the sections' warm starts (updated); ``sec_out`` the
-    section outputs at the result; the others are workspaces sized to the unknowns
-    (``R, Rt, rhs, dx``; ``K, Kt, A`` square), the sections (``trial_out``) and the points
-    (``trial_pos``, ``scale``). ``check_surface[p]``: fail when free point p ends above z = 0.
-    Returns a ``SYS_*`` status; ``info`` (``N_INFO``) says more.
-    """
-    n_dof = R.shape[0]
+@jit(error_model="numpy")
+def vertical_force(p, ext, sec_start, sec_end, sec_out):
+    """Net vertical force of ``ext`` and the sections on point ``p`` [N]; on a point resting on
+    the seabed, minus the seabed's reaction."""
+    fz = ext[p, 2]
+    for s in range(sec_start.shape[0]):
+        if sec_start[s] == p:
+            fz += sec_out[s, S_FA + 2]
+        if sec_end[s] == p:
+            fz += sec_out[s, S_FB + 2]
+    return fz
+
+
+# results of _newton
+_CONVERGED = 0
+_STALLED = 1
+_SECTION_FAILED = 2
+_LANDED = 3
+
+
+@jit(error_model="numpy")
+def _newton(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, sec_tol,
+            sec_maxit, dof, n_dof, pinned, ext, step_cap, force_rtol, max_iter, it, warm,
+            sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx, scale, info):
+    """Newton iteration with the pins held. Returns (``_CONVERGED`` | ``_STALLED`` |
+    ``_SECTION_FAILED`` | ``_LANDED``, iterations so far, a section sagging below the seabed or
+    -1). ``_LANDED``: a step would have carried free points through the seabed; they are
+    pinned there (``pinned``, ``pos`` updated) and the caller starts again."""
     n_sec = sec_L.shape[0]
     n_pts = pos.shape[0]
-    for k in range(N_INFO):
-        info[k] = -1.0
-    info[INFO_ITER] = 0.0
-    info[INFO_RESIDUAL] = math.nan
     fail, fst, sag, ci = assemble(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB,
-                                  seabed_z, sec_tol, sec_maxit, warm, dof, ext, sec_out, R, K,
-                                  scale, True)
-    cat_iter = ci
+                                  seabed_z, sec_tol, sec_maxit, warm, dof, n_dof, ext, sec_out,
+                                  R, K, scale, True)
+    info[INFO_CATENARY_ITER] += ci
     if fail >= 0:
         info[INFO_SECTION] = fail
         info[INFO_CAT_STATUS] = fst
-        info[INFO_CATENARY_ITER] = cat_iter
-        return SYS_SECTION_FAILED
+        return _SECTION_FAILED, it, sag
     for s in range(n_sec):
         warm[s, 0] = sec_out[s, S_HF]
         warm[s, 1] = sec_out[s, S_VF]
     worst, worst_p, phi = _residual_measure(R, dof, scale)
     mu = 0.0
     shifts = 0
-    it = 0
-    status = SYS_NOT_CONVERGED
+    result = _STALLED
     while True:
         if worst <= force_rtol:
-            status = SYS_OK
+            result = _CONVERGED
             break
         if it >= max_iter or not math.isfinite(phi):
             break
@@ -334,13 +372,14 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
         if kmax == 0.0:
             kmax = 1.0
         accepted = False
+        landed = False
         while not accepted:
             for i in range(n_dof):
                 rhs[i] = R[i]
                 for j in range(n_dof):
                     A[i, j] = K[i, j]
                 A[i, i] += mu * kmax
-            ok = lu_solve(A, rhs, dx)
+            ok = lu_solve(A, rhs, dx, n_dof)
             if ok:
                 # step limit per point
                 alpha = 1.0
@@ -354,18 +393,25 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
                     d = math.sqrt(d2)
                     if d * alpha > step_cap[p]:
                         alpha = step_cap[p] / d
+                # landing: the step would carry a free point through the seabed
+                for p in range(n_pts):
+                    i = dof[p, 2]
+                    if i >= 0 and pos[p, 2] + alpha * dx[i] < seabed_z:
+                        pinned[p] = PIN_SEABED
+                        pos[p, 2] = seabed_z
+                        landed = True
+                if landed:
+                    break
                 for _ in range(MAX_BACKTRACK):
                     for p in range(n_pts):
                         for c in range(3):
                             i = dof[p, c]
                             trial_pos[p, c] = pos[p, c] + alpha * dx[i] if i >= 0 else pos[p, c]
-                        if dof[p, 2] >= 0 and trial_pos[p, 2] < z_min[p]:
-                            trial_pos[p, 2] = z_min[p]  # projected onto the allowed side
                     tf, tst, tsag, ci = assemble(trial_pos, sec_start, sec_end, sec_L, sec_EA,
                                                  sec_W, sec_CB, seabed_z, sec_tol, sec_maxit,
-                                                 warm, dof, ext, trial_out, Rt, Kt, scale,
-                                                 True)
-                    cat_iter += ci
+                                                 warm, dof, n_dof, ext, trial_out, Rt, Kt,
+                                                 scale, True)
+                    info[INFO_CATENARY_ITER] += ci
                     if tf < 0:
                         phit = 0.0
                         for i in range(n_dof):
@@ -379,6 +425,9 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
                     break
                 shifts += 1
                 mu = LM_SHIFT0 if mu == 0.0 else mu * LM_GROWTH
+        if landed:
+            result = _LANDED
+            break
         if not accepted:
             break
         # accept: the trial evaluation becomes the current state
@@ -401,9 +450,84 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
     info[INFO_ITER] = it
     info[INFO_RESIDUAL] = worst
     info[INFO_WORST_POINT] = worst_p
-    info[INFO_CATENARY_ITER] = cat_iter
-    if status != SYS_OK:
-        return status
+    return result, it, sag
+
+
+@jit(error_model="numpy")
+def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z, sec_tol,
+                      sec_maxit, free, pinned, dof, ext, step_cap, check_surface, force_rtol,
+                      max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A, rhs, dx,
+                      scale, info):
+    """Equilibrium of the free points (``free[p]``); ``pos`` holds the guess and the result,
+    ``pinned`` the seabed contacts (``PIN_*``, updated: the active set).
+
+    Newton's method, globalised by a step limit (no point moves more than ``step_cap[p]`` in
+    one step, the direction kept), a backtracking line search on |R|^2 that also rejects trial
+    positions where a section has no catenary solution, and a Levenberg-Marquardt shift
+    K + mu I raised whenever the line search fails (singular K of slack sections, points far
+    off). Converged when every unknown's force residual is at most ``force_rtol`` times its
+    point's force scale (|ext| + its sections' larger end tensions). Free points on the seabed
+    form an active set (module docstring): a free point starting at or below the seabed, or
+    that a step would carry through it, rests on it; after convergence the pinned point the
+    seabed would pull down the most (beyond ``force_rtol`` of its force scale) lifts off and
+    the iteration goes on; ``max_iter`` bounds the Newton iterations of the whole solve.
+
+    ``warm`` (n_sections, 2) holds the sections' warm starts (updated); ``sec_out`` the
+    section outputs at the result; ``dof`` (n_points, 3) receives the unknowns' numbering; the
+    others are workspaces sized to 3 x the free points (``R, Rt, rhs, dx``; ``K, Kt, A``
+    square), the sections (``trial_out``) and the points (``trial_pos``, ``scale``).
+    ``check_surface[p]``: fail when free point p ends above z = 0. Returns a ``SYS_*`` status;
+    ``info`` (``N_INFO``) says more.
+    """
+    n_pts = pos.shape[0]
+    for k in range(N_INFO):
+        info[k] = -1.0
+    info[INFO_ITER] = 0.0
+    info[INFO_RESIDUAL] = math.nan
+    info[INFO_CATENARY_ITER] = 0.0
+    info[INFO_CONTACT_CHANGES] = 0.0
+    n_free = 0
+    for p in range(n_pts):
+        if free[p]:
+            n_free += 1
+            if pinned[p] == PIN_NONE and pos[p, 2] <= seabed_z:
+                pinned[p] = PIN_SEABED
+            if pinned[p] == PIN_SEABED:
+                pos[p, 2] = seabed_z
+    max_changes = MAX_CONTACT_CHANGES_PER_POINT * n_free
+    changes = 0
+    it = 0
+    sag = -1
+    lift = -1
+    while True:
+        n_dof = build_dof(free, pinned, dof)
+        result, it, sag = _newton(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB,
+                                  seabed_z, sec_tol, sec_maxit, dof, n_dof, pinned, ext,
+                                  step_cap, force_rtol, max_iter, it, warm, sec_out, trial_out,
+                                  trial_pos, R, Rt, K, Kt, A, rhs, dx, scale, info)
+        if result == _SECTION_FAILED:
+            return SYS_SECTION_FAILED
+        if result == _STALLED:
+            return SYS_NOT_CONVERGED
+        if result == _CONVERGED:
+            # lift-off: the point the seabed would have to pull down the most
+            lift = -1
+            worst = 0.0
+            for p in range(n_pts):
+                if pinned[p] == PIN_SEABED:
+                    fz = vertical_force(p, ext, sec_start, sec_end, sec_out)
+                    if fz > force_rtol * scale[p] and fz > worst * scale[p]:
+                        worst = fz / scale[p]
+                        lift = p
+            if lift < 0:
+                break
+            pinned[lift] = PIN_NONE
+        changes += 1
+        info[INFO_CONTACT_CHANGES] = changes
+        if changes > max_changes:
+            if lift >= 0:
+                info[INFO_WORST_POINT] = lift
+            return SYS_CONTACT_CYCLING
     for p in range(n_pts):
         if check_surface[p] and pos[p, 2] > 0.0:
             info[INFO_POINT] = p
@@ -417,19 +541,21 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
 
 @jit(error_model="numpy")
 def statics_series(body_path, body_index, pos, sec_start, sec_end, sec_L, sec_EA, sec_W,
-                   sec_CB, seabed_z, sec_tol, sec_maxit, dof, ext, step_cap, z_min, check_surface,
-                   force_rtol, max_iter, warm, sec_out, trial_out, trial_pos, R, Rt, K, Kt, A,
-                   rhs, dx, scale, info, out_pos, out_fa, out_fb, out_lb, out_iter, out_resid):
+                   sec_CB, seabed_z, sec_tol, sec_maxit, free, pinned, dof, ext, step_cap,
+                   check_surface, force_rtol, max_iter, warm, sec_out, trial_out, trial_pos, R,
+                   Rt, K, Kt, A, rhs, dx, scale, info, out_pos, out_fa, out_fb, out_lb,
+                   out_pinned, out_iter, out_resid):
     """Equilibrium at every sample of a path of body-point positions, warm-started.
 
     ``body_path`` (n, n_body, 3) gives the positions of the points ``body_index`` at each
-    sample; the free points start from ``pos`` and each solve starts from the previous
-    solution. Writes ``out_pos`` (n, n_points, 3), the sections' forces on their start and end
-    points ``out_fa``, ``out_fb`` (n, n_sections, 3), laid lengths ``out_lb`` (n, n_sections),
-    Newton iterations and residuals. The other arguments are those of
-    :func:`solve_equilibrium`. Returns -1 when every sample solved, else the index of the
-    first failure (its status and ``info`` left as :func:`solve_equilibrium` wrote them; the
-    earlier samples are valid).
+    sample; the free points start from ``pos`` and the seabed contacts from ``pinned``, and
+    each solve starts from the previous solution (its contacts too: points land and lift off
+    as the path goes). Writes ``out_pos`` (n, n_points, 3), the sections' forces on their
+    start and end points ``out_fa``, ``out_fb`` (n, n_sections, 3), laid lengths ``out_lb``
+    (n, n_sections), the pins ``out_pinned`` (n, n_points), Newton iterations and residuals.
+    The other arguments are those of :func:`solve_equilibrium`. Returns -1 when every sample
+    solved, else the index of the first failure (its status and ``info`` left as
+    :func:`solve_equilibrium` wrote them; the earlier samples are valid).
     """
     n = body_path.shape[0]
     n_body = body_index.shape[0]
@@ -441,14 +567,15 @@ def statics_series(body_path, body_index, pos, sec_start, sec_end, sec_L, sec_EA
             for c in range(3):
                 pos[p, c] = body_path[k, j, c]
         st = solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, seabed_z,
-                               sec_tol, sec_maxit, dof, ext, step_cap, z_min, check_surface,
-                               force_rtol, max_iter, warm, sec_out, trial_out, trial_pos, R, Rt,
-                               K, Kt, A, rhs, dx, scale, info)
+                               sec_tol, sec_maxit, free, pinned, dof, ext, step_cap,
+                               check_surface, force_rtol, max_iter, warm, sec_out, trial_out,
+                               trial_pos, R, Rt, K, Kt, A, rhs, dx, scale, info)
         if st != SYS_OK:
             return k
         for p in range(n_pts):
             for c in range(3):
                 out_pos[k, p, c] = pos[p, c]
+            out_pinned[k, p] = pinned[p]
         for s in range(n_sec):
             for c in range(3):
                 out_fa[k, s, c] = sec_out[s, S_FA + c]
@@ -463,8 +590,9 @@ __all__ = [
     "S_FA", "S_FB", "S_KAA", "S_KAB", "S_KBA", "S_KBB", "S_HF", "S_VF", "S_LB", "S_ITER",
     "S_PROFILE", "S_RESID", "S_SWAPPED", "N_SECTION_OUT",
     "SYS_OK", "SYS_NOT_CONVERGED", "SYS_SECTION_FAILED", "SYS_ABOVE_SURFACE",
-    "SYS_SAG_BELOW_SEABED",
+    "SYS_SAG_BELOW_SEABED", "SYS_CONTACT_CYCLING", "PIN_NONE", "PIN_SEABED", "PIN_HELD",
     "INFO_ITER", "INFO_RESIDUAL", "INFO_WORST_POINT", "INFO_SECTION", "INFO_CAT_STATUS",
-    "INFO_POINT", "INFO_CATENARY_ITER", "N_INFO",
-    "section_solve", "assemble", "lu_solve", "solve_equilibrium", "statics_series",
+    "INFO_POINT", "INFO_CATENARY_ITER", "INFO_CONTACT_CHANGES", "N_INFO",
+    "section_solve", "assemble", "lu_solve", "build_dof", "vertical_force",
+    "solve_equilibrium", "statics_series",
 ]

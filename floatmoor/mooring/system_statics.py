@@ -11,6 +11,17 @@ a line search and a Levenberg-Marquardt shift, as MoorPy's ``System.solveEquilib
 them. The stiffness at the body follows by condensing the free points out, as MoorPy's
 ``System.getCoupledStiffness``.
 
+A free point whose equilibrium would lie below the seabed rests on it: its z is held at the
+seabed, its x and y are solved, and the seabed carries what is left of its vertical force
+(:attr:`StaticSolution.seabed_reaction`); it lifts off when the seabed would have to pull it
+down (an active set, in the kernels). The point has no seabed friction of its own: a massless
+joint has no contact area, and the friction of a clump weight resting on the seabed is static
+friction, whose force (anywhere up to mu N) the statics cannot determine without the load
+history; its sections carry the catenary's friction on their laid lengths. MoorPy 1.3 (its
+``Point`` has a vertical seabed force only) and MoorDyn-C (a ``Point`` has no seabed contact;
+its lines' end nodes do) put no friction on a point either. With this a line split by a
+massless joint lying on the seabed is the same catenary as the unsplit line, friction or not.
+
 Entry points: :func:`build_static_system` (the case's points and lines in array form, checked
 once), :class:`SystemStatics` (the solver with its warm start: :meth:`~SystemStatics.solve`
 for one state, :meth:`~SystemStatics.solve_path` for a forced run), :func:`solve_statics`,
@@ -29,7 +40,6 @@ from numpy.typing import ArrayLike, NDArray
 from floatmoor.case.schema import Environment, Seabed
 from floatmoor.errors import SolverError
 from floatmoor.mooring import _system_statics_kernels as _k
-from floatmoor.mooring._catenary_kernels import SEABED_CONTACT_TOL
 from floatmoor.mooring.catenary import PROFILE_NAMES, describe_failure
 
 __all__ = [
@@ -39,8 +49,8 @@ __all__ = [
 ]
 
 #: Convergence of the equilibrium: every free-point force component within FORCE_RTOL of the
-#: point's force scale (|weight + buoyancy| + the magnitudes of its sections' end forces). The
-#: sections' forces carry the catenary's error, ~1e-12 L of end position (its tolerance) times
+#: point's force scale (|weight + buoyancy| + the larger end tension of each of its sections).
+#: The sections' forces carry the catenary's error, ~1e-12 L of end position (its tolerance) times
 #: the end stiffness, which for a taut section (EA/L) is ~1e-12 EA, ~1e-9 of its tension at a
 #: strain of 1e-3; 1e-9 sits at that floor and keeps point positions within ~1e-9 of the span
 #: of the converged answer, far inside the 1e-6 agreement asked against MoorPy.
@@ -52,10 +62,6 @@ MAX_ITERATIONS = 200
 #: keeps a far-off start from jumping across the catenaries' regimes (MoorPy limits steps to
 #: 30 m for the same reason).
 MAX_STEP_FRACTION = 0.2
-#: Free points stay above the seabed by this many times the catenary's seabed-contact
-#: tolerance (1e-6 of their longest section): there a section's contact switches on and its
-#: vertical stiffness is singular; a free point resting on the seabed is not modelled.
-SEABED_CLEARANCE = 10.0
 
 _KIND_FIXED, _KIND_BODY, _KIND_FREE = "fixed", "body", "free"
 
@@ -157,6 +163,12 @@ class StaticSolution:
         Newton iterations (0 when the system has no free point).
     residual
         Largest free-point force residual relative to its point's force scale [-].
+    on_seabed
+        Which points are free points resting on the seabed (z held there); (n_points,).
+    seabed_reaction
+        Upward force of the seabed on each point resting on it, 0 on the others [N];
+        (n_points,): minus the vertical sum of its sections' forces and its weight and
+        buoyancy.
     """
 
     point_names: tuple[str, ...]
@@ -177,6 +189,9 @@ class StaticSolution:
     section_stiffness: NDArray[np.float64] = field(repr=False)
     #: the sections' catenary warm starts (upper-end HF, VF) [N]
     warm_start: NDArray[np.float64] = field(repr=False)
+    on_seabed: NDArray[np.bool_] = field(repr=False, default_factory=lambda: np.zeros(0, bool))
+    seabed_reaction: NDArray[np.float64] = field(repr=False,
+                                                 default_factory=lambda: np.zeros(0))
 
     def position(self, name: str) -> NDArray[np.float64]:
         """Position of the point ``name`` [m]."""
@@ -203,6 +218,7 @@ class StaticSeries:
     laid_length: NDArray[np.float64]  #: (n, n_sections) [m]
     iterations: NDArray[np.float64]  #: (n,) Newton iterations
     residual: NDArray[np.float64]  #: (n,) relative force residual [-]
+    on_seabed: NDArray[np.bool_] | None = None  #: (n, n_points) free points on the seabed
 
 
 def _attr(obj: Any, name: str, default: Any = None) -> Any:
@@ -335,11 +351,12 @@ def _vector(v: ArrayLike) -> str:
 class _Workspace:
     """Preallocated arrays of one equilibrium problem (a given table of unknowns)."""
 
-    def __init__(self, system: StaticSystem, dof: NDArray[np.int64]) -> None:
-        n_dof = int(dof.max()) + 1 if dof.size and dof.max() >= 0 else 0
+    def __init__(self, system: StaticSystem) -> None:
         n_sec = len(system.section_names)
         n_pts = len(system.point_names)
-        self.dof = dof
+        n_dof = 3 * len(system.free_index)
+        self.free = np.array([k == _KIND_FREE for k in system.point_kinds])
+        self.dof = np.full((n_pts, 3), -1, dtype=np.int64)  # numbered by the kernel
         self.sec_out = np.zeros((n_sec, _k.N_SECTION_OUT))
         self.trial_out = np.zeros((n_sec, _k.N_SECTION_OUT))
         self.trial_pos = np.zeros((n_pts, 3))
@@ -357,27 +374,7 @@ class _Workspace:
             for p in (system.section_start[s], system.section_end[s]):
                 cap[p] = min(cap[p], MAX_STEP_FRACTION * system.length[s])
         self.step_cap = cap
-        # free points keep clear of the seabed by the catenary's contact tolerance of their
-        # longest section, times SEABED_CLEARANCE
-        z_min = np.full(n_pts, -np.inf)
-        for p in system.free_index:
-            attached = (system.section_start == p) | (system.section_end == p)
-            z_min[p] = system.seabed_z + SEABED_CLEARANCE * SEABED_CONTACT_TOL * float(
-                np.max(system.length[attached]))
-        self.z_min = z_min
-        self.check_surface = np.array([k == _KIND_FREE for k in system.point_kinds])
-
-
-def _dof_table(system: StaticSystem, pinned_z: Sequence[int] = ()) -> NDArray[np.int64]:
-    dof = np.full((len(system.point_names), 3), -1, dtype=np.int64)
-    n = 0
-    for p in system.free_index:
-        for c in range(3):
-            if c == 2 and int(p) in pinned_z:
-                continue
-            dof[p, c] = n
-            n += 1
-    return dof
+        self.check_surface = self.free.copy()
 
 
 class SystemStatics:
@@ -401,19 +398,25 @@ class SystemStatics:
         self.max_iterations = int(max_iterations)
         self._pos = np.array(system.positions, dtype=float)
         self._warm = np.full((len(system.section_names), 2), np.nan)
-        self._ws = _Workspace(system, _dof_table(system))
+        self._pinned = np.zeros(len(system.point_names), dtype=np.int64)
+        self._ws = _Workspace(system)
         self.failed_index = -1
 
     # ------------------------------------------------------------------ state
     def state_arrays(self) -> dict[str, NDArray[np.float64]]:
-        """The warm start as named arrays (for a checkpoint): point positions and the
-        sections' (HF, VF)."""
-        return {"positions": self._pos.copy(), "warm_start": self._warm.copy()}
+        """The warm start as named arrays (for a checkpoint): point positions, the sections'
+        (HF, VF) and which free points rest on the seabed (1.0) or not (0.0)."""
+        return {"positions": self._pos.copy(), "warm_start": self._warm.copy(),
+                "on_seabed": (self._pinned == _k.PIN_SEABED).astype(float)}
 
     def set_state_arrays(self, arrays: Mapping[str, NDArray[np.float64]]) -> None:
         """Restore a state of :meth:`state_arrays`."""
         self._pos[:] = arrays["positions"]
         self._warm[:] = arrays["warm_start"]
+        on_seabed = arrays.get("on_seabed")
+        self._pinned[:] = _k.PIN_NONE
+        if on_seabed is not None:
+            self._pinned[np.asarray(on_seabed) != 0.0] = _k.PIN_SEABED
 
     def _set_body(self, body_positions: ArrayLike | Mapping[str, ArrayLike] | None) -> None:
         sys_ = self.system
@@ -434,14 +437,15 @@ class SystemStatics:
         self._pos[sys_.body_index] = arr
 
     # ------------------------------------------------------------------ kernels
-    def _run(self, ws: _Workspace, pos: NDArray[np.float64], warm: NDArray[np.float64]) -> int:
+    def _run(self, ws: _Workspace, pos: NDArray[np.float64], warm: NDArray[np.float64],
+             pinned: NDArray[np.int64]) -> int:
         s = self.system
         return int(_k.solve_equilibrium(
             pos, s.section_start, s.section_end, s.length, s.axial_stiffness, s.weight,
-            s.friction, s.seabed_z, s.tolerance, s.max_iterations, ws.dof, s.external_force,
-            ws.step_cap, ws.z_min, ws.check_surface, self.force_rtol, self.max_iterations, warm,
-            ws.sec_out, ws.trial_out, ws.trial_pos, ws.R, ws.Rt, ws.K, ws.Kt, ws.A, ws.rhs,
-            ws.dx, ws.scale, ws.info))
+            s.friction, s.seabed_z, s.tolerance, s.max_iterations, ws.free, pinned, ws.dof,
+            s.external_force, ws.step_cap, ws.check_surface, self.force_rtol,
+            self.max_iterations, warm, ws.sec_out, ws.trial_out, ws.trial_pos, ws.R, ws.Rt,
+            ws.K, ws.Kt, ws.A, ws.rhs, ws.dx, ws.scale, ws.info))
 
     def solve(self, body_positions: ArrayLike | Mapping[str, ArrayLike] | None = None
               ) -> StaticSolution:
@@ -452,7 +456,7 @@ class SystemStatics:
         body_positions
             (n_body, 3) in the order of :attr:`StaticSystem.body_point_names`, or a mapping
             from body-point name to position [m]; None: at rest. Free points start from the
-            last solution (or the system's initial guesses).
+            last solution (or the system's initial guesses), its seabed contacts too.
 
         Raises
         ------
@@ -462,18 +466,20 @@ class SystemStatics:
         self._set_body(body_positions)
         pos = self._pos.copy()
         warm = self._warm.copy()
-        status = self._run(self._ws, pos, warm)
+        pinned = self._pinned.copy()
+        status = self._run(self._ws, pos, warm, pinned)
         if status != _k.SYS_OK:
-            raise SolverError(self._failure(status, self._ws, pos, warm, when=""))
+            raise SolverError(self._failure(status, self._ws, pos, warm, pinned, when=""))
         self._pos[:] = pos
         self._warm[:] = warm
-        return self._solution(self._ws, pos)
+        self._pinned[:] = pinned
+        return self._solution(self._ws, pos, pinned)
 
     def solve_path(self, time: NDArray[np.float64], body_path: NDArray[np.float64],
                    positions: NDArray[np.float64], start_force: NDArray[np.float64],
                    end_force: NDArray[np.float64], laid_length: NDArray[np.float64],
-                   iterations: NDArray[np.float64], residual: NDArray[np.float64] | None = None
-                   ) -> None:
+                   iterations: NDArray[np.float64], residual: NDArray[np.float64] | None = None,
+                   on_seabed: NDArray[np.bool_] | None = None) -> None:
         """Equilibria along a path of body-point positions, written into the given arrays.
 
         Parameters
@@ -492,43 +498,56 @@ class SystemStatics:
             (n,) output Newton iterations.
         residual
             (n,) output relative residuals, or None.
+        on_seabed
+            (n, n_points) output: True where a free point rests on the seabed, or None.
 
         Raises
         ------
         SolverError
             Naming the time, the point (or section) and why; the samples before are valid and
-            the free points restart from their positions at the last valid sample.
+            the free points restart from their positions (and seabed contacts) at the last
+            valid sample.
         """
         s, ws = self.system, self._ws
         n = len(time)
         res = residual if residual is not None else np.empty(n)
+        pins = np.zeros((n, len(s.point_names)), dtype=np.int64)
         path = np.ascontiguousarray(body_path, dtype=float)
         if path.shape != (n, len(s.body_index), 3):
             raise ValueError(f"body path must have shape ({n}, {len(s.body_index)}, 3), "
                              f"got {path.shape}")
         pos = self._pos
         warm = self._warm
+        pinned = self._pinned
         failed = int(_k.statics_series(
             path, s.body_index, pos, s.section_start, s.section_end, s.length,
             s.axial_stiffness, s.weight, s.friction, s.seabed_z, s.tolerance,
-            s.max_iterations, ws.dof, s.external_force, ws.step_cap, ws.z_min, ws.check_surface,
-            self.force_rtol, self.max_iterations, warm, ws.sec_out, ws.trial_out, ws.trial_pos,
-            ws.R, ws.Rt, ws.K, ws.Kt, ws.A, ws.rhs, ws.dx, ws.scale, ws.info, positions,
-            start_force, end_force, laid_length, iterations, res))
+            s.max_iterations, ws.free, pinned, ws.dof, s.external_force, ws.step_cap,
+            ws.check_surface, self.force_rtol, self.max_iterations, warm, ws.sec_out,
+            ws.trial_out, ws.trial_pos, ws.R, ws.Rt, ws.K, ws.Kt, ws.A, ws.rhs, ws.dx, ws.scale,
+            ws.info, positions, start_force, end_force, laid_length, pins, iterations, res))
+        if on_seabed is not None:
+            done = n if failed < 0 else failed
+            on_seabed[:done] = pins[:done] == _k.PIN_SEABED
         #: the first sample of the last path not solved, -1 when all were
         self.failed_index = int(failed)
         if failed >= 0:
-            info_status = self._status_from_info(ws)
-            fail_pos, fail_warm = pos.copy(), warm.copy()
+            info_status = self._status_from_info(ws, pos, pinned)
+            fail_pos, fail_warm, fail_pins = pos.copy(), warm.copy(), pinned.copy()
             if failed > 0:  # restore the warm start of the last valid sample
                 self._pos[:] = positions[failed - 1]
-            message = self._failure(info_status, ws, fail_pos, fail_warm,
+                self._pinned[:] = pins[failed - 1]
+            message = self._failure(info_status, ws, fail_pos, fail_warm, fail_pins,
                                     when=f" at t = {time[failed]:.6g} s")
             raise SolverError(message)
 
     # ------------------------------------------------------------------ results
-    def _status_from_info(self, ws: _Workspace) -> int:
+    def _status_from_info(self, ws: _Workspace, pos: NDArray[np.float64],
+                          pinned: NDArray[np.int64]) -> int:
         info = ws.info
+        if info[_k.INFO_CONTACT_CHANGES] > _k.MAX_CONTACT_CHANGES_PER_POINT * len(
+                self.system.free_index):
+            return _k.SYS_CONTACT_CYCLING
         if info[_k.INFO_POINT] >= 0:
             return _k.SYS_ABOVE_SURFACE
         if info[_k.INFO_SECTION] >= 0:
@@ -537,7 +556,8 @@ class SystemStatics:
             return _k.SYS_SECTION_FAILED
         return _k.SYS_NOT_CONVERGED
 
-    def _solution(self, ws: _Workspace, pos: NDArray[np.float64]) -> StaticSolution:
+    def _solution(self, ws: _Workspace, pos: NDArray[np.float64],
+                  pinned: NDArray[np.int64]) -> StaticSolution:
         s = self.system
         out = ws.sec_out
         fa = out[:, _k.S_FA:_k.S_FA + 3].copy()
@@ -547,6 +567,8 @@ class SystemStatics:
         np.add.at(point_force, s.section_end, fb)
         stiff = np.stack([out[:, k:k + 9].reshape(-1, 3, 3)
                           for k in (_k.S_KAA, _k.S_KAB, _k.S_KBA, _k.S_KBB)], axis=1)
+        on_seabed = pinned == _k.PIN_SEABED
+        reaction = np.where(on_seabed, -(point_force[:, 2] + s.external_force[:, 2]), 0.0) + 0.0
         return StaticSolution(
             point_names=s.point_names, positions=pos.copy(), section_names=s.section_names,
             section_points=s.section_points, start_force=fa, end_force=fb,
@@ -556,10 +578,11 @@ class SystemStatics:
             point_force=point_force, iterations=int(ws.info[_k.INFO_ITER]),
             residual=float(ws.info[_k.INFO_RESIDUAL]) if len(s.free_index) else 0.0,
             section_stiffness=stiff, warm_start=out[:, [_k.S_HF, _k.S_VF]].copy(),
+            on_seabed=on_seabed, seabed_reaction=reaction,
         )
 
     def _failure(self, status: int, ws: _Workspace, pos: NDArray[np.float64],
-                 warm: NDArray[np.float64], when: str) -> str:
+                 warm: NDArray[np.float64], pinned: NDArray[np.int64], when: str) -> str:
         s, info = self.system, ws.info
         head = f"mooring system statics{when}: "
         if status in (_k.SYS_SECTION_FAILED, _k.SYS_SAG_BELOW_SEABED):
@@ -579,7 +602,7 @@ class SystemStatics:
             p = int(info[_k.INFO_POINT])
             name = s.point_names[p]
             if s.external_force[p, 2] > 0.0:
-                lift = self._surface_residual(p, pos, warm)
+                lift = self._surface_residual(p, pos, warm, pinned)
                 return (f"{head}free point '{name}' has no equilibrium below the surface: its "
                         f"buoyancy exceeds what holds it, and it would rise to z = "
                         f"{pos[p, 2]:.6g} m (held at the surface z = 0, a net upward force of "
@@ -587,16 +610,14 @@ class SystemStatics:
             return (f"{head}free point '{name}' rises above the water surface to z = "
                     f"{pos[p, 2]:.6g} m, where the submerged catenary does not hold")
         p = int(info[_k.INFO_WORST_POINT])
-        for q in s.free_index:  # a point stopped on the seabed is the likelier cause
-            gap = pos[q, 2] - ws.z_min[q]
-            if gap <= ws.z_min[q] - s.seabed_z:
-                fz = ws.R[ws.dof[q, 2]]
-                if fz < 0.0:
-                    return (f"{head}free point '{s.point_names[q]}' is pressed onto the seabed "
-                            f"at {_vector(pos[q])} m with a net downward force of {-fz:.6g} N "
-                            "after "f"{int(info[_k.INFO_ITER])} Newton iterations: a free "
-                            "point resting on the seabed is not modelled (lighten it, or "
-                            "shorten what it hangs from)")
+        if status == _k.SYS_CONTACT_CYCLING:
+            resting = [f"'{s.point_names[q]}'" for q in s.free_index
+                       if pinned[q] == _k.PIN_SEABED]
+            name = s.point_names[p] if p >= 0 else "?"
+            return (f"{head}no equilibrium found: the free points kept landing on and lifting "
+                    f"off the seabed ({int(info[_k.INFO_CONTACT_CHANGES])} changes, the last "
+                    f"at '{name}'; resting at the end: {', '.join(resting) or 'none'}): a point "
+                    "balanced within the force tolerance of the seabed")
         name = s.point_names[p] if p >= 0 else "?"
         comps = [ws.R[ws.dof[p, c]] if p >= 0 and ws.dof[p, c] >= 0 else np.nan
                  for c in range(3)]
@@ -607,13 +628,15 @@ class SystemStatics:
                 f"{self.force_rtol:.0e})")
 
     def _surface_residual(self, p: int, pos: NDArray[np.float64],
-                          warm: NDArray[np.float64]) -> str:
+                          warm: NDArray[np.float64], pinned: NDArray[np.int64]) -> str:
         """The vertical force left on free point ``p`` held at z = 0 (its other coordinates
         and the other free points in equilibrium)."""
-        ws = _Workspace(self.system, _dof_table(self.system, pinned_z=(p,)))
+        ws = _Workspace(self.system)
         trial = pos.copy()
         trial[p, 2] = 0.0
-        status = self._run(ws, trial, warm.copy())
+        pins = pinned.copy()
+        pins[p] = _k.PIN_HELD
+        status = self._run(ws, trial, warm.copy(), pins)
         if status not in (_k.SYS_OK, _k.SYS_ABOVE_SURFACE):
             return "an unknown force (the pinned solve failed too)"
         fz = self.system.external_force[p, 2]
@@ -650,7 +673,9 @@ def body_point_stiffness(system: StaticSystem, solution: StaticSolution) -> NDAr
 
     K = K_bb - K_bf K_ff^-1 K_fb, with K = -d(force of the mooring on the points)/d(positions)
     from the sections' end stiffnesses at ``solution`` (as MoorPy's
-    ``System.getCoupledStiffnessA`` for coupled points).
+    ``System.getCoupledStiffnessA`` for coupled points). The z of a free point resting on the
+    seabed is held there (the seabed takes up its vertical force change), so it is not among
+    the condensed coordinates f: the stiffness of small motions that keep it on the seabed.
 
     Returns
     -------
@@ -661,7 +686,9 @@ def body_point_stiffness(system: StaticSystem, solution: StaticSolution) -> NDAr
     """
     K = _global_stiffness(system, solution)
     b = (3 * system.body_index[:, None] + np.arange(3)).ravel()
-    f = (3 * system.free_index[:, None] + np.arange(3)).ravel()
+    f = np.array([3 * p + c for p in system.free_index for c in range(3)
+                  if not (c == 2 and solution.on_seabed.size and solution.on_seabed[p])],
+                 dtype=np.int64)
     kbb = K[np.ix_(b, b)]
     if f.size == 0:
         return kbb

@@ -91,6 +91,8 @@ def _recorded(recorder: Recorder, n: int) -> dict[str, NDArray]:
     all the shape buffers."""
     out = {f"recorded/{k}": v[:, :n] for k, v in recorder.series.items()}
     out.update({f"recorded/{k}": v[:n] for k, v in recorder.body.items()})
+    if recorder.system is not None:
+        out.update({f"recorded/system/{k}": v[:, :n] for k, v in recorder.system.items()})
     if recorder.shape_stride:
         out["recorded/shape_position"] = recorder.shape_position
         out["recorded/shape_tension"] = recorder.shape_tension
@@ -138,6 +140,9 @@ def _load_checkpoint(path: Path, identity: RunIdentity, moored: MooredBody,
         v[:, :n] = arrays[f"recorded/{k}"]
     for k, v in recorder.body.items():
         v[:n] = arrays[f"recorded/{k}"]
+    if recorder.system is not None:
+        for k, v in recorder.system.items():
+            v[:, :n] = arrays[f"recorded/system/{k}"]
     if recorder.shape_stride:
         recorder.shape_position[:] = arrays["recorded/shape_position"]
         recorder.shape_tension[:] = arrays["recorded/shape_tension"]

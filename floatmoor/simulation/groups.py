@@ -243,7 +243,8 @@ def system_groups(case: Case, body_positions: dict[str, NDArray[np.float64]] | N
     ------
     CaseError
         When a group has no static equilibrium at rest (the system as given cannot hold
-        itself: a buoy that would surface, a clump pressed on the seabed), naming the point.
+        itself: a buoy that would surface, a point that keeps landing and lifting off), naming
+        the point.
     """
     rest = [i for i, line in enumerate(case.lines) if not case.is_independent(line)]
     index = {p.name: k for k, p in enumerate(case.points)}

@@ -157,10 +157,15 @@ class Recorder:
         #: point and section series of the system groups (their rows only; the rest follow
         #: from the independent lines' series), None without groups
         self.system: dict[str, NDArray[np.float64]] | None = None
-        self._owned_points = np.zeros(len(case.points), dtype=bool)
         self._independent = np.array([case.is_independent(ln) for ln in case.lines],
                                      dtype=bool)
-        self._owned_sections = np.zeros(len(case.sections), dtype=bool)
+        # the points and sections of the lines solved as systems (the groups' rows)
+        grouped = [ln for ln, solo in zip(case.lines, self._independent) if not solo]
+        used = {n for ln in grouped for sec in ln.sections for n in (sec.start, sec.end)}
+        self._owned_points = np.array([p.name in used for p in case.points], dtype=bool)
+        solo = {ln.name: flag for ln, flag in zip(case.lines, self._independent)}
+        self._owned_sections = np.array([not solo[sec.line] for sec in case.sections],
+                                        dtype=bool)
         if case.is_system:
             n_points, n_sections = len(case.points), len(case.sections)
             self.system = {"point_position": np.zeros((n_points, n_time, 3)),
@@ -242,11 +247,9 @@ class Recorder:
                 samples.start_force[:n, j], axis=-1)
             system["section_end_tension"][k, start:stop] = np.linalg.norm(
                 samples.end_force[:n, j], axis=-1)
-            self._owned_sections[k] = True
         for j, k in enumerate(group.points):
             system["point_position"][k, start:stop] = samples.positions[:n, j]
             system["point_force"][k, start:stop] = force[:, j]
-            self._owned_points[k] = True
 
     def store_shape(self, line: int, index: int, positions: NDArray[np.float64],
                     tension: NDArray[np.float64]) -> None:

@@ -8,7 +8,10 @@ from ``solve_catenary(start, end)``, the force on the start point and the start'
 stiffness from ``solve_catenary(end, start)``; the cross blocks are their negatives (the forces
 depend on the end-to-end vector only). The free points' equilibrium is then a plain damped
 Newton iteration with ``numpy.linalg.solve``, a step limit and halving of the step until the
-residual norm falls.
+residual norm falls. Free points on the seabed: a set of points whose z is held at the seabed
+(their x, y solved); a Newton step that would take a point below the seabed puts it there, and
+after convergence a point whose net vertical force (weight, buoyancy, sections) points up
+leaves it, one at a time, until none does.
 """
 
 from __future__ import annotations
@@ -32,53 +35,83 @@ def section_forces(system, pos, s):
     return fwd.anchor_force, fwd.fairlead_force, back.stiffness, fwd.stiffness
 
 
-def residual_and_stiffness(system, pos):
-    """Net force on every free coordinate and K = -dR/dx, free points in system order."""
-    free = list(system.free_index)
-    col = {p: 3 * i for i, p in enumerate(free)}
-    n = 3 * len(free)
-    R = np.zeros(n)
-    K = np.zeros((n, n))
-    for i, p in enumerate(free):
-        R[3 * i:3 * i + 3] += system.external_force[p]
+def net_forces(system, pos):
+    """Net force of the sections, weights and buoyancies on every point, (n_points, 3)."""
+    net = np.array(system.external_force, dtype=float)
+    for s in range(len(system.section_names)):
+        fa, fb = section_forces(system, pos, s)[:2]
+        net[system.section_start[s]] += fa
+        net[system.section_end[s]] += fb
+    return net
+
+
+def residual_and_stiffness(system, pos, pinned=()):
+    """Net force on every free coordinate and K = -dR/dx, free points in system order, the z
+    of the points ``pinned`` left out."""
+    coords = [(int(p), c) for p in system.free_index for c in range(3)
+              if not (c == 2 and int(p) in pinned)]
+    full_R = np.zeros(3 * len(system.point_names))
+    full_K = np.zeros((full_R.size, full_R.size))
+    full_R[:] = np.asarray(system.external_force, dtype=float).ravel()
     for s in range(len(system.section_names)):
         a, b = int(system.section_start[s]), int(system.section_end[s])
         fa, fb, kaa, kbb = section_forces(system, pos, s)
-        blocks = {(a, a): kaa, (a, b): -kaa, (b, a): -kbb, (b, b): kbb}
-        for p, f in ((a, fa), (b, fb)):
-            if p in col:
-                R[col[p]:col[p] + 3] += f
-        for (p, q), k in blocks.items():
-            if p in col and q in col:
-                K[col[p]:col[p] + 3, col[q]:col[q] + 3] += k
-    return R, K
+        full_R[3 * a:3 * a + 3] += fa
+        full_R[3 * b:3 * b + 3] += fb
+        for (p, q), k in {(a, a): kaa, (a, b): -kaa, (b, a): -kbb, (b, b): kbb}.items():
+            full_K[3 * p:3 * p + 3, 3 * q:3 * q + 3] += k
+    rows = [3 * p + c for p, c in coords]
+    return full_R[rows], full_K[np.ix_(rows, rows)]
 
 
-def solve(system, body_positions=None, tol=1e-10, max_iter=200, step=20.0):
+def _scale(system, pos):
+    return max(np.abs(section_forces(system, pos, s)[1]).max()
+               for s in range(len(system.section_names)))
+
+
+def solve(system, body_positions=None, tol=1e-10, max_iter=200, step=20.0,
+          return_contacts=False):
     """Positions of every point at equilibrium (free points from the system's guesses).
 
     Converged when |R| <= tol * (the largest end tension); ``step``: the largest move of a
-    point in one iteration [m].
+    point in one iteration [m]. With ``return_contacts``: also the set of free points
+    resting on the seabed.
     """
     pos = np.array(system.positions, dtype=float)
     if body_positions is not None:
         pos[system.body_index] = body_positions
-    free = list(system.free_index)
-    for _ in range(max_iter):
-        R, K = residual_and_stiffness(system, pos)
-        scale = max(np.abs(section_forces(system, pos, s)[1]).max()
-                    for s in range(len(system.section_names)))
-        if np.abs(R).max() <= tol * scale:
-            return pos
-        dx = np.linalg.solve(K, R).reshape(-1, 3)
+    free = [int(p) for p in system.free_index]
+    zb = system.seabed_z
+    pinned = {p for p in free if pos[p, 2] <= zb}
+    pos[list(pinned), 2] = zb
+    iterations = 0
+    while iterations < max_iter:
+        R, K = residual_and_stiffness(system, pos, pinned)
+        if np.abs(R).max() <= tol * _scale(system, pos):
+            up = {p: net_forces(system, pos)[p, 2] for p in pinned}
+            lifting = [p for p, fz in up.items() if fz > tol * _scale(system, pos)]
+            if not lifting:
+                return (pos, pinned) if return_contacts else pos
+            pinned.discard(max(lifting, key=up.get))
+            continue
+        iterations += 1
+        dx = np.zeros((len(system.point_names), 3))
+        mask = np.zeros_like(dx, dtype=bool)
+        for p in free:
+            mask[p] = [True, True, p not in pinned]
+        dx[mask] = np.linalg.solve(K, R)
         dx *= min(1.0, step / np.linalg.norm(dx, axis=1).max())
+        landing = [p for p in free if p not in pinned and pos[p, 2] + dx[p, 2] < zb]
+        if landing:
+            pinned.update(landing)
+            pos[landing, 2] = zb
+            continue
         phi = R @ R
         alpha = 1.0
         while alpha > 1e-12:
-            trial = pos.copy()
-            trial[free] += alpha * dx
+            trial = pos + alpha * dx
             try:
-                Rt = residual_and_stiffness(system, trial)[0]
+                Rt = residual_and_stiffness(system, trial, pinned)[0]
             except Exception:  # a section without a solution at the trial point
                 Rt = None
             if Rt is not None and Rt @ Rt < phi:

@@ -7,6 +7,7 @@ internals and :func:`moordyn_parameters` to read the mapping back.
 
 How floatmoor's line description maps onto MoorDyn's (MoorDyn-C 2.7, ``Line.cpp``)
 ------------------------------------------------------------------------------------
+(The mapping is coded once, in ``floatmoor.io.moordyn.line_types``; summarised here.)
 MoorDyn has one line diameter ``d`` that it uses at once as the volume-equivalent diameter
 (buoyancy ``rho_w g pi d^2/4`` and added mass ``Ca rho_w pi d^2/4`` per length) and as the drag
 reference (normal drag ``0.5 rho_w Cdn d |v_n| v_n``, tangential drag
@@ -84,6 +85,9 @@ from dataclasses import KW_ONLY, dataclass
 from pathlib import Path
 
 import numpy as np
+
+from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type,
+                                              seabed_to_moordyn)
 
 __all__ = ["MoorDynLine", "MoorDynParameters", "MoorDynError", "moordyn_parameters",
            "moordyn_input", "moordyn_system", "run_moordyn_forced"]
@@ -189,26 +193,24 @@ class MoorDynParameters:
 
 
 def moordyn_parameters(line: MoorDynLine, segments: int) -> MoorDynParameters:
-    """MoorDyn's line-type, seabed and friction values reproducing ``line`` (module docstring)."""
-    d_v = math.sqrt(4.0 * line.material_area / math.pi)
-    d = line.diameter
-    k_per_length = line.seabed_stiffness * d  # N/m^2
-    c_per_length = 2.0 * line.seabed_damping_ratio * math.sqrt(line.mass_per_length
-                                                               * k_per_length)
-    node_normal_force = line.weight_in_water * line.length / segments
+    """MoorDyn's line-type, seabed and friction values reproducing ``line`` (module docstring;
+    the mapping itself is floatmoor.io.moordyn.line_types, which the export uses too)."""
+    md = moordyn_line_type(line, line.internal_damping)
+    k_bot, c_bot = seabed_to_moordyn(line.seabed_stiffness, line.seabed_damping_ratio, line)
     return MoorDynParameters(
-        diameter=d_v,
-        mass_per_length=line.mass_per_length,
-        axial_stiffness=line.axial_stiffness,
-        internal_damping=line.internal_damping,
-        normal_drag_coefficient=line.normal_drag_coefficient * d / d_v,
-        added_mass_coefficient=line.added_mass_coefficient,
-        tangential_drag_coefficient=line.tangential_drag_coefficient * d / (math.pi * d_v),
-        tangential_added_mass_coefficient=line.tangential_added_mass_coefficient,
-        seabed_stiffness=k_per_length / d_v,
-        seabed_damping=c_per_length / d_v,
+        diameter=md.diameter,
+        mass_per_length=md.mass_per_length,
+        axial_stiffness=md.axial_stiffness,
+        internal_damping=md.internal_damping,
+        normal_drag_coefficient=md.normal_drag_coefficient,
+        added_mass_coefficient=md.added_mass_coefficient,
+        tangential_drag_coefficient=md.tangential_drag_coefficient,
+        tangential_added_mass_coefficient=md.tangential_added_mass_coefficient,
+        seabed_stiffness=k_bot,
+        seabed_damping=c_bot,
         friction_coefficient=line.friction_coefficient,
-        friction_damping=max(node_normal_force, 0.0) / line.slip_speed,
+        friction_damping=friction_damping(line.weight_in_water, line.length, segments,
+                                          line.slip_speed),
         static_dynamic_friction_scale=1.0,
     )
 

@@ -1,7 +1,8 @@
 """Statics of mooring systems against MoorPy 1.3's ``System`` on the same inputs (issue 15):
 a chain-rope-chain line with a clump weight at one joint and a buoy at the other, and a
-three-line system with free points (clump weights, a bridle, a buoy); point positions and
-end forces to 1e-6 relative, and the stiffness at the body.
+three-line system with free points (clump weights, a bridle, a buoy); free points on the
+seabed (a clump weight, a massless joint); point positions and end forces to 1e-6 relative,
+and the stiffness at the body.
 
 Mapping of our inputs to MoorPy's:
 
@@ -12,9 +13,17 @@ Mapping of our inputs to MoorPy's:
   with the height of end A above the seabed, 0 for an anchor on it, so it applies no seabed
   friction; our lines set ``seabed_friction = false``.
 * points: fixed -> type 1; free -> type 0 with the same m and v (MoorPy adds full buoyancy
-  below z = -1 m and a seabed force within 2 m of the seabed: every free point here is far
-  from both); body points -> type 1 points for the equilibrium, and coupled points (type
-  -1) or points on a coupled body (type -1) for the stiffness.
+  below z = -1 m: every free point here is deeper); body points -> type 1 points for the
+  equilibrium, and coupled points (type -1) or points on a coupled body (type -1) for the
+  stiffness.
+* free points on the seabed: MoorPy 1.3 keeps a point from sinking below the seabed and,
+  within its ``zTol`` (2 m) of it, adds an upward force that grows linearly from 0 at 2 m to
+  the point's submerged weight on the seabed: a soft seabed on which a clump weight hovers
+  where that force balances it (0.63 m up for the clump below), not our hard seabed. With
+  ``zTol`` -> 0 it becomes ours (the clump within zTol of the seabed, the seabed carrying the
+  rest); the comparisons of points on the seabed set ``zTol = 1e-9`` m and check that the
+  default differs. A massless joint feels no such force in MoorPy (it has no submerged
+  weight), only the floor. Neither puts friction on the point.
 * sections: one MoorPy line per section, end A at the section's start. MoorPy puts the
   seabed contact at end A only; every touching-down section here starts at its anchor.
 * tolerances: ``solveEquilibrium(tol=1e-8, maxIter=2000)``. Its ``tol`` is the largest
@@ -35,7 +44,10 @@ import pytest
 from floatmoor.mooring.system_statics import (
     body_point_stiffness, build_static_system, coupled_stiffness, solve_statics,
 )
-from tests.unit.statics_systems import ENVIRONMENT, SEABED, chain_rope_chain, three_lines
+from floatmoor.case.schema import Point
+from tests.unit.statics_systems import (
+    CHAIN, ENVIRONMENT, SEABED, chain_rope_chain, make_line, three_lines,
+)
 
 mp = pytest.importorskip("moorpy")
 
@@ -55,9 +67,9 @@ def _moorpy_type(t):
                 material=t.name)
 
 
-def _moorpy(points, lines, body="fixed", ref=(0.0, 0.0, 0.0)):
+def _moorpy(points, lines, body="fixed", ref=(0.0, 0.0, 0.0), z_tol=None):
     """MoorPy System of our points and lines, solved; body points fixed, coupled or on a
-    coupled body."""
+    coupled body; ``z_tol``: the free points' seabed-force range (MoorPy's default: 2 m)."""
     ms = mp.System(depth=ENVIRONMENT.water_depth, rho=ENVIRONMENT.water_density,
                    g=ENVIRONMENT.gravity)
     if body == "body":
@@ -71,6 +83,8 @@ def _moorpy(points, lines, body="fixed", ref=(0.0, 0.0, 0.0)):
             ms.addPoint(-1 if body == "coupled" else 1, r)
         else:
             ms.addPoint(1 if p.kind == "fixed" else 0, r, m=p.mass, v=p.volume)
+            if z_tol is not None:
+                ms.pointList[-1].zTol = z_tol
         number[p.name] = len(ms.pointList)
     for line in lines:
         for s in line.sections:
@@ -128,3 +142,59 @@ def test_coupled_6x6_stiffness_matches_moorpy_body():
     K6_mp = ms.getCoupledStiffnessA(lines_only=True)
     scale = np.abs(K6).max(axis=1, keepdims=True)  # rows mix N/m, N, N m/rad
     assert np.all(np.abs(K6 - K6_mp) <= STIFFNESS_RTOL * scale), (K6 - K6_mp) / scale
+
+
+#: MoorPy's seabed-force range for a hard seabed (see the module docstring): the clump then
+#: sits within 1e-9 m of the seabed, its forces within ~1e-9 of ours.
+HARD_SEABED_Z_TOL = 1e-9
+
+
+def _compare(points, lines, **kw):
+    """(relative position error, relative force error, ours, MoorPy's positions)."""
+    system = build_static_system(points, lines, ENVIRONMENT, SEABED)
+    ours = solve_statics(system)
+    ms, number = _moorpy(points, lines, **kw)
+    theirs = np.array([ms.pointList[number[n] - 1].r for n in system.point_names])
+    fa = np.array([line.fA for line in ms.lineList])
+    fb = np.array([line.fB for line in ms.lineList])
+    span = np.ptp(system.positions, axis=0).max()
+    force_scale = np.abs(ours.end_force).max()
+    force_err = max(np.abs(ours.start_force - fa).max(), np.abs(ours.end_force - fb).max())
+    return (np.abs(ours.positions - theirs).max() / span, force_err / force_scale, ours,
+            theirs)
+
+
+def test_clump_on_the_seabed_matches_moorpy_with_a_hard_seabed():
+    points, lines = chain_rope_chain(anchor_x=-900.0)
+    pos_err, force_err, ours, _ = _compare(points, lines, z_tol=HARD_SEABED_Z_TOL)
+    print(f"\nclump on the seabed: positions {pos_err:.1e} of the span, forces "
+          f"{force_err:.1e} of the largest tension")
+    assert ours.on_seabed[1] and ours.seabed_reaction[1] > 1e3
+    assert pos_err <= PEER_RTOL and force_err <= PEER_RTOL
+    # MoorPy's default soft seabed holds the clump up off it: another model
+    pos_err, force_err, _, theirs = _compare(points, lines)
+    assert theirs[1, 2] > ENVIRONMENT.seabed_z + 0.1 and force_err > 1e-3
+
+
+def test_massless_joint_on_the_seabed_matches_moorpy():
+    """A chain split by a massless joint that lies on the seabed (no friction)."""
+    points = [Point("anchor", "fixed", (-850.0, 0.0, -200.0)),
+              Point("joint", "free", (-500.0, 0.0, -150.0)),
+              Point("fair", "body", (0.0, 0.0, -20.0))]
+    lines = [make_line("l", [(CHAIN, 300.0, "anchor", "joint"), (CHAIN, 600.0, "joint", "fair")],
+                       points)]
+    pos_err, force_err, ours, _ = _compare(points, lines)
+    assert ours.on_seabed[1] and ours.laid_length[0] == 300.0 and ours.laid_length[1] > 100.0
+    assert pos_err <= PEER_RTOL and force_err <= PEER_RTOL
+
+
+def test_body_point_stiffness_with_a_clump_on_the_seabed_matches_moorpy():
+    """MoorPy's stiffness of a point on its seabed has a 1e12 N/m vertical term: its z is held,
+    as ours."""
+    points, lines = chain_rope_chain(anchor_x=-900.0)
+    system = build_static_system(points, lines, ENVIRONMENT, SEABED)
+    K = body_point_stiffness(system, solve_statics(system))
+    ms, _ = _moorpy(points, lines, body="coupled", z_tol=HARD_SEABED_Z_TOL)
+    K_mp = ms.getCoupledStiffnessA(lines_only=False)
+    np.testing.assert_allclose(K, K_mp, rtol=STIFFNESS_RTOL,
+                               atol=STIFFNESS_RTOL * np.abs(K).max())

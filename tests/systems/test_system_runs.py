@@ -116,3 +116,31 @@ def test_section_breaking_at_rest_is_bad_input(tmp_path, capsys):
     assert status == 2 and not out.exists()
     assert len(err) == 1 and "line_types.rope.minimum_breaking_load" in err[0]
     assert "section 'line1[1]'" in err[0]
+
+
+EXAMPLE = Path(__file__).parents[2] / "cases" / "systems" / "three_line_clump_buoy.toml"
+
+
+def test_shipped_three_line_system_is_mirror_symmetric_under_its_motion():
+    """Surge, heave and pitch keep the xz-plane a plane of symmetry: lines 2 and 3 (at +-120
+    degrees) carry the same tensions, their free points move as mirror images, and the body
+    points follow the rigid-body motion."""
+    from floatmoor.body_motion import body_points_state
+
+    case = load_case(EXAMPLE)
+    ds = run_forced_motion(case).dataset
+    assert ds.attrs["status"] == "complete"
+    peak = float(ds["fairlead_tension"].max())
+    np.testing.assert_allclose(ds["fairlead_tension"].sel(line="line2").values,
+                               ds["fairlead_tension"].sel(line="line3").values,
+                               rtol=0, atol=STATICS_RTOL * peak)
+    for a, b in (("clump2", "clump3"), ("buoy2", "buoy3")):
+        pa = ds["point_position"].sel(point=a).values
+        pb = ds["point_position"].sel(point=b).values * np.array([1.0, -1.0, 1.0])
+        np.testing.assert_allclose(pa, pb, rtol=0, atol=1e-6)
+    names = [p.name for p in case.points if p.kind == "body"]
+    rest = np.array([case.point(n).position for n in names])
+    expected, _ = body_points_state(case.motion, rest, ds["time"].values)
+    for k, name in enumerate(names):
+        np.testing.assert_allclose(ds["point_position"].sel(point=name).values,
+                                   expected[:, k], rtol=0, atol=1e-12)

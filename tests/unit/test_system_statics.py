@@ -3,6 +3,7 @@ points joined by catenary sections, its stiffness at the body and its time serie
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
 import numpy as np
@@ -16,6 +17,7 @@ from floatmoor.mooring.catenary import solve_catenary
 from floatmoor.mooring.system_statics import (
     SystemStatics, body_point_stiffness, build_static_system, coupled_stiffness, solve_statics,
 )
+from floatmoor.simulation.forced import run_forced_motion
 from tests.conftest import LINDAHL_CASE
 from tests.oracles import statics_numpy
 from tests.unit.statics_systems import (
@@ -264,16 +266,185 @@ def test_buoy_without_equilibrium_below_the_surface_fails_with_its_residual():
     assert lift == pytest.approx(expected, rel=1e-3)
 
 
-def test_clump_pressed_onto_the_seabed_fails_naming_it():
-    system = _system(chain_rope_chain, anchor_x=-900.0)
-    with pytest.raises(SolverError, match="free point 'clump' is pressed onto the seabed"):
-        solve_statics(system)
-
-
 def test_failure_along_a_path_names_the_time():
     system = _system(chain_rope_chain)
     t = np.array([0.0, 1.0, 2.0])
     body = system.positions[system.body_index]
-    path = np.stack([body, body + [-60.0, 0.0, 0.0], body + [-120.0, 0.0, 0.0]])
-    with pytest.raises(SolverError, match=r"at t = [12] s: free point 'clump' is pressed"):
+    path = np.stack([body, body + [0.0, 0.0, -100.0], body + [0.0, 0.0, -185.0]])
+    with pytest.raises(SolverError, match=r"at t = 2 s: section l1\[2\] from 'buoy' .* to "
+                                          r"'fair' .* has no valid catenary: .*below the seabed"):
         _series(system, t, path)
+
+
+# ------------------------------------------------------------------------ free points on the seabed
+#: The split line against the unsplit one: both solved to FORCE_RTOL (1e-9) of their tensions.
+SPLIT_RTOL = 1e-8
+
+
+def _lindahl(tmp_path, lengths, friction):
+    """The Lindahl chain, quasi-static, whole or split into sections of ``lengths``."""
+    sets = ['lines.*.model="quasi-static"', f"lines.*.quasi_static.seabed_friction={friction}"]
+    if lengths is None:
+        return load_case(LINDAHL_CASE, sets)
+    sections = ", ".join(f'{{ type = "chain", length = {x} }}' for x in lengths)
+    text = LINDAHL_CASE.read_text().replace(
+        'type = "chain"\nlength = 33.0                  # m, unstretched',
+        f"sections = [{sections}]")
+    path = tmp_path / "split.toml"
+    path.write_text(text)
+    return load_case(path, sets)
+
+
+def _solve_case(case):
+    return solve_statics(build_static_system(case.points, case.lines, case.environment,
+                                             case.seabed))
+
+
+@pytest.mark.parametrize("friction", ["true", "false"])
+@pytest.mark.parametrize("lengths", [(12.0, 21.0), (25.0, 8.0), (5.0, 7.0, 21.0)])
+def test_split_lindahl_chain_is_the_same_catenary(tmp_path, lengths, friction):
+    """A massless joint on the laid length rests on the seabed and carries nothing; one on
+    the suspended length hangs; either way the line is the unsplit catenary (the 18.7 m laid
+    length of the Lindahl chain at rest ends between 12 and 25 m from the anchor)."""
+    one = _solve_case(_lindahl(tmp_path, None, friction))
+    case = _lindahl(tmp_path, lengths, friction)
+    two = _solve_case(case)
+    scale = one.end_tension[0]
+    np.testing.assert_allclose(two.end_force[-1], one.end_force[0], rtol=0,
+                               atol=SPLIT_RTOL * scale)
+    np.testing.assert_allclose(two.start_force[0], one.start_force[0], rtol=0,
+                               atol=SPLIT_RTOL * scale)
+    assert two.laid_length.sum() == pytest.approx(one.laid_length[0], abs=SPLIT_RTOL * 33.0)
+    seabed = case.environment.seabed_z
+    joints = [two.point_names.index(p.name) for p in case.points if p.kind == "free"]
+    for j, p in enumerate(joints):
+        on = sum(lengths[:j + 1]) < one.laid_length[0]
+        assert bool(two.on_seabed[p]) == on
+        assert (two.positions[p, 2] == seabed) == on
+        assert two.seabed_reaction[p] == 0.0  # massless, and its sections lie flat on it
+    if friction == "true":  # the friction drops the tension along the laid length
+        assert two.start_tension[0] < two.end_tension[-1] - 1.0
+
+
+@pytest.mark.parametrize("friction", ["true", "false"])
+def test_split_lindahl_forced_run_is_the_unsplit_one(tmp_path, friction):
+    """The whole record of the Lindahl case's circular motion (15 s, 6001 samples): the split
+    line's fairlead and anchor forces are the unsplit line's; its joint stays on the seabed."""
+    one = run_forced_motion(_lindahl(tmp_path, None, friction)).dataset
+    case = _lindahl(tmp_path, (12.0, 21.0), friction)
+    two = run_forced_motion(case).dataset
+    assert two.sizes["time"] == one.sizes["time"] == 6001
+    scale = float(one["fairlead_tension"].max())
+    for name in ("fairlead_force", "anchor_force"):
+        np.testing.assert_allclose(two[name].values, one[name].values, rtol=0,
+                                   atol=SPLIT_RTOL * scale)
+    joint = two["point_position"].sel(point="chain.joint1").values
+    assert np.all(joint[:, 2] == case.environment.seabed_z)
+    assert np.ptp(joint[:, 0]) > 1e-3  # it slides with the chain's stretch
+
+
+def test_clump_resting_on_the_seabed_is_held_by_its_reaction():
+    """The clump of the chain-rope-chain line with the anchor 30 m closer rests on the
+    seabed: its seabed reaction is its submerged weight minus what its sections lift, its
+    horizontal forces balance, and the NumPy reference finds the same state."""
+    system = _system(chain_rope_chain, anchor_x=-900.0)
+    solution = solve_statics(system)
+    c = system.point_index("clump")
+    assert solution.on_seabed.tolist() == [False, True, False, False]
+    assert solution.positions[c, 2] == system.seabed_z
+    g, rho = ENVIRONMENT.gravity, ENVIRONMENT.water_density
+    submerged_weight = (3000.0 - rho * 0.5) * g
+    lift = solution.point_force[c, 2]  # the sections' upward pull
+    assert 0.0 < lift < submerged_weight  # the rope lifts part of it
+    tension = np.abs(solution.end_force).max()
+    assert solution.seabed_reaction[c] == pytest.approx(submerged_weight - lift,
+                                                        abs=1e-9 * tension)
+    assert np.abs(solution.point_force[c, :2]).max() <= 1e-9 * tension
+    ref, resting = statics_numpy.solve(system, return_contacts=True)
+    assert resting == {c}
+    assert np.abs(solution.positions - ref).max() <= POSITION_ATOL
+
+
+def test_point_starting_below_the_seabed_rests_on_it_or_rises():
+    """Initial guesses below the seabed: the clump that should rest there does; the buoy
+    that should float rises to where it floats (the same equilibrium as from good guesses)."""
+    for anchor_x, clump_rests in ((-900.0, True), (-930.0, False)):
+        points, lines = chain_rope_chain(anchor_x=anchor_x)
+        reference = solve_statics(build_static_system(points, lines, ENVIRONMENT, SEABED))
+        sunk = [Point(p.name, p.kind, (p.position[0], p.position[1], -250.0), p.mass,
+                      p.volume) if p.kind == "free" else p for p in points]
+        solution = solve_statics(build_static_system(sunk, lines, ENVIRONMENT, SEABED))
+        assert solution.on_seabed[1] == clump_rests and not solution.on_seabed[2]
+        assert np.abs(solution.positions - reference.positions).max() <= POSITION_ATOL
+
+
+def _clump_path(system, n=241, period=60.0):
+    """The fairlead swings 15 m either side of 5 m towards the anchor: the clump (anchor at
+    -915 m) rests on the seabed at the near end and hangs at the far end."""
+    t = np.linspace(0.0, 2 * period, n)
+    offset = np.zeros((n, 1, 3))
+    offset[:, 0, 0] = -5.0 + 15.0 * np.sin(2 * np.pi * t / period)
+    return t, system.positions[system.body_index][None] + offset
+
+
+def test_clump_lifts_off_and_lands_along_a_path():
+    """Warm-started through lift-offs and landings: every sample is the independent
+    equilibrium, and the clump's path and the tensions are continuous (across each switch
+    the secant slope against the fairlead's motion lies within the slopes on either side)."""
+    system = _system(chain_rope_chain, anchor_x=-915.0)
+    t, path = _clump_path(system)
+    n = len(t)
+    out = _series(system, t, path)
+    on_seabed = np.empty((n, len(system.point_names)), dtype=bool)
+    SystemStatics(system).solve_path(t, path, **{k: np.empty_like(v) for k, v in out.items()},
+                                     on_seabed=on_seabed)
+    c = system.point_index("clump")
+    rests = on_seabed[:, c]
+    switches = np.flatnonzero(rests[1:] != rests[:-1])
+    assert len(switches) == 4  # two lift-offs and two landings
+    assert rests[switches[0]] != rests[switches[1]]
+    z = out["positions"][:, c, 2]
+    assert np.all(z[rests] == system.seabed_z) and np.all(z[~rests] > system.seabed_z)
+    x = path[:, 0, 0]
+    series = {"clump": out["positions"][:, c], "tension": np.linalg.norm(out["end_force"],
+                                                                       axis=2)}
+    for name, values in series.items():
+        slope = np.linalg.norm(np.diff(values, axis=0).reshape(n - 1, -1), axis=1) / np.abs(
+            np.diff(x))
+        for i in switches:
+            assert slope[i] <= 1.5 * max(slope[i - 1], slope[i + 1]), (name, i, slope[i - 2:i + 3])
+    for i in np.concatenate([switches, switches + 1]):
+        cold = solve_statics(system, path[i])
+        assert cold.on_seabed[c] == rests[i]
+        assert np.abs(out["positions"][i] - cold.positions).max() <= POSITION_ATOL
+        assert np.abs(out["positions"][i] - statics_numpy.solve(system, path[i])).max() \
+            <= POSITION_ATOL
+    # at the switches the seabed reaction has faded to almost nothing
+    reactions = [solve_statics(system, path[i + (0 if rests[i] else 1)]).seabed_reaction[c]
+                 for i in switches]
+    weight = (3000.0 - ENVIRONMENT.water_density * 0.5) * ENVIRONMENT.gravity
+    assert max(reactions) < 0.1 * weight
+
+
+def test_stiffness_with_a_point_on_the_seabed_matches_finite_differences():
+    """The clump resting on the seabed stays there under small fairlead motions: the body
+    stiffness condenses its x and y only, and matches central differences of the equilibrium."""
+    system = _system(chain_rope_chain, anchor_x=-900.0)
+    statics = SystemStatics(system, force_rtol=1e-10)
+    base = system.positions[system.body_index]
+    solution = statics.solve(base)
+    assert solution.on_seabed[system.point_index("clump")]
+    K = body_point_stiffness(system, solution)
+    h = 5e-2
+    fd = np.zeros_like(K)
+    for j in range(3):
+        dp = np.zeros((1, 3))
+        dp[0, j] = h
+        plus, fp = _equilibrium_forces(system, statics, base + dp)
+        minus, fm = _equilibrium_forces(system, statics, base - dp)
+        assert plus.on_seabed[1] and minus.on_seabed[1]
+        fd[:, j] = -(fp - fm).ravel() / (2 * h)
+    np.testing.assert_allclose(K, fd, rtol=FD_RTOL, atol=FD_RTOL * np.abs(K).max())
+    # condensing the clump's z as if it were free gives another (wrong) stiffness
+    released = dataclasses.replace(solution, on_seabed=np.zeros_like(solution.on_seabed))
+    assert np.abs(body_point_stiffness(system, released) - K).max() > 1e-3 * np.abs(K).max()

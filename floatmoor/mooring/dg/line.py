@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.case.schema import DynamicSettings, Environment, Line, Seabed
+from floatmoor.case.schema import DynamicSettings, Environment, Line, Seabed, Section
 from floatmoor.errors import SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
@@ -84,17 +84,27 @@ class CableProperties:
 
     @classmethod
     def from_case(cls, line: Line, environment: Environment, seabed: Seabed) -> "CableProperties":
-        """The properties of a case's line.
+        """The properties of a case's one-section line (:meth:`from_section` of its section;
+        a ValueError for a line of several sections)."""
+        if len(line.sections) != 1:
+            raise ValueError(f"line '{line.name}' has {len(line.sections)} sections; build "
+                             "each section's properties with from_section")
+        return cls.from_section(line.sections[0], environment, seabed)
 
-        The internal damping ratio zeta is that of the line's first longitudinal mode
+    @classmethod
+    def from_section(cls, section: Section, environment: Environment,
+                     seabed: Seabed) -> "CableProperties":
+        """The properties of a case's section: its line type and length.
+
+        The internal damping ratio zeta is that of the section's own first longitudinal mode
         (fixed-fixed, omega_1 = pi c / L) for the Kelvin-Voigt law T = EA eps + c_int eps_t,
-        zeta_n = c_int omega_n / (2 EA), so c_int = 2 zeta L sqrt(EA m) / pi: a property of
-        the line, independent of the discretisation.
+        zeta_n = c_int omega_n / (2 EA), so c_int = 2 zeta L sqrt(EA m) / pi with L the
+        section's length: a property of the section, independent of the discretisation.
         """
-        lt = line.line_type
-        c_int = (2.0 * lt.internal_damping_ratio * line.length
+        lt = section.line_type
+        c_int = (2.0 * lt.internal_damping_ratio * section.length
                  * math.sqrt(lt.axial_stiffness * lt.mass_per_length) / math.pi)
-        return cls(length=line.length, mass_per_length=lt.mass_per_length,
+        return cls(length=section.length, mass_per_length=lt.mass_per_length,
                    axial_stiffness=lt.axial_stiffness, diameter=lt.diameter,
                    material_density=lt.material_density,
                    normal_drag_coefficient=lt.normal_drag_coefficient,
@@ -123,6 +133,31 @@ class CableProperties:
         """m g (1 - rho_w / rho_c) [N/m]."""
         return self.mass_per_length * self.gravity * (1.0 - self.water_density
                                                       / self.material_density)
+
+    def time_step(self, settings: DynamicSettings) -> float:
+        """The DG time step of this cable with ``settings`` [s]: ``cfl`` times the SSP-RK3
+        stability limit of the longitudinal wave on an element (``STABLE_STEP_FACTOR``; with
+        explicit internal damping, from the spectrum of the damped scheme, stability.py) and
+        of the explicit contact where it applies, capped by the user's ``max_time_step``.
+        (Not checked: :class:`DynamicLine` refuses a step that is not finite and > 0.)"""
+        st = settings
+        h, c = self.length / st.elements, self.wave_speed
+        if self.internal_damping > 0.0 and st.internal_damping == "explicit":
+            nu = self.internal_damping / (self.mass_per_length * c * h)
+            factor = stable_step_factor(st.order, nu)
+        else:
+            factor = STABLE_STEP_FACTOR[st.order]
+        dt = st.cfl * factor * h / c
+        kb = self.seabed_stiffness * self.diameter  # per m of line, as packed()'s P_KB
+        if st.seabed_contact == "explicit" and kb > 0.0:
+            omega = math.sqrt(kb / self.mass_per_length)
+            # SSP-RK3 is stable to |lambda dt| ~ 2.5 on the negative real axis; a damped
+            # oscillator of ratio xi has its fastest eigenvalue near omega (xi + sqrt(xi^2 + 1))
+            xi = self.seabed_damping_ratio
+            dt = min(dt, st.cfl * 2.5 / (omega * (xi + math.sqrt(xi * xi + 1.0))))
+        if st.max_time_step is not None:
+            dt = min(dt, st.max_time_step)
+        return dt
 
     def packed(self, settings: DynamicSettings, element_length: float) -> NDArray[np.float64]:
         """The kernels' parameter vector."""
@@ -253,30 +288,12 @@ class DynamicLine(PathStepper):
         return positions
 
     def _time_step(self) -> float:
-        """The time step: ``cfl`` times the SSP-RK3 stability limit of the longitudinal wave
-        (``STABLE_STEP_FACTOR``; with internal damping, from the spectrum of the damped scheme,
-        stability.py) and of the explicit contact where it applies, capped by the user's
-        ``max_time_step``."""
-        st, pr = self.settings, self.properties
-        h, c = self.element_length, pr.wave_speed
-        if pr.internal_damping > 0.0 and st.internal_damping == "explicit":
-            nu = pr.internal_damping / (pr.mass_per_length * c * h)
-            factor = stable_step_factor(st.order, nu)
-        else:
-            factor = STABLE_STEP_FACTOR[st.order]
-        dt = st.cfl * factor * h / c
-        if st.seabed_contact == "explicit" and self.prm[_k.P_KB] > 0.0:
-            omega = math.sqrt(self.prm[_k.P_KB] / pr.mass_per_length)
-            # SSP-RK3 is stable to |lambda dt| ~ 2.5 on the negative real axis; a damped
-            # oscillator of ratio xi has its fastest eigenvalue near omega (xi + sqrt(xi^2 + 1))
-            xi = pr.seabed_damping_ratio
-            dt = min(dt, st.cfl * 2.5 / (omega * (xi + math.sqrt(xi * xi + 1.0))))
-        if st.max_time_step is not None:
-            dt = min(dt, st.max_time_step)
+        """The time step (:meth:`CableProperties.time_step`), checked usable."""
+        dt = self.properties.time_step(self.settings)
         if not (dt > 0.0 and math.isfinite(dt)):  # case loading bounds the wave speed
             raise SolverError(f"line '{self.name}' (dynamic): no usable time step ({dt!r} s) "
-                              f"for an axial wave speed of {c:.3g} m/s; the axial stiffness "
-                              "or mass per length is out of range")
+                              f"for an axial wave speed of {self.properties.wave_speed:.3g} "
+                              "m/s; the axial stiffness or mass per length is out of range")
         return dt
 
     def settle(self, rate: float = SETTLE_RATE, tolerance: float = SETTLE_TOLERANCE,

@@ -85,22 +85,7 @@ def section_properties(section: Any, environment: Environment, seabed: Seabed
                        ) -> CableProperties:
     """The :class:`CableProperties` of a case's section (``schema.Section``): its line type and
     length, with the internal damping ratio on the section's own first longitudinal mode."""
-    lt = section.line_type
-    c_int = (2.0 * lt.internal_damping_ratio * section.length
-             * math.sqrt(lt.axial_stiffness * lt.mass_per_length) / math.pi)
-    return CableProperties(
-        length=section.length, mass_per_length=lt.mass_per_length,
-        axial_stiffness=lt.axial_stiffness, diameter=lt.diameter,
-        material_density=lt.material_density,
-        normal_drag_coefficient=lt.normal_drag_coefficient,
-        tangential_drag_coefficient=lt.tangential_drag_coefficient,
-        added_mass_coefficient=lt.added_mass_coefficient,
-        tangential_added_mass_coefficient=lt.tangential_added_mass_coefficient,
-        internal_damping=c_int, water_density=environment.water_density,
-        gravity=environment.gravity, current_velocity=environment.current_velocity,
-        seabed_z=environment.seabed_z, seabed_stiffness=seabed.stiffness,
-        seabed_damping_ratio=seabed.damping_ratio,
-        friction_coefficient=seabed.friction_coefficient, slip_speed=seabed.slip_speed)
+    return CableProperties.from_section(section, environment, seabed)
 
 
 def point_contact(point: PointLike, props: CableProperties) -> tuple[float, float, float]:
