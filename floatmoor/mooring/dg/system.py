@@ -11,10 +11,8 @@ driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Sequence
 from dataclasses import dataclass
-from dataclasses import replace as replace_point
 from typing import Any, Protocol
 
 import numpy as np
@@ -104,103 +102,27 @@ def point_contact(point: PointLike, props: CableProperties) -> tuple[float, floa
     return k, c, props.friction_coefficient * max(weight, 0.0)
 
 
-#: Horizontal force left on a free point resting on the seabed by its static start, relative to
-#: its submerged weight (``static_start``): far below what the DG settle resolves.
-RESTING_FORCE_RTOL = 1e-9
-#: Newton iterations of a resting point's horizontal position (quadratic convergence: 3-5).
-RESTING_ITERATIONS = 20
-#: Finite-difference step of that Newton's Jacobian [m].
-RESTING_STEP = 1e-4
-_PRESSED = re.compile(r"free point '([^']+)' is pressed onto the seabed")
-
-
 def static_start(points: Sequence[PointLike], lines: Sequence[Any], environment: Environment,
                  seabed: Seabed) -> tuple[NDArray[np.float64] | None, str]:
     """Point positions of the system's static equilibrium (``SystemStatics``, body points at
-    rest), to start the dynamic model from.
-
-    A free point the statics refuse because it rests on the seabed (they do not model that)
-    is pinned on the seabed as a fixed point, the rest of the system solved by the statics,
-    and the pinned point moved horizontally (Newton) until the sections' horizontal forces on
-    it balance (frictionless: the DG model's friction then holds it where it is) and checked
-    to press on the seabed.
+    rest, free points resting on the seabed included), to start the dynamic model from.
 
     Returns
     -------
     positions, why
-        The positions (points in the order given, (points, 3)) and "statics" (or "statics,
-        with 'name' resting on the seabed"); or None and the statics' message when they cannot
-        give the equilibrium: a section that floats, a free point held at the surface (the
-        dynamic model handles these; it then starts from the case's positions and relaxes).
+        The positions (points in the order given, (points, 3)) and "statics"; or None and
+        the statics' message when they cannot give the equilibrium: a section that floats,
+        a free point held at the surface (the dynamic model handles these; it then starts
+        from the case's positions and relaxes).
     """
     if not any(p.kind == "free" for p in points):
         return None, "no free point"
-    points = list(points)
-    resting: dict[int, NDArray[np.float64]] = {}
-    names = [p.name for p in points]
-    while True:
-        try:
-            if not resting:
-                system = build_static_system(points, lines, environment, seabed)
-                solution = SystemStatics(system).solve()
-            else:
-                solution = _resting_statics(points, lines, environment, seabed, resting)
-        except SolverError as exc:
-            match = _PRESSED.search(str(exc))
-            if match is None or match.group(1) not in names or \
-                    names.index(match.group(1)) in resting:
-                return None, str(exc)
-            i = names.index(match.group(1))
-            resting[i] = np.array([points[i].position[0], points[i].position[1],
-                                   environment.seabed_z])
-            continue
-        out = np.array(solution.positions, dtype=float)
-        if not resting:
-            return out, "statics"
-        out[list(resting)] = np.array(list(resting.values()))
-        return out, "statics, with " + ", ".join(f"'{names[i]}'" for i in resting) + \
-            " resting on the seabed"
-
-
-def _resting_statics(points: list[Any], lines: Sequence[Any], environment: Environment,
-                     seabed: Seabed, resting: dict[int, NDArray[np.float64]]) -> Any:
-    """The statics with the points ``resting`` (index: position on the seabed, updated in
-    place) pinned, their horizontal positions solved for zero horizontal force."""
-    idx = list(resting)
-    rho_w, g = environment.water_density, environment.gravity
-
-    def solve(xy: NDArray[np.float64]) -> tuple[Any, NDArray[np.float64]]:
-        pinned = list(points)
-        for k, i in enumerate(idx):
-            pos = (float(xy[2 * k]), float(xy[2 * k + 1]), float(environment.seabed_z))
-            pinned[i] = replace_point(points[i], kind="fixed", position=pos)
-        sol = SystemStatics(build_static_system(pinned, lines, environment, seabed)).solve()
-        names = list(sol.point_names)
-        force = np.concatenate([sol.point_force[names.index(points[i].name), :2] for i in idx])
-        return sol, force
-
-    xy = np.concatenate([resting[i][:2] for i in idx])
-    scale = max(max((points[i].mass - rho_w * points[i].volume) * g, 1.0) for i in idx)
-    for _ in range(RESTING_ITERATIONS):
-        sol, force = solve(xy)
-        if np.max(np.abs(force)) <= RESTING_FORCE_RTOL * scale:
-            break
-        J = np.empty((xy.size, xy.size))
-        for c in range(xy.size):
-            step = np.zeros(xy.size)
-            step[c] = RESTING_STEP
-            J[:, c] = (solve(xy + step)[1] - force) / RESTING_STEP
-        xy = xy - np.linalg.solve(J, force)
-    else:
-        raise SolverError("the free points resting on the seabed have no horizontal balance")
-    names = list(sol.point_names)
-    for k, i in enumerate(idx):
-        p = points[i]
-        fz = sol.point_force[names.index(p.name), 2] + (rho_w * p.volume - p.mass) * g
-        if fz >= 0.0:  # the seabed would have to pull it down
-            raise SolverError(f"free point '{p.name}' does not rest on the seabed")
-        resting[i] = np.array([xy[2 * k], xy[2 * k + 1], environment.seabed_z])
-    return sol
+    try:
+        system = build_static_system(points, lines, environment, seabed)
+        solution = SystemStatics(system).solve()
+    except SolverError as exc:
+        return None, str(exc)
+    return np.array(solution.positions, dtype=float), "statics"
 
 
 def _catenary(props: CableProperties, start: NDArray, end: NDArray, s: NDArray) -> NDArray:
