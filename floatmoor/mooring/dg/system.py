@@ -256,7 +256,7 @@ class DynamicSystem:
         Start: the free points at the static equilibrium of the system (``SystemStatics``,
         every section's catenary, body points at rest) when the statics hold it, else at the
         case's positions (initial guesses) -- for sections that float, or a free point the
-        statics refuse (resting on the seabed, lifted to the surface); then each section on
+        statics refuse (a buoy lifted to the surface); then each section on
         its catenary between its ends, and the dynamic relaxation (:meth:`settle`) unless
         every line says ``settle = false``. :attr:`static_start` says which start was taken.
         """
