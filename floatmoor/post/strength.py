@@ -17,13 +17,15 @@ import xarray as xr
 
 from floatmoor.case.schema import Case
 
-__all__ = ["MBL_VARIABLE", "TENSION_ENDS", "mbl_ratio", "safety_factor", "line_mbl",
-           "largest_tension", "line_strength"]
+__all__ = ["MBL_VARIABLE", "TENSION_ENDS", "SECTION_TENSION_ENDS", "mbl_ratio",
+           "safety_factor", "line_mbl", "largest_tension", "line_strength", "section_strength"]
 
 #: The per-line MBL variable of a result dataset [N] (NaN: none given).
 MBL_VARIABLE = "minimum_breaking_load"
 #: Tension variables of a result dataset searched for the largest tension, with their end.
 TENSION_ENDS = (("fairlead_tension", "fairlead"), ("anchor_tension", "anchor"))
+#: The same for a section of a mooring system (dimension ``section``).
+SECTION_TENSION_ENDS = (("section_end_tension", "end"), ("section_start_tension", "start"))
 #: Relative slack on the window start, as in floatmoor.post.statistics [-].
 _TIME_EPS = 1e-9
 
@@ -55,9 +57,11 @@ def line_mbl(dataset: xr.Dataset, line: str, case: Case | None = None) -> float 
     return None
 
 
-def largest_tension(dataset: xr.Dataset, line: str, *, start: float = 0.0
+def largest_tension(dataset: xr.Dataset, line: str, *, start: float = 0.0,
+                    ends: tuple[tuple[str, str], ...] = TENSION_ENDS, dim: str = "line"
                     ) -> tuple[float, str, float]:
-    """The largest tension of ``line`` at either end from ``start`` on.
+    """The largest tension of ``line`` at either end from ``start`` on (of a section with
+    ``ends=SECTION_TENSION_ENDS, dim="section"``).
 
     Returns
     -------
@@ -70,10 +74,10 @@ def largest_tension(dataset: xr.Dataset, line: str, *, start: float = 0.0
     if not np.any(inside):
         inside = np.ones_like(time, dtype=bool)
     best = (-math.inf, "", math.nan)
-    for name, end in TENSION_ENDS:
+    for name, end in ends:
         if name not in dataset:
             continue
-        values = np.asarray(dataset[name].sel(line=line).values, dtype=float)[inside]
+        values = np.asarray(dataset[name].sel({dim: line}).values, dtype=float)[inside]
         if values.size == 0:
             continue
         k = int(np.argmax(values))
@@ -97,8 +101,20 @@ def line_strength(dataset: xr.Dataset, line: str, mbl: float | None, *, start: f
         ``whole_run_max_tension_over_mbl`` over the whole record. Ratios are None without an
         MBL; the safety factor is inf at zero tension.
     """
-    tension, end, at = largest_tension(dataset, line, start=start)
-    whole, _, _ = largest_tension(dataset, line, start=-math.inf)
+    return _strength(dataset, line, mbl, start, TENSION_ENDS, "line")
+
+
+def section_strength(dataset: xr.Dataset, section: str, mbl: float | None, *, start: float
+                     ) -> dict[str, Any]:
+    """:func:`line_strength` of a section of a mooring system (``line[index]``), its ends
+    ``"start"`` and ``"end"``, against the MBL of its own line type."""
+    return _strength(dataset, section, mbl, start, SECTION_TENSION_ENDS, "section")
+
+
+def _strength(dataset: xr.Dataset, name: str, mbl: float | None, start: float,
+              ends: tuple[tuple[str, str], ...], dim: str) -> dict[str, Any]:
+    tension, end, at = largest_tension(dataset, name, start=start, ends=ends, dim=dim)
+    whole, _, _ = largest_tension(dataset, name, start=-math.inf, ends=ends, dim=dim)
     return {
         "minimum_breaking_load_N": mbl,
         "max_tension_N": tension,

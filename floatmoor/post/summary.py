@@ -11,7 +11,7 @@ import xarray as xr
 
 from floatmoor.case.schema import Case
 from floatmoor.post.statistics import channel_statistics
-from floatmoor.post.strength import line_strength
+from floatmoor.post.strength import line_strength, section_strength
 
 __all__ = ["run_summary", "format_summary"]
 
@@ -41,6 +41,17 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
             "strength": line_strength(dataset, line.name,
                                       line.end_type.minimum_breaking_load,
                                       start=float(stats["window_start"]))}
+    # the sections of the lines solved as systems, each against its own type's MBL
+    sections: dict[str, Any] = {}
+    if "section_end_tension" in dataset:
+        window = float(next(iter(lines.values()))["fairlead_tension_N"]["window_start"]) \
+            if lines else 0.0
+        for section in case.sections:
+            line = next(ln for ln in case.lines if ln.name == section.line)
+            if case.is_independent(line):
+                continue
+            sections[section.label] = section_strength(
+                dataset, section.label, section.line_type.minimum_breaking_load, start=window)
     out = {
         "title": case.title,
         "case": case.source,
@@ -48,6 +59,7 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         "status": str(dataset.attrs.get("status", "")),
         "motion_period_s": period,
         "lines": lines,
+        "sections": sections,
     }
     if "body_displacement" in dataset:
         keep = time >= start
@@ -94,6 +106,27 @@ def _line_rows(lines: dict[str, Any]) -> list[str]:
     return rows
 
 
+def _section_rows(sections: dict[str, Any]) -> list[str]:
+    """The strength rows of the sections of a summary, each against its type's MBL."""
+    rows = ["largest section tension at either end against its line type's MBL [N]:",
+            f"  {'section':<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
+            f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}"]
+    warnings = []
+    for name, b in sections.items():
+        if b["minimum_breaking_load_N"] is None:
+            tail = f"{'no MBL':>10}{'-':>11}{'-':>8}{'-':>21}"
+        else:
+            tail = (f"{b['minimum_breaking_load_N']:>10.4g}{b['max_tension_over_mbl']:>11.4g}"
+                    f"{b['safety_factor']:>8.3g}{b['whole_run_max_tension_over_mbl']:>21.4g}")
+            if b["whole_run_max_tension_over_mbl"] >= 1.0:
+                warnings.append(f"warning: section '{name}' reached its MBL (T_max / MBL = "
+                                f"{b['whole_run_max_tension_over_mbl']:.3g}): it would break")
+        rows.append(f"  {name:<16}{b['max_tension_N']:>10.4g}{b['max_tension_end']:>10}"
+                    f"{b['max_tension_time_s']:>10.4g}{tail}")
+    rows.extend(f"  {w}" for w in warnings)
+    return rows
+
+
 def format_summary(summary: dict[str, Any]) -> str:
     """A plain-text table of :func:`run_summary`."""
     rows = [f"{summary['title']}"]
@@ -101,6 +134,8 @@ def format_summary(summary: dict[str, Any]) -> str:
         rows.extend(_line_rows(summary["lines"]))
     else:
         rows.append("no mooring lines")
+    if summary.get("sections"):
+        rows.extend(_section_rows(summary["sections"]))
     if summary.get("body_displacement"):
         rows.append("floater displacement from equilibrium [m, rad]:")
         rows.append(f"  {'dof':<10}{'mean':>11}{'std':>11}{'min':>11}{'max':>11}")

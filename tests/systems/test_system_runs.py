@@ -144,3 +144,19 @@ def test_shipped_three_line_system_is_mirror_symmetric_under_its_motion():
     for k, name in enumerate(names):
         np.testing.assert_allclose(ds["point_position"].sel(point=name).values,
                                    expected[:, k], rtol=0, atol=1e-12)
+
+
+def test_run_summary_judges_each_section_against_its_own_type():
+    from floatmoor.post.summary import format_summary, run_summary
+
+    case = load_case(EXAMPLE, ["simulation.duration=20.0"])
+    ds = run_forced_motion(case).dataset
+    summary = run_summary(case, ds)
+    rope = summary["sections"]["line1[1]"]
+    assert rope["minimum_breaking_load_N"] == 6.0e6  # the rope's, not the chain's
+    window = ds["time"].values >= summary["lines"]["line1"]["fairlead_tension_N"]["window_start"]
+    both = np.maximum(ds["section_start_tension"].sel(section="line1[1]").values,
+                      ds["section_end_tension"].sel(section="line1[1]").values)[window]
+    assert rope["max_tension_N"] == both.max()
+    assert rope["max_tension_over_mbl"] == both.max() / 6.0e6
+    assert "line1[1]" in format_summary(summary)
