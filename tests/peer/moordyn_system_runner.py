@@ -94,7 +94,8 @@ def system_deck(case, *, segment_scale: float = 1.0, dt: float | None = None,
                 ic_max_time: float = SYSTEM_IC_MAX_TIME, start_at_statics: bool = True,
                 extra_options: Mapping[str, object] | None = None) -> tuple[str, Deck]:
     """The exported deck of ``case`` (text and :class:`Deck`) with every line's segment count
-    multiplied by ``segment_scale`` (rounded, at least 2), dtM = ``dt`` (default the
+    multiplied by ``segment_scale`` (rounded, at least 2; a damping ratio BA = -zeta_md scaled
+    with it, so that the internal damping coefficient stays floatmoor's), dtM = ``dt`` (default the
     exporter's), ``TmaxIC`` and no output files; with ``start_at_statics`` its free points
     placed at the static equilibrium (:func:`static_positions`), MoorDyn's initial guess."""
     deck = export_case(case).deck
@@ -105,7 +106,17 @@ def system_deck(case, *, segment_scale: float = 1.0, dt: float | None = None,
                                           for p in deck.points))
     lines = tuple(replace(ln, segments=max(2, int(round(ln.segments * segment_scale))))
                   for ln in deck.lines)
-    deck = replace(deck, lines=lines)
+    # a negative BA is a ratio of a segment's critical damping, -zeta_md, and the exporter
+    # chose it for N segments (c_int = zeta_md (L / N) sqrt(EA m)): the same c_int on N' is
+    # zeta_md N' / N, the same factor for every line of a type
+    factor: dict[str, float] = {}
+    for old, new in zip(deck.lines, lines):
+        f = new.segments / old.segments
+        if factor.setdefault(old.line_type, f) != f:
+            raise ValueError(f"line type {old.line_type!r}: lines refined unequally")
+    types = tuple(replace(lt, internal_damping=lt.internal_damping * factor.get(lt.name, 1.0))
+                  if lt.internal_damping < 0.0 else lt for lt in deck.line_types)
+    deck = replace(deck, lines=lines, line_types=types)
     if dt is not None:
         deck = _set_option(deck, "dtM", repr(float(dt)))
     deck = _set_option(deck, "TmaxIC", repr(float(ic_max_time)))
