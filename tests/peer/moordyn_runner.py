@@ -90,7 +90,7 @@ from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type
                                               seabed_to_moordyn)
 
 __all__ = ["MoorDynLine", "MoorDynParameters", "MoorDynError", "moordyn_parameters",
-           "moordyn_input", "moordyn_system", "run_moordyn_forced"]
+           "moordyn_input", "moordyn_system", "open_input", "run_moordyn_forced"]
 
 #: MoorDyn time integrator (its default, 2nd-order Runge-Kutta).
 TIME_SCHEME = "RK2"
@@ -307,22 +307,21 @@ def _console_tail(log: Path, lines: int = 40) -> str:
 
 
 @contextlib.contextmanager
-def _open_system(line: MoorDynLine, *, segments: int, dt: float, position: np.ndarray | None,
-                 velocity: np.ndarray | None, ic_max_time: float, time_scheme: str,
-                 extra_options: dict[str, object] | None) -> Iterator[tuple[object, Path]]:
-    """Created and initialised system and the file MoorDyn's console was sent to."""
+def open_input(text: str, position: np.ndarray, velocity: np.ndarray
+               ) -> Iterator[tuple[object, Path]]:
+    """A MoorDyn system created from the input file ``text`` and initialised with its coupled
+    DOFs at ``position`` moving at ``velocity`` (flat, MoorDyn's order of coupled DOFs), and
+    the file MoorDyn's console was sent to; closed on exit."""
     import moordyn
 
-    x0 = np.asarray(line.fairlead if position is None else position, dtype=float)
-    v0 = np.zeros(3) if velocity is None else np.asarray(velocity, dtype=float)
-    if x0.shape != (3,) or v0.shape != (3,):
-        raise ValueError("position and velocity must be 3-vectors")
+    x0 = np.asarray(position, dtype=float).ravel()
+    v0 = np.asarray(velocity, dtype=float).ravel()
+    if x0.shape != v0.shape:
+        raise ValueError("position and velocity must have the same size")
     with tempfile.TemporaryDirectory(prefix="floatmoor_moordyn_") as tmp:
         path = Path(tmp) / "line.dat"
         log = Path(tmp) / "console.txt"
-        path.write_text(moordyn_input(line, segments=segments, dt=dt, fairlead=tuple(x0),
-                                      ic_max_time=ic_max_time, time_scheme=time_scheme,
-                                      extra_options=extra_options))
+        path.write_text(text)
         try:
             with _stdout_to(log):
                 system = moordyn.Create(str(path))
@@ -331,8 +330,8 @@ def _open_system(line: MoorDynLine, *, segments: int, dt: float, position: np.nd
         try:
             # errors only from here on (the banner and input echo went to the file above)
             moordyn.SetVerbosity(system, moordyn.LEVEL_ERR)
-            if moordyn.NCoupledDOF(system) != 3:
-                raise MoorDynError(f"expected 3 coupled DOF, MoorDyn has "
+            if moordyn.NCoupledDOF(system) != x0.size:
+                raise MoorDynError(f"expected {x0.size} coupled DOF, MoorDyn has "
                                    f"{moordyn.NCoupledDOF(system)}")
             try:
                 with _stdout_to(log):
@@ -345,6 +344,22 @@ def _open_system(line: MoorDynLine, *, segments: int, dt: float, position: np.nd
             yield system, log
         finally:
             moordyn.Close(system)
+
+
+@contextlib.contextmanager
+def _open_system(line: MoorDynLine, *, segments: int, dt: float, position: np.ndarray | None,
+                 velocity: np.ndarray | None, ic_max_time: float, time_scheme: str,
+                 extra_options: dict[str, object] | None) -> Iterator[tuple[object, Path]]:
+    """Created and initialised system and the file MoorDyn's console was sent to."""
+    x0 = np.asarray(line.fairlead if position is None else position, dtype=float)
+    v0 = np.zeros(3) if velocity is None else np.asarray(velocity, dtype=float)
+    if x0.shape != (3,) or v0.shape != (3,):
+        raise ValueError("position and velocity must be 3-vectors")
+    text = moordyn_input(line, segments=segments, dt=dt, fairlead=tuple(x0),
+                         ic_max_time=ic_max_time, time_scheme=time_scheme,
+                         extra_options=extra_options)
+    with open_input(text, x0, v0) as opened:
+        yield opened
 
 
 @contextlib.contextmanager
@@ -369,9 +384,9 @@ def _check_motion(time: np.ndarray, position: np.ndarray,
     v = np.asarray(velocity, dtype=float)
     if t.ndim != 1 or t.size < 2:
         raise ValueError("time must be 1-D with at least 2 samples")
-    if x.shape != (t.size, 3) or v.shape != (t.size, 3):
-        raise ValueError(f"position and velocity must have shape ({t.size}, 3), got "
-                         f"{x.shape} and {v.shape}")
+    if x.ndim != 2 or x.shape[0] != t.size or v.shape != x.shape:
+        raise ValueError(f"position and velocity must have the same shape ({t.size}, dofs), "
+                         f"got {x.shape} and {v.shape}")
     if not (np.all(np.isfinite(t)) and np.all(np.isfinite(x)) and np.all(np.isfinite(v))):
         raise ValueError("time, position and velocity must be finite")
     step = (t[-1] - t[0]) / (t.size - 1)
@@ -387,7 +402,8 @@ def _check_motion(time: np.ndarray, position: np.ndarray,
 def _coupling_path(x: np.ndarray, v: np.ndarray, step: float,
                    substeps: int) -> tuple[np.ndarray, np.ndarray]:
     """Start positions and secant velocities of the coupling intervals, ``substeps`` per sample
-    interval, the intermediate points by cubic Hermite interpolation of (x, v)."""
+    interval, the intermediate points by cubic Hermite interpolation of (x, v), (n, dofs)
+    each."""
     if substeps == 1:
         return x[:-1], np.diff(x, axis=0) / step
     s = np.arange(substeps + 1) / substeps  # local coordinate in [0, 1]
@@ -397,8 +413,8 @@ def _coupling_path(x: np.ndarray, v: np.ndarray, step: float,
     h11 = s**3 - s**2
     pts = (h00[None, :, None] * x[:-1, None, :] + h10[None, :, None] * step * v[:-1, None, :]
            + h01[None, :, None] * x[1:, None, :] + h11[None, :, None] * step * v[1:, None, :])
-    start = pts[:, :-1, :].reshape(-1, 3)
-    secant = (np.diff(pts, axis=1) / (step / substeps)).reshape(-1, 3)
+    start = pts[:, :-1, :].reshape(-1, x.shape[1])
+    secant = (np.diff(pts, axis=1) / (step / substeps)).reshape(-1, x.shape[1])
     return start, secant
 
 
