@@ -85,7 +85,8 @@ def test_clump_weight_on_a_buoy_line_runs_coupled(tmp_path, model):
     np.testing.assert_allclose(force[:, 2], submerged, rtol=0, atol=tol)
 
 
-@pytest.mark.parametrize("model", ["quasi-static", "dynamic"])
+@pytest.mark.parametrize("model", ["quasi-static",
+                                   pytest.param("dynamic", marks=pytest.mark.slow)])
 def test_system_run_resumes_bit_identically(tmp_path, monkeypatch, model):
     """The checkpoint holds the groups' states (the statics' warm start, the DG system's
     nodes, points and damping factors): a resumed run is the uninterrupted one bit for bit."""
