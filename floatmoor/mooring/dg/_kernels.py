@@ -511,7 +511,16 @@ def _damping_solve_ends(v, avel, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv
         for cc in range(row + 1, min(n, row + ku + 1)):
             acc -= band[row, kl + cc - row] * e[cc]
         e[row] = acc / band[row, kl]
-    # v += dt M_eff^-1 Div(t s), the divergence with traces from the fairlead side
+    _damping_apply(v, prm, D, LIFT, dt, qt, N, faces, tng, minv, e)
+
+
+@jit
+def _damping_apply(v, prm, D, LIFT, dt, qt, N, faces, tng, minv, e):
+    """v += dt M_eff^-1 Div(t s) for the damping tension s = ``e`` at the nodes, the
+    divergence with traces from the fairlead side (each end face the end node's own): the
+    second half of :func:`_damping_solve_ends`, also the DG system's (``_system_kernels``)."""
+    K, Np = v.shape[0], v.shape[1]
+    jac = 2.0 / prm[P_H]
     for k in range(K):
         for i in range(Np):
             s = e[k * Np + i]

@@ -312,32 +312,6 @@ def _damping_rhs(v, avel, fvel, prm, D, LIFT, qt, faces, tng, cn, e):
 
 
 @jit
-def _damping_apply(v, prm, D, LIFT, dt, qt, N, faces, tng, minv, e):
-    """v += dt M_eff^-1 Div(t s) for the damping tension s = ``e`` (traces from the end side,
-    each end face the end node's own: the second half of ``_kernels._damping_solve_ends``)."""
-    K, Np = v.shape[0], v.shape[1]
-    jac = 2.0 / prm[_k.P_H]
-    for k in range(K):
-        for i in range(Np):
-            s = e[k * Np + i]
-            for c in range(3):
-                N[k, i, c] = tng[k, i, c] * s
-    for f in range(K):
-        for c in range(3):
-            faces[f, c] = N[f, 0, c]
-    for c in range(3):
-        faces[K, c] = N[K - 1, Np - 1, c]
-    _k._strong_derivative(N, faces, D, LIFT, jac, qt)
-    for k in range(K):
-        for i in range(Np):
-            ax, ay, az = qt[k, i, 0], qt[k, i, 1], qt[k, i, 2]
-            dot = minv[k, i, 1] * (tng[k, i, 0] * ax + tng[k, i, 1] * ay + tng[k, i, 2] * az)
-            v[k, i, 0] += dt * (minv[k, i, 0] * ax + dot * tng[k, i, 0])
-            v[k, i, 1] += dt * (minv[k, i, 0] * ay + dot * tng[k, i, 1])
-            v[k, i, 2] += dt * (minv[k, i, 0] * az + dot * tng[k, i, 2])
-
-
-@jit
 def _end_lift(v, prm, LIFT, dt, tng, minv, at_start, Z, du):
     """v += dt M_eff^-1 d(dN)/ds of the end-face flux change of a free point's velocity change
     ``du``: the penalty Z (v_end - u) of the end flux moves by Z du at either end (with the sign
@@ -561,7 +535,7 @@ def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q
                     e[no + i] += (resp[end, 0, no + i] * du[pt, 0]
                                   + resp[end, 1, no + i] * du[pt, 1]
                                   + resp[end, 2, no + i] * du[pt, 2])
-            _damping_apply(vs, ps, D, LIFT, dt, _nodes(qt, sec, s), _nodes(N, sec, s),
+            _k._damping_apply(vs, ps, D, LIFT, dt, _nodes(qt, sec, s), _nodes(N, sec, s),
                            faces[fo:fo + K + 1], tngs, minvs, e[no:no + nn])
         for end in range(2):
             pt = sp if end == 0 else ep
