@@ -86,45 +86,37 @@ def _line_rows(lines: dict[str, Any]) -> list[str]:
         rows.append(f"  {name:<16}{entry['model']:<15}{s['mean']:>10.4g}{s['std']:>10.4g}"
                     f"{s['min']:>10.4g}{s['max']:>10.4g}{cycle}{s['n_cycles']:>8d}")
     rows.append("largest tension at either end against the minimum breaking load (MBL) [N]:")
-    rows.append(f"  {'line':<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
-                f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}")
+    table, warnings = _strength_rows({name: e["strength"] for name, e in lines.items()}, "line")
+    rows.extend(table)
+    rows.append("  (T_max from the window start above, SF = MBL / T_max; whole run: from t = 0)")
+    return rows + warnings
+
+
+def _strength_rows(entries: dict[str, Any], what: str) -> tuple[list[str], list[str]]:
+    """The strength table of lines or sections (:func:`floatmoor.post.strength.line_strength`
+    entries), and a warning for each that reached its MBL."""
+    rows = [f"  {what:<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
+            f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}"]
     warnings = []
-    for name, entry in lines.items():
-        b = entry["strength"]
+    for name, b in entries.items():
         if b["minimum_breaking_load_N"] is None:
             tail = f"{'no MBL':>10}{'-':>11}{'-':>8}{'-':>21}"
         else:
             tail = (f"{b['minimum_breaking_load_N']:>10.4g}{b['max_tension_over_mbl']:>11.4g}"
                     f"{b['safety_factor']:>8.3g}{b['whole_run_max_tension_over_mbl']:>21.4g}")
             if b["whole_run_max_tension_over_mbl"] >= 1.0:
-                warnings.append(f"warning: line '{name}' reached its MBL (T_max / MBL = "
+                warnings.append(f"warning: {what} '{name}' reached its MBL (T_max / MBL = "
                                 f"{b['whole_run_max_tension_over_mbl']:.3g}): it would break")
         rows.append(f"  {name:<16}{b['max_tension_N']:>10.4g}{b['max_tension_end']:>10}"
                     f"{b['max_tension_time_s']:>10.4g}{tail}")
-    rows.append("  (T_max from the window start above, SF = MBL / T_max; whole run: from t = 0)")
-    rows.extend(f"  {w}" for w in warnings)
-    return rows
+    return rows, [f"  {w}" for w in warnings]
 
 
 def _section_rows(sections: dict[str, Any]) -> list[str]:
     """The strength rows of the sections of a summary, each against its type's MBL."""
-    rows = ["largest section tension at either end against its line type's MBL [N]:",
-            f"  {'section':<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
-            f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}"]
-    warnings = []
-    for name, b in sections.items():
-        if b["minimum_breaking_load_N"] is None:
-            tail = f"{'no MBL':>10}{'-':>11}{'-':>8}{'-':>21}"
-        else:
-            tail = (f"{b['minimum_breaking_load_N']:>10.4g}{b['max_tension_over_mbl']:>11.4g}"
-                    f"{b['safety_factor']:>8.3g}{b['whole_run_max_tension_over_mbl']:>21.4g}")
-            if b["whole_run_max_tension_over_mbl"] >= 1.0:
-                warnings.append(f"warning: section '{name}' reached its MBL (T_max / MBL = "
-                                f"{b['whole_run_max_tension_over_mbl']:.3g}): it would break")
-        rows.append(f"  {name:<16}{b['max_tension_N']:>10.4g}{b['max_tension_end']:>10}"
-                    f"{b['max_tension_time_s']:>10.4g}{tail}")
-    rows.extend(f"  {w}" for w in warnings)
-    return rows
+    table, warnings = _strength_rows(sections, "section")
+    return ["largest section tension at either end against its line type's MBL [N]:"] + table \
+        + warnings
 
 
 def format_summary(summary: dict[str, Any]) -> str:
