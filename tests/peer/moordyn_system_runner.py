@@ -25,9 +25,16 @@ What differs between the two codes on a system, besides the discretisations:
 Coupling: MoorDyn's coupled DOFs are its Coupled points in the deck's order (the exporter
 numbers the points in the case's order), three each; the harness feeds them the body points'
 positions and velocities of floatmoor's own forced run
-(:func:`floatmoor.simulation.forced.body_points_state`) as the single-line harness does: with
-``substeps > 1``, the cubic Hermite interpolant of the samples, which is the path floatmoor's DG
-system follows between its samples too.
+(:func:`floatmoor.simulation.forced.body_points_state`) as the single-line harness does: within a
+coupling interval MoorDyn moves a coupled point at the interval's secant velocity; the interval
+starts are the cubic Hermite interpolant of the samples, the path floatmoor's DG system follows
+between its samples too. The coupling interval must be short: at the end of an interval, where
+MoorDyn returns the force, the secant velocity differs from the path's by ``a dt_c / 2``, and
+MoorDyn's internal damping of the last segment (``c_int / l`` per unit of relative velocity,
+growing with the segment count) turns that into a force error in phase with the acceleration.
+On the lazy-wave line's top chain (120 m, 50 segments) it is 1.5 kN of a 14 kN tension range
+with one interval per 0.02 s sample, 0.32 kN with 4, 33 N with 16, 5 N with 50 (floatmoor and a
+separate lumped-mass integration agree with the last); hence :data:`COUPLING_INTERVAL`.
 
 Fairlead force of a line: the force MoorDyn returns on the Coupled point at the line's end, i.e.
 the net force of the end node of the line's last section (module docstring of
@@ -43,6 +50,7 @@ points: ``GetPointPos`` after each output step.
 
 from __future__ import annotations
 
+import math
 import time as _time
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
@@ -62,7 +70,13 @@ from tests.peer.moordyn_runner import (MoorDynError, _as_list, _check_motion,
 #: after 10 s (the single-line harness's value) and within 1e-4 of floatmoor's statics after 60.
 SYSTEM_IC_MAX_TIME = 60.0
 
-__all__ = ["SystemRun", "system_deck", "run_moordyn_system", "relative_error"]
+#: Longest coupling interval [s] (``moordyn.Step``): the secant velocity's error at the interval's
+#: end, ``a dt_c / 2``, reaches MoorDyn's fairlead force through the last segment's internal
+#: damping (module docstring); 0.4 ms keeps it below ~0.1 % of the tension range on both test
+#: systems up to 200 segments per section (5 N at 50 segments on the lazy wave's top chain).
+COUPLING_INTERVAL = 4e-4
+
+__all__ = ["SystemRun", "COUPLING_INTERVAL", "system_deck", "run_moordyn_system", "relative_error"]
 
 
 @dataclass(frozen=True)
@@ -72,6 +86,8 @@ class SystemRun:
     time: np.ndarray  #: [s], (n,)
     fairlead_force: dict[str, np.ndarray]  #: line name -> force on its end point [N], (n, 3)
     fairlead_inertia: dict[str, np.ndarray]  #: line name -> M a of its end node [N], (n, 3)
+    body_force: dict[str, np.ndarray]  #: body point name -> MoorDyn's force on it [N], (n, 3)
+    body_inertia: dict[str, np.ndarray]  #: body point name -> M a of the point [N], (n, 3)
     point_position: dict[str, np.ndarray]  #: free point name -> position [m], (n, 3)
     segments: dict[str, int]  #: section label ``line[index]`` -> MoorDyn segments
     dt: float  #: MoorDyn's dtM [s]
@@ -142,7 +158,7 @@ def _dt(deck: Deck) -> float:
 
 
 def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
-                       dt: float | None = None, substeps: int = 1,
+                       dt: float | None = None, substeps: int | None = None,
                        ic_max_time: float = SYSTEM_IC_MAX_TIME, start_at_statics: bool = True,
                        extra_options: Mapping[str, object] | None = None) -> SystemRun:
     """Run ``case``'s exported deck in MoorDyn, its Coupled points on the case's motion.
@@ -156,7 +172,8 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
     segment_scale, dt, ic_max_time, start_at_statics, extra_options
         As :func:`system_deck`.
     substeps
-        Coupling intervals per sample interval (:func:`tests.peer.moordyn_runner.run_moordyn_forced`).
+        Coupling intervals per sample interval (:func:`tests.peer.moordyn_runner.run_moordyn_forced`);
+        default: as many as make them at most :data:`COUPLING_INTERVAL`.
 
     Raises
     ------
@@ -170,7 +187,7 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
     numbers = {p.name: k for k, p in enumerate(case.points, start=1)}
     body = [p.name for p in case.points if p.kind == "body"]
     free = [p.name for p in case.points if p.kind == "free"]
-    owner: dict[str, str] = {}
+    owner: dict[str, str] = {}  # body point at a line's end -> the line
     for sec in case.sections:
         for name in (sec.start, sec.end):
             if name in body:
@@ -178,11 +195,15 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
                     raise ValueError(f"body point {name!r} joins more than one section: "
                                      "MoorDyn's coupled force is their sum")
                 owner[name] = sec.line
+    ends = {n: owner[n] for n in body if n in owner
+            and any(s.end == n and s.line == owner[n] for s in case.sections)}
     t = np.asarray(time, dtype=float)
     pos, vel = body_points_state(case, body, t)
     x = pos.reshape(t.size, -1)
     v = vel.reshape(t.size, -1)
     t, x, v, step = _check_motion(t, x, v)
+    if substeps is None:
+        substeps = max(1, math.ceil(step / COUPLING_INTERVAL - 1e-9))
     start, secant = _coupling_path(x, v, step, substeps)
     dt_c = step / substeps
     starts = [_as_list(p) for p in start]
@@ -222,8 +243,12 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
         raise MoorDynError("MoorDyn returned a non-finite force or position")
     labels = [f"{s.line}[{s.index}]" for s in case.sections]
     return SystemRun(time=t.copy(),
-                     fairlead_force={owner[n]: force[:, j] for j, n in enumerate(body)},
-                     fairlead_inertia={owner[n]: inertia[:, j] for j, n in enumerate(body)},
+                     fairlead_force={ends[n]: force[:, j] for j, n in enumerate(body)
+                                     if n in ends},
+                     fairlead_inertia={ends[n]: inertia[:, j] for j, n in enumerate(body)
+                                       if n in ends},
+                     body_force={n: force[:, j] for j, n in enumerate(body)},
+                     body_inertia={n: inertia[:, j] for j, n in enumerate(body)},
                      point_position={n: points[:, j] for j, n in enumerate(free)},
                      segments={lab: ln.segments for lab, ln in zip(labels, deck.lines)},
                      dt=_dt(deck), wall=wall)
