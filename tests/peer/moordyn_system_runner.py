@@ -172,8 +172,9 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
     segment_scale, dt, ic_max_time, start_at_statics, extra_options
         As :func:`system_deck`.
     substeps
-        Coupling intervals per sample interval (:func:`tests.peer.moordyn_runner.run_moordyn_forced`);
-        default: as many as make them at most :data:`COUPLING_INTERVAL`.
+        Coupling intervals per sample interval
+        (:func:`tests.peer.moordyn_runner.run_moordyn_forced`); default: as many as make them at
+        most :data:`COUPLING_INTERVAL`.
 
     Raises
     ------
