@@ -14,6 +14,7 @@ from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type
                                              seabed_to_moordyn, volume_diameter)
 from floatmoor.io.moordyn.parser import read_deck
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
+from floatmoor.mooring.system_statics import case_statics
 from tests.io.moordyn_decks import REPO, export_file
 
 SYSTEM = REPO / "tests" / "data" / "systems" / "clump_buoy.toml"
@@ -41,10 +42,12 @@ def test_deck_numbers_are_the_cases(tmp_path):
     deck = read_deck(export_file(case, tmp_path / "system.dat"))
     names = [p.name for p in case.points]
     kinds = {"fixed": "fixed", "body": "coupled", "free": "free"}
-    # points: every point of the case, in order, with its loads
+    # points: every point of the case, in order, with its loads; the free ones at the statics
     assert [p.number for p in deck.points] == list(range(1, len(names) + 1))
+    statics = case_statics(case).solve()
     for dp, p in zip(deck.points, case.points):
-        assert (dp.attachment, dp.position) == (kinds[p.kind], p.position)
+        at = tuple(statics.position(p.name)) if p.kind == "free" else p.position
+        assert (dp.attachment, dp.position) == (kinds[p.kind], at)
         assert (dp.mass, dp.volume, dp.drag_area, dp.added_mass_coefficient) == (
             p.mass, p.volume, p.drag_area, p.added_mass_coefficient)
     # lines: one per section, between the section's points, N = elements x order
@@ -131,3 +134,38 @@ def test_a_line_type_name_moordyn_cannot_read_is_made_one_word(tmp_path):
     assert [t.name for t in result.deck.line_types] == ["chain", "poly_rope"]
     assert "line type 'poly rope' is MoorDyn's 'poly_rope' (a MoorDyn name is one word)" \
         in result.notes
+
+
+def test_free_points_are_written_at_the_static_equilibrium_with_a_note():
+    """MoorDyn starts its initial-condition solve from the deck's positions: the exporter
+    writes the free points where floatmoor's statics put them (here the clump 1.7 m above the
+    case's guess), and says so; fixed and body points stay where the case has them."""
+    case = load_case(SYSTEM)
+    result = export_case(case)
+    statics = case_statics(case).solve()
+    moved = 0.0
+    for dp, p in zip(result.deck.points, case.points):
+        if p.kind == "free":
+            np.testing.assert_array_equal(dp.position, statics.position(p.name))
+            moved = max(moved, float(np.linalg.norm(np.subtract(dp.position, p.position))))
+        else:
+            assert dp.position == p.position
+    assert moved > 0.1  # the case's guesses are not the equilibrium: the test can fail
+    assert any("free points: at floatmoor's static equilibrium" in n for n in result.notes)
+
+
+def test_without_a_static_equilibrium_free_points_keep_the_cases_positions(monkeypatch):
+    """When the statics fail (no equilibrium), the deck keeps the case's positions and the
+    note says why, instead of refusing to export."""
+    from floatmoor.errors import SolverError
+    from floatmoor.io.moordyn import exporter
+
+    def no_equilibrium(case):
+        raise SolverError("point 'buoy': no equilibrium (residual 1e3 N)")
+
+    monkeypatch.setattr(exporter, "case_statics", no_equilibrium)
+    case = load_case(SYSTEM)
+    result = export_case(case)
+    assert [dp.position for dp in result.deck.points] == [p.position for p in case.points]
+    assert any("case's positions (no static equilibrium: point 'buoy'" in n
+               for n in result.notes)

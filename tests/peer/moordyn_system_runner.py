@@ -25,18 +25,32 @@ What differs between the two codes on a system, besides the discretisations:
 Coupling: MoorDyn's coupled DOFs are its Coupled points in the deck's order (the exporter
 numbers the points in the case's order), three each; the harness feeds them the body points'
 positions and velocities of floatmoor's own forced run
-(:func:`floatmoor.simulation.forced.body_points_state`) as the single-line harness does: with
-``substeps > 1``, the cubic Hermite interpolant of the samples, which is the path floatmoor's DG
-system follows between its samples too.
+(:func:`floatmoor.simulation.forced.body_points_state`) as the single-line harness does: within a
+coupling interval MoorDyn moves a coupled point at the interval's secant velocity; the interval
+starts are the cubic Hermite interpolant of the samples, the path floatmoor's DG system follows
+between its samples too. The coupling interval must be short: at the end of an interval, where
+MoorDyn returns the force, the secant velocity differs from the path's by ``a dt_c / 2``, and
+MoorDyn's internal damping of the last segment (``c_int / l`` per unit of relative velocity,
+growing with the segment count) turns that into a force error in phase with the acceleration.
+On the lazy-wave line's top chain (120 m, 50 segments) it is 1.5 kN of a 14 kN tension range
+with one interval per 0.02 s sample, 0.32 kN with 4, 33 N with 16, 5 N with 50 (floatmoor and a
+separate lumped-mass integration agree with the last); hence :data:`COUPLING_INTERVAL`.
 
 Fairlead force of a line: the force MoorDyn returns on the Coupled point at the line's end, i.e.
 the net force of the end node of the line's last section (module docstring of
-:mod:`tests.peer.moordyn_runner`); so a body point must end one line only. Free points:
-``GetPointPos`` after each output step.
+:mod:`tests.peer.moordyn_runner`); so a body point must end one line only. That force
+excludes the end node's inertia: the node (half a segment of line, with its added mass) is
+moved by the body, so the force the line exerts on the body is ``F - M a``, ``M`` the point's
+mass matrix (``GetPointM``: the node's mass and added mass) and ``a`` the prescribed
+acceleration. :meth:`SystemRun.fairlead_tension` subtracts it by default (``inertia=True``),
+which is the continuous line's end tension that floatmoor records; the difference is O(segment
+length): on the lazy-wave line at 50 segments ~0.15 kN, 1.2 % of its tension range. Free
+points: ``GetPointPos`` after each output step.
 """
 
 from __future__ import annotations
 
+import math
 import time as _time
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
@@ -56,7 +70,13 @@ from tests.peer.moordyn_runner import (MoorDynError, _as_list, _check_motion,
 #: after 10 s (the single-line harness's value) and within 1e-4 of floatmoor's statics after 60.
 SYSTEM_IC_MAX_TIME = 60.0
 
-__all__ = ["SystemRun", "system_deck", "run_moordyn_system", "relative_error"]
+#: Longest coupling interval [s] (``moordyn.Step``): the secant velocity's error at the interval's
+#: end, ``a dt_c / 2``, reaches MoorDyn's fairlead force through the last segment's internal
+#: damping (module docstring); 0.4 ms keeps it below ~0.1 % of the tension range on both test
+#: systems up to 200 segments per section (5 N at 50 segments on the lazy wave's top chain).
+COUPLING_INTERVAL = 4e-4
+
+__all__ = ["SystemRun", "COUPLING_INTERVAL", "system_deck", "run_moordyn_system", "relative_error"]
 
 
 @dataclass(frozen=True)
@@ -65,14 +85,21 @@ class SystemRun:
 
     time: np.ndarray  #: [s], (n,)
     fairlead_force: dict[str, np.ndarray]  #: line name -> force on its end point [N], (n, 3)
+    fairlead_inertia: dict[str, np.ndarray]  #: line name -> M a of its end node [N], (n, 3)
+    body_force: dict[str, np.ndarray]  #: body point name -> MoorDyn's force on it [N], (n, 3)
+    body_inertia: dict[str, np.ndarray]  #: body point name -> M a of the point [N], (n, 3)
     point_position: dict[str, np.ndarray]  #: free point name -> position [m], (n, 3)
     segments: dict[str, int]  #: section label ``line[index]`` -> MoorDyn segments
     dt: float  #: MoorDyn's dtM [s]
     wall: float  #: wall-clock seconds in ``moordyn.Step`` (initialisation excluded)
 
-    def fairlead_tension(self, line: str) -> np.ndarray:
-        """|force| of ``line`` on its end point [N], (n,)."""
-        return np.linalg.norm(self.fairlead_force[line], axis=1)
+    def fairlead_tension(self, line: str, *, inertia: bool = True) -> np.ndarray:
+        """|force| of ``line`` on its end point [N], (n,): with ``inertia`` the force on the
+        body (MoorDyn's coupled force less its end node's ``M a``), without it MoorDyn's."""
+        force = self.fairlead_force[line]
+        if inertia:
+            force = force - self.fairlead_inertia[line]
+        return np.linalg.norm(force, axis=1)
 
 
 def _set_option(deck: Deck, key: str, value: str) -> Deck:
@@ -131,7 +158,7 @@ def _dt(deck: Deck) -> float:
 
 
 def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
-                       dt: float | None = None, substeps: int = 1,
+                       dt: float | None = None, substeps: int | None = None,
                        ic_max_time: float = SYSTEM_IC_MAX_TIME, start_at_statics: bool = True,
                        extra_options: Mapping[str, object] | None = None) -> SystemRun:
     """Run ``case``'s exported deck in MoorDyn, its Coupled points on the case's motion.
@@ -145,7 +172,9 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
     segment_scale, dt, ic_max_time, start_at_statics, extra_options
         As :func:`system_deck`.
     substeps
-        Coupling intervals per sample interval (:func:`tests.peer.moordyn_runner.run_moordyn_forced`).
+        Coupling intervals per sample interval
+        (:func:`tests.peer.moordyn_runner.run_moordyn_forced`); default: as many as make them at
+        most :data:`COUPLING_INTERVAL`.
 
     Raises
     ------
@@ -159,7 +188,7 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
     numbers = {p.name: k for k, p in enumerate(case.points, start=1)}
     body = [p.name for p in case.points if p.kind == "body"]
     free = [p.name for p in case.points if p.kind == "free"]
-    owner: dict[str, str] = {}
+    owner: dict[str, str] = {}  # body point at a line's end -> the line
     for sec in case.sections:
         for name in (sec.start, sec.end):
             if name in body:
@@ -167,23 +196,33 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
                     raise ValueError(f"body point {name!r} joins more than one section: "
                                      "MoorDyn's coupled force is their sum")
                 owner[name] = sec.line
+    ends = {n: owner[n] for n in body if n in owner
+            and any(s.end == n and s.line == owner[n] for s in case.sections)}
     t = np.asarray(time, dtype=float)
     pos, vel = body_points_state(case, body, t)
     x = pos.reshape(t.size, -1)
     v = vel.reshape(t.size, -1)
     t, x, v, step = _check_motion(t, x, v)
+    if substeps is None:
+        substeps = max(1, math.ceil(step / COUPLING_INTERVAL - 1e-9))
     start, secant = _coupling_path(x, v, step, substeps)
     dt_c = step / substeps
     starts = [_as_list(p) for p in start]
     vels = [_as_list(p) for p in secant]
+    # the prescribed accelerations at the samples (second order; the paths are smooth)
+    acc = np.gradient(v, t, axis=0).reshape(t.size, len(body), 3)
     force = np.empty((t.size, len(body), 3))
+    inertia = np.empty((t.size, len(body), 3))
     points = np.empty((t.size, len(free), 3))
     k = 0
     with open_input(text, x[0], v[0]) as (system, log):
         handles = [moordyn.GetPoint(system, numbers[n]) for n in free]
+        coupled = [moordyn.GetPoint(system, numbers[n]) for n in body]
 
         def record(f) -> None:
             force[k] = np.reshape(f, (len(body), 3))
+            for j, h in enumerate(coupled):
+                inertia[k, j] = np.asarray(moordyn.GetPointM(h)) @ acc[k, j]
             for j, h in enumerate(handles):
                 points[k, j] = moordyn.GetPointPos(h)
 
@@ -205,7 +244,12 @@ def run_moordyn_system(case, time: np.ndarray, *, segment_scale: float = 1.0,
         raise MoorDynError("MoorDyn returned a non-finite force or position")
     labels = [f"{s.line}[{s.index}]" for s in case.sections]
     return SystemRun(time=t.copy(),
-                     fairlead_force={owner[n]: force[:, j] for j, n in enumerate(body)},
+                     fairlead_force={ends[n]: force[:, j] for j, n in enumerate(body)
+                                     if n in ends},
+                     fairlead_inertia={ends[n]: inertia[:, j] for j, n in enumerate(body)
+                                       if n in ends},
+                     body_force={n: force[:, j] for j, n in enumerate(body)},
+                     body_inertia={n: inertia[:, j] for j, n in enumerate(body)},
                      point_position={n: points[:, j] for j, n in enumerate(free)},
                      segments={lab: ln.segments for lab, ln in zip(labels, deck.lines)},
                      dt=_dt(deck), wall=wall)

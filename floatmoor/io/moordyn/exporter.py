@@ -14,6 +14,13 @@ internal damping and explicit seabed contact, ``max_time_step``) and
 :data:`SEABED_STEP_FRACTION` of the RK2 limit of MoorDyn's explicit seabed spring (tScheme
 RK2 is written). The deck's title is the case's title; the simulation's output interval is
 MoorDyn's dtOut (MoorDyn has no run length: its driver steps it).
+
+Free points are written at the system's static equilibrium (floatmoor's statics,
+:func:`floatmoor.mooring.system_statics.case_statics`, body points at rest): MoorDyn starts its
+initial-condition solve from the deck's positions and its catenaries between them, so from the
+equilibrium it settles at once to its own discretisation's; the case's positions are only the
+statics' initial guesses. A system without a static equilibrium keeps the case's positions,
+with a note.
 """
 
 from __future__ import annotations
@@ -27,7 +34,9 @@ from floatmoor.io.moordyn.deck import (POINT_COUPLED, POINT_FIXED, POINT_FREE, D
                                        DeckLineType, DeckOption, DeckPoint)
 from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type,
                                              seabed_to_moordyn)
+from floatmoor.errors import SolverError
 from floatmoor.mooring.dg.line import CableProperties
+from floatmoor.mooring.system_statics import case_statics
 
 __all__ = ["ExportResult", "export_case", "SEABED_STEP_FRACTION"]
 
@@ -53,6 +62,28 @@ def _segments(section: Any) -> int:
     return int(section.dynamic.elements * section.dynamic.order)
 
 
+def _free_positions(case: Any, notes: list[str]) -> dict[str, tuple[float, float, float]]:
+    """The free points' positions to write: the static equilibrium when there is one (a note
+    says so), the case's otherwise (a note says why)."""
+    free = [p.name for p in case.points if p.kind == "free"]
+    if not free:
+        return {}
+    try:
+        statics = case_statics(case)
+        solution = statics.solve() if statics is not None else None
+    except SolverError as exc:
+        notes.append("free points: at the case's positions (no static equilibrium: "
+                     + " ".join(str(exc).split()) + ")")
+        return {}
+    if solution is None:
+        return {}
+    at = {n: tuple(float(c) for c in solution.position(n)) for n in free
+          if n in solution.point_names}
+    notes.append("free points: at floatmoor's static equilibrium (the case's positions are "
+                 "its initial guesses)")
+    return at  # type: ignore[return-value]
+
+
 def export_case(case: Any) -> ExportResult:
     """The MoorDyn deck of ``case`` (a :class:`floatmoor.case.schema.Case`) and the notes on
     what MoorDyn cannot represent (also to be written into the deck's comments)."""
@@ -62,8 +93,10 @@ def export_case(case: Any) -> ExportResult:
     line_of = {line.name: line for line in case.lines}
 
     numbers = {p.name: i for i, p in enumerate(case.points, start=1)}
+    at = _free_positions(case, notes)
     points = tuple(DeckPoint(number=numbers[p.name], attachment=_KINDS[p.kind],
-                             position=tuple(float(c) for c in p.position),  # type: ignore
+                             position=at.get(p.name,  # type: ignore[arg-type]
+                                             tuple(float(c) for c in p.position)),
                              mass=p.mass, volume=p.volume, drag_area=p.drag_area,
                              added_mass_coefficient=p.added_mass_coefficient,
                              attachment_text=p.name) for p in case.points)
