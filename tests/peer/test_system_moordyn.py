@@ -47,6 +47,11 @@ TENSION_RANGE_FRACTION = {
     "chain_rope_chain_clump": 0.025,
     "lazy_wave_buoy": 0.02,
 }
+#: The issue's bound [-], met by both lines with floatmoor's sections at 20 elements (a
+#: numerics choice, not a physical input: the clump line's ringing is not converged at the
+#: default 10; issue 17 chooses numerics from an accuracy).
+ISSUE_RANGE_FRACTION = 0.02
+REFINED = ["lines.*.dynamic.elements=20"]
 #: The same for the wave-frequency content: the least-squares fit of the harmonics of the
 #: motion's period up to :data:`LOW_PASS_FREQUENCY` of both records (observed 0.25 % clump
 #: line, 0.49 % lazy wave).
@@ -74,9 +79,12 @@ def _low_pass(t: np.ndarray, y: np.ndarray, period: float) -> np.ndarray:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", sorted(REFERENCE_SETTINGS))
-def test_fairlead_tension_and_points_match_converged_moordyn(name):
-    case = load_case(SYSTEMS / f"{name}.toml")
+@pytest.mark.parametrize("name, overrides, bound", [
+    *((name, [], TENSION_RANGE_FRACTION[name]) for name in sorted(REFERENCE_SETTINGS)),
+    ("chain_rope_chain_clump", REFINED, ISSUE_RANGE_FRACTION),
+], ids=["clump-defaults", "lazy-wave-defaults", "clump-20-elements"])
+def test_fairlead_tension_and_points_match_converged_moordyn(name, overrides, bound):
+    case = load_case(SYSTEMS / f"{name}.toml", overrides)
     ds = run_forced_motion(case).dataset
     ref = read_reference(name)
     t = ds["time"].values
@@ -98,7 +106,7 @@ def test_fairlead_tension_and_points_match_converged_moordyn(name):
           f"<= {LOW_PASS_FREQUENCY:g} Hz {low:.2%}; points (m) "
           f"{ {n: round(d, 3) for n, d in points.items()} }")
     assert theirs.min() > 0.1 * theirs.max()  # taut throughout: the cases' premise
-    assert error <= TENSION_RANGE_FRACTION[name]
+    assert error <= bound
     assert low <= LOW_FREQUENCY_RANGE_FRACTION
     assert max(points.values()) <= POINT_ATOL
 
