@@ -10,7 +10,8 @@ runs at its defaults (10 elements of order 5 per section). MoorDyn's finest reco
 tests/data/systems/NAME_moordyn.nc (tests/peer/moordyn_system_reference.py says how it was
 produced and regenerates it), so the
 slow tests run floatmoor only; a short run of the clump line checks the harness, the exported
-deck and the start against a fresh MoorDyn run in the default run.
+deck and the start against a fresh MoorDyn run (slow too); the default run checks the stored
+records.
 
 Asserted over the whole record after the ramp: the fairlead tension histories agree within
 :data:`TENSION_RANGE_FRACTION` of MoorDyn's tension range, their wave-frequency content
@@ -131,6 +132,7 @@ def test_stored_moordyn_records_say_how_they_were_made(name):
     assert reference_path(name).stat().st_size < 200_000
 
 
+@pytest.mark.slow  # a fresh MoorDyn run (16 s); the stored records are checked in the default run
 def test_short_run_starts_at_the_statics_and_follows_moordyn():
     """The first 3 s of the clump line (a 2.5 s ramp) at the exported MoorDyn settings
     and a short MoorDyn start (TmaxIC 10 s is enough from the statics on this line): both codes
