@@ -121,6 +121,28 @@ def _parser() -> argparse.ArgumentParser:
     hbuild.add_argument("-o", "--output", metavar="PATH.nc",
                         help="database file (default: hydrodb/NAME.nc of the case)")
     hbuild.add_argument("--quiet", action="store_true", help="no progress reports")
+    himport = hsub.add_parser("import", help="make a database from WAMIT (.1 .3 .hst .3fk "
+                              ".3sc) or WEC-Sim BEMIO (.h5) files, and check it")
+    himport.add_argument("files", nargs="+", metavar="FILE", help="the BEM result files")
+    himport.add_argument("-o", "--output", metavar="PATH.nc", required=True,
+                         help="database file (a case names hydrodb/NAME.nc as NAME)")
+    himport.add_argument("--water-density", metavar="RHO", help="[kg/m^3] (WAMIT: required)")
+    himport.add_argument("--gravity", metavar="G", help="[m/s^2] (WAMIT: required)")
+    himport.add_argument("--length-scale", metavar="ULEN", help="WAMIT's ULEN [m] (default 1)")
+    himport.add_argument("--water-depth", metavar="DEPTH",
+                         help="the BEM's water depth [m] or 'infinite' (WAMIT: required)")
+    himport.add_argument("--reference-point", nargs=3, metavar=("X", "Y", "Z"),
+                         help="where the file's reference point (WAMIT: its origin) lies: the "
+                         "case's floater.reference_point [m] (default 0 0 0)")
+    himport.add_argument("--displaced-volume", metavar="V",
+                         help="[m^3] (WAMIT: required, its files do not give it)")
+    himport.add_argument("--centre-of-buoyancy", nargs=3, metavar=("X", "Y", "Z"),
+                         help="[m], case coordinates (WAMIT: required)")
+    himport.add_argument("--body", metavar="N", help="BEMIO: the body (1-based) of a "
+                         "multi-body file")
+    himport.add_argument("--yaw-deg", metavar="DEG", help="rotation of the file's body frame "
+                         "about z into the case's [deg] (default 0)")
+    himport.add_argument("--force", action="store_true", help="overwrite an existing file")
     hcheck = hsub.add_parser("check", help="run the database checks")
     hcheck.add_argument("database", metavar="NAME_OR_PATH",
                         help="database name (hydrodb/NAME.nc) or path")
@@ -295,8 +317,10 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
         accepted = case.hydro.accept_failed_checks
-        rows.append(f"  hydro: database {case.hydro.database}, {len(case.hydro.frequencies)} "
-                    f"frequencies, {len(case.hydro.directions)} directions"
+        built = (f"{len(case.hydro.frequencies)} frequencies, {len(case.hydro.directions)} "
+                 "directions" if case.hydro.source == "bem" else "imported (floatmoor hydro "
+                 "import)")
+        rows.append(f"  hydro: database {case.hydro.database}, {built}"
                     + (f"; accepts failed checks: {', '.join(accepted)}" if accepted else ""))
     if case.motion is not None:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "

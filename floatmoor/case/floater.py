@@ -24,7 +24,10 @@ of K(t), ``floatmoor hydro fit-state-space``), and ``[floater.geometry]``:
 ``radial_panels`` (cylinder bottom). Density and gravity come from ``[environment]``.
 ``accept_failed_checks = ["kernel_decay", ...]`` (default none) names database checks
 (floatmoor.hydro.checks) whose failure a run of the case accepts; a run refuses a database
-failing any other check.
+failing any other check. ``source`` is ``"bem"`` (default: the database is built by
+``floatmoor hydro build`` from the keys above) or ``"imported"`` (made by ``floatmoor hydro
+import`` from WAMIT or BEMIO files): then only ``database``, ``source`` and
+``accept_failed_checks`` may be given.
 """
 
 from __future__ import annotations
@@ -38,8 +41,9 @@ from floatmoor.case.schema import (
     GEOMETRY_KINDS, HYDRO_CHECKS, RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater,
     FloaterGeometry, HydroSettings, Member, SemisubmersibleGeometry,
 )
+from floatmoor.case.schema import HYDRO_SOURCES
 
-__all__ = ["read_floater", "read_hydro", "MAX_FREQUENCIES"]
+__all__ = ["read_floater", "read_hydro", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS"]
 
 #: More frequencies than this is a typing error rather than a plan (a 400-frequency buoy
 #: database took 84 s; capytaine_notes.md).
@@ -160,11 +164,19 @@ def _member(t: TableReader, environment: Environment) -> Member:
     return Member(start=start, end=end, diameter=diameter)  # type: ignore[arg-type]
 
 
+#: The keys of ``[hydro]`` a case with ``source = "imported"`` may give; the others are BEM
+#: build settings (``floatmoor hydro build``).
+IMPORTED_HYDRO_KEYS = ("database", "source", "accept_failed_checks")
+
+
 def read_hydro(t: TableReader) -> HydroSettings:
     """Read ``[hydro]``."""
     database = t.string("database")
     if not all(ch.isalnum() or ch in "-_." for ch in database) or database.startswith("."):
         raise t.error("database", "a file name of letters, digits, '-', '_' and '.'", database)
+    source = t.string("source", choices=HYDRO_SOURCES, default="bem")
+    if source == "imported":
+        return _imported_hydro(t, database)
     omegas: list[float] = []
     if t.has("frequency_ranges"):
         ranges = t.data["frequency_ranges"]
@@ -216,6 +228,21 @@ def read_hydro(t: TableReader) -> HydroSettings:
         radial_panels=t.integer("radial_panels", ge=1, le=1000, default=None),
         accept_failed_checks=_accepted_checks(t),
     )
+    t.finish()
+    return settings
+
+
+def _imported_hydro(t: TableReader, database: str) -> HydroSettings:
+    """``[hydro]`` of a database made by ``floatmoor hydro import``: no BEM build keys."""
+    for key in t.data:
+        if key not in IMPORTED_HYDRO_KEYS:
+            raise t.error(key, 'no BEM build settings with source = "imported" (they belong to '
+                          "'floatmoor hydro build'; an imported database is made by 'floatmoor "
+                          "hydro import'): only " + ", ".join(IMPORTED_HYDRO_KEYS),
+                          t.data[key])
+    settings = HydroSettings(database=database, frequencies=(), directions=(), panel_size=None,
+                             lid=False, lid_depth=None, infinite_depth=False, symmetry=False,
+                             accept_failed_checks=_accepted_checks(t), source="imported")
     t.finish()
     return settings
 

@@ -199,8 +199,8 @@ def wetted_area_estimate(geometry: Any) -> float:
 
 
 def _check_panels(case: "Case", context: "ReadContext") -> None:
-    if case.floater is None or case.hydro is None:
-        return
+    if case.floater is None or case.hydro is None or case.hydro.panel_size is None:
+        return  # no BEM build (an imported database)
     size = case.hydro.panel_size
     panels = wetted_area_estimate(case.floater.geometry) / size / size  # (size * size: 0)
     if not panels <= MAX_BEM_PANELS:

@@ -19,7 +19,7 @@ __all__ = [
     "SEABED_CONTACT_METHODS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
-    "RADIATION_METHODS", "HYDRO_CHECKS", "POINT_KINDS", "Point", "Section",
+    "RADIATION_METHODS", "HYDRO_CHECKS", "HYDRO_SOURCES", "POINT_KINDS", "Point", "Section",
     "BODY_DOFS", "BodyHarmonicMotion", "BodyTableMotion", "BodyMotion",
 ]
 
@@ -344,6 +344,9 @@ GEOMETRY_KINDS = ("cylinder", "semisubmersible")
 RADIATION_METHODS = ("convolution", "state-space")
 #: The checks of a hydrodynamic database (floatmoor.hydro.checks.run_checks, in its order): the
 #: names ``[hydro] accept_failed_checks`` may give.
+#: Where a floater's database comes from (``[hydro] source``): built by capytaine from the
+#: case's geometry, or imported from another program's files.
+HYDRO_SOURCES = ("bem", "imported")
 HYDRO_CHECKS = ("symmetry", "damping_psd", "kramers_kronig", "kernel_decay", "haskind",
                 "hydrostatics")
 
@@ -435,12 +438,17 @@ class Floater:
 
 @dataclass(frozen=True)
 class HydroSettings:
-    """Settings of the BEM database of the floater (``[hydro]``)."""
+    """Settings of the BEM database of the floater (``[hydro]``).
+
+    With ``source = "imported"`` (a database made by ``floatmoor hydro import``) the BEM build
+    fields are empty: ``frequencies`` and ``directions`` (), ``panel_size`` and ``lid_depth``
+    None, the flags False.
+    """
 
     database: str  #: database name: ``hydrodb/NAME.nc``
     frequencies: tuple[float, ...]  #: finite wave frequencies, increasing [rad/s]
     directions: tuple[float, ...]  #: wave propagation directions, increasing [rad]
-    panel_size: float  #: target panel edge length [m]
+    panel_size: float | None  #: target panel edge length [m] (None: imported)
     lid: bool  #: lid on the interior waterplane against irregular frequencies
     lid_depth: float | None  #: [m] below the still water line, None = from the top frequency
     infinite_depth: bool  #: solve in deep water (allows omega = 0) instead of water_depth
@@ -448,6 +456,8 @@ class HydroSettings:
     radial_panels: int | None = None  #: cylinder only: panels across the bottom radius
     #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
     accept_failed_checks: tuple[str, ...] = ()
+    #: ``"bem"`` (built by ``floatmoor hydro build``) or ``"imported"`` (``hydro import``)
+    source: str = "bem"
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,11 @@ Each check returns a :class:`CheckResult` with its worst measured value and its 
 * ``hydrostatics``: displaced volume and hydrostatic stiffness C33, C44, C55 against the
   analytic values of the geometry (:func:`floatmoor.hydro.geometry.geometry_properties`)
   within 1 %.
+
+A check that cannot apply says so instead of passing silently (``CheckResult.applicable``
+False, the reason in its detail; ``hydro check`` shows "n/a"): ``haskind`` on a database
+without excitation forces, ``hydrostatics`` on one without a geometry (imported from another
+program's files, whose hydrostatics are the files' own).
 """
 
 from __future__ import annotations
@@ -66,20 +71,31 @@ _DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 
 @dataclass(frozen=True)
 class CheckResult:
-    """Outcome of one check: ``worst`` is compared with ``tolerance`` (smaller is better)."""
+    """Outcome of one check: ``worst`` is compared with ``tolerance`` (smaller is better).
+
+    A check that cannot apply to the database (``applicable`` False: the Haskind relation
+    without excitation forces, the hydrostatics without a geometry) says why in ``detail``;
+    it does not fail (``passed`` True, ``worst`` NaN).
+    """
 
     name: str
     passed: bool
     worst: float
     tolerance: float
     detail: str
+    applicable: bool = True
 
     def as_dict(self) -> dict:
         """JSON-ready."""
         out = asdict(self)
         out.update(passed=bool(self.passed), worst=float(self.worst),
-                   tolerance=float(self.tolerance))
+                   tolerance=float(self.tolerance), applicable=bool(self.applicable))
         return out
+
+    @classmethod
+    def not_applicable(cls, name: str, tolerance: float, reason: str) -> "CheckResult":
+        """A check that cannot apply, and why."""
+        return cls(name, True, math.nan, tolerance, reason, applicable=False)
 
 
 def geometry_from_dataset(ds: xr.Dataset) -> FloaterGeometry:
@@ -201,8 +217,8 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
     """B_jj from the excitation forces: k / (8 pi rho g c_g) int_0^2pi |X_j(beta)|^2 d beta.
 
     The directions must be either the single direction of an axisymmetric body (cylinder;
-    |X_1(beta)| = |X_1(0)| |cos beta|, |X_3| constant) or span [0, pi] on a body symmetric
-    about y = 0 (|X_j(-beta)| = |X_j(beta)| for j = surge, heave, pitch), in which case the
+    |X_1(beta)| = |X_1(0)| |cos beta|, |X_3| constant) or span [0, pi] (or [-pi, 0]) on a
+    body symmetric about y = 0 (|X_j(-beta)| = |X_j(beta)| for j = surge, heave, pitch), in which case the
     periodic trapezoidal rule is used on the mirrored directions.
     """
     x = merge_complex(ds, "excitation_force").transpose("omega", "wave_direction",
@@ -224,9 +240,12 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
             integral = x2[:, 0] * 2.0 * math.pi
     else:
         step = np.diff(beta)
-        if not (abs(beta[0]) < 1e-9 and abs(beta[-1] - math.pi) < 1e-9
-                and np.allclose(step, step[0])):
-            raise ValueError("the Haskind check needs directions evenly spanning 0 to 180 deg")
+        # [0, pi] or [-pi, 0] (a 180 deg yaw of the former): each mirrors to the full circle
+        half = (abs(beta[0]) < 1e-9 and abs(beta[-1] - math.pi) < 1e-9) or \
+            (abs(beta[0] + math.pi) < 1e-9 and abs(beta[-1]) < 1e-9)
+        if not (half and np.allclose(step, step[0])):
+            raise ValueError("the Haskind check needs directions evenly spanning 0 to 180 deg "
+                             "(or -180 to 0 deg)")
         # periodic trapezoid over [0, 2 pi) with the mirrored half: 2 * (sum of interior) +
         # end points once each
         integral = step[0] * (x2[:, 0] + x2[:, -1] + 2.0 * x2[:, 1:-1].sum(axis=1))
@@ -244,6 +263,11 @@ def check_haskind(ds: xr.Dataset) -> CheckResult:
     "within 5 %" means something at every frequency; the pointwise error where B is at least
     half its peak is reported too.
     """
+    if "excitation_force" not in ds.variables:
+        return CheckResult.not_applicable(
+            "haskind", HASKIND_TOLERANCE, "no excitation forces in the database"
+            + (f" (imported from {ds.attrs['source']} files without them)"
+               if ds.attrs.get("source", "capytaine") != "capytaine" else ""))
     omega = ds["omega"].values
     b = _matrices(ds, "radiation_damping")
     worst, where, pointwise = 0.0, "", 0.0
@@ -311,6 +335,11 @@ def run_checks(ds: xr.Dataset) -> list[CheckResult]:
               ("hydrostatics", HYDROSTATICS_TOLERANCE, lambda: check_hydrostatics(ds))]
     results = []
     for name, tolerance, check in checks:
+        if name == "hydrostatics" and "geometry_json" not in ds.attrs:
+            results.append(CheckResult.not_applicable(
+                name, tolerance, "no geometry to compare with: the hydrostatics are "
+                f"the {ds.attrs.get('source', 'source')} files' own"))
+            continue
         # values no BEM solver writes (an edited file) can break a check's arithmetic: that
         # is a failed check, reported in its row, not a traceback
         try:

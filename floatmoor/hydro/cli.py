@@ -1,4 +1,5 @@
-"""``floatmoor hydro build | check | info | fit-state-space`` (called from :mod:`floatmoor.cli`).
+"""``floatmoor hydro build | import | check | info | fit-state-space`` (called from
+:mod:`floatmoor.cli`).
 
 Exit statuses: 0 success (all checks pass), 1 a check fails (or no state-space fit within the
 tolerance: nothing written), 2 bad input (a malformed case, a case without [floater]/[hydro],
@@ -10,6 +11,12 @@ checks recorded in its attributes (``checks_failed``, ``checks_json``), so that 
 inspected (``hydro check``, ``hydro info``); the build then exits with 1, and a run refuses
 the database unless its case accepts those checks (``[hydro] accept_failed_checks``; a check
 the case accepts is shown as such and does not make the build fail).
+
+``hydro import FILE... -o PATH.nc`` makes a database from WAMIT (.1, .3, .hst, .3fk, .3sc) or
+WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prints the same
+table (exit 1 when a check fails; the database is written, as by ``build``). A file that
+cannot be read, a bad or missing option, or an existing output without ``--force`` is exit 2
+with one line, and nothing is written. ``hydro info`` says where a database came from.
 """
 
 from __future__ import annotations
@@ -31,16 +38,19 @@ EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
 def hydro_command(args: argparse.Namespace) -> int:
     """Dispatch ``floatmoor hydro ...``; CaseError propagates to the main CLI (exit 2)."""
     from floatmoor.hydro.database import HydroDatabaseError
+    from floatmoor.io.bem_data import BemFileError
 
     try:
         if args.hydro_command == "build":
             return _build(args)
+        if args.hydro_command == "import":
+            return _import(args)
         if args.hydro_command == "check":
             return _check(args)
         if args.hydro_command == "fit-state-space":
             return _fit_state_space(args)
         return _info(args)
-    except HydroDatabaseError as err:
+    except (HydroDatabaseError, BemFileError) as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
@@ -58,16 +68,50 @@ def resolve_database(text: str) -> Path:
 
 
 def _build(args: argparse.Namespace) -> int:
-    from floatmoor.hydro.database import database_path
+    from floatmoor.hydro.database import HydroDatabaseError, database_path
     from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
     if case.floater is None or case.hydro is None:
         raise CaseError(args.case, "hydro", "a case with [floater] and [hydro] tables",
                         "none" if case.floater is None else "no [hydro] table")
+    if case.hydro.source == "imported":
+        raise HydroDatabaseError(
+            f"{args.case}: [hydro] source = \"imported\": its database "
+            f"{case.hydro.database} is imported, not built; re-import with "
+            f"'{_recorded_import(database_path(case))}'")
     output = _database_output(args, case, database_path(case))
     with output_lock(output):
+        _refuse_replacing_import(output, args.force)
         return _build_locked(args, case, output)
+
+
+def _recorded_import(path: Path) -> str:
+    """The command that imported the database at ``path`` (with --force), or its form."""
+    from floatmoor.hydro.database import HydroDatabaseError, read_database, reimport_command
+
+    try:
+        return reimport_command(read_database(path))
+    except HydroDatabaseError:
+        return "floatmoor hydro import FILE... -o PATH.nc"
+
+
+def _refuse_replacing_import(output: Path, force: bool) -> None:
+    """``hydro build`` replaces an imported database only with ``--force``."""
+    from floatmoor.hydro.database import (
+        HydroDatabaseError, database_source, is_imported, read_database,
+    )
+
+    if force or not output.exists():
+        return
+    try:
+        ds = read_database(output)
+    except HydroDatabaseError:
+        return  # damaged: rebuilt as any damaged database is
+    if is_imported(ds):
+        raise HydroDatabaseError(f"{output}: imported from {database_source(ds)} files "
+                                 "('floatmoor hydro import'); hydro build replaces it only with "
+                                 "--force (or give the case another [hydro] database)")
 
 
 def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
@@ -135,12 +179,125 @@ def _report_build_checks(path: Path, ds, results, case, note: str) -> int:
     return EXIT_OK
 
 
+def _import(args: argparse.Namespace) -> int:
+    """``hydro import``: read, label, check and write atomically; nothing written on an
+    error."""
+    from floatmoor.hydro.checks import check_values, run_checks
+    from floatmoor.hydro.database import write_database
+    from floatmoor.hydro.importing import file_format, import_database
+    from floatmoor.io.output_files import check_output_file, output_lock
+
+    options = _import_options(args)
+    file_format(args.files)
+    if not args.output.endswith(".nc"):
+        raise CaseError("-o/--output", "", "a database file PATH.nc", f"'{args.output}'")
+    output = check_output_file(args.output, "-o/--output", protected={
+        f"source file {f}": f for f in args.files}).path
+    with output_lock(output):
+        if output.exists() and not args.force:
+            raise CaseError("-o/--output", "", "a new file (--force overwrites)",
+                            f"the existing file '{output}'")
+        ds = import_database(args.files, options, name=output.stem,
+                             command=_import_command(args))
+        results = [check_values(ds), *run_checks(ds)]
+        failed = [r.name for r in results if not r.passed]
+        ds.attrs["checks_failed"] = ", ".join(failed) or "none"
+        ds.attrs["checks_json"] = json.dumps([r.as_dict() for r in results])
+        write_database(ds, output)
+    omega = ds["omega"].values
+    print(f"{output}: imported from {ds.attrs['source']} files, {len(omega)} frequencies "
+          f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf {ds.attrs['added_mass_infinite_source']}"
+          f"; excitation: {ds.attrs['excitation']}")
+    print(_checks_table(output, ds, "as imported", results))
+    if failed:
+        print(f"floatmoor: hydro import: {output} is written but fails its checks: "
+              f"{', '.join(failed)}; a run refuses it unless the case accepts them "
+              "([hydro] accept_failed_checks)", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def _import_options(args: argparse.Namespace):
+    """The options of ``hydro import``, checked (CaseError naming the option)."""
+    from floatmoor.hydro.importing import ImportOptions
+
+    depth = None
+    if args.water_depth is not None:
+        depth = math.inf if args.water_depth.strip().lower() in ("infinite", "inf") else \
+            _option_number("--water-depth", args.water_depth, "a water depth > 0 [m] or "
+                           "'infinite'", positive=True)
+    body = None
+    if args.body is not None:
+        try:
+            body = int(args.body)
+        except ValueError:
+            body = 0
+        if body < 1:
+            raise CaseError("--body", "", "a body number >= 1 (BEMIO body1, body2, ...)",
+                            f"'{args.body}'")
+    return ImportOptions(
+        water_density=_optional("--water-density", args.water_density, "kg/m^3"),
+        gravity=_optional("--gravity", args.gravity, "m/s^2"),
+        length_scale=_optional("--length-scale", args.length_scale, "m"),
+        water_depth=depth,
+        reference_point=_option_point("--reference-point", args.reference_point)
+        if args.reference_point is not None else (0.0, 0.0, 0.0),
+        disp_volume=_optional("--displaced-volume", args.displaced_volume, "m^3"),
+        centre_of_buoyancy=_option_point("--centre-of-buoyancy", args.centre_of_buoyancy)
+        if args.centre_of_buoyancy is not None else None,
+        body=body,
+        yaw_deg=_option_number("--yaw-deg", args.yaw_deg, "an angle [deg]")
+        if args.yaw_deg is not None else 0.0,
+    )
+
+
+def _option_number(flag: str, text: str, expected: str, positive: bool = False) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or (positive and value <= 0.0):
+        raise CaseError(flag, "", expected, f"'{text}'")
+    return value
+
+
+def _optional(flag: str, text: str | None, unit: str) -> float | None:
+    return None if text is None else _option_number(flag, text, f"a number > 0 [{unit}]",
+                                                    positive=True)
+
+
+def _option_point(flag: str, texts: list[str]) -> tuple[float, float, float]:
+    x, y, z = (_option_number(flag, t, "three coordinates X Y Z [m]") for t in texts)
+    return (x, y, z)
+
+
+def _import_command(args: argparse.Namespace) -> str:
+    """The import's command line (options as given), recorded for re-imports."""
+    import shlex
+
+    parts = ["floatmoor", "hydro", "import", *args.files, "-o", args.output]
+    for flag, value in (("--water-density", args.water_density), ("--gravity", args.gravity),
+                        ("--length-scale", args.length_scale),
+                        ("--water-depth", args.water_depth),
+                        ("--reference-point", args.reference_point),
+                        ("--displaced-volume", args.displaced_volume),
+                        ("--centre-of-buoyancy", args.centre_of_buoyancy),
+                        ("--body", args.body), ("--yaw-deg", args.yaw_deg)):
+        if value is not None:
+            parts += [flag, *(value if isinstance(value, list) else [value])]
+    return shlex.join(parts)
+
+
 def _open(text: str):
-    """Read a database and, when its recorded case file is present, check it is up to date."""
-    from floatmoor.hydro.database import HydroDatabaseError, read_database, stale_keys
+    """Read a database and check it is up to date: with its recorded case file when present
+    (built), with its recorded source files where present (imported)."""
+    from floatmoor.hydro.database import HydroDatabaseError, is_imported, read_database, \
+        stale_keys
 
     path = resolve_database(text)
     ds = read_database(path)
+    if is_imported(ds):
+        return path, ds, _imported_note(path, ds)
     note = "recorded case file not found: staleness not checked"
     source = Path(ds.attrs.get("case_file", ""))
     candidates = [source] + [p / source for p in [path.resolve().parent.parent]]
@@ -159,6 +316,28 @@ def _open(text: str):
             note = f"up to date with {candidate}"
             break
     return path, ds, note
+
+
+def _imported_note(path: Path, ds) -> str:
+    """Whether an imported database's source files are unchanged (HydroDatabaseError when
+    one present at its recorded path is not)."""
+    from floatmoor.hydro.database import (
+        HydroDatabaseError, changed_source_files, located_source_file, reimport_command,
+        source_files,
+    )
+
+    changed = changed_source_files(ds)
+    if changed:
+        raise HydroDatabaseError(f"{path}: stale hydrodynamic database: source file "
+                                 f"{', '.join(changed)} changed since the import (SHA-256 "
+                                 f"differs); re-import with '{reimport_command(ds)}'")
+    records = source_files(ds)
+    found = sum(located_source_file(ds, str(r.get("path", ""))) is not None for r in records)
+    if found == len(records):
+        return "source files unchanged since the import"
+    if found == 0:
+        return "source files not found: staleness not checked"
+    return f"{found} of {len(records)} source files found, unchanged since the import"
 
 
 def _check(args: argparse.Namespace) -> int:
@@ -181,11 +360,15 @@ def _checks_table(path: Path, ds, note: str, results, accepted: tuple[str, ...] 
     rows = [f"{path}: {ds.attrs['database']} ({note})",
             f"  {'check':<16}{'result':<8}{'worst':>11}{'tolerance':>11}  detail"]
     for r in results:
+        if not r.applicable:
+            rows.append(f"  {r.name:<16}{'n/a':<8}{'-':>11}{r.tolerance:>11.3g}  {r.detail}")
+            continue
         result = "pass" if r.passed else "FAIL*" if r.name in accepted else "FAIL"
         rows.append(f"  {r.name:<16}{result:<8}{r.worst:>11.3g}{r.tolerance:>11.3g}  "
                     f"{r.detail}")
+    skipped = sum(not r.applicable for r in results)
     if all(r.passed for r in results):
-        rows.append("all checks pass")
+        rows.append("all checks pass" + (f" ({skipped} not applicable)" if skipped else ""))
     elif all(r.passed or r.name in accepted for r in results):
         rows.append("a check FAILED (* accepted by the case: [hydro] accept_failed_checks)")
     else:
@@ -290,25 +473,64 @@ def _pairs_table(realisation, rtol: float | None = None) -> str:
 
 
 def _info(args: argparse.Namespace) -> int:
+    from floatmoor.hydro.database import (
+        EXCITATION_VARIABLES, database_source, has_excitation, is_imported,
+    )
+
     path, ds, note = _open(args.database)
     omega = ds["omega"].values
     import numpy as np
 
     a = ds.attrs
     print(f"{path}: {a['database']} ({note})")
-    print(f"  floater {a['floater']} ({a['geometry_kind']}), case {a['case_file']}")
-    print(f"  mesh: {a['hull_panels']} hull + {a['lid_panels']} lid panels, {a['mesh_symmetry']}, "
-          f"panel size {a['panel_size']} m, lid depth {a['lid_depth']}, hash {a['mesh_hash'][:12]}")
-    print(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s + infinity; "
-          f"directions {', '.join(f'{d:g}' for d in np.degrees(ds['wave_direction'].values))} deg")
+    if is_imported(ds):
+        print(_import_info(ds))
+    else:
+        print(f"  source: capytaine ('floatmoor hydro build' of {a['case_file']}), "
+              f"capytaine {a['capytaine_version']}, floatmoor {a['floatmoor_version']}, built "
+              f"{a['created']} in {float(a['build_seconds']):.1f} s")
+        print(f"  floater {a['floater']} ({a['geometry_kind']}), case {a['case_file']}")
+        print(f"  mesh: {a['hull_panels']} hull + {a['lid_panels']} lid panels, "
+              f"{a['mesh_symmetry']}, panel size {a['panel_size']} m, lid depth "
+              f"{a['lid_depth']}, hash {a['mesh_hash'][:12]}")
+        print(f"  build settings: {a.get('build_settings_json', 'not recorded')}")
+    print(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf: "
+          f"{a.get('added_mass_infinite_source', 'capytaine (omega = infinity solved)')}")
+    if has_excitation(ds):
+        held = [v for v in EXCITATION_VARIABLES if v in ds.variables]
+        print(f"  excitation: {', '.join(held)}; directions "
+              f"{', '.join(f'{d:g}' for d in np.degrees(ds['wave_direction'].values))} deg")
+    else:
+        print(f"  excitation: none (from {database_source(ds)} files without it): a run with "
+              "waves refuses this database; still water and wind only run")
     print(f"  water depth {a['water_depth']} m (BEM: {a['bem_water_depth']}), density "
           f"{a['water_density']} kg/m^3, g {a['gravity']} m/s^2")
     print(f"  displaced volume {float(ds['disp_volume']):.6g} m^3, waterplane "
-          f"{float(ds['waterplane_area']):.6g} m^2")
-    print(f"  capytaine {a['capytaine_version']}, floatmoor {a['floatmoor_version']}, built "
-          f"{a['created']} in {float(a['build_seconds']):.1f} s")
+          f"{float(ds['waterplane_area']):.6g} m^2, rotation centre "
+          f"{', '.join(f'{v:g}' for v in ds['rotation_center'].values)} m")
     print(_state_space_info(ds))
     return EXIT_OK
+
+
+def _import_info(ds) -> str:
+    """Where an imported database came from: format, files with sizes and SHA-256, options,
+    the reader's notes."""
+    from floatmoor.hydro.database import source_files
+
+    a = ds.attrs
+    rows = [f"  source: {a['source']} files, imported by {a.get('importer', 'floatmoor')} at "
+            f"{a['created']}" + (f", body {a['body_name']}" if a.get("body_name") else "")]
+    for record in source_files(ds):
+        rows.append(f"    {record.get('path')}  {record.get('size')} bytes  SHA-256 "
+                    f"{record.get('sha256')}")
+    options = json.loads(a.get("import_options_json", "{}"))
+    given = ", ".join(f"{k} {v}" for k, v in sorted(options.items()) if v is not None)
+    rows.append(f"  import options: {given or 'none'}")
+    if a.get("import_command"):
+        rows.append(f"  command: {a['import_command']}")
+    for note in json.loads(a.get("import_notes_json", "[]")):
+        rows.append(f"  note: {note}")
+    return "\n".join(rows)
 
 
 def _state_space_info(ds) -> str:

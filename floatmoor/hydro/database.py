@@ -44,14 +44,24 @@ from floatmoor.io.netcdf import read_dataset, write_dataset
 __all__ = [
     "HydroDatabaseError", "database_inputs", "inputs_hash", "to_dataset", "write_database",
     "read_database", "load_for_case", "database_path", "merge_complex", "REQUIRED_VARIABLES",
-    "capytaine_major",
+    "capytaine_major", "EXCITATION_VARIABLES", "DATABASE_SOURCES", "database_source",
+    "is_imported", "has_excitation", "labelled_variable", "database_coords", "stale_keys",
+    "stale_message", "source_mismatch", "file_sha256", "source_files", "located_source_file",
+    "changed_source_files", "reimport_command",
 ]
 
 #: Variables every database holds.
-REQUIRED_VARIABLES = ("added_mass", "radiation_damping", "excitation_force",
-                      "Froude_Krylov_force", "diffraction_force", "added_mass_infinite",
+REQUIRED_VARIABLES = ("added_mass", "radiation_damping", "added_mass_infinite",
                       "hydrostatic_stiffness", "disp_volume", "center_of_buoyancy",
                       "rotation_center", "waterplane_area")
+#: The excitation group: the total wave excitation, and its Froude-Krylov and diffraction
+#: parts. A built database holds all three; an imported one holds them as its files give
+#: them (none, the total only, or all three); the parts never without the total, nor one
+#: part without the other.
+EXCITATION_VARIABLES = ("excitation_force", "Froude_Krylov_force", "diffraction_force")
+#: Where a database's data come from (attribute ``source``; a file without it was built by
+#: capytaine): ``floatmoor hydro build`` or ``floatmoor hydro import``.
+DATABASE_SOURCES = ("capytaine", "wamit", "bemio")
 
 _ATTRS: dict[str, dict[str, str]] = {
     "omega": {"long_name": "wave angular frequency", "units": "rad/s"},
@@ -74,7 +84,7 @@ _ATTRS: dict[str, dict[str, str]] = {
     "diffraction_force": {"long_name": "diffraction force per unit wave amplitude",
                           "units": "N/m"},
     "added_mass_infinite": {"long_name": "added mass at omega = infinity", "units": "kg"},
-    "added_mass_zero": {"long_name": "added mass at omega = 0 (deep water only)",
+    "added_mass_zero": {"long_name": "added mass at omega = 0 (built: deep water only)",
                         "units": "kg"},
     "hydrostatic_stiffness": {"long_name": "hydrostatic stiffness of the hull (buoyancy "
                               "only, centre of mass taken at the rotation centre; N/m, N, "
@@ -95,6 +105,22 @@ class HydroDatabaseError(FloatmoorError):
     """A hydrodynamic database is missing, damaged or stale for the case that asks for it."""
 
 
+def database_source(ds: xr.Dataset) -> str:
+    """``"capytaine"`` (built; also a file without the ``source`` attribute, written before
+    it was recorded), ``"wamit"`` or ``"bemio"`` (imported)."""
+    return str(ds.attrs.get("source", "capytaine"))
+
+
+def is_imported(ds: xr.Dataset) -> bool:
+    """Whether the database was made by ``floatmoor hydro import``."""
+    return database_source(ds) != "capytaine"
+
+
+def has_excitation(ds: xr.Dataset) -> bool:
+    """Whether the database holds wave excitation forces."""
+    return "excitation_force" in ds.variables
+
+
 def capytaine_major() -> int:
     """Major version of the installed capytaine."""
     import capytaine
@@ -104,9 +130,22 @@ def capytaine_major() -> int:
 
 def database_inputs(floater: Floater, hydro: HydroSettings,
                     environment: Environment) -> dict[str, Any]:
-    """Every input that changes the BEM result, as JSON-ready values."""
+    """Every input that changes the BEM result, as JSON-ready values.
+
+    For ``[hydro] source = "imported"`` the case's values an imported database must have been
+    imported with: reference point, water density, gravity and water depth (the last only
+    against a finite-depth file; :func:`stale_keys`).
+    """
     from floatmoor.hydro.build import BEM_METHOD
 
+    if hydro.source == "imported":
+        return {
+            "source": "imported",
+            "reference_point": [float(v) for v in floater.reference_point],
+            "water_density": environment.water_density,
+            "gravity": environment.gravity,
+            "water_depth": environment.water_depth,
+        }
     geometry = dataclasses.asdict(floater.geometry)
     geometry.pop("draft_from_mass", None)
     return {
@@ -134,13 +173,43 @@ def inputs_hash(inputs: dict[str, Any]) -> str:
 
 
 def _split_complex(da: xr.DataArray, name: str) -> xr.DataArray:
-    values = np.asarray(da.values)
+    return labelled_variable(name, da.values, da.dims)
+
+
+def labelled_variable(name: str, values: Any, dims: tuple[str, ...]) -> xr.DataArray:
+    """Database variable ``name`` with its ``units`` and ``long_name``; complex values split
+    along a leading ``complex`` dimension (``re``, ``im``)."""
+    values = np.asarray(values)
     if np.iscomplexobj(values):
-        out = xr.DataArray(np.stack([values.real, values.imag]), dims=("complex",) + da.dims)
+        out = xr.DataArray(np.stack([values.real, values.imag]), dims=("complex",) + tuple(dims))
     else:
-        out = xr.DataArray(values, dims=da.dims)
+        out = xr.DataArray(values, dims=tuple(dims))
     out.attrs.update(_ATTRS[name])
     return out
+
+
+def database_coords(omega: Any, depth: float, gravity: float,
+                    directions: Any | None) -> dict[str, tuple]:
+    """The coordinates of a database: frequencies with their periods and wavenumbers at the
+    BEM depth (``inf``: deep water), DOFs, components, and (``directions`` not None) wave
+    directions and the complex parts."""
+    from floatmoor.hydro.build import DOFS, wavenumber
+
+    omega = np.asarray(omega, float)
+    coords: dict[str, tuple] = {
+        "omega": ("omega", omega, _ATTRS["omega"]),
+        "period": ("omega", 2.0 * np.pi / omega, _ATTRS["period"]),
+        "wavenumber": ("omega", np.array([wavenumber(w, depth, gravity) for w in omega]),
+                       _ATTRS["wavenumber"]),
+        "radiating_dof": ("radiating_dof", np.array(DOFS), _ATTRS["radiating_dof"]),
+        "influenced_dof": ("influenced_dof", np.array(DOFS), _ATTRS["influenced_dof"]),
+        "component": ("component", np.array(["x", "y", "z"]), _ATTRS["component"]),
+    }
+    if directions is not None:
+        coords["wave_direction"] = ("wave_direction", np.asarray(directions, float),
+                                    _ATTRS["wave_direction"])
+        coords["complex"] = ("complex", np.array(["re", "im"]), _ATTRS["complex"])
+    return coords
 
 
 def merge_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
@@ -155,7 +224,7 @@ def to_dataset(result, case: Case) -> xr.Dataset:
     """Label a :class:`~floatmoor.hydro.build.BemResult` of ``case`` as a database dataset."""
     import capytaine
 
-    from floatmoor.hydro.build import DOFS, bem_dataset_arrays, wavenumber
+    from floatmoor.hydro.build import bem_dataset_arrays
     from floatmoor.hydro.geometry import mesh_hash
 
     floater, hydro, env = case.floater, case.hydro, case.environment
@@ -171,25 +240,15 @@ def to_dataset(result, case: Case) -> xr.Dataset:
     data_vars["rotation_center"] = xr.DataArray(np.asarray(floater.reference_point, float),
                                                 dims=("component",),
                                                 attrs=_ATTRS["rotation_center"])
-    omega = np.asarray(result.omega, float)
     depth = result.bem_depth
-    coords = {
-        "omega": ("omega", omega, _ATTRS["omega"]),
-        "period": ("omega", 2.0 * np.pi / omega, _ATTRS["period"]),
-        "wavenumber": ("omega", np.array([wavenumber(w, depth, env.gravity) for w in omega]),
-                       _ATTRS["wavenumber"]),
-        "wave_direction": ("wave_direction", np.asarray(result.directions, float),
-                           _ATTRS["wave_direction"]),
-        "radiating_dof": ("radiating_dof", np.array(DOFS), _ATTRS["radiating_dof"]),
-        "influenced_dof": ("influenced_dof", np.array(DOFS), _ATTRS["influenced_dof"]),
-        "complex": ("complex", np.array(["re", "im"]), _ATTRS["complex"]),
-        "component": ("component", np.array(["x", "y", "z"]), _ATTRS["component"]),
-    }
+    coords = database_coords(result.omega, depth, env.gravity, result.directions)
     inputs = database_inputs(floater, hydro, env)
     mesh = result.mesh
     attrs: dict[str, Any] = {
         "title": f"floatmoor hydrodynamic database {hydro.database} ({case.title})",
         "database": hydro.database,
+        "source": "capytaine",
+        "added_mass_infinite_source": "capytaine (omega = infinity solved)",
         "floater": floater.name,
         "geometry_kind": floater.geometry.kind,
         "geometry_json": json.dumps(inputs["geometry"], sort_keys=True),
@@ -253,7 +312,12 @@ def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
     if n_w < 2 or ds.sizes.get("radiating_dof") != 6 or ds.sizes.get("influenced_dof") != 6:
         raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, expected >= 2 "
                                  "frequencies and 6 x 6 DOFs")
-    for name in REQUIRED_VARIABLES:
+    held = [v for v in EXCITATION_VARIABLES if v in ds.variables]
+    if held and (held[0] != "excitation_force" or len(held) == 2):
+        lacking = [v for v in EXCITATION_VARIABLES if v not in held]
+        raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, partial excitation "
+                                 f"forces: {', '.join(held)} without {', '.join(lacking)}")
+    for name in REQUIRED_VARIABLES + tuple(held):
         values = np.asarray(ds[name].values, dtype=float)
         if not np.all(np.isfinite(values)):
             raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, non-finite values "
@@ -277,9 +341,112 @@ def database_path(case: Case) -> Path:
     return Path("hydrodb") / name
 
 
+def source_mismatch(ds: xr.Dataset, case: Case) -> str | None:
+    """Why ``case`` cannot use ``ds`` whatever its values (None when it can): a case whose
+    database is built (``[hydro] source = "bem"``) naming an imported one, or the reverse."""
+    assert case.hydro is not None
+    where = ds.attrs.get("path", case.hydro.database)
+    if case.hydro.source == "bem" and is_imported(ds):
+        return (f"{where}: imported from {database_source(ds)} files ('floatmoor hydro import'), "
+                f"but {case.source} builds its database ([hydro] source = \"bem\"): set [hydro] "
+                "source = \"imported\" (without the BEM build keys), or name another database")
+    if case.hydro.source == "imported" and not is_imported(ds):
+        return (f"{where}: built by capytaine ('floatmoor hydro build'), but {case.source} "
+                "names an imported database ([hydro] source = \"imported\"): import one with "
+                "'floatmoor hydro import', or set [hydro] source = \"bem\" with the BEM build keys")
+    return None
+
+
+def file_sha256(path: str | os.PathLike[str]) -> str:
+    """SHA-256 of a file's bytes (hex)."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def source_files(ds: xr.Dataset) -> list[dict[str, Any]]:
+    """The source files an imported database records: ``path`` (as given to ``floatmoor hydro
+    import``), ``sha256``, ``size`` [bytes] (empty for a built database)."""
+    try:
+        files = json.loads(ds.attrs.get("source_files_json", "[]"))
+    except json.JSONDecodeError:
+        return []
+    return files if isinstance(files, list) else []
+
+
+def located_source_file(ds: xr.Dataset, recorded: str) -> Path | None:
+    """Where a recorded source file is now: its path as recorded (relative paths from the
+    current folder, then from the folder above the database's folder: the project root of
+    ``hydrodb/NAME.nc``), or None when it is in neither place."""
+    path = Path(recorded)
+    candidates = [path]
+    if not path.is_absolute() and "path" in ds.attrs:
+        candidates.append(Path(ds.attrs["path"]).resolve().parent.parent / path)
+    for candidate in candidates:
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def changed_source_files(ds: xr.Dataset) -> list[str]:
+    """The recorded source files present at their recorded paths whose SHA-256 differs from
+    the recorded one (missing files cannot be checked and are not listed)."""
+    changed = []
+    for record in source_files(ds):
+        found = located_source_file(ds, str(record.get("path", "")))
+        if found is not None and file_sha256(found) != record.get("sha256"):
+            changed.append(str(record.get("path")))
+    return changed
+
+
+def reimport_command(ds: xr.Dataset) -> str:
+    """The ``floatmoor hydro import`` command that made ``ds``, to run again (with --force)."""
+    command = str(ds.attrs.get("import_command", "floatmoor hydro import FILE... -o PATH"))
+    return command if " --force" in command else command + " --force"
+
+
+def _imported_stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
+    """The case's values an imported database differs in (with both values), and its changed
+    source files."""
+    assert case.floater is not None
+    env = case.environment
+    out = []
+
+    def differs(name: str, recorded: Any, wanted: float) -> None:
+        try:
+            same = math.isclose(float(recorded), float(wanted), rel_tol=1e-12, abs_tol=1e-12)
+        except (TypeError, ValueError):
+            same = False
+        if not same:
+            out.append(f"{name} (database {recorded}, case {wanted!r})")
+
+    differs("water_density", ds.attrs.get("water_density"), env.water_density)
+    differs("gravity", ds.attrs.get("gravity"), env.gravity)
+    rc = np.asarray(ds["rotation_center"].values, float)
+    if not np.allclose(rc, case.floater.reference_point, rtol=0.0, atol=1e-9):
+        out.append(f"reference_point (database {rc.tolist()}, case "
+                   f"{list(case.floater.reference_point)})")
+    depth = ds.attrs.get("bem_water_depth", "")
+    if depth != "infinite":
+        differs("water_depth", depth, env.water_depth)
+    out.extend(f"source file {name} (changed since the import: SHA-256 differs)"
+               for name in changed_source_files(ds))
+    return out
+
+
 def stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
-    """Input keys whose recorded values differ from the case's (empty when up to date)."""
+    """Input keys whose recorded values differ from the case's (empty when up to date).
+
+    An imported database (``[hydro] source = "imported"``) is up to date when its recorded
+    water density, gravity, reference point (rotation centre) and, for a finite-depth file,
+    water depth equal the case's, and its source files, where they still exist at their
+    recorded paths (:func:`located_source_file`), have the recorded SHA-256.
+    """
     assert case.floater is not None and case.hydro is not None
+    if case.hydro.source == "imported" and is_imported(ds):
+        return _imported_stale_keys(ds, case)
     wanted = database_inputs(case.floater, case.hydro, case.environment)
     if ds.attrs.get("inputs_hash") == inputs_hash(wanted):
         return []
@@ -320,15 +487,28 @@ def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,
         raise HydroDatabaseError(f"{case.source}: the case has no [floater] and [hydro] tables")
     p = Path(path) if path is not None else database_path(case)
     ds = read_database(p)
+    mismatch = source_mismatch(ds, case)
+    if mismatch:
+        raise HydroDatabaseError(mismatch)
     differ = stale_keys(ds, case)
     if differ:
-        raise HydroDatabaseError(f"{p}: stale hydrodynamic database for {case.source}: "
-                                 f"recorded inputs differ in {', '.join(differ)}; rebuild "
-                                 "with 'floatmoor hydro build CASE --force'")
+        raise HydroDatabaseError(stale_message(p, ds, case.source, differ))
     if checks:
         _enforce_values(ds, p, case)
         _enforce_checks(ds, p, case)
     return ds
+
+
+def stale_message(path: str | os.PathLike[str], ds: xr.Dataset, case_file: str,
+                  differ: list[str]) -> str:
+    """``PATH: stale hydrodynamic database for CASE: ...`` with how to renew it: rebuild a
+    built database, re-import an imported one."""
+    if is_imported(ds):
+        return (f"{path}: stale hydrodynamic database for {case_file}: differs in "
+                f"{', '.join(differ)}; re-import with '{reimport_command(ds)}' (with the "
+                "case's values)")
+    return (f"{path}: stale hydrodynamic database for {case_file}: recorded inputs differ in "
+            f"{', '.join(differ)}; rebuild with 'floatmoor hydro build CASE --force'")
 
 
 def _enforce_values(ds: xr.Dataset, path: Path, case: Case) -> None:

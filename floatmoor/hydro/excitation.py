@@ -20,9 +20,11 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from floatmoor.hydro.database import merge_complex
+from floatmoor.hydro.database import (
+    HydroDatabaseError, database_source, merge_complex, source_files,
+)
 
-__all__ = ["ExcitationInterpolator", "CUBIC_MIN_DIRECTIONS"]
+__all__ = ["ExcitationInterpolator", "CUBIC_MIN_DIRECTIONS", "no_excitation_message"]
 
 #: Directions needed for the cubic spline in direction (not-a-knot needs four points).
 CUBIC_MIN_DIRECTIONS = 4
@@ -37,9 +39,16 @@ class ExcitationInterpolator:
         The database.
     variable
         ``excitation_force``, ``Froude_Krylov_force`` or ``diffraction_force``.
+
+    Raises
+    ------
+    HydroDatabaseError
+        The database holds no such forces (imported from files without them).
     """
 
     def __init__(self, ds: xr.Dataset, variable: str = "excitation_force") -> None:
+        if variable not in ds.variables:
+            raise HydroDatabaseError(no_excitation_message(ds, variable))
         x = merge_complex(ds, variable).transpose("omega", "wave_direction", "influenced_dof")
         self.omega = np.asarray(ds["omega"].values, dtype=float)
         self.directions = np.asarray(ds["wave_direction"].values, dtype=float)
@@ -75,3 +84,20 @@ class ExcitationInterpolator:
         j = int(np.searchsorted(d, beta))
         frac = (beta - d[j - 1]) / (d[j] - d[j - 1])
         return (1.0 - frac) * self.values[:, j - 1, :] + frac * self.values[:, j, :]
+
+
+def no_excitation_message(ds: xr.Dataset, variable: str = "excitation_force") -> str:
+    """``PATH: the hydrodynamic database has no excitation forces ...``, saying where it came
+    from and what runs it serves."""
+    where = ds.attrs.get("path", ds.attrs.get("database", "the database"))
+    source = database_source(ds)
+    origin = (f"imported from {source} files ({', '.join(_file_names(ds))}) that give none"
+              if source != "capytaine" else "built without them")
+    what = "excitation forces" if variable == "excitation_force" else variable
+    return (f"{where}: the hydrodynamic database has no {what} ({origin}); a run with waves "
+            "needs them: import the excitation too (WAMIT .3, or a BEMIO file with "
+            "excitation), or run in still water or wind only")
+
+
+def _file_names(ds: xr.Dataset) -> list[str]:
+    return [str(f.get("path")) for f in source_files(ds)] or ["not recorded"]

@@ -1,0 +1,463 @@
+"""Hydrodynamic databases from another program's BEM results (``floatmoor hydro import``).
+
+The readers (:func:`floatmoor.io.wamit.read_wamit`, :func:`floatmoor.io.bemio.read_bemio`)
+return an :class:`~floatmoor.io.bem_data.ImportedBem`; :func:`imported_dataset` turns it into
+a database in the layout of :func:`floatmoor.hydro.database.to_dataset` (same variables,
+dimensions, coordinates, units and long names; no excitation variables when the files give
+none) with its provenance: ``source`` (``"wamit"``, ``"bemio"``), ``source_files_json`` (each
+file as given, its SHA-256 and size), ``import_options_json``, ``import_command``, the
+importer's version and time, and the reader's notes (``import_notes_json``).
+
+What the files lack and the layout needs:
+
+* displaced volume and centre of buoyancy: BEMIO files give them, WAMIT's numeric files do
+  not (``--displaced-volume``, ``--centre-of-buoyancy``; an error names them when missing);
+* waterplane area = C33 / (rho g) of the file's hydrostatic stiffness;
+* rotation centre = the given reference point: the point the file's coefficients are about
+  (its origin for WAMIT) is placed there;
+* A_inf: the file's where it gives one (WAMIT PER = 0, BEMIO ``Ainf``); otherwise derived
+  from the data (:func:`derived_infinite_added_mass`): per DOF the exponent p of the damping's
+  decay B ~ omega^-p fitted over the top of the band (:data:`TAIL_FIT_FRACTION`), K(t) with
+  that tail (:func:`floatmoor.hydro.radiation.impulse_response`), and A_inf from
+  Kramers-Kronig as :func:`floatmoor.body.model.consistent_infinite_added_mass` does. The
+  attribute ``added_mass_infinite_source`` says which.
+
+``yaw_deg`` turns the file's body frame about z into the case's: a point p of the file is
+``reference + R (p - file reference)``, a 6x6 matrix M becomes T M T^T with
+T = blockdiag(R, R) (exact), an excitation vector T X and its wave direction beta + yaw
+(wrapped to [-180, 180) degrees, sorted).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import math
+import os
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+
+from floatmoor._version import __version__
+from floatmoor.errors import CaseError
+from floatmoor.hydro.database import (
+    DOF_DEFINITION, database_coords, file_sha256, inputs_hash, labelled_variable,
+)
+from floatmoor.io.bem_data import BemFileError, ImportedBem
+
+__all__ = [
+    "ImportOptions", "WAMIT_EXTENSIONS", "BEMIO_EXTENSIONS", "file_format", "read_source",
+    "imported_dataset", "import_database", "source_file_records", "yaw_transform",
+    "decay_tail_exponents", "derived_infinite_added_mass", "TAIL_FIT_FRACTION",
+    "TAIL_FIT_MIN_POINTS", "SAME_VALUE_RTOL",
+]
+
+#: File extensions of WAMIT's numeric output: added mass and damping, excitation (total,
+#: Haskind), hydrostatics, Froude-Krylov and scattering (diffraction) parts.
+WAMIT_EXTENSIONS = (".1", ".3", ".hst", ".3fk", ".3sc")
+#: WEC-Sim BEMIO (HDF5).
+BEMIO_EXTENSIONS = (".h5",)
+#: The damping's tail exponent is fitted over the frequencies above (1 - this) x the top
+#: frequency: the top quarter of the band, where the decay of a body's damping is nearest to
+#: its asymptote while still holding several points of a usual grid (a choice).
+TAIL_FIT_FRACTION = 0.25
+#: ... and over at least this many top frequencies (a line through two points says nothing
+#: about the scatter).
+TAIL_FIT_MIN_POINTS = 3
+#: A value given as an option and stated by the file agree when equal within this (the files
+#: print 6 to 7 significant digits).
+SAME_VALUE_RTOL = 1e-6
+
+
+@dataclass(frozen=True)
+class ImportOptions:
+    """What ``floatmoor hydro import`` is told besides the files (None: not given).
+
+    Attributes
+    ----------
+    water_density, gravity
+        [kg/m^3], [m/s^2]: needed for WAMIT's non-dimensional values; BEMIO states them (a
+        given value must then equal the file's).
+    length_scale
+        WAMIT's ULEN [m] (default 1).
+    water_depth
+        The BEM's water depth [m], ``inf`` for deep water (BEMIO states it).
+    reference_point
+        Where the point the file's coefficients are about lies in the case's coordinates
+        (the case's ``floater.reference_point``) [m].
+    disp_volume, centre_of_buoyancy
+        [m^3], [m] (case coordinates): needed when the files do not give them (WAMIT).
+    body
+        BEMIO: which body (1-based) of a multi-body file.
+    yaw_deg
+        Rotation of the file's body frame about z into the case's [deg].
+    """
+
+    water_density: float | None = None
+    gravity: float | None = None
+    length_scale: float | None = None
+    water_depth: float | None = None
+    reference_point: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    disp_volume: float | None = None
+    centre_of_buoyancy: tuple[float, float, float] | None = None
+    body: int | None = None
+    yaw_deg: float = 0.0
+
+    def as_json(self) -> dict[str, Any]:
+        """JSON-ready, the infinite depth as ``"infinite"``."""
+        out = asdict(self)
+        if out["water_depth"] is not None and not math.isfinite(out["water_depth"]):
+            out["water_depth"] = "infinite"
+        for key in ("reference_point", "centre_of_buoyancy"):
+            if out[key] is not None:
+                out[key] = [float(v) for v in out[key]]
+        return out
+
+
+def file_format(paths: Sequence[str]) -> str:
+    """``"wamit"`` or ``"bemio"`` from the files' extensions.
+
+    Raises
+    ------
+    CaseError
+        No files, an unknown extension, WAMIT and BEMIO files mixed, more than one BEMIO
+        file, or one WAMIT file given twice.
+    """
+    expected = ("WAMIT files (" + ", ".join(WAMIT_EXTENSIONS) + ") or one WEC-Sim BEMIO file "
+                "(.h5)")
+    if not paths:
+        raise CaseError("FILE", "", expected, "no files")
+    kinds = set()
+    for path in paths:
+        ext = Path(path).suffix.lower()
+        if ext in WAMIT_EXTENSIONS:
+            kinds.add("wamit")
+        elif ext in BEMIO_EXTENSIONS:
+            kinds.add("bemio")
+        else:
+            raise CaseError(str(path), "", expected, f"the extension '{ext or 'none'}'")
+    if len(kinds) > 1:
+        raise CaseError(" ".join(map(str, paths)), "", expected + ", not both", "both")
+    kind = kinds.pop()
+    if kind == "bemio" and len(paths) > 1:
+        raise CaseError(" ".join(map(str, paths)), "", "one BEMIO .h5 file",
+                        f"{len(paths)} files")
+    seen = set()
+    for path in paths:
+        ext = Path(path).suffix.lower()
+        if ext in seen:
+            raise CaseError(str(path), "", f"one WAMIT {ext} file", f"two {ext} files")
+        seen.add(ext)
+    return kind
+
+
+def _agree(path: str, what: str, flag: str, given: float | None, stated: float | None) -> None:
+    """A value the file states must equal the one given for it (when both are)."""
+    if given is None or stated is None:
+        return
+    same = (math.isinf(given) and math.isinf(stated)) or \
+        math.isclose(given, stated, rel_tol=SAME_VALUE_RTOL)
+    if not same:
+        raise BemFileError(path, what, f"the {flag} given ({_text(given)})",
+                           f"{_text(stated)} in the file")
+
+
+def _text(value: float) -> str:
+    return "infinite" if math.isinf(value) else f"{value:.10g}"
+
+
+def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
+    """Read the files with the reader of their format (:func:`file_format`).
+
+    Raises
+    ------
+    BemFileError
+        A file that cannot be read as its format says, or one stating a value other than the
+        option given for it.
+    CaseError
+        Bad or missing options (WAMIT without ``water_density`` or ``gravity``; ``body`` or
+        ``length_scale`` given to the other format).
+    """
+    kind = file_format(paths)
+    for path in paths:
+        if not Path(path).is_file():
+            raise BemFileError(str(path), "", "a readable file", "no such file")
+    if kind == "wamit":
+        from floatmoor.io.wamit import read_wamit
+
+        missing = [flag for flag, value in (("--water-density", options.water_density),
+                                            ("--gravity", options.gravity)) if value is None]
+        if missing:
+            raise CaseError(" and ".join(missing), "", "the water density [kg/m^3] and gravity "
+                            "[m/s^2] of the WAMIT run (its non-dimensional values need them; "
+                            "its numeric files do not state them)", "nothing")
+        if options.body is not None:
+            raise CaseError("--body", "", "no --body with WAMIT files (one body per file "
+                            "set)", str(options.body))
+        return read_wamit(list(map(str, paths)), water_density=options.water_density,
+                          gravity=options.gravity,
+                          length_scale=1.0 if options.length_scale is None
+                          else options.length_scale)
+    from floatmoor.io.bemio import read_bemio
+
+    if options.length_scale is not None:
+        raise CaseError("--length-scale", "", "no --length-scale with a BEMIO file (its values "
+                        "are dimensional)", _text(options.length_scale))
+    bem = read_bemio(str(paths[0]), body=options.body)
+    _agree(str(paths[0]), "water density", "--water-density", options.water_density,
+           bem.water_density)
+    _agree(str(paths[0]), "gravity", "--gravity", options.gravity, bem.gravity)
+    _agree(str(paths[0]), "water depth", "--water-depth", options.water_depth, bem.water_depth)
+    return bem
+
+
+def source_file_records(paths: Sequence[str]) -> list[dict[str, Any]]:
+    """Each file as given, with its SHA-256 and size [bytes]."""
+    return [{"path": str(p), "sha256": file_sha256(p), "size": os.path.getsize(p)}
+            for p in paths]
+
+
+def yaw_transform(yaw_deg: float) -> NDArray[np.float64]:
+    """T = blockdiag(R, R) (6, 6), R the rotation by ``yaw_deg`` about z: DOF vectors and
+    forces turn as T q, 6x6 matrices as T M T^T."""
+    c, s = math.cos(math.radians(yaw_deg)), math.sin(math.radians(yaw_deg))
+    # exact quarter turns (cos 90 deg is 6e-17 in floating point)
+    c, s = (round(c) if abs(c - round(c)) < 1e-15 else c), \
+        (round(s) if abs(s - round(s)) < 1e-15 else s)
+    r = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    t = np.zeros((6, 6))
+    t[:3, :3] = r
+    t[3:, 3:] = r
+    return t
+
+
+def _turn_matrices(m: NDArray, t: NDArray) -> NDArray:
+    """T M T^T for a (6, 6) or (n, 6, 6) array."""
+    return np.einsum("ik,...kl,jl->...ij", t, m, t)
+
+
+def decay_tail_exponents(omega: NDArray[np.float64], damping: NDArray[np.float64]
+                         ) -> NDArray[np.float64]:
+    """Tail exponents (6, 6) from the damping's decay over the top of the band.
+
+    Per diagonal DOF, p = -d ln B_ii / d ln omega by least squares over the frequencies of
+    the top :data:`TAIL_FIT_FRACTION` of the band (at least :data:`TAIL_FIT_MIN_POINTS`),
+    clipped to [TAIL_MIN, TAIL_MAX] of :mod:`floatmoor.hydro.radiation`; a DOF whose damping
+    is not positive there keeps :data:`~floatmoor.hydro.radiation.TAIL_EXPONENT`.
+    Off-diagonal terms take the mean of their two diagonal exponents (as
+    :func:`~floatmoor.hydro.radiation.fit_tail_exponents`).
+    """
+    from floatmoor.hydro.radiation import TAIL_EXPONENT, TAIL_MAX, TAIL_MIN
+
+    omega = np.asarray(omega, float)
+    top = omega >= (1.0 - TAIL_FIT_FRACTION) * omega[-1]
+    if top.sum() < TAIL_FIT_MIN_POINTS:
+        top = np.arange(len(omega)) >= len(omega) - TAIL_FIT_MIN_POINTS
+    diag = np.full(6, TAIL_EXPONENT)
+    for i in range(6):
+        b = damping[top, i, i]
+        if np.all(b > 0.0):
+            slope = np.polyfit(np.log(omega[top]), np.log(b), 1)[0]
+            diag[i] = float(np.clip(-slope, TAIL_MIN, TAIL_MAX))
+    return 0.5 * (diag[:, None] + diag[None, :])
+
+
+def derived_infinite_added_mass(ds: xr.Dataset) -> tuple[NDArray[np.float64],
+                                                          NDArray[np.float64]]:
+    """A_inf (6, 6) and the tail exponents (6, 6) it was derived with, for a database whose
+    files give no A_inf: K(t) from the damping with :func:`decay_tail_exponents` on the
+    default kernel grid, then :func:`floatmoor.body.model.consistent_infinite_added_mass`."""
+    from floatmoor.body.model import consistent_infinite_added_mass
+    from floatmoor.hydro.radiation import default_time_step, impulse_response, truncation_time
+
+    omega = ds["omega"].values
+    damping = ds["radiation_damping"].transpose("omega", "radiating_dof",
+                                                "influenced_dof").values
+    exponents = decay_tail_exponents(omega, damping)
+    dt = default_time_step(omega)
+    n = int(math.ceil(truncation_time(omega) / dt))
+    n += n % 2
+    t = np.linspace(0.0, n * dt, n + 1)
+    kernel = impulse_response(omega, damping, t, tail_exponent=exponents)
+    a_inf = consistent_infinite_added_mass(ds, t, kernel)
+    return 0.5 * (a_inf + a_inf.T), exponents
+
+
+def _resolved(bem: ImportedBem, options: ImportOptions) -> dict[str, Any]:
+    """Depth, volume and centre of buoyancy (file coordinates, or None when given as an option
+    in case coordinates), from the file or the options; CaseError when neither has them."""
+    where = bem.files[0] if bem.files else "FILE"
+    _agree(where, "displaced volume", "--displaced-volume", options.disp_volume,
+           bem.disp_volume)
+    depth = bem.water_depth if bem.water_depth is not None else options.water_depth
+    if depth is None:
+        raise CaseError("--water-depth", "", f"the water depth of the {bem.format.upper()} run "
+                        "[m] or 'infinite' (its files do not state it)", "nothing")
+    volume = bem.disp_volume if bem.disp_volume is not None else options.disp_volume
+    if volume is None or (options.centre_of_buoyancy is None and bem.center_of_buoyancy is None):
+        missing = [flag for flag, value in (
+            ("--displaced-volume", volume),
+            ("--centre-of-buoyancy", options.centre_of_buoyancy
+             if options.centre_of_buoyancy is not None else bem.center_of_buoyancy))
+            if value is None]
+        raise CaseError(" and ".join(missing), "", f"the displaced volume [m^3] and centre of "
+                        f"buoyancy X Y Z [m] of the hull ({bem.format.upper()} files "
+                        f"{', '.join(map(str, bem.files))} do not give them)", "nothing")
+    if bem.hydrostatic_stiffness is None:
+        raise BemFileError(" ".join(map(str, bem.files)), "hydrostatic stiffness",
+                           "a hydrostatic stiffness matrix (WAMIT: the .hst file)", "none")
+    return {"depth": float(depth), "volume": float(volume)}
+
+
+def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
+                     command: str = "", files: list[dict[str, Any]] | None = None
+                     ) -> xr.Dataset:
+    """Label an :class:`ImportedBem` as a database dataset (see the module docstring).
+
+    Parameters
+    ----------
+    bem
+        What the reader returned.
+    options
+        The import options (volume and centre of buoyancy where the files lack them).
+    name
+        The database's name (its file's stem).
+    command
+        The command line that made it (recorded, for re-imports).
+    files
+        :func:`source_file_records` of the files (default: computed from ``bem.files``).
+
+    Raises
+    ------
+    CaseError
+        Values the files lack and the options do not give.
+    BemFileError
+        No hydrostatic stiffness, or a volume the file states other than the one given.
+    """
+    values = _resolved(bem, options)
+    rho, g, depth = float(bem.water_density), float(bem.gravity), values["depth"]
+    t = yaw_transform(options.yaw_deg)
+    rot = t[:3, :3]
+    ref = np.asarray(options.reference_point, float)
+    file_rc = np.zeros(3) if bem.rotation_center is None else np.asarray(bem.rotation_center,
+                                                                          float)
+
+    def place(point: Any) -> NDArray[np.float64]:
+        return ref + rot @ (np.asarray(point, float) - file_rc)
+
+    cob = np.asarray(options.centre_of_buoyancy, float) \
+        if options.centre_of_buoyancy is not None else place(bem.center_of_buoyancy)
+    c = _turn_matrices(np.asarray(bem.hydrostatic_stiffness, float), t)
+    rad = ("omega", "radiating_dof", "influenced_dof")
+    pair = ("radiating_dof", "influenced_dof")
+    data_vars = {
+        "added_mass": labelled_variable("added_mass", _turn_matrices(bem.added_mass, t), rad),
+        "radiation_damping": labelled_variable(
+            "radiation_damping", _turn_matrices(bem.radiation_damping, t), rad),
+        "hydrostatic_stiffness": labelled_variable("hydrostatic_stiffness", c,
+                                                   ("influenced_dof", "radiating_dof")),
+        "disp_volume": labelled_variable("disp_volume", values["volume"], ()),
+        "waterplane_area": labelled_variable("waterplane_area", c[2, 2] / (rho * g), ()),
+        "center_of_buoyancy": labelled_variable("center_of_buoyancy", cob, ("component",)),
+        "rotation_center": labelled_variable("rotation_center", ref, ("component",)),
+    }
+    if bem.added_mass_zero is not None:
+        data_vars["added_mass_zero"] = labelled_variable(
+            "added_mass_zero", _turn_matrices(bem.added_mass_zero, t), pair)
+    directions = None
+    if bem.excitation_force is not None:
+        directions, order = _turned_directions(bem.directions, options.yaw_deg, bem)
+        exc = ("omega", "wave_direction", "influenced_dof")
+        parts = [("excitation_force", bem.excitation_force)]
+        if bem.froude_krylov_force is not None and bem.diffraction_force is not None:
+            parts += [("Froude_Krylov_force", bem.froude_krylov_force),
+                      ("diffraction_force", bem.diffraction_force)]
+        for var, x in parts:
+            turned = np.einsum("ik,wbk->wbi", t, np.asarray(x, complex))[:, order, :]
+            data_vars[var] = labelled_variable(var, turned, exc)
+    coords = database_coords(bem.omega, depth, g, directions)
+    if bem.added_mass_infinite is not None:
+        a_inf = _turn_matrices(np.asarray(bem.added_mass_infinite, float), t)
+        a_inf_source = f"file ({_INFINITY_ENTRY.get(bem.format, 'the file')})"
+        exponents = None
+    else:
+        probe = xr.Dataset(data_vars=data_vars, coords=coords)
+        a_inf, exponents = derived_infinite_added_mass(probe)
+        a_inf_source = ("derived: Kramers-Kronig (floatmoor.body.model."
+                        "consistent_infinite_added_mass) with the damping tail exponents "
+                        "fitted to its decay over the top "
+                        f"{TAIL_FIT_FRACTION:.0%} of the band (Surge..Yaw: "
+                        + ", ".join(f"{p:.3g}" for p in np.diag(exponents)) + ")")
+    data_vars["added_mass_infinite"] = labelled_variable("added_mass_infinite", a_inf, pair)
+    records = files if files is not None else source_file_records(bem.files)
+    depth_text = "infinite" if not math.isfinite(depth) else f"{depth!r}"
+    inputs = {
+        "source": bem.format,
+        "reference_point": ref.tolist(),
+        "water_density": rho,
+        "gravity": g,
+        "water_depth": depth_text if not math.isfinite(depth) else depth,
+        "files": [{"path": r["path"], "sha256": r["sha256"]} for r in records],
+        "options": options.as_json(),
+    }
+    attrs: dict[str, Any] = {
+        "title": f"floatmoor hydrodynamic database {name} (imported from {bem.format} files)",
+        "database": name,
+        "source": bem.format,
+        "source_files_json": json.dumps(records),
+        "import_options_json": json.dumps(options.as_json(), sort_keys=True),
+        "import_command": command,
+        "import_notes_json": json.dumps(list(bem.notes)),
+        "importer": f"floatmoor {__version__} (floatmoor hydro import)",
+        "floatmoor_version": __version__,
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "body_name": bem.body_name or "",
+        "added_mass_infinite_source": a_inf_source,
+        "water_depth": depth_text,
+        "bem_water_depth": depth_text,
+        "water_density": rho,
+        "gravity": g,
+        "excitation": "none in the files" if directions is None else
+        ", ".join(v for v in ("excitation_force", "Froude_Krylov_force", "diffraction_force")
+                  if v in data_vars),
+        "inputs_json": json.dumps(inputs, sort_keys=True),
+        "inputs_hash": inputs_hash(inputs),
+        "dof_definition": DOF_DEFINITION,
+        "time_convention": "e^{-i omega t} (capytaine); WAMIT phases are the conjugate",
+        "Conventions": "CF-1.8",
+    }
+    if exponents is not None:
+        attrs["added_mass_infinite_tail_exponents"] = json.dumps(np.diag(exponents).tolist())
+    return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+#: Where each format gives A_inf.
+_INFINITY_ENTRY = {"wamit": "WAMIT .1, PER = 0", "bemio": "BEMIO hydro_coeffs/added_mass/inf_freq"}
+
+
+def _turned_directions(directions: Any, yaw_deg: float, bem: ImportedBem
+                       ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The file's directions turned by the yaw, wrapped to [-pi, pi), sorted; and the order."""
+    beta = np.asarray(directions, float) + math.radians(yaw_deg)
+    wrapped = (beta + math.pi) % (2.0 * math.pi) - math.pi
+    wrapped = np.where(np.isclose(wrapped, math.pi, rtol=0.0, atol=1e-12), -math.pi, wrapped)
+    wrapped = np.where(np.abs(wrapped) < 1e-12, 0.0, wrapped)
+    order = np.argsort(wrapped, kind="stable")
+    turned = wrapped[order]
+    if np.any(np.diff(turned) < 1e-9):
+        raise BemFileError(" ".join(map(str, bem.files)), "wave directions",
+                           "distinct directions modulo 360 deg",
+                           ", ".join(f"{d:g}" for d in np.degrees(directions)) + " deg")
+    return turned, order
+
+
+def import_database(paths: Sequence[str], options: ImportOptions, *, name: str,
+                    command: str = "") -> xr.Dataset:
+    """Read ``paths`` (:func:`read_source`) and label them (:func:`imported_dataset`)."""
+    bem = read_source(paths, options)
+    return imported_dataset(bem, options, name=name, command=command,
+                            files=source_file_records(paths))
