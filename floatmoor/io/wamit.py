@@ -1,0 +1,523 @@
+"""WAMIT numeric output files (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``) -> ImportedBem.
+
+A small strict reader of WAMIT's non-dimensional numeric files, one rigid body (six modes),
+zero forward speed, the first column a wave period (WAMIT's default ``IPEROUT``). The
+conventions are those of the WAMIT User Manual ("Definitions of nondimensional quantities",
+numeric output files), with ``L = ULEN`` (``length_scale``):
+
+``.1``  ``PER I J Abar Bbar``: A = rho L^k Abar, B = rho omega L^k Bbar, k = 3, 4, 5 for
+        translation-translation, mixed and rotation-rotation pairs. ``PER = -1`` is omega = 0
+        and ``PER = 0`` omega = infinity; those lines have no Bbar. Pairs WAMIT omits (it
+        omits negligible coefficients) are zero.
+``.3``  ``PER BETA I Mod Pha Re Im``: the diffraction-method exciting force per unit wave
+        amplitude, X = rho g L^m Xbar, m = 2 for forces and 3 for moments; BETA [deg] is the
+        direction the waves travel towards. ``.3fk`` and ``.3sc`` (same layout) are its
+        Froude-Krylov and scattering parts.
+``.hst`` ``I J Cbar``: C = rho g L^k Cbar, k = 2 for (3, 3), 3 with one rotational index,
+        4 with two.
+
+WAMIT's A_ij is the force in mode i due to the motion of mode j; floatmoor's (capytaine's)
+``added_mass[w, j, i]`` is indexed (radiating j, influenced i), so line ``I J`` goes to
+``[w, J-1, I-1]``. WAMIT's complex amplitudes are for e^{+i omega t}; floatmoor's are for
+e^{-i omega t}, the complex conjugate. The hydrostatic matrix keeps WAMIT's (force, motion)
+order, as floatmoor's does.
+
+Anything that is not a well-formed file of its kind raises :class:`BemFileError` naming the
+file and line: a wrong number of columns, a non-number, NaN or inf, a mode index outside
+1..6 (multi-body files are not supported), a repeated line, a period that is neither > 0 nor
+-1 or 0, excitation periods that are not the ``.1``'s finite periods, a period missing a
+wave direction that another has, fewer than two finite periods, an empty or missing file.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.io.bem_data import BemFileError, ImportedBem
+
+__all__ = ["read_wamit", "WAMIT_EXTENSIONS"]
+
+#: The file kinds read, by extension (lower case).
+WAMIT_EXTENSIONS = (".1", ".3", ".3fk", ".3sc", ".hst")
+
+#: Modes of one rigid body (WAMIT's I, J = 1..6; multi-body files number them on to 6 N).
+_N_MODES = 6
+
+#: Relative tolerance when matching a period of one file to the same period printed in
+#: another: WAMIT prints periods with 7 significant digits (E13.6, ~5e-7 relative); 1e-5
+#: also accepts a file re-printed with 6 digits and still separates any two periods of a
+#: usable frequency set (a spacing of 1e-5 T is far below any BEM resolution).
+PERIOD_RTOL = 1e-5
+
+#: Agreement required between a .3 line's Mod/Pha and its Re/Im, relative to Mod: WAMIT
+#: prints the phase in degrees with a few decimals (one decimal is +-0.05 deg = 9e-4 rad),
+#: the moduli with 7 digits; 5e-3 (0.3 deg) passes any such rounding and catches a line
+#: whose columns do not belong together.
+MOD_PHASE_RTOL = 5e-3
+
+#: Absolute floor of the Mod/Pha check, relative to the file's largest modulus: an entry
+#: printed as 1e-12 with a meaningless phase is round-off, not a broken line.
+MOD_PHASE_ATOL_REL = 1e-6
+
+#: Agreement required between .3 and .3fk + .3sc, relative to the largest modulus of the
+#: mode over the file: WAMIT's diffraction-method force is the sum of the two parts, each
+#: printed with 7 digits; 1e-3 catches parts taken from another run.
+PARTS_SUM_RTOL = 1e-3
+
+_KIND_NAMES = {".1": "added mass and damping (.1)", ".3": "exciting force (.3)",
+               ".3fk": "Froude-Krylov force (.3fk)", ".3sc": "scattering force (.3sc)",
+               ".hst": "hydrostatic restoring (.hst)"}
+
+
+def _exponent_radiation(i: int, j: int) -> int:
+    """L exponent of A and B for WAMIT modes i, j (1-based): 3, 4 or 5."""
+    return 3 + (i > 3) + (j > 3)
+
+
+def _exponent_excitation(i: int) -> int:
+    """L exponent of X for mode i: 2 forces, 3 moments."""
+    return 2 + (i > 3)
+
+
+def _exponent_hydrostatic(i: int, j: int) -> int:
+    """L exponent of C for modes i, j: 2, 3 or 4."""
+    return 2 + (i > 3) + (j > 3)
+
+
+def _format_period(per: float) -> str:
+    return f"{per:.6g}"
+
+
+def _list_periods(periods: Sequence[float], limit: int = 6) -> str:
+    shown = ", ".join(_format_period(p) for p in list(periods)[:limit])
+    more = len(periods) - limit
+    return shown + (f" and {more} more" if more > 0 else "") + " s"
+
+
+class _Table:
+    """The data lines of one numeric file: (line number, tokens), blank lines skipped."""
+
+    def __init__(self, path: Path, kind: str) -> None:
+        self.path = path
+        self.name = str(path)
+        self.kind = kind
+        if not path.exists():
+            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
+                               "no such file")
+        if not path.is_file():
+            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
+                               "a folder or special file")
+        try:
+            text = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError:
+            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} text file",
+                               "bytes that are not UTF-8 text") from None
+        except OSError as err:
+            raise BemFileError(self.name, "", "a readable file", str(err)) from None
+        self.rows = [(n, line.split()) for n, line in enumerate(text.splitlines(), 1)
+                     if line.strip()]
+
+    def error(self, lineno: int, expected: str, found: str) -> BemFileError:
+        return BemFileError(self.name, f"line {lineno}", expected, found)
+
+    def number(self, lineno: int, token: str, what: str) -> float:
+        try:
+            value = float(token)
+        except ValueError:
+            raise self.error(lineno, f"a number ({what})", f"'{token}'") from None
+        if not math.isfinite(value):
+            raise self.error(lineno, f"a finite number ({what})", f"'{token}'")
+        return value
+
+    def mode(self, lineno: int, token: str, what: str) -> int:
+        try:
+            value = int(token)
+        except ValueError:
+            raise self.error(lineno, f"an integer mode index {what} in 1..6",
+                             f"'{token}'") from None
+        if value > _N_MODES:
+            raise self.error(lineno, f"a mode index {what} in 1..6 (one rigid body; "
+                             "multi-body WAMIT files are not supported)", f"index {value}")
+        if value < 1:
+            raise self.error(lineno, f"a mode index {what} in 1..6", f"index {value}")
+        return value
+
+    def period(self, lineno: int, token: str) -> float:
+        per = self.number(lineno, token, "wave period PER [s]")
+        if per < 0.0 and per != -1.0:
+            raise self.error(lineno, "a wave period PER > 0, or -1 (omega = 0) or 0 (omega "
+                             "= infinity); the first column must be the period (WAMIT's "
+                             "default IPEROUT)", f"PER = {token}")
+        return per
+
+    def columns(self, lineno: int, parts: list[str], count: int, layout: str) -> None:
+        if len(parts) != count:
+            raise self.error(lineno, f"{count} columns '{layout}'",
+                             f"{len(parts)}: '{' '.join(parts)}'")
+
+    def require_rows(self, layout: str) -> None:
+        if not self.rows:
+            raise BemFileError(self.name, "", f"lines '{layout}'", "an empty file")
+
+
+@dataclass
+class _Radiation:
+    periods: list[float]                      # finite, decreasing (omega increasing)
+    added_mass: NDArray[np.float64]          # non-dimensional, (n, 6, 6) [w, J-1, I-1]
+    damping: NDArray[np.float64]
+    zero: NDArray[np.float64] | None          # PER = -1
+    infinite: NDArray[np.float64] | None      # PER = 0
+    omitted: int                              # (period, pair) entries absent from the file
+
+
+def _read_radiation(table: _Table) -> _Radiation:
+    layout = "PER I J Abar [Bbar]"
+    table.require_rows(layout)
+    values: dict[float, dict[tuple[int, int], tuple[float, float]]] = {}
+    first_line: dict[tuple[float, int, int], int] = {}
+    for lineno, parts in table.rows:
+        if len(parts) not in (4, 5):
+            table.columns(lineno, parts, 5, layout)
+        per = table.period(lineno, parts[0])
+        limit = per in (-1.0, 0.0)
+        if limit:
+            table.columns(lineno, parts, 4, "PER I J Abar (no Bbar at PER = -1 or 0)")
+        else:
+            table.columns(lineno, parts, 5, "PER I J Abar Bbar")
+        i = table.mode(lineno, parts[1], "I")
+        j = table.mode(lineno, parts[2], "J")
+        a = table.number(lineno, parts[3], "Abar")
+        b = 0.0 if limit else table.number(lineno, parts[4], "Bbar")
+        key = (per, i, j)
+        if key in first_line:
+            raise table.error(lineno, "one line per (PER, I, J)",
+                              f"a second line for PER = {parts[0]}, I = {i}, J = {j} "
+                              f"(first at line {first_line[key]})")
+        first_line[key] = lineno
+        values.setdefault(per, {})[(i, j)] = (a, b)
+
+    periods = sorted((p for p in values if p > 0.0), reverse=True)
+    if len(periods) < 2:
+        raise BemFileError(table.name, "", "at least 2 finite wave periods (PER > 0)",
+                           f"{len(periods)}")
+
+    def matrix(entries: dict[tuple[int, int], tuple[float, float]], column: int
+               ) -> NDArray[np.float64]:
+        out = np.zeros((_N_MODES, _N_MODES))
+        for (i, j), pair in entries.items():
+            out[j - 1, i - 1] = pair[column]   # WAMIT (force i, motion j) -> [motion, force]
+        return out
+
+    added = np.stack([matrix(values[p], 0) for p in periods])
+    damping = np.stack([matrix(values[p], 1) for p in periods])
+    zero = matrix(values[-1.0], 0) if -1.0 in values else None
+    infinite = matrix(values[0.0], 0) if 0.0 in values else None
+    omitted = sum(_N_MODES * _N_MODES - len(entries) for entries in values.values())
+    return _Radiation(periods, added, damping, zero, infinite, omitted)
+
+
+@dataclass
+class _Excitation:
+    path: str
+    directions_deg: list[float]                # increasing
+    values: NDArray[np.complex128]             # non-dimensional, WAMIT's e^{+i w t}
+    dropped_limits: list[float]                # PER = -1 / 0 lines present and not used
+    omitted: int
+
+
+def _match_periods(table: _Table, found: Sequence[float], reference: Sequence[float],
+                   reference_name: str) -> dict[float, int]:
+    """Index in ``reference`` of every period in ``found``; both sets must be the same."""
+    ref = np.asarray(reference)
+    index: dict[float, int] = {}
+    extra = []
+    for per in found:
+        k = int(np.argmin(np.abs(ref - per)))
+        if abs(ref[k] - per) <= PERIOD_RTOL * ref[k]:
+            index[per] = k
+        else:
+            extra.append(per)
+    missing = [p for k, p in enumerate(reference) if k not in set(index.values())]
+    if missing or extra:
+        parts = []
+        if missing:
+            parts.append(f"missing frequencies: no lines for PER = {_list_periods(missing)} "
+                         f"(omega = {', '.join(f'{2 * math.pi / p:.4g}' for p in missing[:6])}"
+                         f"{' ...' if len(missing) > 6 else ''} rad/s)")
+        if extra:
+            parts.append(f"periods absent from {reference_name}: "
+                         f"PER = {_list_periods(sorted(extra, reverse=True))}")
+        raise BemFileError(table.name, "wave periods",
+                           f"the finite periods of {reference_name} "
+                           f"({len(reference)} periods)", "; ".join(parts))
+    return index
+
+
+def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
+                     ) -> _Excitation:
+    layout = "PER BETA I Mod Pha Re Im"
+    table.require_rows(layout)
+    lines: dict[float, dict[float, dict[int, complex]]] = {}
+    first_line: dict[tuple[float, float, int], int] = {}
+    dropped: set[float] = set()
+    mod_pha: list[tuple[int, float, float, complex]] = []
+    for lineno, parts in table.rows:
+        table.columns(lineno, parts, 7, layout)
+        per = table.period(lineno, parts[0])
+        beta = table.number(lineno, parts[1], "wave direction BETA [deg]")
+        i = table.mode(lineno, parts[2], "I")
+        mod = table.number(lineno, parts[3], "Mod")
+        pha = table.number(lineno, parts[4], "Pha [deg]")
+        re = table.number(lineno, parts[5], "Re")
+        im = table.number(lineno, parts[6], "Im")
+        if mod < 0.0:
+            raise table.error(lineno, "a modulus Mod >= 0", f"Mod = {parts[3]}")
+        key = (per, beta, i)
+        if key in first_line:
+            raise table.error(lineno, "one line per (PER, BETA, I)",
+                              f"a second line for PER = {parts[0]}, BETA = {parts[1]}, "
+                              f"I = {i} (first at line {first_line[key]})")
+        first_line[key] = lineno
+        if per in (-1.0, 0.0):
+            dropped.add(per)
+            continue
+        mod_pha.append((lineno, mod, pha, complex(re, im)))
+        lines.setdefault(per, {}).setdefault(beta, {})[i] = complex(re, im)
+
+    if mod_pha:
+        atol = MOD_PHASE_ATOL_REL * max(m for _, m, _, _ in mod_pha)
+        for lineno, mod, pha, value in mod_pha:
+            polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
+            if abs(polar - value) > MOD_PHASE_RTOL * mod + atol:
+                raise table.error(lineno, f"Mod and Pha agreeing with Re and Im (within "
+                                  f"{MOD_PHASE_RTOL:g} of Mod)",
+                                  f"Mod e^(i Pha) = {polar.real:.6g}{polar.imag:+.6g}i, "
+                                  f"Re + i Im = {value.real:.6g}{value.imag:+.6g}i")
+    if not lines:
+        raise BemFileError(table.name, "", "lines at finite wave periods (PER > 0)",
+                           "only PER = -1 or 0 lines")
+
+    index = _match_periods(table, list(lines), radiation.periods, reference_name)
+    directions = sorted({b for by_beta in lines.values() for b in by_beta})
+    for per in sorted(lines, reverse=True):
+        absent = [b for b in directions if b not in lines[per]]
+        if absent:
+            raise BemFileError(table.name, f"PER = {_format_period(per)} s",
+                               f"every wave direction of the file ({len(directions)}: "
+                               f"BETA = {', '.join(f'{b:g}' for b in directions)} deg)",
+                               f"no lines for BETA = {', '.join(f'{b:g}' for b in absent)} "
+                               "deg")
+    values = np.zeros((len(radiation.periods), len(directions), _N_MODES), dtype=complex)
+    omitted = 0
+    for per, by_beta in lines.items():
+        for b, beta in enumerate(directions):
+            omitted += _N_MODES - len(by_beta[beta])
+            for i, value in by_beta[beta].items():
+                values[index[per], b, i - 1] = value
+    return _Excitation(table.name, directions, values, sorted(dropped), omitted)
+
+
+def _read_hydrostatics(table: _Table) -> NDArray[np.float64]:
+    layout = "I J Cbar"
+    table.require_rows(layout)
+    out = np.zeros((_N_MODES, _N_MODES))
+    first_line: dict[tuple[int, int], int] = {}
+    for lineno, parts in table.rows:
+        table.columns(lineno, parts, 3, layout)
+        i = table.mode(lineno, parts[0], "I")
+        j = table.mode(lineno, parts[1], "J")
+        c = table.number(lineno, parts[2], "Cbar")
+        if (i, j) in first_line:
+            raise table.error(lineno, "one line per (I, J)",
+                              f"a second line for I = {i}, J = {j} "
+                              f"(first at line {first_line[(i, j)]})")
+        first_line[(i, j)] = lineno
+        out[i - 1, j - 1] = c
+    return out
+
+
+def _positive(name: str, value: float, allow_inf: bool = False) -> float:
+    value = float(value)
+    if not (value > 0.0 and (math.isfinite(value) or allow_inf)) or math.isnan(value):
+        raise ValueError(f"{name} must be a {'' if allow_inf else 'finite '}number > 0, "
+                         f"got {value!r}")
+    return value
+
+
+def _sort_files(paths: Sequence[str | Path]) -> dict[str, Path]:
+    if isinstance(paths, (str, Path)):
+        paths = [paths]
+    if not paths:
+        raise ValueError("read_wamit needs at least the .1 file")
+    by_kind: dict[str, Path] = {}
+    for given in paths:
+        path = Path(given)
+        kind = path.suffix.lower()
+        if kind not in WAMIT_EXTENSIONS:
+            raise BemFileError(str(given), "", "a WAMIT file ending in "
+                               + ", ".join(WAMIT_EXTENSIONS), f"extension '{path.suffix}'"
+                               if path.suffix else "no extension")
+        if kind in by_kind:
+            raise BemFileError(str(given), "", f"one {kind} file",
+                               f"a second one besides {by_kind[kind]}")
+        by_kind[kind] = path
+    if ".1" not in by_kind:
+        raise BemFileError(", ".join(str(p) for p in paths), "",
+                           "a WAMIT .1 file (added mass and damping) among the files",
+                           "none")
+    return by_kind
+
+
+def read_wamit(paths: Sequence[str | Path], *, water_density: float,
+               gravity: float = 9.80665, length_scale: float = 1.0,
+               water_depth: float | None = None) -> ImportedBem:
+    """Read one rigid body's WAMIT ``.1`` (required), ``.3``/``.3fk``/``.3sc`` and ``.hst``.
+
+    Parameters
+    ----------
+    paths
+        The files, recognised by extension (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``;
+        at most one of each). Without ``.3`` but with both ``.3fk`` and ``.3sc`` the
+        excitation is their sum; a lone ``.3fk`` or ``.3sc`` needs the ``.3``.
+    water_density, gravity
+        rho [kg/m^3] and g [m/s^2] of the WAMIT run (the numeric files state neither).
+    length_scale
+        WAMIT's ULEN [m], the length the files are non-dimensional by.
+    water_depth
+        The run's water depth [m] (``inf`` for deep water), recorded as given; None when
+        not known.
+
+    Returns
+    -------
+    ImportedBem
+        Dimensional SI values in floatmoor's layout and e^{-i omega t} convention, omega
+        increasing, about WAMIT's body origin (``rotation_center`` = 0).
+
+    Raises
+    ------
+    BemFileError
+        A file is missing, malformed or inconsistent with the others (see the module).
+    ValueError
+        A non-positive or non-finite density, gravity, length scale or water depth.
+    """
+    rho = _positive("water_density", water_density)
+    g = _positive("gravity", gravity)
+    ulen = _positive("length_scale", length_scale)
+    depth = None if water_depth is None else _positive("water_depth", water_depth,
+                                                       allow_inf=True)
+    files = _sort_files(paths)
+    one = _Table(files[".1"], ".1")
+    radiation = _read_radiation(one)
+    periods = np.asarray(radiation.periods)
+    omega = 2.0 * math.pi / periods
+    read = [str(files[".1"])]
+    notes = [f"Frequencies from the {len(periods)} finite periods of {one.name} "
+             f"({periods[0]:.6g} to {periods[-1]:.6g} s), sorted by increasing omega."]
+
+    k_rad = np.array([[_exponent_radiation(i, j) for i in range(1, 7)] for j in range(1, 7)])
+    scale_rad = rho * ulen ** k_rad                    # [radiating j, influenced i]
+    added_mass = radiation.added_mass * scale_rad
+    damping = radiation.damping * scale_rad * omega[:, None, None]
+    a_zero = None if radiation.zero is None else radiation.zero * scale_rad
+    a_inf = None if radiation.infinite is None else radiation.infinite * scale_rad
+    notes.append("A at omega = 0 (PER = -1): " + ("read" if a_zero is not None else
+                                                   "not in the file") +
+                 "; A at omega = infinity (PER = 0): " +
+                 ("read." if a_inf is not None else "not in the file."))
+    if radiation.omitted:
+        notes.append(f"{radiation.omitted} (period, I, J) entries absent from the .1 are "
+                     "zero (WAMIT omits negligible coefficients).")
+
+    excitation = {}
+    for kind in (".3", ".3fk", ".3sc"):
+        if kind in files:
+            excitation[kind] = _read_excitation(_Table(files[kind], kind), radiation,
+                                                one.name)
+            read.append(str(files[kind]))
+    directions = None
+    forces: dict[str, NDArray[np.complex128] | None] = {".3": None, ".3fk": None,
+                                                         ".3sc": None}
+    if excitation:
+        base = next(iter(excitation.values()))
+        for kind, exc in excitation.items():
+            if exc.directions_deg != base.directions_deg:
+                raise BemFileError(exc.path, "wave directions",
+                                   f"the directions of {base.path} (BETA = "
+                                   f"{', '.join(f'{b:g}' for b in base.directions_deg)} deg)",
+                                   ", ".join(f"{b:g}" for b in exc.directions_deg))
+        directions = np.radians(np.asarray(base.directions_deg, dtype=float))
+        k_exc = np.array([_exponent_excitation(i) for i in range(1, 7)])
+        scale_exc = rho * g * ulen ** k_exc
+        for kind, exc in excitation.items():
+            # WAMIT's e^{+i omega t} amplitudes -> floatmoor's e^{-i omega t}: conjugate.
+            forces[kind] = np.conj(exc.values) * scale_exc
+            if exc.dropped_limits:
+                notes.append(f"{exc.path}: lines at PER = "
+                             f"{', '.join(f'{p:g}' for p in exc.dropped_limits)} "
+                             "(omega = 0 / infinity) not used: the database holds excitation "
+                             "at finite frequencies only.")
+            if exc.omitted:
+                notes.append(f"{exc.omitted} (period, BETA, I) entries absent from "
+                             f"{exc.path} are zero.")
+        total, fk, sc = forces[".3"], forces[".3fk"], forces[".3sc"]
+        if total is None:
+            if fk is None or sc is None:
+                given = files[".3fk"] if fk is not None else files[".3sc"]
+                raise BemFileError(str(given), "", "the .3 file with it, or both .3fk and "
+                                   ".3sc (the excitation is their sum)",
+                                   f"no .3 and no {'.3sc' if fk is not None else '.3fk'}")
+            total = fk + sc
+            notes.append("Excitation = .3fk + .3sc (no .3 given).")
+        elif fk is not None and sc is not None:
+            scale = np.max(np.abs(total), axis=(0, 1))
+            worst = np.abs(fk + sc - total) - PARTS_SUM_RTOL * scale
+            if np.any(worst > 0.0):
+                w, b, i = np.unravel_index(int(np.argmax(worst)), worst.shape)
+                raise BemFileError(str(files[".3"]), f"PER = {periods[w]:.6g} s, BETA = "
+                                   f"{base.directions_deg[b]:g} deg, I = {i + 1}",
+                                   f"the sum of {files['.3fk']} and {files['.3sc']} "
+                                   f"(within {PARTS_SUM_RTOL:g} of the mode's largest value)",
+                                   f"{total[w, b, i]:.6g} against {fk[w, b, i] + sc[w, b, i]:.6g}")
+        elif fk is not None:
+            sc = total - fk
+            notes.append("Scattering part = .3 - .3fk (no .3sc given).")
+        elif sc is not None:
+            fk = total - sc
+            notes.append("Froude-Krylov part = .3 - .3sc (no .3fk given).")
+        forces = {".3": total, ".3fk": fk, ".3sc": sc}
+        notes.append(f"Excitation at {len(directions)} wave directions (BETA = direction of "
+                     "propagation), complex conjugate of WAMIT's e^{+i omega t} amplitudes.")
+    else:
+        notes.append("No .3 file: no wave excitation.")
+
+    stiffness = None
+    if ".hst" in files:
+        hst = _Table(files[".hst"], ".hst")
+        k_hst = np.array([[_exponent_hydrostatic(i, j) for j in range(1, 7)]
+                          for i in range(1, 7)])
+        stiffness = _read_hydrostatics(hst) * rho * g * ulen ** k_hst
+        read.append(str(files[".hst"]))
+        notes.append("Hydrostatic stiffness: the .hst as given, which is the buoyancy part "
+                     "only when the WAMIT run's centre of gravity was at the body origin (as "
+                     "in OpenFAST's files; HydroDyn adds the weight itself), floatmoor's "
+                     "convention.")
+    else:
+        notes.append("No .hst file: no hydrostatic stiffness.")
+    notes.append("Rotation centre (0, 0, 0): WAMIT's body-frame origin, which must be the "
+                 "floater's reference point.")
+    notes.append(f"Dimensional with rho = {rho:g} kg/m^3, g = {g:g} m/s^2, ULEN = {ulen:g} m "
+                 "(given to the importer; WAMIT's numeric files do not state them).")
+
+    return ImportedBem(
+        format="wamit", files=tuple(read), omega=omega, added_mass=added_mass,
+        radiation_damping=damping, water_density=rho, gravity=g,
+        added_mass_infinite=a_inf, added_mass_zero=a_zero, directions=directions,
+        excitation_force=forces[".3"], froude_krylov_force=forces[".3fk"],
+        diffraction_force=forces[".3sc"], hydrostatic_stiffness=stiffness,
+        rotation_center=np.zeros(3), water_depth=depth, notes=tuple(notes))
