@@ -201,7 +201,7 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
         return read_wamit(list(map(str, paths)), water_density=options.water_density,
                           gravity=options.gravity,
                           length_scale=1.0 if options.length_scale is None
-                          else options.length_scale)
+                          else options.length_scale, water_depth=options.water_depth)
     from floatmoor.io.bemio import read_bemio
 
     if options.length_scale is not None:
@@ -394,6 +394,7 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
                         + ", ".join(f"{p:.3g}" for p in np.diag(exponents)) + ")")
     data_vars["added_mass_infinite"] = labelled_variable("added_mass_infinite", a_inf, pair)
     records = files if files is not None else source_file_records(bem.files)
+    notes = list(bem.notes) + _importer_notes(bem, options, ref, float(c[2, 2] / (rho * g)))
     depth_text = "infinite" if not math.isfinite(depth) else f"{depth!r}"
     inputs = {
         "source": bem.format,
@@ -411,7 +412,7 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
         "source_files_json": json.dumps(records),
         "import_options_json": json.dumps(options.as_json(), sort_keys=True),
         "import_command": command,
-        "import_notes_json": json.dumps(list(bem.notes)),
+        "import_notes_json": json.dumps(notes),
         "importer": f"floatmoor {__version__} (floatmoor hydro import)",
         "floatmoor_version": __version__,
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
@@ -433,6 +434,26 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
     if exponents is not None:
         attrs["added_mass_infinite_tail_exponents"] = json.dumps(np.diag(exponents).tolist())
     return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+def _importer_notes(bem: ImportedBem, options: ImportOptions, ref: NDArray[np.float64],
+                   waterplane: float) -> list[str]:
+    """What the importer did, one sentence each (after the reader's notes)."""
+    notes = [f"Rotation centre: the file's reference point placed at "
+             f"({', '.join(f'{v:g}' for v in ref)}) m, the case's floater.reference_point."]
+    if options.yaw_deg:
+        notes.append(f"Turned by {options.yaw_deg:g} deg about z from the file's body frame "
+                     "into the case's: 6x6 matrices T M T^T, excitation T X at wave direction "
+                     f"+ {options.yaw_deg:g} deg.")
+    given = [what for what, option, stated in (
+        ("displaced volume", options.disp_volume, bem.disp_volume),
+        ("centre of buoyancy", options.centre_of_buoyancy, bem.center_of_buoyancy))
+        if option is not None and stated is None]
+    if given:
+        notes.append(f"{' and '.join(given).capitalize()} as given to the importer (the files "
+                     "do not give them).")
+    notes.append(f"Waterplane area = C33 / (rho g) = {waterplane:.6g} m^2.")
+    return notes
 
 
 #: Where each format gives A_inf.
