@@ -210,7 +210,7 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
         When the floater asks for a state-space radiation its database does not hold.
     HydroDatabaseError
         When the floater's database is missing, damaged, stale or fails a check the case
-        does not accept.
+        does not accept, or has no excitation forces for the case's waves.
     """
     if case.floater is None:
         return MooredSystem(case=case, points=case.points, line_models=build_line_models(case),
@@ -228,11 +228,13 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
                         f"{case.hydro.database if case.hydro else 'NAME'}')",
                         f'"state-space" with {ds.attrs.get("path", "the database")}, which '
                         "holds none")
+    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
+    # before the body: a sea on a database without excitation forces is refused at once
+    excitation = _excitation(sea, ds)
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)
-    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
     rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
-    loads = BodyLoads(_excitation(sea, ds), rotor, None, settings.ramp_duration, dt)
+    loads = BodyLoads(excitation, rotor, None, settings.ramp_duration, dt)
     centre = np.asarray(case.floater.reference_point, dtype=float)
     # built as for a fresh start, so that a checkpoint's state fits the same operators
     moored = MooredBody(body, case.lines, env, case.seabed, centre, loads, case=case)
