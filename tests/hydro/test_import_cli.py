@@ -103,7 +103,7 @@ FOREIGN_3 = "".join(f"  0.100000E+02   0.000000E+00 {i}  1.0 0.0 1.0 0.0\n"
     ("marin_semi.hst", _replace(14, "     3     3\n"), None, "marin_semi.hst: line 15"),
     (None, None, ("marin_semi.1", "marin_semi.hst", "missing.3"), "missing.3"),
     ("marin_semi.3", None, ("marin_semi.1", "marin_semi.hst", "marin_semi.3"),
-     "marin_semi.3: wave periods: expected the finite periods of marin_semi.1"),
+     "marin_semi.3: wave periods: expected the finite periods of"),
 ], ids=["nan", "columns-1", "columns-hst", "missing-file", "inconsistent-frequencies"])
 def test_broken_files_exit_2_with_one_line_and_nothing_written(oc4_copy, capsys, name, edit,
                                                               files, message):
