@@ -198,7 +198,8 @@ def _import(args: argparse.Namespace) -> int:
             raise CaseError("-o/--output", "", "a new file (--force overwrites)",
                             f"the existing file '{output}'")
         ds = import_database(args.files, options, name=output.stem,
-                             command=_import_command(args))
+                             command=_import_command(args),
+                             project=output.resolve().parent.parent)
         results = [check_values(ds), *run_checks(ds)]
         failed = [r.name for r in results if not r.passed]
         ds.attrs["checks_failed"] = ", ".join(failed) or "none"
@@ -332,7 +333,7 @@ def _imported_note(path: Path, ds) -> str:
                                  f"{', '.join(changed)} changed since the import (SHA-256 "
                                  f"differs); re-import with '{reimport_command(ds)}'")
     records = source_files(ds)
-    found = sum(located_source_file(ds, str(r.get("path", ""))) is not None for r in records)
+    found = sum(located_source_file(ds, r) is not None for r in records)
     if found == len(records):
         return "source files unchanged since the import"
     if found == 0:

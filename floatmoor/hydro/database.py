@@ -376,18 +376,17 @@ def source_files(ds: xr.Dataset) -> list[dict[str, Any]]:
     return files if isinstance(files, list) else []
 
 
-def located_source_file(ds: xr.Dataset, recorded: str) -> Path | None:
-    """Where a recorded source file is now: its path as recorded (relative paths from the
-    current folder, then from the folder above the database's folder: the project root of
-    ``hydrodb/NAME.nc``), or None when it is in neither place."""
-    path = Path(recorded)
-    candidates = [path]
-    if not path.is_absolute() and "path" in ds.attrs:
-        candidates.append(Path(ds.attrs["path"]).resolve().parent.parent / path)
-    for candidate in candidates:
-        if candidate.is_file():
-            return candidate
-    return None
+def located_source_file(ds: xr.Dataset, record: dict[str, Any]) -> Path | None:
+    """Where a recorded source file is now: from the project folder of the database (the one
+    above its ``hydrodb/``) when it was inside it at the import (``project_path``), else its
+    path as given (relative paths from the current folder); None when it is not there."""
+    if record.get("project_path") and "path" in ds.attrs:
+        candidate = Path(ds.attrs["path"]).resolve().parent.parent / str(record["project_path"])
+    elif record.get("path"):
+        candidate = Path(str(record["path"]))
+    else:
+        return None
+    return candidate if candidate.is_file() else None
 
 
 def changed_source_files(ds: xr.Dataset) -> list[str]:
@@ -395,7 +394,7 @@ def changed_source_files(ds: xr.Dataset) -> list[str]:
     the recorded one (missing files cannot be checked and are not listed)."""
     changed = []
     for record in source_files(ds):
-        found = located_source_file(ds, str(record.get("path", "")))
+        found = located_source_file(ds, record)
         if found is not None and file_sha256(found) != record.get("sha256"):
             changed.append(str(record.get("path")))
     return changed

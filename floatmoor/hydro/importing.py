@@ -215,10 +215,24 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
     return bem
 
 
-def source_file_records(paths: Sequence[str]) -> list[dict[str, Any]]:
-    """Each file as given, with its SHA-256 and size [bytes]."""
-    return [{"path": str(p), "sha256": file_sha256(p), "size": os.path.getsize(p)}
-            for p in paths]
+def source_file_records(paths: Sequence[str], project: str | os.PathLike[str] | None = None
+                        ) -> list[dict[str, Any]]:
+    """Each file as given (``path``), with its SHA-256 and size [bytes], and, for a file
+    inside the folder ``project`` (the one holding the database's ``hydrodb/``), its path
+    from there (``project_path``): the staleness check finds it there wherever it runs."""
+    out = []
+    for p in paths:
+        record: dict[str, Any] = {"path": str(p), "sha256": file_sha256(p),
+                                  "size": os.path.getsize(p)}
+        if project is not None:
+            try:
+                inside = Path(p).resolve().relative_to(Path(project).resolve())
+            except ValueError:
+                pass
+            else:
+                record["project_path"] = inside.as_posix()
+        out.append(record)
+    return out
 
 
 def yaw_transform(yaw_deg: float) -> NDArray[np.float64]:
@@ -477,8 +491,10 @@ def _turned_directions(directions: Any, yaw_deg: float, bem: ImportedBem
 
 
 def import_database(paths: Sequence[str], options: ImportOptions, *, name: str,
-                    command: str = "") -> xr.Dataset:
-    """Read ``paths`` (:func:`read_source`) and label them (:func:`imported_dataset`)."""
+                    command: str = "", project: str | os.PathLike[str] | None = None
+                    ) -> xr.Dataset:
+    """Read ``paths`` (:func:`read_source`) and label them (:func:`imported_dataset`);
+    ``project``: see :func:`source_file_records`."""
     bem = read_source(paths, options)
     return imported_dataset(bem, options, name=name, command=command,
-                            files=source_file_records(paths))
+                            files=source_file_records(paths, project))
