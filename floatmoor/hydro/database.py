@@ -11,6 +11,15 @@ floatmoor and capytaine versions, creation time, case text, geometry, mesh panel
 hash, water depth, density, gravity, build settings and build time, and ``inputs_hash``: the
 SHA-256 of every input that changes the result (:func:`database_inputs`).
 
+Imported databases (``floatmoor hydro import``, :mod:`floatmoor.hydro.importing`) keep the
+layout; they record where their data came from instead of a case (attribute ``source``:
+``"wamit"`` or ``"bemio"``; a built database says ``"capytaine"``, and a file without the
+attribute is a built one), and hold the excitation group (``excitation_force`` alone, or with
+its ``Froude_Krylov_force`` and ``diffraction_force`` parts) only when their files give it.
+A case uses one with ``[hydro] source = "imported"``; it is up to date when its recorded
+water density, gravity, rotation centre and (finite-depth files) water depth equal the case's
+and its source files, where present, have their recorded SHA-256 (:func:`stale_keys`).
+
 A database is used for a case only when its recorded inputs equal the case's and it passes
 the checks of :mod:`floatmoor.hydro.checks` (:func:`load_for_case`); a missing, truncated or
 otherwise unreadable file, one whose contents fail the structural checks, a stale one, or one

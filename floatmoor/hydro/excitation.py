@@ -10,8 +10,8 @@ every other direction (30 degree steps) errs at the left-out directions by at mo
 max |X| for wave periods of 9 s and more, but by 7 % at 7 s and 16 % at 5 s
 (tests/hydro/test_excitation.py); the shipped 15 degree steps halve that step. Off-grid
 directions of short waves need a finer direction grid.
-Requests outside the computed frequency range or directions raise ValueError: the transfer
-functions are not extrapolated.
+Requests outside the computed frequency range or directions (modulo 360 degrees) raise
+ValueError: the transfer functions are not extrapolated.
 """
 
 from __future__ import annotations
@@ -70,6 +70,14 @@ class ExcitationInterpolator:
 
     def _at_direction(self, beta: float) -> NDArray[np.complex128]:
         d = self.directions
+        # directions are angles: a request is taken modulo 2 pi into the database's range
+        # (an imported file turned by 180 deg holds -180 to 0 deg; waves towards 180 deg)
+        turns = np.round((d[[0, -1]] - beta) / (2.0 * np.pi))
+        for k in np.unique(turns):
+            shifted = beta + 2.0 * np.pi * k
+            if d[0] - 1e-9 <= shifted <= d[-1] + 1e-9:
+                beta = float(np.clip(shifted, d[0], d[-1]))
+                break
         hit = np.nonzero(np.abs(d - beta) < 1e-9)[0]
         if len(hit):
             return self.values[:, int(hit[0]), :]

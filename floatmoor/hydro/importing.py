@@ -25,7 +25,8 @@ What the files lack and the layout needs:
 ``yaw_deg`` turns the file's body frame about z into the case's: a point p of the file is
 ``reference + R (p - file reference)``, a 6x6 matrix M becomes T M T^T with
 T = blockdiag(R, R) (exact), an excitation vector T X and its wave direction beta + yaw
-(wrapped to [-180, 180) degrees, sorted).
+(the set moved by whole turns so that it starts in [-180, 180) degrees: 0-180 deg turned by
+180 deg is -180-0 deg; the excitation interpolation takes directions modulo 360 deg).
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ __all__ = [
     "ImportOptions", "WAMIT_EXTENSIONS", "BEMIO_EXTENSIONS", "file_format", "read_source",
     "imported_dataset", "import_database", "source_file_records", "yaw_transform",
     "decay_tail_exponents", "derived_infinite_added_mass", "TAIL_FIT_FRACTION",
-    "TAIL_FIT_MIN_POINTS", "SAME_VALUE_RTOL",
+    "TAIL_FIT_MIN_POINTS", "SAME_VALUE_RTOL", "SAME_POINT_ATOL",
 ]
 
 #: File extensions of WAMIT's numeric output: added mass and damping, excitation (total,
@@ -71,6 +72,8 @@ TAIL_FIT_MIN_POINTS = 3
 #: A value given as an option and stated by the file agree when equal within this (the files
 #: print 6 to 7 significant digits).
 SAME_VALUE_RTOL = 1e-6
+#: ... and a point [m] within this (files print positions to mm or finer).
+SAME_POINT_ATOL = 1e-4
 
 
 @dataclass(frozen=True)
@@ -164,6 +167,10 @@ def _agree(path: str, what: str, flag: str, given: float | None, stated: float |
     if not same:
         raise BemFileError(path, what, f"the {flag} given ({_text(given)})",
                            f"{_text(stated)} in the file")
+
+
+def _point(p: Any) -> str:
+    return ", ".join(f"{v:.10g}" for v in p)
 
 
 def _text(value: float) -> str:
@@ -365,6 +372,13 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
 
     cob = np.asarray(options.centre_of_buoyancy, float) \
         if options.centre_of_buoyancy is not None else place(bem.center_of_buoyancy)
+    if options.centre_of_buoyancy is not None and bem.center_of_buoyancy is not None:
+        stated = place(bem.center_of_buoyancy)
+        if not np.allclose(stated, cob, rtol=0.0, atol=SAME_POINT_ATOL):
+            raise BemFileError(bem.files[0] if bem.files else "FILE", "centre of buoyancy",
+                               f"the --centre-of-buoyancy given ({_point(cob)} m)",
+                               f"{_point(stated)} m in the file (placed and turned into the "
+                               "case's coordinates)")
     c = _turn_matrices(np.asarray(bem.hydrostatic_stiffness, float), t)
     rad = ("omega", "radiating_dof", "influenced_dof")
     pair = ("radiating_dof", "influenced_dof")
@@ -476,17 +490,20 @@ _INFINITY_ENTRY = {"wamit": "WAMIT .1, PER = 0", "bemio": "BEMIO hydro_coeffs/ad
 
 def _turned_directions(directions: Any, yaw_deg: float, bem: ImportedBem
                        ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """The file's directions turned by the yaw, wrapped to [-pi, pi), sorted; and the order."""
-    beta = np.asarray(directions, float) + math.radians(yaw_deg)
-    wrapped = (beta + math.pi) % (2.0 * math.pi) - math.pi
-    wrapped = np.where(np.isclose(wrapped, math.pi, rtol=0.0, atol=1e-12), -math.pi, wrapped)
-    wrapped = np.where(np.abs(wrapped) < 1e-12, 0.0, wrapped)
-    order = np.argsort(wrapped, kind="stable")
-    turned = wrapped[order]
+    """The file's directions turned by the yaw (unchanged without one), the whole set moved
+    by whole turns so that its first lies in [-pi, pi): a contiguous range stays contiguous
+    (0 to 180 deg turned by 180 deg is -180 to 0 deg); and the order (sorted)."""
+    beta = np.asarray(directions, float)
+    if yaw_deg:
+        beta = beta + math.radians(yaw_deg)
+        beta = beta - 2.0 * math.pi * math.floor((beta.min() + math.pi) / (2.0 * math.pi))
+        beta = np.where(np.abs(beta) < 1e-12, 0.0, beta)
+    order = np.argsort(beta, kind="stable")
+    turned = beta[order]
     if np.any(np.diff(turned) < 1e-9):
         raise BemFileError(" ".join(map(str, bem.files)), "wave directions",
-                           "distinct directions modulo 360 deg",
-                           ", ".join(f"{d:g}" for d in np.degrees(directions)) + " deg")
+                           "distinct directions", ", ".join(
+                               f"{d:g}" for d in np.degrees(directions)) + " deg")
     return turned, order
 
 

@@ -161,3 +161,125 @@ def test_mixed_or_unknown_formats_exit_2(oc4_copy, capsys, files):
 def test_output_must_be_a_database_file(oc4_copy, capsys):
     assert _import(oc4_copy, out="hydrodb/w.txt") == 2
     assert "a database file PATH.nc" in capsys.readouterr().err
+
+
+def write_bemio(path, ds, *, cg=(0.0, 0.0, 0.0), cb=None, rho=None, code="CAPYTAINE"):
+    """A floatmoor database in WEC-Sim's BEMIO layout (writeBEMIOH5.m, as
+    floatmoor/io/bemio.py documents it: normalised by rho and g, BEMIO's (force, motion)
+    order, e^{+i omega t} amplitudes, shapes as h5py reads MATLAB's column-major arrays),
+    with the coefficients about ``cg``."""
+    import h5py
+    import numpy as np
+
+    from floatmoor.hydro.database import merge_complex
+
+    rho = float(ds.attrs["water_density"]) if rho is None else rho
+    g = float(ds.attrs["gravity"])
+    w = ds["omega"].values
+    order = ("omega", "radiating_dof", "influenced_dof")
+    a = ds["added_mass"].transpose(*order).values          # [f, j, i]
+    b = ds["radiation_damping"].transpose(*order).values
+    col = lambda v: np.asarray(v, float).reshape(-1, 1)    # noqa: E731 - MATLAB column
+    with h5py.File(path, "w") as f:
+        f["bem_data/code"] = np.bytes_(code)
+        sp = "simulation_parameters/"
+        f[sp + "scaled"], f[sp + "g"], f[sp + "rho"] = col(0.0), col(g), col(rho)
+        f[sp + "w"], f[sp + "T"] = col(w), col(2 * np.pi / w)
+        depth = ds.attrs["bem_water_depth"]
+        f[sp + "water_depth"] = np.bytes_("infinite") if depth == "infinite" else \
+            col(float(depth))
+        f[sp + "wave_dir"] = col(np.degrees(ds["wave_direction"].values))
+        f[sp + "wave_dir"].attrs["units"] = "deg"
+        p = "body1/properties/"
+        f[p + "name"] = np.bytes_("hull")
+        f[p + "body_number"], f[p + "dof"] = col(1), col(6)
+        f[p + "dof_start"], f[p + "dof_end"] = col(1), col(6)
+        f[p + "cg"] = col(cg)
+        f[p + "cb"] = col(ds["center_of_buoyancy"].values if cb is None else cb)
+        f[p + "disp_vol"] = col(float(ds["disp_volume"]))
+        c = "body1/hydro_coeffs/"
+        f[c + "linear_restoring_stiffness"] = ds["hydrostatic_stiffness"].transpose(
+            "influenced_dof", "radiating_dof").values / (rho * g)
+        f[c + "added_mass/all"] = np.transpose(a, (2, 1, 0)) / rho
+        f[c + "added_mass/inf_freq"] = ds["added_mass_infinite"].transpose(
+            "radiating_dof", "influenced_dof").values.T / rho
+        f[c + "radiation_damping/all"] = np.transpose(b, (2, 1, 0)) / (rho * w)
+        for var, where in (("excitation_force", "excitation/"),
+                           ("Froude_Krylov_force", "excitation/froude-krylov/"),
+                           ("diffraction_force", "excitation/scattering/")):
+            x = np.conj(merge_complex(ds, var).transpose(
+                "omega", "wave_direction", "influenced_dof").values) / (rho * g)
+            f[c + where + "re"] = np.transpose(x.real, (2, 1, 0))
+            f[c + where + "im"] = np.transpose(x.imag, (2, 1, 0))
+    return path
+
+
+def test_bemio_file_round_trips_through_import(tmp_path, capsys, deepcwind_db):
+    """Our DeepCwind database written as a WEC-Sim BEMIO file and imported again: the same
+    values (the files' rho, g and depth; volume and centre of buoyancy from the file), and
+    the checks, Haskind included, pass."""
+    import numpy as np
+
+    from floatmoor.hydro.database import EXCITATION_VARIABLES, merge_complex
+
+    (tmp_path / "hydrodb").mkdir()
+    h5 = write_bemio(tmp_path / "deepcwind.h5", deepcwind_db)
+    out = tmp_path / "hydrodb" / "back.nc"
+    assert main(["hydro", "import", str(h5), "-o", str(out), "--water-density", "1025"]) == 0
+    printed = capsys.readouterr().out
+    assert "haskind         pass" in printed and "all checks pass (1 not applicable)" in printed
+    back = read_database(out)
+    assert back.attrs["source"] == "bemio" and back.attrs["bem_water_depth"] == "200.0"
+    assert back.attrs["added_mass_infinite_source"] == \
+        "file (BEMIO hydro_coeffs/added_mass/inf_freq)"
+    for name in ("added_mass", "radiation_damping", "added_mass_infinite",
+                 "hydrostatic_stiffness", "disp_volume", "center_of_buoyancy",
+                 "rotation_center", "wavenumber", "wave_direction"):
+        np.testing.assert_allclose(back[name].values, deepcwind_db[name].values, rtol=1e-12,
+                                   atol=1e-9 * float(np.abs(deepcwind_db[name].values).max()),
+                                   err_msg=name)
+    for name in EXCITATION_VARIABLES:
+        np.testing.assert_allclose(merge_complex(back, name).values,
+                                   merge_complex(deepcwind_db, name).values, rtol=1e-12,
+                                   atol=1e-9, err_msg=name)
+
+
+def test_bemio_values_conflicting_with_options_exit_2(tmp_path, capsys, deepcwind_db):
+    (tmp_path / "hydrodb").mkdir()
+    h5 = write_bemio(tmp_path / "deepcwind.h5", deepcwind_db)
+    out = str(tmp_path / "hydrodb" / "back.nc")
+    for extra, message in (
+            (["--water-density", "1000"], "water density: expected the --water-density given "
+             "(1000), found 1025 in the file"),
+            (["--water-depth", "infinite"], "water depth: expected the --water-depth given "
+             "(infinite), found 200 in the file"),
+            (["--displaced-volume", "1"], "displaced volume: expected the --displaced-volume "
+             "given (1), found"),
+            (["--length-scale", "1"], "--length-scale: expected no --length-scale with a "
+             "BEMIO file"),
+            (["--body", "2"], "/body2: expected one of the file's bodies 1..1")):
+        assert main(["hydro", "import", str(h5), "-o", out, *extra]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and message in err[0], (extra, err)
+        assert list((tmp_path / "hydrodb").iterdir()) == []
+
+
+def test_bemio_reference_point_and_yaw_place_the_file(tmp_path, capsys, deepcwind_db):
+    """The coefficients are about the file's cg: that point goes to --reference-point, the
+    file's frame turned by --yaw-deg (a point p of the file: ref + R (p - cg))."""
+    (tmp_path / "hydrodb").mkdir()
+    h5 = write_bemio(tmp_path / "moved.h5", deepcwind_db, cg=(1.0, 2.0, -3.0),
+                     cb=(2.0, 2.0, -16.0))
+    out = tmp_path / "hydrodb" / "moved.nc"
+    assert main(["hydro", "import", str(h5), "-o", str(out), "--reference-point", "0", "0",
+                 "5", "--yaw-deg", "90"]) == 0
+    back = read_database(out)
+    assert back["rotation_center"].values.tolist() == [0.0, 0.0, 5.0]
+    assert back["center_of_buoyancy"].values == pytest.approx([0.0, 1.0, -8.0], abs=1e-12)
+    assert main(["hydro", "import", str(h5), "-o", str(out), "--force", "--yaw-deg", "90",
+                 "--centre-of-buoyancy", "0", "1", "-13"]) == 0
+    capsys.readouterr()
+    assert main(["hydro", "import", str(h5), "-o", str(out), "--force",
+                 "--centre-of-buoyancy", "0", "1", "-13"]) == 2
+    assert "centre of buoyancy: expected the --centre-of-buoyancy given (0, 1, -13 m)" in \
+        capsys.readouterr().err

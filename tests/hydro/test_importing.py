@@ -16,6 +16,7 @@ from floatmoor.hydro.checks import check_haskind, run_checks
 from floatmoor.hydro.database import (
     EXCITATION_VARIABLES, HydroDatabaseError, merge_complex, read_database, write_database,
 )
+from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.hydro.importing import (
     ImportOptions, file_format, imported_dataset, yaw_transform,
 )
@@ -157,7 +158,7 @@ def test_yaw_turns_matrices_as_t_m_tt():
     assert (am[0, 0], am[1, 1]) == (2.0, 1.0)
     assert am[1, 3] == pytest.approx(-5.0)  # sway-roll: surge-pitch turned by 90 degrees
     # waves towards +x in the file travel towards +y in the case, and push along +y
-    np.testing.assert_allclose(np.degrees(ds["wave_direction"].values), [-180.0, 90.0])
+    np.testing.assert_allclose(np.degrees(ds["wave_direction"].values), [90.0, 180.0])
     xt = merge_complex(ds, "excitation_force").sel(wave_direction=math.pi / 2).values
     np.testing.assert_allclose(xt[0], [0.0, 7.0, 0, 0, 0, 0], atol=1e-12)
     np.testing.assert_allclose(yaw_transform(180.0), np.diag([-1, -1, 1, -1, -1, 1.0]))
@@ -171,6 +172,12 @@ def test_haskind_of_a_turned_database_is_the_databases(deepcwind_db):
     assert np.degrees(turned["wave_direction"].values)[[0, -1]].tolist() == [-180.0, 0.0]
     a, b = check_haskind(deepcwind_db), check_haskind(turned)
     assert b.applicable and b.worst == pytest.approx(a.worst, rel=1e-9)
+    # waves towards 180 deg (the case's) are the file's towards 0 deg, forces turned
+    omega = deepcwind_db["omega"].values[10]
+    x_file = ExcitationInterpolator(deepcwind_db)(omega, 0.0)
+    for beta in (math.pi, -math.pi):
+        np.testing.assert_allclose(ExcitationInterpolator(turned)(omega, beta),
+                                   yaw_transform(180.0) @ x_file, rtol=1e-12)
 
 
 def test_infinite_added_mass_from_the_file_or_derived(oc4):
