@@ -4,9 +4,10 @@
 runs it; ``floatmoor sweep CASE --grid ...`` runs a campaign; ``floatmoor study
 qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md case B);
 ``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
-``floatmoor hydro check NAME`` checks one (both exit 1 when a check fails), ``floatmoor hydro
-info NAME`` describes it and ``floatmoor hydro fit-state-space NAME`` adds a state-space
-realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
+``floatmoor hydro import FILE... -o PATH`` makes one from WAMIT or BEMIO files,
+``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
+hydro info NAME`` describes it and where its data came from, and ``floatmoor hydro
+fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
 ``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; a missing, damaged or stale database, or one failing a
 check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
 (exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and

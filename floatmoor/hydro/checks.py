@@ -217,9 +217,10 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
     """B_jj from the excitation forces: k / (8 pi rho g c_g) int_0^2pi |X_j(beta)|^2 d beta.
 
     The directions must be either the single direction of an axisymmetric body (cylinder;
-    |X_1(beta)| = |X_1(0)| |cos beta|, |X_3| constant) or span [0, pi] (or [-pi, 0]) on a
-    body symmetric about y = 0 (|X_j(-beta)| = |X_j(beta)| for j = surge, heave, pitch), in which case the
-    periodic trapezoidal rule is used on the mirrored directions.
+    |X_1(beta)| = |X_1(0)| |cos beta|, |X_3| constant), or span [0, pi] (or [-pi, 0]) evenly
+    on a body symmetric about y = 0 (|X_j(-beta)| = |X_j(beta)| for j = surge, heave,
+    pitch), in which case the periodic trapezoidal rule is used on the mirrored directions,
+    or cover the full circle evenly (any body: the periodic trapezoidal rule on them).
     """
     x = merge_complex(ds, "excitation_force").transpose("omega", "wave_direction",
                                                         "influenced_dof").values[:, :, dof]
@@ -240,15 +241,20 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
             integral = x2[:, 0] * 2.0 * math.pi
     else:
         step = np.diff(beta)
+        even = len(beta) > 1 and np.allclose(step, step[0])
         # [0, pi] or [-pi, 0] (a 180 deg yaw of the former): each mirrors to the full circle
         half = (abs(beta[0]) < 1e-9 and abs(beta[-1] - math.pi) < 1e-9) or \
             (abs(beta[0] + math.pi) < 1e-9 and abs(beta[-1]) < 1e-9)
-        if not (half and np.allclose(step, step[0])):
-            raise ValueError("the Haskind check needs directions evenly spanning 0 to 180 deg "
-                             "(or -180 to 0 deg)")
-        # periodic trapezoid over [0, 2 pi) with the mirrored half: 2 * (sum of interior) +
-        # end points once each
-        integral = step[0] * (x2[:, 0] + x2[:, -1] + 2.0 * x2[:, 1:-1].sum(axis=1))
+        full = even and abs(beta[-1] + step[0] - beta[0] - 2.0 * math.pi) < 1e-9
+        if even and half:
+            # periodic trapezoid over [0, 2 pi) with the mirrored half: 2 * (sum of
+            # interior) + end points once each
+            integral = step[0] * (x2[:, 0] + x2[:, -1] + 2.0 * x2[:, 1:-1].sum(axis=1))
+        elif full:
+            integral = step[0] * x2.sum(axis=1)
+        else:
+            raise ValueError("the Haskind check needs directions evenly spanning 0 to 180 "
+                             "deg (or -180 to 0 deg) or the full circle")
     return k / (8.0 * math.pi * rho * g * cg) * integral
 
 

@@ -233,3 +233,26 @@ def test_format_from_the_extensions(files, found):
 def test_formats():
     assert file_format(["x.1", "x.HST", "x.3", "x.3fk", "x.3sc"]) == "wamit"
     assert file_format(["x.h5"]) == "bemio"
+
+
+def test_haskind_on_the_full_circle_of_directions(deepcwind_db):
+    """An imported file of any body may give the full circle: the periodic trapezoid on it.
+    The DeepCwind data mirrored to 0-345 deg (|X_j(-beta)| = |X_j(beta)| for surge and
+    heave by the body's symmetry about y = 0) give the half-circle rule's result."""
+    bem = as_imported(deepcwind_db)
+    beta = bem.directions                       # 0, 15, ..., 180 deg
+    mirrored = 2.0 * math.pi - beta[-2:0:-1]    # 195, ..., 345 deg
+    x = np.concatenate([bem.excitation_force, bem.excitation_force[:, -2:0:-1, :]], axis=1)
+    full = dataclasses.replace(bem, directions=np.concatenate([beta, mirrored]),
+                               excitation_force=x, froude_krylov_force=None,
+                               diffraction_force=None)
+    ds = imported_dataset(full, options_of(deepcwind_db), name="full", files=[])
+    assert ds.sizes["wave_direction"] == 24
+    result = check_haskind(ds)
+    assert result.applicable
+    assert result.worst == pytest.approx(check_haskind(deepcwind_db).worst, rel=1e-9)
+    partial = imported_dataset(dataclasses.replace(full, directions=full.directions[:20],
+                                                   excitation_force=x[:, :20]),
+                               options_of(deepcwind_db), name="partial", files=[])
+    result = check_haskind(partial)
+    assert not result.applicable and "full circle" in result.detail
