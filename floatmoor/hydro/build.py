@@ -10,12 +10,21 @@ mesh (pitfall 4) by :func:`floatmoor.hydro.hydrostatics.hull_hydrostatics`: the 
 part only; the weight terms depend on the mass properties and are added by
 :func:`floatmoor.hydro.radiation.hydrostatic_stiffness_total`.
 
+A hull read from a file (``kind = "mesh"``) is checked before anything is solved
+(:mod:`floatmoor.hydro.mesh_checks`): a hull that is not watertight below the waterline or
+whose normals point inward is refused (:class:`floatmoor.io.bem_data.BemFileError`); the
+panel-size and irregular-frequency findings are warnings, recorded with the file's name, hash
+and panel counts in the database's attributes (``mesh_file_json``, ``mesh_checks_json``), as
+is the independent hydrostatic integration its ``hydrostatics`` check compares with
+(``mesh_reference_json``).
+
 Conventions: capytaine's (DOF names Surge .. Yaw about ``rotation_center``, e^{-i omega t}
 time dependence, wave direction 0 = waves travelling towards +x).
 """
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from typing import Callable
@@ -69,7 +78,8 @@ class BemResult:
     """Arrays of one BEM run (complex values as Python complex), with the mesh and timings."""
 
     def __init__(self, omega, directions, added_mass, damping, fk, diffraction, a_inf, a_zero,
-                 hydrostatics, mesh: HullMesh, lid_depth, seconds, bem_depth):
+                 hydrostatics, mesh: HullMesh, lid_depth, seconds, bem_depth,
+                 mesh_checks=None, mesh_reference=None):
         self.omega = omega
         self.directions = directions
         self.added_mass = added_mass
@@ -83,6 +93,9 @@ class BemResult:
         self.lid_depth = lid_depth
         self.build_seconds = seconds
         self.bem_depth = bem_depth
+        #: for a hull read from a file: its MeshCheck list and reference hydrostatics
+        self.mesh_checks = mesh_checks
+        self.mesh_reference = mesh_reference
 
 
 def _clear_capytaine_caches() -> None:
@@ -104,6 +117,11 @@ def run_bem(floater: Floater, hydro: HydroSettings, environment: Environment, *,
         From the case.
     progress
         Called after each frequency with (done, total, omega, seconds of that frequency).
+
+    Raises
+    ------
+    floatmoor.io.bem_data.BemFileError
+        A hull mesh file that cannot be read or fails a fatal check (nothing is solved).
     """
     import logging
 
@@ -122,7 +140,17 @@ def run_bem(floater: Floater, hydro: HydroSettings, environment: Environment, *,
     ref = np.asarray(floater.reference_point, dtype=float)
     mesh = build_mesh(floater.geometry, panel_size=hydro.panel_size,
                       reference_xy=(float(ref[0]), float(ref[1])), lid_depth=lid_depth,
-                      symmetry=hydro.symmetry, radial_panels=hydro.radial_panels)
+                      symmetry=hydro.symmetry, radial_panels=hydro.radial_panels,
+                      water_depth=environment.water_depth)
+    mesh_checks = mesh_reference = None
+    if mesh.source is not None:
+        from floatmoor.hydro.mesh_checks import refuse_failed, run_mesh_checks
+
+        omega_max = float(omegas.max())
+        mesh_checks, mesh_reference = run_mesh_checks(
+            mesh, omega_max=omega_max, wavelength=2.0 * math.pi / wavenumber(omega_max, depth, g),
+            g=g, rotation_center=ref)
+        refuse_failed(mesh_checks, floater.geometry.path)
     dofs = cpt.rigid_body_dofs(rotation_center=ref)
     body = cpt.FloatingBody(mesh=mesh.hull, lid_mesh=mesh.lid, dofs=dofs, center_of_mass=ref,
                             name=floater.name)
@@ -182,7 +210,7 @@ def run_bem(floater: Floater, hydro: HydroSettings, environment: Environment, *,
     hydrostatics = hull_hydrostatics(mesh.full_hull, rho=rho, g=g, rotation_center=ref)
     return BemResult(omegas, np.asarray(hydro.directions, float), added, damping, fk, diff,
                      a_inf, a_zero, hydrostatics, mesh, lid_depth,
-                     time.perf_counter() - start, depth)
+                     time.perf_counter() - start, depth, mesh_checks, mesh_reference)
 
 
 def bem_dataset_arrays(result: BemResult) -> dict[str, xr.DataArray]:
@@ -223,4 +251,9 @@ def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
     if case.floater is None or case.hydro is None:
         raise ValueError(f"{case.source}: a case with [floater] and [hydro] tables is needed")
     result = run_bem(case.floater, case.hydro, case.environment, progress=progress)
-    return to_dataset(result, case)
+    ds = to_dataset(result, case)
+    if result.mesh.source is not None:
+        ds.attrs["mesh_file_json"] = json.dumps(result.mesh.source.as_dict(), sort_keys=True)
+        ds.attrs["mesh_checks_json"] = json.dumps([c.as_dict() for c in result.mesh_checks])
+        ds.attrs["mesh_reference_json"] = json.dumps(result.mesh_reference, sort_keys=True)
+    return ds
