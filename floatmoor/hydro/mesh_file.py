@@ -103,7 +103,10 @@ def read_mesh_file(path: str, fmt: str):
         if fmt in MESHIO_FORMATS:
             import meshio
 
-            data = meshio.read(path, file_format=MESHIO_FORMATS[fmt])
+            # meshio's STL reader tells binary from ASCII by a uint32 product that overflows
+            # on ASCII files (harmless: the sizes then differ)
+            with np.errstate(over="ignore"):
+                data = meshio.read(path, file_format=MESHIO_FORMATS[fmt])
             kinds = {}
             for block in data.cells:
                 kinds[block.type] = kinds.get(block.type, 0) + len(block.data)
