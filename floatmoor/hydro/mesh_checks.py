@@ -56,8 +56,8 @@ COORDINATE_TOLERANCE = 1e-6
 #: Largest spread of the three divergence-theorem volumes relative to the volume. On a closed
 #: polyhedral surface they agree to round-off (~1e-15); coordinates written to 6 significant
 #: digits put a T-junction's middle vertex up to 1e-6 of the extent off its edge, a gap of
-#: ~1e-6 of a panel's area. One flipped panel of a 96-panel cylinder changes them by 2e-2
-#: (tests/hydro/test_mesh_checks.py).
+#: ~1e-6 of a panel's area. One flipped panel of the 216-panel test cylinder parts them by
+#: 1.6e-2 to 2.6e-2 (tests/hydro/test_mesh_checks.py).
 VOLUME_AGREEMENT = 1e-4
 #: capytaine's rule: the wavelength must be at least 8 x the largest panel radius
 #: (``FloatingBody.minimal_computable_wavelength``, capytaine 3.0 bodies.py).
@@ -94,6 +94,7 @@ class HullTopology:
     """Merged vertices and oriented edges of a hull mesh (triangles and quads)."""
 
     vertices: NDArray[np.float64]  #: (m, 3) merged vertices [m]
+    panels: NDArray[np.int64]  #: (p, 4) panels on the merged vertices (triangles repeat one)
     triangles: NDArray[np.float64]  #: (t, 3, 3) panels split into triangles [m]
     open_edges: NDArray[np.int64]  #: (k, 2) edges used once below the waterline, unmatched
     waterline_edges: NDArray[np.int64]  #: (w, 2) edges used once on z = 0, as traversed
@@ -171,7 +172,13 @@ def hull_topology(mesh) -> HullTopology:
     waterline = np.stack([a[once & on_waterline], b[once & on_waterline]], axis=1)
     candidates = np.stack([a[once & ~on_waterline], b[once & ~on_waterline]], axis=1)
     open_edges, tjunctions = _unmatched(points, candidates, tol)
-    return HullTopology(vertices=points, triangles=triangles, open_edges=open_edges,
+    panels = []
+    for row in loops[distinct >= 3].tolist():
+        loop = list(dict.fromkeys(row))  # distinct vertices in order
+        panels.append(loop + loop[-1:] * (4 - len(loop)))
+    panels = np.array(panels, dtype=np.int64).reshape(-1, 4)
+    return HullTopology(vertices=points, panels=panels, triangles=triangles,
+                        open_edges=open_edges,
                         waterline_edges=waterline, nonmanifold_edges=nonmanifold,
                         misoriented_edges=misoriented, tjunction_edges=tjunctions,
                         degenerate_panels=degenerate, tolerance=tol)
@@ -285,11 +292,15 @@ def check_panel_size(hull, lid, omega_max: float, wavelength: float) -> MeshChec
                      "refine the mesh (smaller panels) or lower the top [hydro] frequency")
 
 
-def check_irregular_frequencies(hull, lid, omega_max: float, g: float) -> MeshCheck:
+def check_irregular_frequencies(topology: HullTopology, lid, omega_max: float,
+                                g: float) -> MeshCheck:
     """The top frequency against the first irregular frequency of the hull's interior
-    (module docstring)."""
+    (module docstring). capytaine's estimate takes the extent of each connected part of the
+    waterline, so it is made on the hull with its vertices merged (``topology``)."""
     import capytaine as cpt
 
+    hull = cpt.Mesh(vertices=topology.vertices, faces=topology.panels, auto_clean=False,
+                    auto_check=False)
     omega_irr = float(cpt.FloatingBody(mesh=hull).first_irregular_frequency_estimate(g=g))
     below = omega_max < omega_irr
     ratio = omega_max / omega_irr if math.isfinite(omega_irr) else 0.0
@@ -364,7 +375,7 @@ def run_mesh_checks(mesh, *, omega_max: float, wavelength: float, g: float,
         else mesh.lid
     checks = [check_watertight(topology), check_normals(topology),
               check_panel_size(mesh.full_hull, lid, omega_max, wavelength),
-              check_irregular_frequencies(mesh.full_hull, lid, omega_max, g)]
+              check_irregular_frequencies(topology, lid, omega_max, g)]
     return checks, reference_hydrostatics(topology, rotation_center)
 
 

@@ -351,12 +351,12 @@ def test_buoy_mesh_database_matches_the_cylinder_database(tmp_path, capsys):
     write_gdf(tmp_path / "buoy.gdf", quarter(np.asarray(hull.as_array_of_faces())),
               isx=1, isy=1)
     text = BUOY_CASE.read_text()
-    start = text.index("[floater.geometry]")
-    end = text.index("[hydro]")
-    text = (text[:start] + '[floater.geometry]\nkind = "mesh"\nfile = "buoy.gdf"\n'
-            'symmetry = ["xz", "yz"]\n\n' + text[end:])
+    start = text.index("\n[floater.geometry]\n")
+    end = text.index("\n[hydro]\n")
+    text = (text[:start] + '\n[floater.geometry]\nkind = "mesh"\nfile = "buoy.gdf"\n'
+            'symmetry = ["xz", "yz"]\n' + text[end:])
     text = text.replace("frequency_ranges = [[0.8, 9.2, 85]]",
-                        "frequencies = [" + ", ".join(f"{w!r}" for w in picked) + "]")
+                        "frequencies = [" + ", ".join(repr(float(w)) for w in picked) + "]")
     (tmp_path / "hydrodb").mkdir()
     path = tmp_path / "buoy_mesh.toml"
     path.write_text(text)
