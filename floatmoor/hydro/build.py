@@ -42,8 +42,8 @@ from floatmoor.case.schema import Environment, Floater, HydroSettings
 from floatmoor.hydro.geometry import HullMesh, build_mesh
 from floatmoor.hydro.hydrostatics import hull_hydrostatics
 
-__all__ = ["DOFS", "BEM_METHOD", "PRONY_SEED", "BemResult", "run_bem", "build_database", "lid_depth_for", "LID_KH",
-           "wavenumber"]
+__all__ = ["DOFS", "BEM_METHOD", "BemResult", "run_bem", "build_database", "lid_depth_for", "LID_KH",
+           "wavenumber", "PRONY_SEED"]
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 #: capytaine's boundary integral formulation. "direct" (potential) rather than capytaine's

@@ -65,6 +65,8 @@ MIN_WAVELENGTH_RADII = 8.0
 #: Once-used edges beyond this count are reported as open without the T-junction matching
 #: (which compares every pair); a hull with that many is broken either way.
 _MAX_MATCHED_EDGES = 5000
+#: Edges compared at a time in the T-junction matching (bounds its memory to ~30 MB).
+_MATCH_CHUNK = 200
 
 
 @dataclass(frozen=True)
@@ -147,7 +149,8 @@ def hull_topology(mesh) -> HullTopology:
     loops = labels[faces]  # (n, 4)
     # triangles of each panel (the original coordinates, quads split as hydrostatics does)
     quads = faces[:, 3] != faces[:, 2]
-    triangles = np.concatenate([vertices[faces[:, [0, 1, 2]]], vertices[faces[quads][:, [0, 2, 3]]]])
+    triangles = np.concatenate([vertices[faces[:, [0, 1, 2]]],
+                                vertices[faces[quads][:, [0, 2, 3]]]])
     # directed edges a -> b of each panel, skipping repeated vertices
     starts = loops
     ends = np.roll(loops, -1, axis=1)
@@ -198,21 +201,25 @@ def _unmatched(points: NDArray[np.float64], edges: NDArray[np.int64], tol: float
     d = q - p
     length = np.linalg.norm(d, axis=1)
 
+    slack = tol / np.maximum(length, 1e-300)
+
     def within(points_: NDArray[np.float64]) -> NDArray[np.bool_]:
         """(n_points, n_edges): the point lies on the edge's segment (within tol)."""
         rel = points_[:, None, :] - p[None, :, :]
         t = np.einsum("ijk,jk->ij", rel, d) / np.maximum(length * length, 1e-300)[None, :]
-        foot = p[None, :, :] + t[..., None] * d[None, :, :]
-        dist = np.linalg.norm(points_[:, None, :] - foot, axis=2)
-        slack = tol / np.maximum(length, 1e-300)[None, :]
-        return (dist <= tol) & (t >= -slack) & (t <= 1.0 + slack)
+        dist = np.linalg.norm(rel - t[..., None] * d[None, :, :], axis=2)
+        return (dist <= tol) & (t >= -slack[None, :]) & (t <= 1.0 + slack[None, :])
 
-    inside = within(p) & within(q)  # inside[i, j]: edge i lies along edge j
+    inside = np.zeros((n, n), dtype=bool)  # inside[i, j]: edge i lies along edge j
+    for lo in range(0, n, _MATCH_CHUNK):
+        hi = min(n, lo + _MATCH_CHUNK)
+        inside[lo:hi] = within(p[lo:hi]) & within(q[lo:hi])
     np.fill_diagonal(inside, False)
     contains_other = inside.any(axis=0)  # edge j holds shorter edges
     along_other = inside.any(axis=1)  # edge i lies along a longer one
     covered = (inside * length[:, None]).sum(axis=0)
-    closed = along_other | (contains_other & (np.abs(covered - length) <= 2.0 * tol * n))
+    closed = along_other | (contains_other
+                            & (np.abs(covered - length) <= tol * (1 + inside.sum(axis=0))))
     return edges[~closed], int(np.sum(closed))
 
 
@@ -232,6 +239,8 @@ def check_watertight(topology: HullTopology) -> MeshCheck:
               f"{topology.nonmanifold_edges} edges shared by more than two panels")
     if topology.tjunction_edges:
         detail += f"; {topology.tjunction_edges} edges closed by T-junctions"
+    if topology.degenerate_panels:
+        detail += f"; {topology.degenerate_panels} panels of no area ignored"
     return MeshCheck("watertight", bad == 0, True, float(bad), 0.0,
                      "a watertight hull: every panel edge below the waterline shared by "
                      "exactly two panels", detail,
@@ -287,7 +296,8 @@ def check_panel_size(hull, lid, omega_max: float, wavelength: float) -> MeshChec
               f"{minimal:.4g} m)")
     return MeshCheck("panel_size", wavelength >= minimal, False, minimal / wavelength, 1.0,
                      "panels small enough for the top frequency (wavelength >= 8 x the largest "
-                     "panel radius)", detail, "capytaine 3.0 FloatingBody.minimal_computable_wavelength "
+                     "panel radius)", detail,
+                     "capytaine 3.0 FloatingBody.minimal_computable_wavelength "
                      "(8 x the largest panel radius)",
                      "refine the mesh (smaller panels) or lower the top [hydro] frequency")
 
@@ -313,7 +323,8 @@ def check_irregular_frequencies(topology: HullTopology, lid, omega_max: float,
     elif not below:
         detail += ": the band reaches it (results near it are spoiled)"
     return MeshCheck("irregular_frequencies", below or lid is not None, False, ratio, 1.0,
-                     "a band below the first irregular frequency, or a lid", detail, "capytaine 3.0 FloatingBody.first_irregular_frequency_estimate "
+                     "a band below the first irregular frequency, or a lid", detail,
+                     "capytaine 3.0 FloatingBody.first_irregular_frequency_estimate "
                      "(box of the waterplane's extent and the draft)",
                      "set [hydro] lid = true, or keep the top frequency below it")
 

@@ -74,7 +74,8 @@ def write_meshio(path: Path, faces: np.ndarray, fmt: str) -> Path:
     index = np.arange(len(points)).reshape(-1, 4)
     triangle = np.all(faces[:, 3] == faces[:, 2], axis=1)
     if fmt == "stl":
-        cells = [("triangle", np.concatenate([index[:, [0, 1, 2]], index[~triangle][:, [0, 2, 3]]]))]
+        cells = [("triangle", np.concatenate([index[:, [0, 1, 2]],
+                                              index[~triangle][:, [0, 2, 3]]]))]
     else:
         cells = [("quad", index[~triangle])]
         if np.any(triangle):
