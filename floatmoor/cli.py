@@ -311,7 +311,11 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     rows.extend(f"  {w}" for w in strain_warnings(loads))
     if case.floater is not None:
         fl = case.floater
-        rows.append(f"  floater: {fl.name}, {fl.geometry.kind}, mass {fl.mass:.6g} kg, centre of "
+        geo = fl.geometry
+        kind = (f"mesh {geo.file} ({geo.format}, {geo.length_unit}, SHA-256 {geo.sha256[:12]}, "
+                f"symmetry {', '.join(geo.symmetry) or 'none'}, {len(geo.columns)} Morison "
+                f"columns, {len(geo.members)} members)") if geo.kind == "mesh" else geo.kind
+        rows.append(f"  floater: {fl.name}, {kind}, mass {fl.mass:.6g} kg, centre of "
                     f"mass z = {fl.centre_of_mass[2]:.6g} m"
                     + (f", draft {fl.geometry.draft:.6g} m" if fl.geometry.kind == "cylinder"
                        else "") + f", radiation {fl.radiation}")

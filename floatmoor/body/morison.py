@@ -87,7 +87,7 @@ from numpy.typing import ArrayLike, NDArray
 from floatmoor.body._morison_kernels import drag_force, lagrange_fill, lagrange_weights
 from floatmoor.body.kinematics import rotation_matrix
 from floatmoor.case.schema import (
-    Column, CylinderGeometry, Floater, Member, SemisubmersibleGeometry,
+    Column, CylinderGeometry, Floater, Member, MeshGeometry, SemisubmersibleGeometry,
 )
 from floatmoor.waves.kinematics import _profiles
 from floatmoor.waves.realisation import WaveField
@@ -337,7 +337,10 @@ def build_strips(floater: Floater, settings: DragSettings, water_density: float,
     column out of the water and sinks another part.
 
     A :class:`CylinderGeometry` is one column on the reference point's vertical axis from
-    -draft to height - draft (its bottom disc takes ``column_axial``).
+    -draft to height - draft (its bottom disc takes ``column_axial``). A
+    :class:`MeshGeometry` has no members of its own: its strips are on the Morison columns
+    and members the case gives with it (``[[floater.geometry.columns]]``, ``members``), none
+    without them.
     """
     settings.validate()
     if not (math.isfinite(water_density) and water_density > 0.0):
@@ -349,12 +352,12 @@ def build_strips(floater: Floater, settings: DragSettings, water_density: float,
         x0, y0 = floater.reference_point[0], floater.reference_point[1]
         b.column(Column(x=x0, y=y0, diameter=g.diameter, z_top=g.height - g.draft,
                         z_bottom=-g.draft))
-    elif isinstance(g, SemisubmersibleGeometry):
+    elif isinstance(g, (SemisubmersibleGeometry, MeshGeometry)):
         for col in g.columns:
             b.column(col)
         for mem in g.members:
             b.member(mem)
-    else:  # pragma: no cover - the schema has two kinds
+    else:  # pragma: no cover - the schema has three kinds
         raise ValueError(f"drag: unsupported floater geometry {type(g).__name__}")
     ref = np.asarray(floater.reference_point, dtype=float)
     if not b.rows:

@@ -15,6 +15,14 @@ of K(t), ``floatmoor hydro fit-state-space``), and ``[floater.geometry]``:
   ``z_top``, ``z_bottom``, optional ``heave_plate_diameter`` and ``heave_plate_height``, the
   plate's extent above ``z_bottom``) and optional ``[[floater.geometry.members]]`` (pontoons and
   braces: ``start``, ``end``, ``diameter``) in global coordinates.
+* ``kind = "mesh"``: ``file`` (a hull mesh, relative to the case file's folder and inside it),
+  optional ``format`` (one of MESH_FORMATS; default from the file's extension),
+  ``length_unit`` (default ``"m"``), ``position`` [m] (added to the scaled file coordinates,
+  default 0), ``symmetry`` (planes ``"xz"``/``"yz"`` the file is the positive half of,
+  default none) and optional ``[[floater.geometry.columns]]`` / ``members`` as for a
+  semisubmersible, used by ``[floater.drag]`` only (not meshed). The file is checked to exist
+  and be readable, and hashed (SHA-256), here; it is parsed when the database is built
+  (floatmoor.hydro.mesh_file). ``[floater.drag]`` needs columns or members.
 
 ``[hydro]``: ``database`` (name of ``hydrodb/NAME.nc``), the frequencies as
 ``frequency_ranges = [[first, last, count], ...]`` [rad/s] and/or ``frequencies = [...]``
@@ -32,14 +40,19 @@ import`` from WAMIT or BEMIO files): then only ``database``, ``source`` and
 
 from __future__ import annotations
 
+import hashlib
 import math
+from pathlib import Path
 
 import numpy as np
 
-from floatmoor.case.reader import TableReader
+from floatmoor.case.files import resolve_case_file
+from floatmoor.case.limits import MAX_MESH_FILE_BYTES
+from floatmoor.case.reader import TableReader, _Found
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, HYDRO_CHECKS, RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater,
-    FloaterGeometry, HydroSettings, Member, SemisubmersibleGeometry,
+    GEOMETRY_KINDS, HYDRO_CHECKS, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
+    RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
+    HydroSettings, Member, MeshGeometry, SemisubmersibleGeometry,
 )
 from floatmoor.case.schema import HYDRO_SOURCES
 
@@ -50,8 +63,10 @@ __all__ = ["read_floater", "read_hydro", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS
 MAX_FREQUENCIES = 2000
 
 
-def read_floater(t: TableReader, environment: Environment) -> Floater:
-    """Read ``[floater]``."""
+def read_floater(t: TableReader, environment: Environment,
+                 base_dir: Path | None = None) -> Floater:
+    """Read ``[floater]``; files it names (a hull mesh) are found in ``base_dir``, the case
+    file's folder (default the current folder)."""
     name = t.string("name")
     mass = t.number("mass", unit="kg", gt=0.0)
     com = t.vector("centre_of_mass", size=3, unit="m")
@@ -67,9 +82,15 @@ def read_floater(t: TableReader, environment: Environment) -> Floater:
         raise t.error("inertia", "a positive definite inertia tensor [kg m^2]", list(inertia))
     ref = t.vector("reference_point", size=3, unit="m")
     radiation = t.string("radiation", choices=RADIATION_METHODS, default="convolution")
-    geometry = _geometry(t.table("geometry"), mass, environment)
+    geometry = _geometry(t.table("geometry"), mass, environment, base_dir or Path("."))
     drag = _drag(t.table("drag")) if t.has("drag") else None
     t.finish()
+    if drag is not None and isinstance(geometry, MeshGeometry) and not (geometry.columns
+                                                                        or geometry.members):
+        raise t.error("drag", "Morison elements to put the drag on: [[floater.geometry."
+                      "columns]] or [[floater.geometry.members]] (a mesh hull has no members "
+                      "of its own)", _Found("a [floater.drag] table on a mesh hull without "
+                                            "any"))
     if isinstance(geometry, CylinderGeometry) and not -geometry.draft < com[2] < \
             geometry.height - geometry.draft:
         raise t.error("centre_of_mass", "a centre of mass inside the cylinder (z between "
@@ -97,10 +118,13 @@ def _drag(t: TableReader):
     return settings
 
 
-def _geometry(t: TableReader, mass: float, environment: Environment) -> FloaterGeometry:
+def _geometry(t: TableReader, mass: float, environment: Environment,
+              base_dir: Path) -> FloaterGeometry:
     kind = t.string("kind", choices=GEOMETRY_KINDS)
     geometry: FloaterGeometry
-    if kind == "cylinder":
+    if kind == "mesh":
+        geometry = _mesh_geometry(t, environment, base_dir)
+    elif kind == "cylinder":
         diameter = t.number("diameter", unit="m", gt=0.0)
         height = t.number("height", unit="m", gt=0.0)
         draft = t.number("draft", unit="m", gt=0.0, default=None)
@@ -129,6 +153,51 @@ def _geometry(t: TableReader, mass: float, environment: Environment) -> FloaterG
         geometry = SemisubmersibleGeometry(columns=columns, members=members)
     t.finish()
     return geometry
+
+
+def _mesh_geometry(t: TableReader, environment: Environment, base_dir: Path) -> MeshGeometry:
+    """``kind = "mesh"`` (module docstring); the caller finishes the table."""
+    name = t.string("file")
+    path = resolve_case_file(t, "file", base_dir, name)
+    if t.has("format"):
+        fmt = t.string("format", choices=MESH_FORMATS)
+    else:
+        fmt = path.suffix.lower().lstrip(".")
+        if fmt not in MESH_FORMATS:
+            raise t.error("file", "a mesh file whose extension names its format (one of "
+                          + ", ".join(f'"{f}"' for f in MESH_FORMATS)
+                          + "), or floater.geometry.format", _Found(f'"{name}"'))
+    unit = t.string("length_unit", choices=tuple(MESH_LENGTH_UNITS), default="m")
+    position = t.vector("position", size=3, unit="m", default=(0.0, 0.0, 0.0))
+    symmetry: tuple[str, ...] = ()
+    if t.has("symmetry"):
+        raw = t.data["symmetry"]
+        t._read.add("symmetry")
+        if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
+                not all(isinstance(p, str) and p in MESH_SYMMETRY_PLANES for p in raw):
+            raise t.error("symmetry", "an array of distinct symmetry planes among "
+                          + ", ".join(f'"{p}"' for p in MESH_SYMMETRY_PLANES)
+                          + " (the file holds the positive half: y >= 0 for xz, x >= 0 for "
+                          "yz)", raw)
+        symmetry = tuple(sorted(raw))
+    columns = tuple(_column(c, environment) for c in t.tables("columns", min_items=0)) \
+        if t.has("columns") else ()
+    members = tuple(_member(m, environment) for m in t.tables("members", min_items=0)) \
+        if t.has("members") else ()
+    try:
+        size = path.stat().st_size
+        if size > MAX_MESH_FILE_BYTES:
+            raise t.error("file", f"a mesh file of at most {MAX_MESH_FILE_BYTES} bytes "
+                          "(floatmoor.case.limits.MAX_MESH_FILE_BYTES)",
+                          _Found(f"{path}, {size} bytes"))
+        digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    except OSError as err:
+        raise t.error("file", "a readable mesh file",
+                      _Found(f"{path} unreadable ({err.strerror})")) from None
+    return MeshGeometry(file=name, sha256=digest, format=fmt, length_unit=unit,
+                        position=position,  # type: ignore[arg-type]
+                        symmetry=symmetry, resolved_path=str(path), morison_columns=columns,
+                        morison_members=members)
 
 
 def _column(t: TableReader, environment: Environment) -> Column:

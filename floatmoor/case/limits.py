@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
-           "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS", "MAX_SHAPE_POINTS",
+           "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS", "MAX_SHAPE_POINTS", "MAX_MESH_FILE_BYTES",
            "nesting_depth", "parse_toml", "check_sizes"]
 
 #: Deepest nesting of tables and arrays in a case (or a ``--set`` value). Case files nest at
@@ -68,6 +68,12 @@ MAX_MOTION_TABLE_BYTES = 100 * 1024 * 1024
 #: buoy's 3240). The solver's dense influence matrices take about 32 N^2 bytes, 13 GB at
 #: this bound, so a finer panel_size is a typing error rather than a plan.
 MAX_BEM_PANELS = 20_000
+#: Largest hull mesh file [bytes] (``[floater.geometry] kind = "mesh"``). A text mesh of
+#: MAX_BEM_PANELS panels takes about 5 MB (GDF: 4 vertex lines of ~50 bytes a panel; ASCII
+#: STL ~250 bytes a triangle); 100 MB leaves room for dry parts and other formats, and keeps
+#: a mistaken file from being read into memory. The panel count itself is checked when the
+#: file is read, at build time (floatmoor.hydro.mesh_file).
+MAX_MESH_FILE_BYTES = 100 * 1024 * 1024
 #: Largest case file [bytes]. The longest shipped case is ~12 kB; 10 MB keeps a mistaken
 #: argument (a data file, /dev/zero) from being read into memory.
 MAX_CASE_FILE_BYTES = 10 * 1024 * 1024
@@ -185,7 +191,10 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
 
 def wetted_area_estimate(geometry: Any) -> float:
     """Rough wetted area of a floater geometry [m^2] (sides and bottoms of the columns, the
-    pontoons' surfaces), for the panel bound only."""
+    pontoons' surfaces), for the panel bound only; 0 for a mesh hull, whose panels are the
+    file's (counted against :data:`MAX_BEM_PANELS` when it is read, at build time)."""
+    if geometry.kind == "mesh":
+        return 0.0
     if geometry.kind == "cylinder":
         d = geometry.diameter
         return math.pi * d * geometry.draft + math.pi * d * d / 4.0

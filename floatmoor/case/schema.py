@@ -6,7 +6,7 @@ value; the objects here can therefore be trusted by the models.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 from typing import Any
 
 import numpy as np
@@ -19,6 +19,7 @@ __all__ = [
     "SEABED_CONTACT_METHODS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
+    "MeshGeometry", "MESH_FORMATS", "MESH_LENGTH_UNITS", "MESH_SYMMETRY_PLANES",
     "RADIATION_METHODS", "HYDRO_CHECKS", "HYDRO_SOURCES", "POINT_KINDS", "Point", "Section",
     "BODY_DOFS", "BodyHarmonicMotion", "BodyTableMotion", "BodyMotion",
 ]
@@ -338,7 +339,17 @@ class Simulation:
 
 
 #: Floater geometry kinds a case file may give (``floater.geometry.kind``).
-GEOMETRY_KINDS = ("cylinder", "semisubmersible")
+GEOMETRY_KINDS = ("cylinder", "semisubmersible", "mesh")
+#: Hull mesh file formats (``floater.geometry.format``): capytaine's own readers (WAMIT
+#: ``gdf``, Nemoh ``mar``/``nemoh``, HAMS ``pnl``, HydroStar ``hst``) and the surface formats
+#: it reads through meshio (floatmoor.hydro.mesh_file).
+MESH_FORMATS = ("gdf", "mar", "nemoh", "pnl", "hst", "stl", "obj", "ply", "off", "vtk", "vtu",
+                "msh")
+#: Length units of a mesh file's coordinates (``floater.geometry.length_unit``) [m per unit].
+MESH_LENGTH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "ft": 0.3048, "in": 0.0254}
+#: Symmetry planes a mesh file may be the positive half of: ``xz`` (y = 0, the file holds
+#: y >= 0) and ``yz`` (x = 0, the file holds x >= 0).
+MESH_SYMMETRY_PLANES = ("xz", "yz")
 #: Radiation memory paths of a floater (``floater.radiation``): the convolution of K(t) with
 #: the velocity history, or the database's state-space realisation of K(t).
 RADIATION_METHODS = ("convolution", "state-space")
@@ -400,7 +411,59 @@ class SemisubmersibleGeometry:
     kind: str = "semisubmersible"
 
 
-FloaterGeometry = CylinderGeometry | SemisubmersibleGeometry
+@dataclass(frozen=True)
+class MeshGeometry:
+    """A hull given as a panel mesh file (floatmoor.hydro.mesh_file reads it at build time).
+
+    The dataclass fields are the BEM inputs a database records (``dataclasses.asdict``, see
+    floatmoor.hydro.database.database_inputs): the path as the case file writes it and the
+    file's SHA-256, so a changed mesh file makes the database stale while moving the project
+    does not. Two things are attributes outside the fields, not BEM inputs: the resolved
+    path (:attr:`path`) and the Morison elements used by ``[floater.drag]`` only
+    (:attr:`columns`, :attr:`members`; not meshed), so editing drag elements leaves the
+    database up to date. (``dataclasses.replace`` drops them unless passed again.)
+    """
+
+    file: str  #: the path as written in the case file, relative to its folder
+    sha256: str  #: SHA-256 of the file's bytes
+    format: str  #: one of :data:`MESH_FORMATS`
+    length_unit: str  #: a key of :data:`MESH_LENGTH_UNITS`
+    position: tuple[float, float, float]  #: added to the scaled file coordinates [m]
+    #: planes (of :data:`MESH_SYMMETRY_PLANES`, sorted) the file is the positive half of
+    symmetry: tuple[str, ...] = ()
+    kind: str = "mesh"
+    resolved_path: InitVar[str | None] = None
+    morison_columns: InitVar[tuple[Column, ...]] = ()
+    morison_members: InitVar[tuple[Member, ...]] = ()
+
+    def __post_init__(self, resolved_path: str | None, morison_columns: tuple[Column, ...],
+                      morison_members: tuple[Member, ...]) -> None:
+        object.__setattr__(self, "_path", resolved_path)
+        object.__setattr__(self, "_columns", tuple(morison_columns))
+        object.__setattr__(self, "_members", tuple(morison_members))
+
+    @property
+    def path(self) -> str | None:
+        """The resolved path of the mesh file (None for a geometry read from a database)."""
+        return self._path  # type: ignore[attr-defined]
+
+    @property
+    def columns(self) -> tuple[Column, ...]:
+        """Morison columns of ``[floater.drag]`` (not meshed)."""
+        return self._columns  # type: ignore[attr-defined]
+
+    @property
+    def members(self) -> tuple[Member, ...]:
+        """Morison pontoons and braces of ``[floater.drag]`` (not meshed)."""
+        return self._members  # type: ignore[attr-defined]
+
+    @property
+    def scale(self) -> float:
+        """Metres per file length unit."""
+        return MESH_LENGTH_UNITS[self.length_unit]
+
+
+FloaterGeometry = CylinderGeometry | SemisubmersibleGeometry | MeshGeometry
 
 
 @dataclass(frozen=True)

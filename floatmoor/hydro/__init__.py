@@ -1,6 +1,8 @@
 """Linear hydrodynamics of floaters: capytaine BEM databases and their time-domain use.
 
 * :mod:`~floatmoor.hydro.geometry`: parametric meshes (cylinder, semisubmersible);
+* :mod:`~floatmoor.hydro.mesh_file`, :mod:`~floatmoor.hydro.mesh_checks`: hull meshes read
+  from files, and their checks;
 * :mod:`~floatmoor.hydro.build`: BEM runs;
 * :mod:`~floatmoor.hydro.database`: ``hydrodb/NAME.nc`` files, staleness and damage;
 * :mod:`~floatmoor.hydro.radiation`: A_inf, K(t), Kramers-Kronig rebuild, total stiffness;

@@ -142,6 +142,7 @@ def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
             print(f"floatmoor: rebuilding: {err}", file=sys.stderr)
         else:
             print(f"{output}: up to date for {args.case}; nothing to do (--force rebuilds)")
+            _report_mesh(ds, warn=False)
             return _report_build_checks(output, ds, run_checks(ds), case, "up to date")
 
     def progress(done: int, total: int, omega: float, seconds: float) -> None:
@@ -159,7 +160,24 @@ def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
     print(f"{output}: {ds.attrs['hull_panels']} hull + {ds.attrs['lid_panels']} lid panels "
           f"({ds.attrs['mesh_symmetry']}), {ds.sizes['omega']} frequencies + infinity, "
           f"{ds.sizes['wave_direction']} directions, built in {ds.attrs['build_seconds']:.1f} s")
+    _report_mesh(ds, warn=True)
     return _report_build_checks(output, ds, results, case, "as built")
+
+
+def _report_mesh(ds, *, warn: bool) -> None:
+    """For a hull read from a mesh file: what was read and the mesh checks (a few lines);
+    with ``warn``, each failed check also as a warning on standard error."""
+    from floatmoor.hydro.mesh_checks import summary_lines
+
+    if "mesh_file_json" not in ds.attrs:
+        return
+    info = json.loads(ds.attrs["mesh_file_json"])
+    checks = json.loads(ds.attrs.get("mesh_checks_json", "[]"))
+    print("\n".join(summary_lines(info, checks)))
+    for c in checks:
+        if warn and not c["passed"]:
+            print(f"floatmoor: warning: mesh {info['file']}: {c['name']}: {c['detail']} "
+                  f"({c['fix']})", file=sys.stderr)
 
 
 def _report_build_checks(path: Path, ds, results, case, note: str) -> int:

@@ -14,7 +14,8 @@ Only the wetted hull (z <= 0) is meshed; normals point into the fluid.
   on the sector planes, so the half-sector is an exact subset of the full mesh (checked).
 
 Lids (interior waterplane panels at ``z = -lid_depth`` against irregular frequencies) follow
-the same symmetry. :func:`geometry_properties` gives the analytic volume, waterplane area and
+the same symmetry. A ``mesh`` geometry meshes nothing: its file is read, placed, clipped and
+given a lid by :mod:`floatmoor.hydro.mesh_file`, into the same :class:`HullMesh`. :func:`geometry_properties` gives the analytic volume, waterplane area and
 centre of buoyancy of the geometry for the checks.
 """
 
@@ -23,12 +24,13 @@ from __future__ import annotations
 import hashlib
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import (
-    Column, CylinderGeometry, FloaterGeometry, Member, SemisubmersibleGeometry,
+    Column, CylinderGeometry, FloaterGeometry, Member, MeshGeometry, SemisubmersibleGeometry,
 )
 
 __all__ = [
@@ -61,13 +63,18 @@ class HullMesh:
     full_hull
         the same hull without symmetry (for hydrostatics and checks).
     symmetry
-        ``"none"``, ``"rotation-n"`` or ``"rotation-n+mirror-xOz"``.
+        ``"none"``, ``"rotation-n"``, ``"rotation-n+mirror-xOz"``, ``"mirror-xOz"``,
+        ``"mirror-yOz"`` or ``"mirror-xOz+mirror-yOz"``.
+    source
+        For a hull read from a file, what was read
+        (:class:`floatmoor.hydro.mesh_file.MeshFileInfo`); None for the parametric kinds.
     """
 
     hull: object
     lid: object | None
     full_hull: object
     symmetry: str
+    source: Any = None
 
     @property
     def hull_panels(self) -> int:
@@ -471,15 +478,17 @@ def _symmetric(vertices: NDArray[np.float64], faces: list[list[int]], n: int, na
 
 def build_mesh(geometry: FloaterGeometry, *, panel_size: float, reference_xy=(0.0, 0.0),
                lid_depth: float | None = None, symmetry: bool = True,
-               radial_panels: int | None = None) -> HullMesh:
+               radial_panels: int | None = None, water_depth: float = math.inf) -> HullMesh:
     """The hull (and lid) mesh of a floater geometry.
 
     Parameters
     ----------
     geometry
-        Cylinder or semisubmersible.
+        Cylinder, semisubmersible or mesh file (read by
+        :func:`floatmoor.hydro.mesh_file.mesh_from_file`, which may raise
+        :class:`floatmoor.io.bem_data.BemFileError`).
     panel_size
-        Target panel edge [m].
+        Target panel edge [m] (of the lid only, for a mesh file).
     reference_xy
         (x, y) of the cylinder's axis [m] (semisubmersible coordinates are global).
     lid_depth
@@ -488,7 +497,14 @@ def build_mesh(geometry: FloaterGeometry, *, panel_size: float, reference_xy=(0.
         Use the geometry's symmetries when capytaine can.
     radial_panels
         Cylinder only: panels across the bottom radius.
+    water_depth
+        Mesh file only: the seabed's depth [m], which the hull must stay above.
     """
+    if isinstance(geometry, MeshGeometry):
+        from floatmoor.hydro.mesh_file import mesh_from_file
+
+        return mesh_from_file(geometry, lid_depth=lid_depth, lid_panel_size=panel_size,
+                              symmetry=symmetry, water_depth=water_depth)
     if isinstance(geometry, CylinderGeometry):
         return cylinder_mesh(geometry, panel_size=panel_size, centre=tuple(reference_xy),
                              lid_depth=lid_depth, symmetry=symmetry, radial_panels=radial_panels)
@@ -514,7 +530,15 @@ def geometry_properties(geometry: FloaterGeometry, reference_xy=(0.0, 0.0)) -> G
     column curved with radius R overlaps it by about r^2 L_end / R, below 0.1 % of the volume
     for the OC4 platform. Inclined members crossing the water line add an ellipse
     pi r^2 / sin(elevation) to the waterplane.
+
+    Raises
+    ------
+    ValueError
+        For a mesh geometry, which has no analytic properties (see
+        :func:`floatmoor.hydro.mesh_checks.reference_hydrostatics`).
     """
+    if isinstance(geometry, MeshGeometry):
+        raise ValueError("a mesh hull has no analytic geometry properties")
     if isinstance(geometry, CylinderGeometry):
         r, t = geometry.radius, geometry.draft
         area = math.pi * r * r
