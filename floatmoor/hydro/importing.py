@@ -214,9 +214,11 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
     if options.length_scale is not None:
         raise CaseError("--length-scale", "", "no --length-scale with a BEMIO file (its values "
                         "are dimensional)", _text(options.length_scale))
-    bem = read_bemio(str(paths[0]), body=options.body)
-    _agree(str(paths[0]), "water density", "--water-density", options.water_density,
-           bem.water_density)
+    # BEMIO stores A / rho, B / (rho omega), X / (rho g), C / (rho g), so a density given
+    # re-dimensionalises exactly; it is an override, not a conflict, because BEMIO's readWAMIT
+    # records rho = 1000 kg/m^3 whatever the WAMIT run used (the reader's notes say which rho
+    # was applied). Gravity and depth shaped the BEM solution itself: those must agree.
+    bem = read_bemio(str(paths[0]), body=options.body, water_density=options.water_density)
     _agree(str(paths[0]), "gravity", "--gravity", options.gravity, bem.gravity)
     _agree(str(paths[0]), "water depth", "--water-depth", options.water_depth, bem.water_depth)
     return bem

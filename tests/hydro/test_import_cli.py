@@ -249,8 +249,6 @@ def test_bemio_values_conflicting_with_options_exit_2(tmp_path, capsys, deepcwin
     h5 = write_bemio(tmp_path / "deepcwind.h5", deepcwind_db)
     out = str(tmp_path / "hydrodb" / "back.nc")
     for extra, message in (
-            (["--water-density", "1000"], "water density: expected the --water-density given "
-             "(1000), found 1025 in the file"),
             (["--water-depth", "infinite"], "water depth: expected the --water-depth given "
              "(infinite), found 200 in the file"),
             (["--displaced-volume", "1"], "displaced volume: expected the --displaced-volume "
@@ -283,3 +281,23 @@ def test_bemio_reference_point_and_yaw_place_the_file(tmp_path, capsys, deepcwin
                  "--centre-of-buoyancy", "0", "1", "-13"]) == 2
     assert "centre of buoyancy: expected the --centre-of-buoyancy given (0, 1, -13 m)" in \
         capsys.readouterr().err
+
+
+def test_bemio_water_density_given_redimensionalises(tmp_path, deepcwind_db):
+    """BEMIO's values are normalised by rho (its readWAMIT records 1000 kg/m^3 whatever the
+    run's density): a --water-density re-dimensionalises them exactly and the notes say so."""
+    import json
+
+    import numpy as np
+
+    (tmp_path / "hydrodb").mkdir()
+    h5 = write_bemio(tmp_path / "deepcwind.h5", deepcwind_db)
+    out = tmp_path / "hydrodb" / "back.nc"
+    assert main(["hydro", "import", str(h5), "-o", str(out), "--water-density", "1000"]) == 0
+    back = read_database(out)
+    assert float(back.attrs["water_density"]) == 1000.0
+    np.testing.assert_allclose(back["added_mass"].values,
+                               deepcwind_db["added_mass"].values * 1000.0 / 1025.0, rtol=1e-12,
+                               atol=1e-6)
+    notes = " ".join(json.loads(back.attrs["import_notes_json"]))
+    assert "given; the file says 1025" in notes
