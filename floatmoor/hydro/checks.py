@@ -251,6 +251,10 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
         half = (abs(beta[0]) < 1e-9 and abs(beta[-1] - math.pi) < 1e-9) or \
             (abs(beta[0] + math.pi) < 1e-9 and abs(beta[-1]) < 1e-9)
         full = even and abs(beta[-1] + step[0] - beta[0] - 2.0 * math.pi) < 1e-9
+        if even and half and not _mirror_symmetric(ds):
+            raise ValueError("the Haskind check on directions spanning 0 to 180 deg needs a "
+                             "hull symmetric about y = 0 (declare the mesh's \"xz\" symmetry) "
+                             "or directions covering the full circle")
         if even and half:
             # periodic trapezoid over [0, 2 pi) with the mirrored half: 2 * (sum of
             # interior) + end points once each
@@ -261,6 +265,20 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
             raise ValueError("the Haskind check needs directions evenly spanning 0 to 180 "
                              "deg (or -180 to 0 deg) or the full circle")
     return k / (8.0 * math.pi * rho * g * cg) * integral
+
+
+def _mirror_symmetric(ds: xr.Dataset) -> bool:
+    """Whether the hull is taken as symmetric about y = 0 (the parametric kinds, whose
+    Haskind check has always mirrored a 0-180 deg span, imported files, whose symmetry is
+    unknown to us and which the check may only approximate, and mesh hulls that declare
+    the "xz" plane)."""
+    if ds.attrs.get("geometry_kind") != "mesh":
+        return True
+    try:
+        symmetry = json.loads(ds.attrs.get("geometry_json", "{}")).get("symmetry", [])
+    except json.JSONDecodeError:
+        return False
+    return "xz" in symmetry
 
 
 def check_haskind(ds: xr.Dataset) -> CheckResult:
@@ -406,9 +424,11 @@ def run_checks(ds: xr.Dataset) -> list[CheckResult]:
         try:
             with np.errstate(all="raise", under="ignore"):
                 results.append(check())
-        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError, KeyError) as err:
+            # KeyError: recorded attributes (geometry_json, mesh records) missing an entry
+            what = f"missing {err}" if isinstance(err, KeyError) else str(err)
             results.append(CheckResult(name, False, math.inf, tolerance,
-                                       f"cannot be evaluated on these values ({err})"))
+                                       f"cannot be evaluated on these values ({what})"))
     return results
 
 

@@ -51,3 +51,22 @@ def test_wrong_stiffness_fails_hydrostatics(buoy_db):
     bad = _copy(buoy_db)
     bad["hydrostatic_stiffness"].loc[dict(influenced_dof="Heave", radiating_dof="Heave")] *= 1.02
     assert not check_hydrostatics(bad).passed
+
+
+@pytest.mark.parametrize("symmetry, passes", [(["xz"], True), ([], False)])
+def test_haskind_mirrors_a_half_span_only_for_a_hull_symmetric_about_y0(deepcwind_db, symmetry,
+                                                                        passes):
+    """Directions over 0-180 deg stand for the full circle only on a hull symmetric about
+    y = 0: a mesh hull must declare the "xz" plane for it."""
+    import json
+
+    ds = _copy(deepcwind_db)
+    ds.attrs["geometry_kind"] = "mesh"
+    ds.attrs["geometry_json"] = json.dumps({"kind": "mesh", "symmetry": symmetry})
+    if passes:
+        assert check_haskind(ds).passed
+    else:
+        with pytest.raises(ValueError, match="symmetric about y = 0"):
+            check_haskind(ds)
+        failed = [r for r in run_checks(ds) if r.name == "haskind"][0]
+        assert not failed.passed and "symmetric about y = 0" in failed.detail
