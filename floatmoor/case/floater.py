@@ -56,7 +56,7 @@ from floatmoor.case.schema import (
 )
 from floatmoor.case.schema import HYDRO_SOURCES
 
-__all__ = ["read_floater", "read_hydro", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS"]
+__all__ = ["read_floater", "read_hydro", "check_panel_size", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS"]
 
 #: More frequencies than this is a typing error rather than a plan (a 400-frequency buoy
 #: database took 84 s; capytaine_notes.md).
@@ -289,7 +289,8 @@ def read_hydro(t: TableReader) -> HydroSettings:
         database=database,
         frequencies=tuple(float(v) for v in values),
         directions=tuple(math.radians(d) for d in directions_deg),
-        panel_size=t.number("panel_size", unit="m", gt=0.0),
+        # required by the loader except for a mesh hull without a lid (check_panel_size)
+        panel_size=t.number("panel_size", unit="m", gt=0.0, default=None),
         lid=t.boolean("lid", default=True),
         lid_depth=t.number("lid_depth", unit="m", gt=0.0, default=None),
         infinite_depth=t.boolean("infinite_depth", default=False),
@@ -333,3 +334,19 @@ def _missing():
     from floatmoor.case.reader import MISSING
 
     return MISSING
+
+
+def check_panel_size(floater: Floater, hydro: HydroSettings, error) -> None:
+    """``[hydro] panel_size`` is required to mesh a parametric hull and, for a mesh file, to
+    panel its lid; a mesh hull without a lid needs none. ``error(key, expected, found)``
+    raises the loader's CaseError."""
+    if hydro.source != "bem" or hydro.panel_size is not None:
+        return
+    if floater.geometry.kind == "mesh" and not hydro.lid:
+        return
+    what = "the lid's panel edge of a mesh hull" if floater.geometry.kind == "mesh" \
+        else "the hull's target panel edge"
+    from floatmoor.case.reader import describe_value
+
+    error("panel_size", f"a panel size [m] ({what})", describe_value(_missing()))
+

@@ -17,7 +17,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
-from floatmoor.case.floater import read_floater, read_hydro
+from floatmoor.case.floater import check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
     MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
 )
@@ -144,6 +144,11 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
         raise root.error("hydro", "a [floater] table for the [hydro] settings to apply to",
                          {})
     hydro = read_hydro(root.table("hydro")) if root.has("hydro") else None
+    if hydro is not None and floater is not None:
+        def missing(key: str, expected: str, found) -> None:
+            raise context.error(("hydro", key), expected, found)
+
+        check_panel_size(floater, hydro, missing)
     for key in ("waves", "initial", "wind"):
         if root.has(key) and not has_floater:
             raise root.error(key, f"a [floater] table for [{key}] to apply to", {})

@@ -274,7 +274,7 @@ def to_dataset(result, case: Case) -> xr.Dataset:
         "lid_panels": int(mesh.lid_panels),
         "mesh_symmetry": mesh.symmetry,
         "mesh_hash": mesh_hash(mesh.full_hull),
-        "panel_size": hydro.panel_size,
+        "panel_size": hydro.panel_size if hydro.panel_size is not None else "none",
         "lid_depth": result.lid_depth if result.lid_depth is not None else "none",
         "build_seconds": float(result.build_seconds),
         "build_settings_json": json.dumps({k: inputs[k] for k in

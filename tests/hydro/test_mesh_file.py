@@ -420,3 +420,23 @@ def test_buoy_mesh_database_matches_the_cylinder_database(tmp_path, capsys):
             print(f"  {name} {i}: band {band:.2e}, pointwise (>= half peak) {pointwise:.2e}")
     assert all(band <= BAND_TOLERANCE for _, _, band, _ in rows), rows
     assert math.isfinite(seconds)
+
+
+def test_panel_size_is_needed_only_to_panel_something(tmp_path):
+    """A mesh hull without a lid meshes nothing: [hydro] panel_size may be left out; with a
+    lid (its panels) or for a parametric hull it is required."""
+    write_gdf(tmp_path / "hull.gdf", tiny_faces())
+    case = load_case(_mesh_case(tmp_path, "hull.gdf"), ["hydro.panel_size=0.07"])
+    text = case.text.replace("panel_size = 0.07\n", "")
+    bare = tmp_path / "bare.toml"
+    bare.write_text(text)
+    assert load_case(bare).hydro.panel_size is None
+    with pytest.raises(CaseError, match=r"hydro.panel_size: expected a panel size \[m\] "
+                       r"\(the lid's panel edge of a mesh hull\), found nothing \(the key is missing\)"):
+        load_case(bare, ["hydro.lid=true"])
+    cylinder = tmp_path / "cylinder.toml"
+    cylinder.write_text(load_case(write_case(tmp_path, CYLINDER_GEOMETRY, kind="cylinder",
+                                             name="c.toml")).text
+                        .replace("panel_size = 0.07\n", ""))
+    with pytest.raises(CaseError, match="hull's target panel edge"):
+        load_case(cylinder)
