@@ -385,8 +385,6 @@ def _detect_symmetry(geometry: SemisubmersibleGeometry) -> int:
 def semisubmersible_mesh(geometry: SemisubmersibleGeometry, *, panel_size: float,
                          lid_depth: float | None = None, symmetry: bool = True) -> HullMesh:
     """Mesh of the wetted part of a semisubmersible (see the module docstring)."""
-    import capytaine as cpt
-
     n_sym = _detect_symmetry(geometry) if symmetry else 0
     multiple = 4 * max(n_sym, 1) if n_sym else 4
     builder = _Builder()
