@@ -11,7 +11,8 @@ from floatmoor.body.cummins import CumminsBody
 from floatmoor.body.radiation_states import RadiationStates
 from floatmoor.case.schema import RADIATION_METHODS, Environment, Floater
 from floatmoor.hydro.radiation import (
-    added_mass_from_kernel, hydrostatic_stiffness_total, kernel_samples, radiation_kernel,
+    consistent_infinite_added_mass, hydrostatic_stiffness_total, kernel_samples,
+    radiation_kernel,
 )
 from floatmoor.hydro.state_space import StateSpaceRadiation
 
@@ -45,21 +46,6 @@ def static_force(floater: Floater, ds: xr.Dataset, environment: Environment
     f[3] = rb[1] * buoyancy - rg[1] * weight
     f[4] = -(rb[0] * buoyancy - rg[0] * weight)
     return f
-
-
-def consistent_infinite_added_mass(ds: xr.Dataset, time: NDArray[np.float64],
-                                   kernel: NDArray[np.float64]) -> NDArray[np.float64]:
-    """A_inf consistent with K(t) and the BEM added mass over the band (6, 6): the mean over
-    the BEM frequencies of A(w) + (1 / w) int K(t) sin(w t) dt (Ogilvie 1964), so that the
-    time-domain model's A(w) = A_inf - (1 / w) int K sin matches the BEM A(w) best in the
-    mean. On the buoy database the implied values scatter by 0.2 % (heave) over the band,
-    while the BEM A_inf (computed without the lid, capytaine_notes.md) sits 0.75 % below
-    their mean: with it, the heave response near resonance misses the RAO by 2 %."""
-    omega = ds["omega"].values
-    added = ds["added_mass"].transpose("omega", "radiating_dof", "influenced_dof").values
-    # A(w) - (A_inf - (1 / w) int K sin) with A_inf = 0: the A_inf each frequency implies
-    implied = added - added_mass_from_kernel(time, kernel, np.zeros((6, 6)), omega)
-    return implied.mean(axis=0)
 
 
 def state_space_infinite_added_mass(ds: xr.Dataset, realisation: StateSpaceRadiation

@@ -19,7 +19,7 @@ What the files lack and the layout needs:
   from the data (:func:`derived_infinite_added_mass`): per DOF the exponent p of the damping's
   decay B ~ omega^-p fitted over the top of the band (:data:`TAIL_FIT_FRACTION`), K(t) with
   that tail (:func:`floatmoor.hydro.radiation.impulse_response`), and A_inf from
-  Kramers-Kronig as :func:`floatmoor.body.model.consistent_infinite_added_mass` does. The
+  Kramers-Kronig as :func:`floatmoor.hydro.radiation.consistent_infinite_added_mass` does. The
   attribute ``added_mass_infinite_source`` says which.
 
 ``yaw_deg`` turns the file's body frame about z into the case's: a point p of the file is
@@ -293,9 +293,10 @@ def derived_infinite_added_mass(ds: xr.Dataset) -> tuple[NDArray[np.float64],
                                                           NDArray[np.float64]]:
     """A_inf (6, 6) and the tail exponents (6, 6) it was derived with, for a database whose
     files give no A_inf: K(t) from the damping with :func:`decay_tail_exponents` on the
-    default kernel grid, then :func:`floatmoor.body.model.consistent_infinite_added_mass`."""
-    from floatmoor.body.model import consistent_infinite_added_mass
-    from floatmoor.hydro.radiation import default_time_step, impulse_response, truncation_time
+    default kernel grid, then :func:`floatmoor.hydro.radiation.consistent_infinite_added_mass`."""
+    from floatmoor.hydro.radiation import (
+        consistent_infinite_added_mass, default_time_step, impulse_response, truncation_time,
+    )
 
     omega = ds["omega"].values
     damping = ds["radiation_damping"].transpose("omega", "radiating_dof",
