@@ -161,6 +161,14 @@ class _Table:
             raise self.error(lineno, f"{count} columns '{layout}'",
                              f"{len(parts)}: '{' '.join(parts)}'")
 
+    def once(self, seen: dict, key: tuple, lineno: int, fields: str, described: str) -> None:
+        """Refuse a second line for ``key`` (``fields`` names its columns, ``described``
+        their values); ``seen`` maps keys to the line that gave them first."""
+        if key in seen:
+            raise self.error(lineno, f"one line per ({fields})",
+                             f"a second line for {described} (first at line {seen[key]})")
+        seen[key] = lineno
+
     def require_rows(self, layout: str) -> None:
         if not self.rows:
             raise BemFileError(self.name, "", f"lines '{layout}'", "an empty file")
@@ -194,12 +202,8 @@ def _read_radiation(table: _Table) -> _Radiation:
         j = table.mode(lineno, parts[2], "J")
         a = table.number(lineno, parts[3], "Abar")
         b = 0.0 if limit else table.number(lineno, parts[4], "Bbar")
-        key = (per, i, j)
-        if key in first_line:
-            raise table.error(lineno, "one line per (PER, I, J)",
-                              f"a second line for PER = {parts[0]}, I = {i}, J = {j} "
-                              f"(first at line {first_line[key]})")
-        first_line[key] = lineno
+        table.once(first_line, (per, i, j), lineno, "PER, I, J",
+                   f"PER = {parts[0]}, I = {i}, J = {j}")
         values.setdefault(per, {})[(i, j)] = (a, b)
 
     periods = sorted((p for p in values if p > 0.0), reverse=True)
@@ -278,12 +282,8 @@ def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
         im = table.number(lineno, parts[6], "Im")
         if mod < 0.0:
             raise table.error(lineno, "a modulus Mod >= 0", f"Mod = {parts[3]}")
-        key = (per, beta, i)
-        if key in first_line:
-            raise table.error(lineno, "one line per (PER, BETA, I)",
-                              f"a second line for PER = {parts[0]}, BETA = {parts[1]}, "
-                              f"I = {i} (first at line {first_line[key]})")
-        first_line[key] = lineno
+        table.once(first_line, (per, beta, i), lineno, "PER, BETA, I",
+                   f"PER = {parts[0]}, BETA = {parts[1]}, I = {i}")
         if per in (-1.0, 0.0):
             dropped.add(per)
             continue
@@ -333,11 +333,7 @@ def _read_hydrostatics(table: _Table) -> NDArray[np.float64]:
         i = table.mode(lineno, parts[0], "I")
         j = table.mode(lineno, parts[1], "J")
         c = table.number(lineno, parts[2], "Cbar")
-        if (i, j) in first_line:
-            raise table.error(lineno, "one line per (I, J)",
-                              f"a second line for I = {i}, J = {j} "
-                              f"(first at line {first_line[(i, j)]})")
-        first_line[(i, j)] = lineno
+        table.once(first_line, (i, j), lineno, "I, J", f"I = {i}, J = {j}")
         out[i - 1, j - 1] = c
     return out
 
