@@ -85,11 +85,11 @@ def run_floatmoor(case, lines, paths, start):
     return out
 
 
-def run_md(case, lines, paths, segments, fraction, scheme, start):
+def run_md(case, lines, paths, segments, fraction, scheme, start, coupling=COUPLING):
     t = paths["time"].values
     res = {"segments": segments, "fraction": fraction, "scheme": scheme, "lines": {},
            "loop_s": 0.0, "whole_s": 0.0}
-    substeps = max(1, round(float(t[1] - t[0]) / COUPLING))
+    substeps = max(1, round(float(t[1] - t[0]) / coupling))
     for line in lines:
         lt = line.line_type
         dt = fraction * (line.length / segments) / math.sqrt(lt.axial_stiffness
@@ -144,6 +144,8 @@ def main():
     p.add_argument("--fractions", nargs="+", type=float, default=[1.0, 0.5, 0.25])
     p.add_argument("--schemes", nargs="+", default=["RK2", "RK4"])
     p.add_argument("--floatmoor", action="store_true")
+    p.add_argument("--coupling", type=float, default=COUPLING,
+                   help="MoorDyn coupling interval [s] (moordyn.Step), default 1 ms")
     a = p.parse_args()
     case = load_case(a.case)
     paths = xr.open_dataset(a.paths).load()
@@ -169,7 +171,8 @@ def main():
         key = (n, f, s)
         if key not in done:
             w0 = time.perf_counter()
-            r = run_md(case, lines, paths, n, f, s, a.start)
+            r = run_md(case, lines, paths, n, f, s, a.start, a.coupling)
+            r["coupling_s"] = a.coupling
             r["call_s"] = time.perf_counter() - w0
             done[key] = r
             results["runs"].append(r)
