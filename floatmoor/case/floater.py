@@ -40,7 +40,6 @@ import`` from WAMIT or BEMIO files): then only ``database``, ``source`` and
 
 from __future__ import annotations
 
-import hashlib
 import math
 from pathlib import Path
 
@@ -50,11 +49,11 @@ from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import TableReader, _Found
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, HYDRO_CHECKS, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
+    GEOMETRY_KINDS, HYDRO_CHECKS, HYDRO_SOURCES, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
     RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
     HydroSettings, Member, MeshGeometry, SemisubmersibleGeometry,
 )
-from floatmoor.case.schema import HYDRO_SOURCES
+from floatmoor.file_hash import file_sha256
 
 __all__ = ["read_floater", "read_hydro", "check_panel_size", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS"]
 
@@ -190,7 +189,7 @@ def _mesh_geometry(t: TableReader, environment: Environment, base_dir: Path) -> 
             raise t.error("file", f"a mesh file of at most {MAX_MESH_FILE_BYTES} bytes "
                           "(floatmoor.case.limits.MAX_MESH_FILE_BYTES)",
                           _Found(f"{path}, {size} bytes"))
-        digest = hashlib.sha256(path.read_bytes()).hexdigest()
+        digest = file_sha256(path)
     except OSError as err:
         raise t.error("file", "a readable mesh file",
                       _Found(f"{path} unreadable ({err.strerror})")) from None

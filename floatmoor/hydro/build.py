@@ -30,7 +30,6 @@ time dependence, wave direction 0 = waves travelling towards +x).
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from typing import Callable
@@ -271,9 +270,4 @@ def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
     if case.floater is None or case.hydro is None:
         raise ValueError(f"{case.source}: a case with [floater] and [hydro] tables is needed")
     result = run_bem(case.floater, case.hydro, case.environment, progress=progress)
-    ds = to_dataset(result, case)
-    if result.mesh.source is not None:
-        ds.attrs["mesh_file_json"] = json.dumps(result.mesh.source.as_dict(), sort_keys=True)
-        ds.attrs["mesh_checks_json"] = json.dumps([c.as_dict() for c in result.mesh_checks])
-        ds.attrs["mesh_reference_json"] = json.dumps(result.mesh_reference, sort_keys=True)
-    return ds
+    return to_dataset(result, case)

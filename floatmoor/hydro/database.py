@@ -48,6 +48,7 @@ import xarray as xr
 from floatmoor._version import __version__
 from floatmoor.case.schema import Case, Environment, Floater, HydroSettings
 from floatmoor.errors import FloatmoorError
+from floatmoor.file_hash import file_sha256
 from floatmoor.io.netcdf import read_dataset, write_dataset
 
 __all__ = [
@@ -287,6 +288,10 @@ def to_dataset(result, case: Case) -> xr.Dataset:
         "time_convention": "e^{-i omega t} (capytaine); WAMIT phases are the conjugate",
         "Conventions": "CF-1.8",
     }
+    if mesh.source is not None:  # a hull read from a file: what it was and what its checks found
+        attrs["mesh_file_json"] = json.dumps(mesh.source.as_dict(), sort_keys=True)
+        attrs["mesh_checks_json"] = json.dumps([c.as_dict() for c in result.mesh_checks])
+        attrs["mesh_reference_json"] = json.dumps(result.mesh_reference, sort_keys=True)
     return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
 
 
@@ -364,15 +369,6 @@ def source_mismatch(ds: xr.Dataset, case: Case) -> str | None:
                 "names an imported database ([hydro] source = \"imported\"): import one with "
                 "'floatmoor hydro import', or set [hydro] source = \"bem\" with the BEM build keys")
     return None
-
-
-def file_sha256(path: str | os.PathLike[str]) -> str:
-    """SHA-256 of a file's bytes (hex)."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
 
 
 def source_files(ds: xr.Dataset) -> list[dict[str, Any]]:

@@ -27,7 +27,6 @@ panels than :data:`floatmoor.case.limits.MAX_BEM_PANELS` raises
 
 from __future__ import annotations
 
-import hashlib
 import logging
 import math
 from dataclasses import asdict, dataclass
@@ -36,6 +35,7 @@ import numpy as np
 
 from floatmoor.case.limits import MAX_BEM_PANELS
 from floatmoor.case.schema import MeshGeometry
+from floatmoor.file_hash import file_sha256
 from floatmoor.hydro.geometry import HullMesh
 from floatmoor.io.bem_data import BemFileError
 
@@ -189,8 +189,7 @@ def mesh_from_file(geometry: MeshGeometry, *, lid_depth: float | None,
     if path is None:
         raise ValueError("a mesh geometry read from a database has no file to mesh")
     try:
-        with open(path, "rb") as stream:
-            digest = hashlib.sha256(stream.read()).hexdigest()
+        digest = file_sha256(path)
     except OSError as err:
         raise BemFileError(path, "", "a readable mesh file", err.strerror or str(err)) from None
     if digest != geometry.sha256:
