@@ -153,9 +153,7 @@ def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
 
     ds = build_database(case, progress=progress)
     results = run_checks(ds)
-    failed = [r.name for r in results if not r.passed]
-    ds.attrs["checks_failed"] = ", ".join(failed) or "none"
-    ds.attrs["checks_json"] = json.dumps([r.as_dict() for r in results])
+    _record_checks(ds, results)
     write_database(ds, output)
     print(f"{output}: {ds.attrs['hull_panels']} hull + {ds.attrs['lid_panels']} lid panels "
           f"({ds.attrs['mesh_symmetry']}), {ds.sizes['omega']} frequencies + infinity, "
@@ -178,6 +176,15 @@ def _report_mesh(ds, *, warn: bool) -> None:
         if warn and not c["passed"]:
             print(f"floatmoor: warning: mesh {info['file']}: {c['name']}: {c['detail']} "
                   f"({c['fix']})", file=sys.stderr)
+
+
+def _record_checks(ds, results) -> list[str]:
+    """Record the check results in the database's attributes (for the reader only: a run
+    recomputes them); the names of the failed ones."""
+    failed = [r.name for r in results if not r.passed]
+    ds.attrs["checks_failed"] = ", ".join(failed) or "none"
+    ds.attrs["checks_json"] = json.dumps([r.as_dict() for r in results])
+    return failed
 
 
 def _report_build_checks(path: Path, ds, results, case, note: str) -> int:
@@ -219,9 +226,7 @@ def _import(args: argparse.Namespace) -> int:
                              command=_import_command(args),
                              project=output.resolve().parent.parent)
         results = [check_values(ds), *run_checks(ds)]
-        failed = [r.name for r in results if not r.passed]
-        ds.attrs["checks_failed"] = ", ".join(failed) or "none"
-        ds.attrs["checks_json"] = json.dumps([r.as_dict() for r in results])
+        failed = _record_checks(ds, results)
         write_database(ds, output)
     omega = ds["omega"].values
     print(f"{output}: imported from {ds.attrs['source']} files, {len(omega)} frequencies "
