@@ -28,7 +28,7 @@ from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, INTERNAL_DAMPING_METHODS, LINE_MODELS,
-    POINT_KINDS, SEABED_CONTACT_METHODS, Case, CircularMotion, DynamicSettings, Environment,
+    POINT_KINDS, SEABED_CONTACT_METHODS, TIME_INTEGRATIONS, Case, CircularMotion, DynamicSettings, Environment,
     HarmonicMotion, Line, LineType, Motion, Point, Section,
     QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
 )
@@ -62,6 +62,10 @@ DEFAULT_DG_ORDER = 5
 #: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
 #: drag, contact) and was stable on the whole Lindahl robustness grid.
 DEFAULT_DG_CFL = 0.8
+#: Default accepted relative error of the fairlead tension (issue 17: 1 %).
+DEFAULT_DG_ACCURACY = 0.01
+#: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
+MAX_DG_ACCURACY = 0.2
 #: Default Simpson stations of the quasi-dynamic model over the suspended length: the 31
 #: integration points of the quasi-dynamic paper's verification study (its Table 3).
 DEFAULT_QD_INTEGRATION_POINTS = 31
@@ -258,6 +262,10 @@ def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> Dyna
         settle=dg.boolean("settle", default=d.settle if d else True),
         internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
                                    default=d.internal_damping if d else "implicit"),
+        time_integration=dg.string("time_integration", choices=TIME_INTEGRATIONS,
+                                   default=d.time_integration if d else "explicit"),
+        accuracy=dg.number("accuracy", unit="-", gt=0.0, le=MAX_DG_ACCURACY,
+                           default=d.accuracy if d else DEFAULT_DG_ACCURACY),
     )
     dg.finish()
     return settings

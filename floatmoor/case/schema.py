@@ -16,7 +16,7 @@ __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
     "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "INTERNAL_DAMPING_METHODS",
-    "SEABED_CONTACT_METHODS",
+    "SEABED_CONTACT_METHODS", "TIME_INTEGRATIONS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
     "MeshGeometry", "MESH_FORMATS", "MESH_LENGTH_UNITS", "MESH_SYMMETRY_PLANES",
@@ -32,6 +32,9 @@ AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
 #: Treatments of the dynamic model's Kelvin-Voigt internal damping.
 INTERNAL_DAMPING_METHODS = ("implicit", "explicit")
+#: Time integration of a dynamic line: explicit SSP-RK3 at the axial wave's stability limit, or
+#: the implicit generalised-alpha method at a step bounded by accuracy (mooring/dg/implicit.py).
+TIME_INTEGRATIONS = ("explicit", "implicit")
 #: Kinds of points (``points[].kind``): fixed in space (anchors), free (joints, clump weights,
 #: buoys: in equilibrium of their lines and loads), or carried by the body (fairleads: moved by
 #: the prescribed motion or the floater).
@@ -117,6 +120,12 @@ class DynamicSettings:
     #: "implicit" (a backward-Euler step after each SSP-RK3 step, so the axial wave alone sets
     #: the time step) or "explicit" (in the right-hand side) Kelvin-Voigt internal damping
     internal_damping: str = "implicit"
+    #: "explicit" (SSP-RK3, ``cfl`` of the axial wave's stability limit) or "implicit"
+    #: (generalised-alpha, steps of at most ``max_time_step``, halved where the estimated error
+    #: of the fairlead force exceeds ``accuracy``'s share)
+    time_integration: str = "explicit"
+    #: relative error of the fairlead tension accepted [-]
+    accuracy: float = 0.01
 
 
 @dataclass(frozen=True)

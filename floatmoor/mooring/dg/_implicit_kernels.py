@@ -1,0 +1,604 @@
+"""Numba kernels of the implicit time integration of the DG cable (issue 17).
+
+The semi-discrete cable of ``_kernels`` (the same tension field, fluxes, external forces and
+mass), dr/dt = v, M_eff(r) dv/dt = F(r, v, t), is advanced with the generalised-alpha method of
+Chung & Hulbert (1993, J. Appl. Mech. 60, 371-375), the implicit scheme of structural codes
+(OrcaFlex's implicit integration among them): second order, unconditionally stable for linear
+problems, with numerical dissipation of the unresolved high frequencies set by the spectral
+radius at infinity rho_inf. With alpha_m = (2 rho - 1) / (rho + 1), alpha_f = rho / (rho + 1),
+gamma = 1/2 - alpha_m + alpha_f, beta = (1 - alpha_m + alpha_f)^2 / 4, a step solves
+
+    (1 - alpha_m) a1 + alpha_m a0 = (1 - alpha_f) A(r1, v1, t1) + alpha_f A(r0, v0, t0),
+    r1 = r0 + dt v0 + dt^2 ((1/2 - beta) a0 + beta a1),  v1 = v0 + dt ((1 - gamma) a0 + gamma a1)
+
+for the acceleration variable a1, A = M_eff^-1 F the acceleration of the semi-discrete cable
+(the force-interpolating form, second order for nonlinear problems: Erlicher, Bonaventura &
+Bursi 2002, Comput. Mech. 28, 83-104). Everything stiff is inside the solve: the axial
+elasticity EA, the Kelvin-Voigt damping, the Lax-Friedrichs penalty (Z = m c), the seabed
+spring-damper and friction, the drag. Newton's method uses the banded Jacobian
+(1 - alpha_m) M - (1 - alpha_f) (beta dt^2 dF/dr + gamma dt dF/dv), built from the exact
+derivatives of the DG operators (:func:`_jacobian`), LU-factored without pivoting
+(``_banded_kernels``) and reused over steps and iterations while Newton converges quickly
+(a modified Newton method); it is rebuilt when dt changes or convergence slows.
+
+Step size: each interval between two path samples is cut into 2^L equal steps. The local error
+of a step is estimated from the change of the acceleration variable,
+e_r = dt^2 |beta - 1/6| (a1 - a0) (Zienkiewicz & Xie 1991, Earthq. Eng. Struct. Dyn. 20,
+871-887), mapped to the fairlead force through the end node's tangent stiffness
+(|dN/dq . de/ds|); a step whose force error exceeds the tolerance is redone at half the step
+(L + 1), and after two steps well inside it the step doubles again (L - 1). Snap loads, whose
+axial waves carry the force, so get the small steps they need and the rest of the run the
+steps its fairlead motion needs.
+
+Slack elements are filtered after each step as in the explicit scheme (``_kernels``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from floatmoor._numba import jit
+from floatmoor.mooring.dg import _kernels as _k
+from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
+
+__all__ = ["IP_N", "CS_N", "dg_acceleration", "dg_jacobian", "dg_run_path_implicit",
+           "generalised_alpha"]
+
+# -- integrator parameters ``ip`` ------------------------------------------------------------
+IP_ALPHA_M = 0
+IP_ALPHA_F = 1
+IP_BETA = 2
+IP_GAMMA = 3
+IP_NEWTON_TOL = 4  #: Newton converged when the largest position correction is below [m]
+IP_FORCE_TOL = 5  #: local error of the end force allowed per step [N]
+IP_MAX_ITER = 6  #: Newton iterations before the Jacobian is rebuilt or the step halved
+IP_DT_MAX = 7  #: largest step [s]
+IP_LEVEL_MAX = 8  #: most halvings of a sample interval (2^LEVEL_MAX steps)
+IP_GROW = 9  #: error ratio below which a step counts as "well inside" the tolerance
+IP_FLAG_REFACTOR = 10  #: 1: rebuild the Jacobian when a node changes state (else on slow contraction only)
+IP_N = 11
+
+# -- integrator state ``cs`` (carried between calls and checkpointed) ------------------------
+CS_LEVEL = 0  #: current halving level L of a sample interval
+CS_GOOD = 1  #: consecutive steps well inside the tolerance
+CS_FACTOR_DT = 2  #: dt of the factored Jacobian; 0: no valid factors
+CS_ACC_VALID = 3  #: 1 when ``acc`` and ``An`` belong to the state
+CS_FACTORISATIONS = 4  #: counters (diagnostics)
+CS_STEPS = 5
+CS_REJECTED = 6
+CS_ITERATIONS = 7
+CS_N = 8
+
+#: statuses beyond ``_kernels``' DG_*
+DG_NEWTON = 4  #: Newton did not converge at the smallest step allowed
+
+
+def generalised_alpha(rho_inf: float) -> tuple[float, float, float, float]:
+    """(alpha_m, alpha_f, beta, gamma) of Chung & Hulbert for the spectral radius rho_inf."""
+    am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0)
+    af = rho_inf / (rho_inf + 1.0)
+    gamma = 0.5 - am + af
+    beta = 0.25 * (1.0 - am + af) ** 2
+    return am, af, beta, gamma
+
+
+@jit
+def dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, out):
+    """A = M_eff^-1 F of the semi-discrete cable with every term in the right-hand side: the
+    Kelvin-Voigt damping always, the seabed spring-damper when ``prm[P_IMPLICIT_CONTACT]`` is 0
+    (the implicit integrator's parameter vector has it 0)."""
+    _k._tension_field(r, v, anchor, _k._ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                      slack, prm[_k.P_CINT])
+    _k._acceleration(r, v, prm, D, LIFT, q, N, Nstar, out)
+
+
+@jit
+def _mass_times(r, q, prm, x, out):
+    """out = M_eff x per node, M_eff = m_n (I - t t^T) + m_t t t^T (Morison added mass below
+    z = 0), t from the tangent field q."""
+    K, Np = r.shape[0], r.shape[1]
+    m = prm[_k.P_M]
+    for k in range(K):
+        for i in range(Np):
+            sub = r[k, i, 2] < 0.0
+            mn = m + (prm[_k.P_MAN] if sub else 0.0)
+            mt = m + (prm[_k.P_MAT] if sub else 0.0)
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            tx, ty, tz = 0.0, 0.0, 0.0
+            if ql > 0.0:
+                tx, ty, tz = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
+            xt = x[k, i, 0] * tx + x[k, i, 1] * ty + x[k, i, 2] * tz
+            out[k, i, 0] = mn * x[k, i, 0] + (mt - mn) * xt * tx
+            out[k, i, 1] = mn * x[k, i, 1] + (mt - mn) * xt * ty
+            out[k, i, 2] = mn * x[k, i, 2] + (mt - mn) * xt * tz
+
+
+@jit
+def _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg):
+    """Per node: ``E`` = kc dN/dq + cc dN/dq_t (the tension's tangent blocks, 3 x 3) and
+    ``Dg`` = acoef M_eff - kc df/dr - cc df/dv (the local blocks: mass, seabed, drag,
+    friction, relaxation)."""
+    K, Np = r.shape[0], r.shape[1]
+    EA = prm[_k.P_EA]
+    cint = prm[_k.P_CINT]
+    m = prm[_k.P_M]
+    rho_w = prm[_k.P_RHO_W]
+    drag = 0.5 * rho_w * prm[_k.P_D]
+    cdn, cdt = prm[_k.P_CDN], prm[_k.P_CDT]
+    zb = prm[_k.P_ZB]
+    friction = prm[_k.P_MU] * prm[_k.P_WSUB]
+    vc = prm[_k.P_VC]
+    relax = prm[_k.P_RELAX]
+    for k in range(K):
+        for i in range(Np):
+            ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+            t0, t1, t2 = 0.0, 0.0, 0.0
+            if ql > 0.0:
+                t0, t1, t2 = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
+            tv = (t0, t1, t2)
+            eps = ql - 1.0
+            T = 0.0
+            if eps > 0.0:
+                T = EA * eps
+                if cint > 0.0:
+                    T += cint * (q[k, i, 0] * qt[k, i, 0] + q[k, i, 1] * qt[k, i, 1]
+                                 + q[k, i, 2] * qt[k, i, 2]) / ql
+            taut = eps > 0.0 and T > 0.0
+            for a in range(3):
+                for b in range(3):
+                    E[k, i, a, b] = 0.0
+                    Dg[k, i, a, b] = 0.0
+            if taut:
+                geo = T / ql
+                for a in range(3):
+                    E[k, i, a, a] += kc * geo
+                    for b in range(3):
+                        E[k, i, a, b] += (kc * (EA - geo) + cc * cint) * tv[a] * tv[b]
+            sub = r[k, i, 2] < 0.0
+            mn = m + (prm[_k.P_MAN] if sub else 0.0)
+            mt = m + (prm[_k.P_MAT] if sub else 0.0)
+            for a in range(3):
+                Dg[k, i, a, a] += acoef * mn + cc * relax * mn
+                for b in range(3):
+                    Dg[k, i, a, b] += (acoef + cc * relax) * (mt - mn) * tv[a] * tv[b]
+            if sub and (cdn > 0.0 or cdt > 0.0):
+                vr0 = prm[_k.P_UX] - v[k, i, 0]
+                vr1 = prm[_k.P_UX + 1] - v[k, i, 1]
+                vr2 = prm[_k.P_UX + 2] - v[k, i, 2]
+                vt = vr0 * t0 + vr1 * t1 + vr2 * t2
+                vn0, vn1, vn2 = vr0 - vt * t0, vr1 - vt * t1, vr2 - vt * t2
+                vn = math.sqrt(vn0 * vn0 + vn1 * vn1 + vn2 * vn2)
+                vnv = (vn0, vn1, vn2)
+                s = drag * math.sqrt(ql)
+                # -df/dv = s (2 cdt |vt| t t^T + cdn (|vn| P + vn vn^T / |vn|)), P = I - t t^T
+                for a in range(3):
+                    for b in range(3):
+                        p = (1.0 if a == b else 0.0) - tv[a] * tv[b]
+                        val = 2.0 * cdt * abs(vt) * tv[a] * tv[b] + cdn * vn * p
+                        if vn > 0.0:
+                            val += cdn * vnv[a] * vnv[b] / vn
+                        Dg[k, i, a, b] += cc * s * val
+            if r[k, i, 2] < zb:
+                Dg[k, i, 2, 2] += kc * prm[_k.P_KB]
+                if v[k, i, 2] < 0.0:
+                    Dg[k, i, 2, 2] += cc * prm[_k.P_CB]
+                if friction > 0.0:
+                    vx, vy = v[k, i, 0], v[k, i, 1]
+                    speed = math.sqrt(vx * vx + vy * vy)
+                    # -df/dv of f = -mu W sin(pi s / (2 max(vc, s))) v / s in the seabed plane
+                    if speed < vc:
+                        x = 0.5 * math.pi / vc
+                        radial = friction * x * math.cos(x * speed)
+                        lateral = friction * (math.sin(x * speed) / speed if speed > 0.0 else x)
+                    else:
+                        radial = 0.0
+                        lateral = friction / speed
+                    ux, uy = (vx / speed, vy / speed) if speed > 0.0 else (0.0, 0.0)
+                    uv = (ux, uy)
+                    for a in range(2):
+                        for b in range(2):
+                            p = (1.0 if a == b else 0.0) - uv[a] * uv[b]
+                            Dg[k, i, a, b] += cc * (lateral * p + radial * uv[a] * uv[b])
+
+
+@jit
+def _add_block(band, kl, row_node, col_node, scale, blk):
+    """band[3 row_node + a, 3 col_node + b] += scale blk[a, b]."""
+    for a in range(3):
+        row = 3 * row_node + a
+        for b in range(3):
+            band[row, kl + 3 * col_node + b - row] += scale * blk[a, b]
+
+
+@jit
+def _add_diagonal(band, kl, row_node, col_node, value):
+    """band[3 row_node + a, 3 col_node + a] += value (an isotropic block)."""
+    for a in range(3):
+        row = 3 * row_node + a
+        band[row, kl + 3 * col_node + a - row] += value
+
+
+@jit
+def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band):
+    """The Newton matrix J = acoef M_eff - kc dF/dr - cc dF/dv of the DG cable in band storage
+    (``_banded_kernels``), node-major with the three components interleaved:
+    kl = 3 Np + 2 sub- and ku = 6 Np - 1 super-diagonals.
+
+    dF/dr = Div_N (dN/dq) Grad + df/dr and dF/dv = Div_N (dN/dq_t) Grad + Div_Z + df/dv, with
+    Grad the DG gradient (traces from the anchor side, end values prescribed), Div_N the
+    divergence of the nodal force (traces from the fairlead side), Div_Z the Lax-Friedrichs
+    penalty and f the external forces. ``q`` and ``qt`` must hold the state's tangent and its
+    rate (:func:`dg_acceleration` leaves them). The dependence of the mass, buoyancy and drag
+    on the tangent and of the damping tension on the direction is left out (Newton converges
+    with it, a little more slowly).
+    """
+    K, Np = r.shape[0], r.shape[1]
+    n = 3 * K * Np
+    kl = 3 * Np + 2
+    jac = 2.0 / prm[_k.P_H]
+    for row in range(n):
+        for col in range(band.shape[1]):
+            band[row, col] = 0.0
+    _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg)
+    for k in range(K):
+        for i in range(Np):
+            node = k * Np + i
+            _add_block(band, kl, node, node, 1.0, Dg[k, i])
+    # elastic and damping part: - Div_N E Grad, row (k, i), through node l, to column c
+    for k in range(K):
+        for i in range(Np):
+            row = k * Np + i
+            # nodes l of the divergence of row (k, i): (k, j) and, through the right face,
+            # (k + 1, 0)
+            for lj in range(Np + 1):
+                if lj < Np:
+                    kk, jj = k, lj
+                    dcoef = jac * D[i, lj]
+                    if lj == Np - 1 and k < K - 1:
+                        dcoef -= jac * LIFT[i, 1]
+                else:
+                    if k == K - 1:
+                        continue
+                    kk, jj = k + 1, 0
+                    dcoef = jac * LIFT[i, 1]
+                if dcoef == 0.0:
+                    continue
+                # gradient at node (kk, jj): columns (kk, m) and (kk - 1, Np - 1)
+                for mm in range(Np):
+                    gcoef = jac * D[jj, mm]
+                    if mm == 0:
+                        gcoef += jac * LIFT[jj, 0]
+                    if mm == Np - 1 and kk == K - 1:
+                        gcoef -= jac * LIFT[jj, 1]
+                    if gcoef != 0.0:
+                        _add_block(band, kl, row, kk * Np + mm, -dcoef * gcoef, E[kk, jj])
+                if kk >= 1:
+                    _add_block(band, kl, row, (kk - 1) * Np + Np - 1,
+                               dcoef * jac * LIFT[jj, 0], E[kk, jj])
+    # Lax-Friedrichs penalty: - cc Div_Z
+    m = prm[_k.P_M]
+    c_wave = prm[_k.P_C]
+    for k in range(K):
+        # left face k
+        if k == 0:
+            sub = 1.0 if r[0, 0, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[_k.P_MAT]) * c_wave
+            for i in range(Np):
+                _add_diagonal(band, kl, i, 0, cc * jac * LIFT[i, 0] * Z)
+        else:
+            sub = 1.0 if r[k, 0, 2] + r[k - 1, Np - 1, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[_k.P_MAT]) * c_wave
+            for i in range(Np):
+                row = k * Np + i
+                _add_diagonal(band, kl, row, k * Np, cc * jac * LIFT[i, 0] * 0.5 * Z)
+                _add_diagonal(band, kl, row, (k - 1) * Np + Np - 1,
+                              -cc * jac * LIFT[i, 0] * 0.5 * Z)
+        # right face k + 1
+        if k == K - 1:
+            sub = 1.0 if r[K - 1, Np - 1, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[_k.P_MAT]) * c_wave
+            for i in range(Np):
+                _add_diagonal(band, kl, k * Np + i, k * Np + Np - 1, cc * jac * LIFT[i, 1] * Z)
+        else:
+            sub = 1.0 if r[k + 1, 0, 2] + r[k, Np - 1, 2] < 0.0 else 0.0
+            Z = (m + sub * prm[_k.P_MAT]) * c_wave
+            for i in range(Np):
+                row = k * Np + i
+                _add_diagonal(band, kl, row, (k + 1) * Np, -cc * jac * LIFT[i, 1] * 0.5 * Z)
+                _add_diagonal(band, kl, row, k * Np + Np - 1, cc * jac * LIFT[i, 1] * 0.5 * Z)
+
+
+@jit
+def _end_force_error(e, q, N, prm, D, LIFT, faces, grad, tmp3):
+    """|dN/dq . de/ds| at the fairlead end node [N]: the end tension's error from a position
+    error field ``e`` (the end positions exact)."""
+    K, Np = e.shape[0], e.shape[1]
+    jac = 2.0 / prm[_k.P_H]
+    for c in range(3):
+        tmp3[c] = 0.0
+    _k._gradient(e, tmp3, tmp3, D, LIFT, jac, faces, grad)
+    k, i = K - 1, Np - 1
+    ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
+    if ql <= 1.0:
+        return 0.0
+    T = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2 + N[k, i, 2] ** 2)
+    t0, t1, t2 = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
+    g0, g1, g2 = grad[k, i, 0], grad[k, i, 1], grad[k, i, 2]
+    gt = g0 * t0 + g1 * t1 + g2 * t2
+    p0, p1, p2 = g0 - gt * t0, g1 - gt * t1, g2 - gt * t2
+    axial = prm[_k.P_EA] * gt
+    lateral = T / ql * math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+    return math.sqrt(axial * axial + lateral * lateral)
+
+
+@jit
+def _node_flag(r, q, N, prm, k, i):
+    """1 taut + 2 below the seabed + 4 submerged: the states the Jacobian depends on."""
+    ql2 = q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2
+    taut = N[k, i, 0] ** 2 + N[k, i, 1] ** 2 + N[k, i, 2] ** 2 > 0.0 and ql2 > 1.0
+    return ((1.0 if taut else 0.0) + (2.0 if r[k, i, 2] < prm[_k.P_ZB] else 0.0)
+            + (4.0 if r[k, i, 2] < 0.0 else 0.0))
+
+
+@jit
+def _flags_changed(r, q, N, prm, flags):
+    for k in range(r.shape[0]):
+        for i in range(r.shape[1]):
+            if _node_flag(r, q, N, prm, k, i) != flags[k, i]:
+                return True
+    return False
+
+
+@jit
+def _set_flags(r, q, N, prm, flags):
+    for k in range(r.shape[0]):
+        for i in range(r.shape[1]):
+            flags[k, i] = _node_flag(r, q, N, prm, k, i)
+
+
+@jit
+def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D, LIFT, ip, cs,
+             q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R, MR, E, Dg, band, x, flags):
+    """One generalised-alpha step of (r, v, acc) from t to t + dt; ``a0`` holds ``acc`` at the
+    start and ``An`` the acceleration A of the start state. On success ``An`` holds A of the
+    end state.
+
+    The Jacobian is reused while the nodes keep the taut / seabed / submerged states it was
+    built with (``flags``) and Newton contracts; a node that changes state, or a correction
+    that grows, has it rebuilt at the iterate (a semismooth Newton step: the tension's kink
+    at zero strain and the seabed's at contact are where a stale Jacobian diverges).
+
+    Returns
+    -------
+    (converged, iterations, fresh)
+        Whether Newton converged within ``ip[IP_MAX_ITER]`` iterations, how many it took, and
+        whether the Jacobian was factored in this step (at its predictor or an iterate).
+    """
+    K, Np = r.shape[0], r.shape[1]
+    n = 3 * K * Np
+    kl, ku = 3 * Np + 2, 6 * Np - 1
+    am, af, beta, gamma = ip[IP_ALPHA_M], ip[IP_ALPHA_F], ip[IP_BETA], ip[IP_GAMMA]
+    tol = ip[IP_NEWTON_TOL]
+    max_iter = int(ip[IP_MAX_ITER])
+    _k.hermite(t0s, t1s, p0, w0, p1, w1, t + dt, fpos, fvel)
+    # predictor: the acceleration variable held (a1 = a0), r and v from the Newmark formulas
+    cr = dt * dt * 0.5
+    cv = dt
+    for k in range(K):
+        for i in range(Np):
+            for c in range(3):
+                r[k, i, c] += dt * v[k, i, c] + cr * a0[k, i, c]
+                v[k, i, c] += cv * a0[k, i, c]
+    acoef = 1.0 - am
+    bdt2, gdt = beta * dt * dt, gamma * dt
+    kc = (1.0 - af) * bdt2
+    cc = (1.0 - af) * gdt
+    iterations = 0
+    converged = False
+    fresh = False
+    previous = math.inf
+    grew = False
+    for it in range(max_iter + 1):
+        dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                        A1)
+        if converged or it == max_iter:
+            break
+        if cs[CS_FACTOR_DT] != dt or grew or (ip[IP_FLAG_REFACTOR] != 0.0
+                                               and _flags_changed(r, q, N, prm, flags)):
+            _set_flags(r, q, N, prm, flags)
+            dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band)
+            cs[CS_FACTORISATIONS] += 1.0
+            fresh = True
+            if band_factor(band, n, kl, ku) >= 0:
+                cs[CS_FACTOR_DT] = 0.0
+                return False, iterations, fresh
+            cs[CS_FACTOR_DT] = dt
+        for k in range(K):
+            for i in range(Np):
+                for c in range(3):
+                    R[k, i, c] = (acoef * acc[k, i, c] + am * a0[k, i, c]
+                                  - (1.0 - af) * A1[k, i, c] - af * An[k, i, c])
+        _mass_times(r, q, prm, R, MR)
+        for k in range(K):
+            for i in range(Np):
+                for c in range(3):
+                    x[3 * (k * Np + i) + c] = -MR[k, i, c]
+        band_solve(band, n, kl, ku, x)
+        iterations += 1
+        big = 0.0
+        total = 0.0
+        for k in range(K):
+            for i in range(Np):
+                for c in range(3):
+                    da = x[3 * (k * Np + i) + c]
+                    acc[k, i, c] += da
+                    r[k, i, c] += bdt2 * da
+                    v[k, i, c] += gdt * da
+                    d = abs(bdt2 * da)
+                    total += d
+                    if d > big:
+                        big = d
+        if not math.isfinite(total):
+            return False, iterations, fresh
+        converged = big <= tol
+        grew = big > 0.5 * previous
+        previous = big
+    if not converged:
+        return False, iterations, fresh
+    for k in range(K):
+        for i in range(Np):
+            for c in range(3):
+                An[k, i, c] = A1[k, i, c]
+    return True, iterations, fresh
+
+
+#: Newton iterations above which the factored Jacobian counts as stale and is rebuilt at the
+#: next step (a fresh one converges in 2 to 3 on the cases of tests/verification).
+SLOW_ITERATIONS = 4
+
+
+@jit
+def _copy(src, dst):
+    K, Np = src.shape[0], src.shape[1]
+    for k in range(K):
+        for i in range(Np):
+            for c in range(3):
+                dst[k, i, c] = src[k, i, c]
+
+
+@jit
+def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LIFT, F, weights,
+                         ip, cs, fair_force, anch_force, laid, steps, shape_every, shape_r,
+                         shape_t, q, qt, N, Nstar, faces, slack, fpos, fvel, tmp, where, r0, v0,
+                         a0, An0, A1, R, MR, E, Dg, band, x, tmp3, flags):
+    """Advance the line along a fairlead path with the generalised-alpha method, recording its
+    end forces at every sample (the implicit counterpart of ``_kernels.dg_run_path``, same
+    outputs; ``steps`` gets the number of steps taken in each interval).
+
+    ``acc`` is the acceleration variable of the method and ``An`` the acceleration A of the
+    state; both are computed from the state first when ``cs[CS_ACC_VALID]`` is 0. ``prm`` must
+    have ``P_IMPLICIT_CONTACT`` and ``P_IMPLICIT_DAMPING`` 0 (contact and damping in the
+    right-hand side, inside the implicit solve).
+
+    Returns
+    -------
+    (status, index)
+        ``DG_OK`` and n, or the first failing status (``_kernels``' DG_*, or ``DG_NEWTON``) and
+        the sample where it occurred (``where`` holds the element and node).
+    """
+    n = time.shape[0]
+    K, Np = r.shape[0], r.shape[1]
+    for c in range(3):
+        fpos[c] = path[0, c]
+        fvel[c] = velocity[0, c]
+    if cs[CS_ACC_VALID] == 0.0:
+        dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                        An)
+        _copy(An, acc)
+        cs[CS_ACC_VALID] = 1.0
+    laid[0] = _k._record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+                         weights, fair_force[0], anch_force[0])
+    steps[0] = 0.0
+    err_coef = abs(ip[IP_BETA] - 1.0 / 6.0)
+    dt_max = ip[IP_DT_MAX]
+    level_max = int(ip[IP_LEVEL_MAX])
+    n_shape = 0
+    for s in range(n):
+        if shape_every > 0 and s % shape_every == 0:
+            for k in range(K):
+                for i in range(Np):
+                    node = k * Np + i
+                    shape_t[n_shape, node] = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2
+                                                       + N[k, i, 2] ** 2)
+                    for c in range(3):
+                        shape_r[n_shape, node, c] = r[k, i, c]
+            n_shape += 1
+        if s == n - 1:
+            break
+        t0, t1 = time[s], time[s + 1]
+        span = t1 - t0
+        level_min = 0
+        if span > dt_max:
+            level_min = int(math.ceil(math.log2(span / dt_max) - 1e-12))
+        L = max(int(cs[CS_LEVEL]), level_min)
+        m = 0
+        taken = 0
+        while m < (1 << L):
+            dt = span / (1 << L)
+            t = t0 + m * dt
+            _copy(r, r0)
+            _copy(v, v0)
+            _copy(acc, a0)
+            _copy(An, An0)
+            ok, its, fresh = _ga_step(r, v, acc, a0, An, t0, t1, path[s], velocity[s],
+                                      path[s + 1], velocity[s + 1], t, dt, anchor, prm, D, LIFT,
+                                      ip, cs, q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R,
+                                      MR, E, Dg, band, x, flags)
+            if not ok and not fresh:  # factors of an older state: rebuild them and retry
+                _copy(r0, r)
+                _copy(v0, v)
+                _copy(a0, acc)
+                _copy(An0, An)
+                cs[CS_FACTOR_DT] = 0.0
+                ok, its, fresh = _ga_step(r, v, acc, a0, An, t0, t1, path[s], velocity[s],
+                                          path[s + 1], velocity[s + 1], t, dt, anchor, prm, D,
+                                          LIFT, ip, cs, q, qt, N, Nstar, faces, slack, fpos,
+                                          fvel, A1, R, MR, E, Dg, band, x, flags)
+            cs[CS_ITERATIONS] += its
+            err = 0.0
+            if ok:
+                c2 = err_coef * dt * dt
+                for k in range(K):
+                    for i in range(Np):
+                        for c in range(3):
+                            R[k, i, c] = c2 * (acc[k, i, c] - a0[k, i, c])
+                err = _end_force_error(R, q, N, prm, D, LIFT, faces, MR, tmp3) / ip[IP_FORCE_TOL]
+            if not ok or (err > 1.0 and L < level_max):
+                _copy(r0, r)
+                _copy(v0, v)
+                _copy(a0, acc)
+                _copy(An0, An)
+                cs[CS_REJECTED] += 1.0
+                cs[CS_GOOD] = 0.0
+                if L >= level_max:
+                    where[0], where[1] = K - 1, Np - 1
+                    cs[CS_LEVEL] = L
+                    return DG_NEWTON, s + 1
+                L += 1
+                m *= 2
+                continue
+            m += 1
+            taken += 1
+            cs[CS_STEPS] += 1.0
+            if its > SLOW_ITERATIONS:
+                cs[CS_FACTOR_DT] = 0.0
+            if prm[_k.P_FILTER] != 0.0:
+                filtered = False
+                for k in range(K):
+                    if slack[k] != 0.0:
+                        filtered = True
+                if filtered:
+                    _k._filter_slack(v, F, slack, tmp)
+                    dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar,
+                                    faces, slack, An)
+            if err < ip[IP_GROW]:
+                cs[CS_GOOD] += 1.0
+            else:
+                cs[CS_GOOD] = 0.0
+            if cs[CS_GOOD] >= 2.0 and L > level_min and m % 2 == 0:
+                L -= 1
+                m //= 2
+                cs[CS_GOOD] = 0.0
+        cs[CS_LEVEL] = L
+        for c in range(3):
+            fpos[c] = path[s + 1, c]
+            fvel[c] = velocity[s + 1, c]
+        laid[s + 1] = _k._record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                                 slack, weights, fair_force[s + 1], anch_force[s + 1])
+        steps[s + 1] = taken
+        status = _k._check(r, v, q, prm, where)
+        if status != _k.DG_OK:
+            return status, s + 1
+    return _k.DG_OK, n
