@@ -5,6 +5,12 @@ they were before the start end could move (commit efa0522, the head of main when
 began): regenerate it only from such a commit (``python -m tests.unit.test_dg_system_bits
 FILE``). The Lindahl chain (cases.md) runs 0.5 s of harmonic fairlead motion with the
 Kelvin-Voigt damping implicit and explicit.
+
+Bit-identity holds on the processor that wrote the baseline: numba compiles for the host CPU,
+and LLVM fuses multiply-adds where the CPU has FMA instructions, so another processor rounds
+differently (on this project's 2026-11-26 machine: 1e-11 relative after the 0.5 s, 60 % of the
+values differing in their last bits, at main's head before issue 17 as after). Elsewhere the
+comparison is to :data:`CPU_RTOL`.
 """
 
 from __future__ import annotations
@@ -19,6 +25,10 @@ from floatmoor.mooring.dg.line import DynamicLine
 from tests.conftest import CASES, REPO
 
 BASELINE = REPO / "tests" / "data" / "dg_system" / "lindahl_baseline.npz"
+#: Another CPU's rounding (FMA or not) grown over 0.5 s of steps: observed 1e-11 relative on
+#: the largest value of each array; a change of the arithmetic (a term, a coefficient) moves
+#: these arrays by far more than 1e-9.
+CPU_RTOL = 1e-9
 
 
 def run(damping: str) -> dict[str, np.ndarray]:
@@ -44,10 +54,14 @@ def run(damping: str) -> dict[str, np.ndarray]:
 def test_fixed_anchor_line_is_bit_identical_to_the_old_kernels(damping: str) -> None:
     base = np.load(BASELINE)
     out = run(damping)
+    same_bits = all(value.tobytes() == base[f"{damping}_{key}"].tobytes()
+                    for key, value in out.items())
     for key, value in out.items():
         ref = base[f"{damping}_{key}"]
         assert value.shape == ref.shape
-        assert value.tobytes() == ref.tobytes(), key
+        if not same_bits:  # another processor (see the module docstring)
+            err = np.max(np.abs(value - ref)) / max(float(np.max(np.abs(ref))), 1e-300)
+            assert err <= CPU_RTOL, (key, err)
 
 
 if __name__ == "__main__":
