@@ -30,7 +30,9 @@ __all__ = ["ImplicitIntegrator", "ImplicitSettings", "RHO_INFINITY", "NEWTON_FRA
 RHO_INFINITY = 0.5
 #: Newton stops when its last position correction would move the end force by less than this
 #: fraction of the force tolerance (through the axial stiffness EA / smallest node spacing).
-NEWTON_FRACTION = 0.01
+#: 0.1 against 0.01: DeepCwind lines on their recorded paths 15 % faster, STD and max the same
+#: to 1e-4.
+NEWTON_FRACTION = 0.1
 #: Most halvings of one sample interval (2^24 steps: below any snap's resolution need).
 LEVEL_MAX = 24
 #: An error below this fraction of the tolerance counts towards doubling the step: the local
