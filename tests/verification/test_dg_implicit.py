@@ -29,10 +29,9 @@ SMOOTH_AGREEMENT = 0.005
 #: and maximum after 60 s within 0.5 % (measured 0.2 %); issue 17 asks 1 % of the converged
 #: tension of the whole run.
 DEEPCWIND_AGREEMENT = 0.005
-#: The settled end tensions of the two integrations. The settle stops at a 1e-6 relative change
-#: per 0.1 s chunk, which a slowly creeping mode (the chain on a frictionless seabed) meets
-#: while still 5e-4 from the end (measured on the buoy chain, 5 x p4): the bound is on that.
-SETTLE_RTOL = 1e-3
+#: The settled end tensions of the two integrations: each settle stops at a 1e-6 relative
+#: change per chunk, so they agree to a few times that.
+SETTLE_RTOL = 1e-5
 #: Lindahl snap case: implicit (accuracy 1 %) against explicit, mean cycle maximum (measured
 #: +0.7 %), within the accuracy asked.
 SNAP_AGREEMENT = 0.01
@@ -113,15 +112,20 @@ def test_resume_is_bit_identical() -> None:
 
 
 def test_settles_to_the_explicit_equilibrium() -> None:
-    case = load_case(CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml",
-                     ["seabed.friction_coefficient=0.0", "lines.line3.dynamic.elements=5",
-                      "lines.line3.dynamic.order=4"])
-    line = case.lines[2]
+    """A sagging line hanging clear of the seabed has one equilibrium; both settles find it.
+    (A chain resting on a frictionless seabed has none to find: its laid part creeps at
+    any rate below the settle's stopping rule, and the two settles stop at different points.)"""
+    props = CableProperties(length=20.0, mass_per_length=1.5, axial_stiffness=2e4,
+                            diameter=0.03, material_density=5000.0,
+                            normal_drag_coefficient=1.2, tangential_drag_coefficient=0.3,
+                            added_mass_coefficient=1.0)
     ends = {}
     for integration in ("explicit", "implicit"):
-        ln = dataclasses.replace(line, dynamic=dataclasses.replace(
-            line.dynamic, time_integration=integration, settle=False))
-        dg = DynamicLine.from_case(ln, case.environment, case.seabed)
+        settings = DynamicSettings(elements=6, order=4, cfl=0.8, max_time_step=None,
+                                   slack_filter=True, seabed_contact="implicit",
+                                   time_integration=integration)
+        dg = DynamicLine(props, settings, np.array([0.0, 0.0, -15.0]),
+                         np.array([15.0, 0.0, -3.0]))
         report = dg.settle()
         assert report.converged, report
         ends[integration] = np.linalg.norm(dg.end_forces()[0])
