@@ -289,9 +289,13 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         if line.model == "dynamic":
             dg = DynamicLine.from_case(line, case.environment, case.seabed)
             st = line.dynamic
+            steps = (f"time step {dg.time_step:.3g} s (cfl {st.cfl:g})"
+                     if st.time_integration == "explicit" else
+                     f"implicit steps of at most {dg.time_step:.3g} s (accuracy "
+                     f"{100 * st.accuracy:g} % of the fairlead tension)")
             notes.append(f"  {line.name}: {st.elements} elements of order {st.order} "
-                         f"({st.elements * (st.order + 1)} nodes), time step {dg.time_step:.3g} s "
-                         f"(cfl {st.cfl:g}), seabed contact {st.seabed_contact}")
+                         f"({st.elements * (st.order + 1)} nodes), {steps}, seabed contact "
+                         f"{st.seabed_contact}")
     notes.extend(_describe_system(case))
     rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
     rows.extend(notes)

@@ -96,3 +96,21 @@ def test_loading_does_not_mutate_input():
     before = repr(raw)
     parse_case(raw, source="inline", overrides=("motion.period=2.0",))
     assert repr(raw) == before
+
+
+def test_time_integration_and_accuracy_keys():
+    """``[lines.dynamic] time_integration`` and ``accuracy`` (issue 17): defaults, values, and
+    what is refused, with the key path and what was found."""
+    default = load_case(LINDAHL_CASE).lines[0].dynamic
+    assert default.time_integration == "explicit" and default.accuracy == 0.01
+    st = load_case(LINDAHL_CASE, ['lines.chain.dynamic.time_integration="implicit"',
+                                  "lines.chain.dynamic.accuracy=0.05"]).lines[0].dynamic
+    assert st.time_integration == "implicit" and st.accuracy == 0.05
+    for override, found in (('lines.chain.dynamic.time_integration="rk4"', '"rk4"'),
+                            ("lines.chain.dynamic.accuracy=0.0", "0.0"),
+                            ("lines.chain.dynamic.accuracy=0.3", "0.3"),
+                            ('lines.chain.dynamic.accuracy="1%"', '"1%"')):
+        with pytest.raises(CaseError) as err:
+            load_case(LINDAHL_CASE, [override])
+        key = override.split("=")[0].replace("lines.chain", "lines[0]")
+        assert key in str(err.value) and found.strip('"') in str(err.value), str(err.value)
