@@ -14,13 +14,22 @@ import math
 import numpy as np
 import pytest
 
+import floatmoor.hydro.radiation as radiation
 from floatmoor.hydro.radiation import (
-    added_mass_from_kernel, impulse_response, piecewise_linear_cosine_transform,
+    added_mass_from_kernel, cosine_transform_operator, impulse_response,
+    piecewise_linear_cosine_transform, sine_moments,
 )
 
 #: The piecewise-linear interpolant's error is h^2 B''/8 ~ 1e-4 for h = 0.05 near omega = 0;
 #: the transform must hold to that order.
 PAIR_TOLERANCE = 2e-3
+#: Blocked and whole transforms differ only in the order of the sums: a few ulps of
+#: their largest value.
+BLOCKED_RTOL = 1e-13
+#: Most memory building a run's kernel may take at once [bytes]: the output K (31417 x 6 x 6
+#: floats, 9 MB) and its copies, and the operator blocks (radiation._BLOCK_VALUES floats, 4 MB,
+#: and their temporaries); the whole tail operator alone was 151 MB (issue 17).
+KERNEL_MEMORY_BYTES = 64 * 2 ** 20
 
 
 def test_piecewise_linear_transform_is_exact_for_linear_data():
@@ -88,3 +97,44 @@ def test_database_kernel_matches_damping_transform(buoy_db):
     b33 = np.interp(w, omega, buoy_db["radiation_damping"].sel(
         radiating_dof="Heave", influenced_dof="Heave").values)
     assert b_back == pytest.approx(b33, rel=0.02)
+
+
+def test_cosine_transform_of_one_node_is_zero():
+    assert np.array_equal(cosine_transform_operator(np.array([2.0]), np.array([0.0, 1.5])),
+                          [[0.0], [0.0]])
+
+
+def test_blocked_transforms_match_the_whole_operator(monkeypatch):
+    """The operator is built a few times (or nodes) at a time: the same transforms."""
+    omega = np.concatenate([[0.0], np.geomspace(0.3, 40.0, 57)])
+    values = np.stack([_pair_b(omega), np.sqrt(omega)], axis=1)
+    t = np.linspace(0.0, 12.0, 301)  # even intervals, for Simpson
+    whole = cosine_transform_operator(omega, t)
+    sine = np.sin(omega[-1] * t)
+    from scipy.integrate import simpson
+    moments = simpson(whole * sine[:, None], x=t, axis=0)
+    monkeypatch.setattr(radiation, "_BLOCK_VALUES", 7 * len(omega))  # 7 times, 1 node at most
+    blocked = piecewise_linear_cosine_transform(omega, values, t)
+    expected = whole @ values
+    assert np.abs(blocked - expected).max() <= BLOCKED_RTOL * np.abs(expected).max()
+    monkeypatch.setattr(radiation, "_BLOCK_VALUES", 3 * len(t))  # 3 nodes a block
+    scale = np.abs(moments).max()
+    assert np.abs(sine_moments(omega, t, omega[-1]) - moments).max() <= BLOCKED_RTOL * scale
+
+
+def test_run_kernel_memory_does_not_grow_with_its_length(buoy_db):
+    """The buoy's kernel at a 0.01 s body step (10 samples per step over 31 s) is built with
+    bounded memory: its 31417 x 601 tail operator is never whole."""
+    import tracemalloc
+
+    from floatmoor.body.model import KERNEL_SUBSTEPS
+    from floatmoor.hydro.radiation import radiation_kernel
+
+    tracemalloc.start()
+    try:
+        kernel = radiation_kernel(buoy_db, dt=0.01 / KERNEL_SUBSTEPS)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert kernel.time.size > 30000
+    assert peak <= KERNEL_MEMORY_BYTES
