@@ -123,7 +123,7 @@ def test_blocked_transforms_match_the_whole_operator(monkeypatch):
     assert np.abs(sine_moments(omega, t, omega[-1]) - moments).max() <= BLOCKED_RTOL * scale
 
 
-def test_kernel_memory_does_not_grow_with_its_length(buoy_db):
+def test_kernel_memory_does_not_grow_with_its_length(buoy_db, monkeypatch):
     """The buoy's kernel at a 0.02 s body step (10 samples per step over 31 s: 15709 times)
     is built with a fraction of the memory of its whole tail operator, which is never built
     (the 0.01 s step of the shipped case doubles both; its run peaked at 1.1 GB)."""
@@ -132,6 +132,7 @@ def test_kernel_memory_does_not_grow_with_its_length(buoy_db):
     from floatmoor.body.model import KERNEL_SUBSTEPS
     from floatmoor.hydro.radiation import radiation_kernel
 
+    monkeypatch.setattr(radiation, "_FITTED_EXPONENTS", {})  # fitted here too
     tracemalloc.start()
     try:
         kernel = radiation_kernel(buoy_db, dt=0.02 / KERNEL_SUBSTEPS)
@@ -141,3 +142,22 @@ def test_kernel_memory_does_not_grow_with_its_length(buoy_db):
     nodes = radiation._tail_grid(float(buoy_db["omega"].values[-1]), 1.0)[0].size  # 601
     whole_tail_operator = kernel.time.size * nodes * 8  # bytes
     assert peak <= KERNEL_MEMORY_FRACTION * whole_tail_operator
+
+
+def test_tail_exponents_of_the_same_inputs_are_fitted_once(buoy_db, monkeypatch):
+    """A process's next kernel of the same database and step takes the exponents fitted for
+    the last; other inputs are fitted again."""
+    from floatmoor.hydro.radiation import radiation_kernel
+
+    fits = []
+    monkeypatch.setattr(radiation, "_FITTED_EXPONENTS", {})
+    monkeypatch.setattr(radiation, "fit_tail_exponents",
+                        lambda *args: fits.append(args) or np.full((6, 6), 2.5))
+    first = radiation_kernel(buoy_db, dt=0.02)
+    again = radiation_kernel(buoy_db.copy(deep=True), dt=0.02)
+    assert len(fits) == 1 and np.array_equal(again.kernel, first.kernel)
+    radiation_kernel(buoy_db, dt=0.01)
+    changed = buoy_db.copy(deep=True)
+    changed["added_mass"] = changed["added_mass"] * 1.01
+    radiation_kernel(changed, dt=0.02)
+    assert len(fits) == 3
