@@ -134,7 +134,10 @@ def piecewise_linear_cosine_transform(omega: NDArray[np.float64], values: NDArra
     block = max(1, _BLOCK_VALUES // len(f))
     for start in range(0, len(t), block):  # the operator a block of times at a time
         rows = slice(start, start + block)
-        out[rows] = cosine_transform_operator(omega, t[rows]) @ flat
+        # einsum, not BLAS: a multithreaded BLAS product of a few columns differs in its last
+        # bits with the thread count, and a campaign's workers (one BLAS thread each on Dask)
+        # must give a serial run's numbers
+        out[rows] = np.einsum("ij,jk->ik", cosine_transform_operator(omega, t[rows]), flat)
     return out.reshape((len(t),) + f.shape[1:])
 
 
@@ -241,7 +244,7 @@ def fit_tail_exponents(omega: NDArray[np.float64], damping: NDArray[np.float64],
     moments = (2.0 / math.pi) * sine_moments(grid, t, w_top)
 
     def s_tail(p: float) -> float:
-        return float(moments @ (w_top / grid) ** p)
+        return float(np.einsum("i,i->", moments, (w_top / grid) ** p))
 
     b_top = damping[-1]
     scale = np.abs(np.diagonal(b_top)).max()
