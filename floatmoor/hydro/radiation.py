@@ -41,7 +41,7 @@ from floatmoor.case.schema import Floater
 
 __all__ = [
     "TAIL_EXPONENT", "TAIL_EXTENT", "TAIL_MIN", "TAIL_MAX", "fit_tail_exponents",
-    "impulse_response", "piecewise_linear_cosine_transform",
+    "impulse_response", "piecewise_linear_cosine_transform", "sine_moments",
     "added_mass_from_kernel", "consistent_infinite_added_mass", "truncation_time", "RadiationKernel", "radiation_kernel",
     "kernel_samples",
     "hydrostatic_stiffness_total", "added_mass_at",
@@ -58,6 +58,13 @@ TAIL_MIN, TAIL_MAX = 1.2, 8.0
 TAIL_EXTENT = 1000.0
 #: Points per decade of the tail's geometric frequency grid.
 _TAIL_POINTS_PER_DECADE = 200
+#: Values (times x frequency nodes) of a cosine-transform operator built at once: the
+#: transforms build their operator a block of times (or nodes) at a time, so that their memory
+#: (the block and a few temporaries of its size, 4 MB each) does not grow with the number of
+#: times. Whole, the tail operator of a 0.01 s body step's kernel (31417 times, 10 per step,
+#: x 601 nodes) took 151 MB, and building it 0.9 GB (issue 17). That kernel costs 1.6 s of
+#: CPU in blocks of 2^19 values, 6 % more than in blocks of 2^20 and 25 % less than in 2^17.
+_BLOCK_VALUES = 2 ** 19
 
 
 def cosine_transform_operator(omega: NDArray[np.float64], t: NDArray[np.float64]
@@ -66,27 +73,40 @@ def cosine_transform_operator(omega: NDArray[np.float64], t: NDArray[np.float64]
     exactly for the piecewise-linear f through the n nodes, at the m times ``t``.
 
     On a segment [w0, w1] with slope s: int (f0 + s (w - w0)) cos(w t) dw
-    = [f sin(w t) / t + s cos(w t) / t^2] from w0 to w1; at t = 0 the trapezoidal rule.
+    = [f sin(w t) / t + s cos(w t) / t^2] from w0 to w1; at t = 0 the trapezoidal rule. The
+    sine terms of an inner node cancel between its two segments, so only the two end nodes
+    have them: L_j = d_(j-1) - d_j with d_j = (cos(w_(j+1) t) - cos(w_j t)) / (h_j t^2),
+    plus -sin(w_0 t) / t at the first node and sin(w_(n-1) t) / t at the last (the largest
+    cost of a transform is these cosines).
     """
     omega = np.asarray(omega, dtype=float)
     t = np.asarray(t, dtype=float)
     h = np.diff(omega)
-    out = np.zeros((len(t), len(omega)))
     small = np.abs(t) < 1e-12
+    ti = t[~small][:, None]
+    big = np.zeros((len(ti), len(omega)))
+    if len(ti) and len(omega) > 1:  # in place where it can be: the largest arrays of a transform
+        first = np.sin(omega[0] * ti[:, 0]) / ti[:, 0]
+        last = np.sin(omega[-1] * ti[:, 0]) / ti[:, 0]
+        cos = omega[None, :] * ti
+        np.cos(cos, out=cos)
+        d = cos[:, 1:] - cos[:, :-1]
+        del cos
+        scale = h[None, :] * ti
+        scale *= ti
+        d /= scale
+        del scale
+        np.subtract(d[:, :-1], d[:, 1:], out=big[:, 1:-1])
+        big[:, 0] = -first - d[:, 0]
+        big[:, -1] = last + d[:, -1]
+    if not small.any():
+        return big
+    out = np.zeros((len(t), len(omega)))
     trap = np.zeros(len(omega))
     trap[:-1] += 0.5 * h
     trap[1:] += 0.5 * h
     out[small] = trap
-    ti = t[~small][:, None]
-    if len(ti):
-        wt = omega[None, :] * ti
-        sin = np.sin(wt) / ti
-        cos = np.cos(wt)
-        d = (cos[:, 1:] - cos[:, :-1]) / (h[None, :] * ti * ti)
-        big = np.zeros((len(ti), len(omega)))
-        big[:, 1:] += sin[:, 1:] + d
-        big[:, :-1] += -sin[:, :-1] - d
-        out[~small] = big
+    out[~small] = big
     return out
 
 
@@ -108,8 +128,42 @@ def piecewise_linear_cosine_transform(omega: NDArray[np.float64], values: NDArra
     Array of shape (m, ...).
     """
     f = np.asarray(values, dtype=float)
-    op = cosine_transform_operator(omega, t)
-    return (op @ f.reshape(len(f), -1)).reshape((len(t),) + f.shape[1:])
+    flat = f.reshape(len(f), -1)
+    t = np.asarray(t, dtype=float)
+    out = np.empty((len(t), flat.shape[1]))
+    block = max(1, _BLOCK_VALUES // len(f))
+    for start in range(0, len(t), block):  # the operator a block of times at a time
+        rows = slice(start, start + block)
+        # einsum, not BLAS: a multithreaded BLAS product of a few columns differs in its last
+        # bits with the thread count, and a campaign's workers (one BLAS thread each on Dask)
+        # must give a serial run's numbers
+        out[rows] = np.einsum("ij,jk->ik", cosine_transform_operator(omega, t[rows]), flat)
+    return out.reshape((len(t),) + f.shape[1:])
+
+
+def sine_moments(omega: NDArray[np.float64], t: NDArray[np.float64], frequency: float
+                 ) -> NDArray[np.float64]:
+    """u (n,) with u @ f = int_{t_0}^{t_m-1} F(t) sin(frequency t) dt (Simpson's rule on
+    ``t``, :func:`scipy.integrate.simpson`) of the cosine transform F = L @ f
+    (:func:`cosine_transform_operator`) of any f at the n nodes ``omega``: the integral of
+    each column of L against the sine.
+
+    The columns are built a few nodes at a time (each with its neighbours, which its
+    segments reach), so that the memory does not grow with the number of times.
+    """
+    from scipy.integrate import simpson
+
+    omega = np.asarray(omega, dtype=float)
+    t = np.asarray(t, dtype=float)
+    sine = np.sin(frequency * t)[:, None]
+    out = np.empty(len(omega))
+    block = max(1, _BLOCK_VALUES // len(t))
+    for start in range(0, len(omega), block):
+        stop = min(start + block, len(omega))
+        lo, hi = max(start - 1, 0), min(stop + 1, len(omega))
+        columns = cosine_transform_operator(omega[lo:hi], t)[:, start - lo:stop - lo]
+        out[start:stop] = simpson(columns * sine, x=t, axis=0)
+    return out
 
 
 def _tail_grid(omega_top: float, exponent: float) -> tuple[NDArray, NDArray]:
@@ -117,6 +171,16 @@ def _tail_grid(omega_top: float, exponent: float) -> tuple[NDArray, NDArray]:
     n = int(_TAIL_POINTS_PER_DECADE * decades) + 1
     w = omega_top * np.logspace(0.0, decades, n)
     return w, (omega_top / w) ** exponent
+
+
+def _tail_transforms(omega_top: float, exponents: NDArray[np.float64],
+                     t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """int_{omega_N}^{TAIL_EXTENT omega_N} (omega_N / omega)^p cos(omega t) d omega at the
+    times ``t`` (m, k), one column per exponent p of ``exponents`` (k,), on the tail's
+    geometric grid."""
+    grid, _ = _tail_grid(omega_top, 1.0)
+    shapes = np.stack([(omega_top / grid) ** float(p) for p in exponents], axis=1)
+    return piecewise_linear_cosine_transform(grid, shapes, t)
 
 
 def impulse_response(omega: NDArray[np.float64], damping: NDArray[np.float64],
@@ -144,33 +208,12 @@ def impulse_response(omega: NDArray[np.float64], damping: NDArray[np.float64],
     k = piecewise_linear_cosine_transform(w, f, t)
     if tail_exponent is not None:
         exponents = np.broadcast_to(np.asarray(tail_exponent, dtype=float), b.shape[1:])
-        tail = _TailTransform(float(omega[-1]), t)
-        for p in np.unique(exponents):
+        unique = np.unique(exponents)
+        tails = _tail_transforms(float(omega[-1]), unique, t)
+        for i, p in enumerate(unique):
             mask = exponents == p
-            k[:, mask] += np.outer(tail(float(p)), b[-1][mask])
+            k[:, mask] += np.outer(tails[:, i], b[-1][mask])
     return (2.0 / math.pi) * k
-
-
-class _TailTransform:
-    """p -> int_{omega_N}^{TAIL_EXTENT omega_N} (omega_N / omega)^p cos(omega t) d omega, with
-    the transform operator of the geometric tail grid built once (and shared by the tail fit
-    and the kernel of the same grid: it is the costliest part of building a kernel)."""
-
-    _operators: dict[tuple[bytes, bytes], NDArray[np.float64]] = {}
-
-    def __init__(self, omega_top: float, t: NDArray[np.float64]) -> None:
-        self.grid, _ = _tail_grid(omega_top, 1.0)
-        self.omega_top = omega_top
-        t = np.ascontiguousarray(t, dtype=float)
-        key = (hashlib.sha1(self.grid.tobytes()).digest(), hashlib.sha1(t.tobytes()).digest())
-        if key not in self._operators:
-            if len(self._operators) >= 4:
-                self._operators.pop(next(iter(self._operators)))
-            self._operators[key] = cosine_transform_operator(self.grid, t)
-        self.operator = self._operators[key]
-
-    def __call__(self, exponent: float) -> NDArray[np.float64]:
-        return self.operator @ (self.omega_top / self.grid) ** exponent
 
 
 def fit_tail_exponents(omega: NDArray[np.float64], damping: NDArray[np.float64],
@@ -194,13 +237,14 @@ def fit_tail_exponents(omega: NDArray[np.float64], damping: NDArray[np.float64],
     band = impulse_response(omega, damping, t, tail_exponent=None)
     sine = np.sin(w_top * t)
     s_band = simpson(band * sine[:, None, None], x=t, axis=0)
-    cache: dict[float, float] = {}
-    tail = _TailTransform(w_top, t)
+    # int tail(p) sin = u @ (omega_N / omega)^p on the tail grid: the tail's operator is
+    # integrated against the sine once (a few nodes at a time), not built whole and applied
+    # to each p Brent tries
+    grid, _ = _tail_grid(w_top, 1.0)
+    moments = (2.0 / math.pi) * sine_moments(grid, t, w_top)
 
     def s_tail(p: float) -> float:
-        if p not in cache:
-            cache[p] = float(simpson((2.0 / math.pi) * tail(p) * sine, x=t))
-        return cache[p]
+        return float(np.einsum("i,i->", moments, (w_top / grid) ** p))
 
     b_top = damping[-1]
     scale = np.abs(np.diagonal(b_top)).max()
@@ -296,10 +340,31 @@ class RadiationKernel:
         return float(self.time[-1])
 
 
+#: The tail exponents fitted in this process, by the fit's inputs (:func:`_fit_key`): another
+#: run of the same database at the same step (a campaign worker's next run, a resumed run)
+#: takes them from here instead of fitting them again (half the cost of a kernel). Only the
+#: exponents are kept: a kept kernel (9 MB for the buoy at a 0.01 s body step) held 20 MB
+#: more of a run's resident memory, the heap above it not being returned.
+_FITTED_EXPONENTS: dict[bytes, NDArray[np.float64]] = {}
+#: How many fits are kept (36 values each).
+_FITS_KEPT = 16
+
+
+def _fit_key(arrays: tuple[NDArray[np.float64], ...]) -> bytes:
+    """A digest of the inputs of :func:`fit_tail_exponents`."""
+    digest = hashlib.sha256()
+    for array in arrays:
+        values = np.ascontiguousarray(array, dtype=float)
+        digest.update(repr(values.shape).encode())
+        digest.update(values.tobytes())
+    return digest.digest()
+
+
 def radiation_kernel(ds: xr.Dataset, *, t_max: float | None = None, dt: float | None = None,
                      tail_exponent: float | str = "fitted") -> RadiationKernel:
     """K(t) of a database (defaults: :func:`truncation_time`, :func:`default_time_step`, tail
-    exponents from :func:`fit_tail_exponents`, or one given exponent)."""
+    exponents from :func:`fit_tail_exponents`, or one given exponent). The fitted exponents
+    of the same inputs are fitted once per process (:data:`_FITTED_EXPONENTS`)."""
     omega = ds["omega"].values
     t_max = truncation_time(omega) if t_max is None else t_max
     dt = default_time_step(omega) if dt is None else dt
@@ -310,7 +375,14 @@ def radiation_kernel(ds: xr.Dataset, *, t_max: float | None = None, dt: float | 
     a_inf = ds["added_mass_infinite"].transpose("radiating_dof", "influenced_dof").values
     if isinstance(tail_exponent, str):
         added = ds["added_mass"].transpose("omega", "radiating_dof", "influenced_dof").values
-        exponents = fit_tail_exponents(omega, damping, added, a_inf, t)
+        key = _fit_key((omega, damping, added, a_inf, t))
+        exponents = _FITTED_EXPONENTS.pop(key, None)
+        if exponents is None:
+            exponents = fit_tail_exponents(omega, damping, added, a_inf, t)
+        _FITTED_EXPONENTS[key] = exponents  # the newest last
+        while len(_FITTED_EXPONENTS) > _FITS_KEPT:
+            del _FITTED_EXPONENTS[next(iter(_FITTED_EXPONENTS))]
+        exponents = exponents.copy()
     else:
         exponents = np.full((6, 6), float(tail_exponent))
     return RadiationKernel(t, kernel_samples(ds, t, exponents), a_inf, exponents)
