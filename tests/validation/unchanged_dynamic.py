@@ -46,7 +46,6 @@ import sys
 import time
 from collections.abc import Iterable
 from importlib.metadata import version
-from pathlib import Path
 from typing import Any
 
 import numpy as np
