@@ -8,37 +8,23 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from floatmoor.case.load import load_case
-from floatmoor.simulation.coupled_run import run_coupled
-from tests.conftest import CASES
+from tests.validation.deepcwind_decay import surge_decay
 
 pytestmark = pytest.mark.slow
 
-CASE = CASES / "deepcwind" / "deepcwind_free_decay.toml"
 #: Published surge natural period of the OC4 DeepCwind (cases.md D notes) and the issue's 5 %.
 PUBLISHED_SURGE_PERIOD = 107.5
 PERIOD_RTOL = 0.05
 #: Memory lines must damp more: the first return peak below this fraction of the quasi-static
 #: run's (observed with member drag: quasi-dynamic 0.76, dynamic 0.67).
 DAMPING_RATIO_MAX = 0.9
-OFFSET = 16.58  # m
-DURATION = 400.0  # s: three surge cycles
 
 
 def _decay(model: str):
-    """(period, peaks): the time from the release to the first return peak (the period at the
-    release amplitude: the catenaries stiffen with the offset, so later, smaller cycles are
-    slower) and the successive positive surge peaks."""
-    case = load_case(CASE, [f'lines.*.model="{model}"',
-        f"simulation.duration={DURATION}", "simulation.output_interval=0.5",
-        "simulation.time_step=0.1", f"initial={{surge = {OFFSET}}}"])
-    ds = run_coupled(case).dataset
-    t = ds["time"].values
-    s = ds["body_displacement"].sel(dof="Surge").values
-    i = np.nonzero((s[1:-1] > s[:-2]) & (s[1:-1] >= s[2:]) & (s[1:-1] > 0.0))[0] + 1
-    y0, y1, y2 = s[i - 1], s[i], s[i + 1]
-    times = t[i] + 0.5 * (y0 - y2) / (y0 - 2.0 * y1 + y2) * (t[1] - t[0])  # parabolic peak
-    return times[0], y1
+    """(period, peaks): the time from the release to the first return peak and the successive
+    positive surge peaks (tests/validation/deepcwind_decay.py)."""
+    decay = surge_decay(model)
+    return decay.period, decay.peaks
 
 
 @pytest.fixture(scope="module")
