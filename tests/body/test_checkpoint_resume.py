@@ -1,5 +1,6 @@
 """Resuming from a checkpoint of plain arrays gives the uninterrupted run's results bit for
-bit with dynamic lines (with implicit internal damping) beside a quasi-static one too (the
+bit with dynamic lines (with implicit internal damping, or the implicit time integration)
+beside a quasi-static one too (the
 quasi-dynamic and state-space cases are in test_coupled_run.py and test_state_space_run.py;
 the damping's frozen factors, which a coupled run rebuilds often, in
 tests/unit/test_model_state_arrays.py)."""
@@ -7,6 +8,7 @@ tests/unit/test_model_state_arrays.py)."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.simulation.coupled_run import run_coupled
@@ -16,43 +18,30 @@ from tests.conftest import CASES
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 
 
-def test_dynamic_lines_with_internal_damping_resume_bit_identically(tmp_path,
-                                                                     monkeypatch) -> None:
+@pytest.mark.parametrize("overrides,kept", [
+    # the damping's frozen factors are kept
+    (['lines.line2.model="quasi-static"', "line_types.chain.internal_damping_ratio=0.2"],
+     "state/line0/damping_info"),
+    # the implicit integration's acceleration variable, step level and factored Jacobian
+    (['lines.*.dynamic.time_integration="implicit"', "lines.*.dynamic.max_time_step=0.0025"],
+     "state/line0/implicit_band"),
+], ids=["internal-damping", "implicit-integration"])
+def test_dynamic_lines_resume_bit_identically(tmp_path, monkeypatch, overrides,
+                                              kept) -> None:
     import floatmoor.simulation.coupled_run as cr
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 5)
     case = load_case(BUOY_CASE, [
         'lines.*.model="dynamic"', "lines.*.dynamic.elements=4", "lines.*.dynamic.order=3",
-        'lines.line2.model="quasi-static"', "line_types.chain.internal_damping_ratio=0.2",
-        "simulation.duration=0.2", "simulation.output_interval=0.01",
+        *overrides, "simulation.duration=0.2", "simulation.output_interval=0.01",
         'waves={kind = "still"}', "initial={surge = 0.002}"])
     out = tmp_path / "cut.nc"
     interrupt_run(case, out, after_chunks=2)
     with np.load(cr.checkpoint_path(out), allow_pickle=False) as npz:
         assert "state/line0/positions" in npz.files
-        assert float(npz["state/line0/damping_info"][0]) == 1.0  # the factors are kept
-    resumed = run_coupled(case, output=out, resume=True).dataset
-    whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
-    for name in ("body_displacement", "body_velocity", "fairlead_tension", "anchor_tension",
-                 "laid_length"):
-        assert np.array_equal(resumed[name].values, whole[name].values), name
-
-
-def test_implicit_dynamic_lines_resume_bit_identically(tmp_path, monkeypatch) -> None:
-    """The implicit integration's state (its acceleration variable, step level, factored
-    Jacobian) travels in the checkpoint: the resumed run is the whole run bit for bit."""
-    import floatmoor.simulation.coupled_run as cr
-
-    monkeypatch.setattr(cr, "CHUNK_STEPS", 5)
-    case = load_case(BUOY_CASE, [
-        'lines.*.model="dynamic"', "lines.*.dynamic.elements=4", "lines.*.dynamic.order=3",
-        'lines.*.dynamic.time_integration="implicit"', "lines.*.dynamic.max_time_step=0.0025",
-        "simulation.duration=0.2", "simulation.output_interval=0.01",
-        'waves={kind = "still"}', "initial={surge = 0.002}"])
-    out = tmp_path / "cut.nc"
-    interrupt_run(case, out, after_chunks=2)
-    with np.load(cr.checkpoint_path(out), allow_pickle=False) as npz:
-        assert "state/line0/implicit_band" in npz.files
+        assert kept in npz.files
+        if kept.endswith("damping_info"):
+            assert float(npz[kept][0]) == 1.0  # valid factors
     resumed = run_coupled(case, output=out, resume=True).dataset
     whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
     for name in ("body_displacement", "body_velocity", "fairlead_tension", "anchor_tension",

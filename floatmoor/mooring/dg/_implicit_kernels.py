@@ -507,13 +507,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
     n_shape = 0
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
-            for k in range(K):
-                for i in range(Np):
-                    node = k * Np + i
-                    shape_t[n_shape, node] = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2
-                                                       + N[k, i, 2] ** 2)
-                    for c in range(3):
-                        shape_r[n_shape, node, c] = r[k, i, c]
+            _k._record_shape(r, N, shape_r, shape_t, n_shape)
             n_shape += 1
         if s == n - 1:
             break

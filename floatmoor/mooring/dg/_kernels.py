@@ -42,6 +42,7 @@ import math
 import numpy as np
 
 from floatmoor._numba import jit
+from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
 
 __all__ = ["N_PRM", "dg_rhs", "dg_tension_field", "dg_run_path", "hermite"]
 
@@ -468,17 +469,9 @@ def _damping_system(r, anchor, fpos, prm, D, LIFT, dt, q, faces, tng, minv, cn, 
                     g = (tx * Y[k - 1, Np - 1, j, 0] + ty * Y[k - 1, Np - 1, j, 1]
                          + tz * Y[k - 1, Np - 1, j, 2])
                     band[row, kl + col - row] -= f * l0 * g
-    # banded LU without pivoting, in place
-    for col in range(n):
-        piv = band[col, kl]
-        for rr in range(col + 1, min(n, col + kl + 1)):
-            lf = band[rr, kl + col - rr]
-            if lf == 0.0:
-                continue
-            lf /= piv
-            band[rr, kl + col - rr] = lf
-            for cc in range(col + 1, min(n, col + ku + 1)):
-                band[rr, kl + cc - rr] -= lf * band[col, kl + cc - col]
+    # banded LU without pivoting, in place (a zero pivot leaves factors that solve to
+    # non-finite velocities, which the step's check reports)
+    band_factor(band, n, kl, ku)
     return True
 
 
@@ -501,16 +494,7 @@ def _damping_solve_ends(v, avel, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv
         for i in range(Np):
             e[k * Np + i] = cn[k, i] * (tng[k, i, 0] * qt[k, i, 0] + tng[k, i, 1] * qt[k, i, 1]
                                         + tng[k, i, 2] * qt[k, i, 2])
-    for row in range(n):  # forward substitution (unit lower factor)
-        acc = e[row]
-        for cc in range(max(0, row - kl), row):
-            acc -= band[row, kl + cc - row] * e[cc]
-        e[row] = acc
-    for row in range(n - 1, -1, -1):
-        acc = e[row]
-        for cc in range(row + 1, min(n, row + ku + 1)):
-            acc -= band[row, kl + cc - row] * e[cc]
-        e[row] = acc / band[row, kl]
+    band_solve(band, n, kl, ku, e)
     _damping_apply(v, prm, D, LIFT, dt, qt, N, faces, tng, minv, e)
 
 
@@ -669,6 +653,19 @@ def _check(r, v, q, prm, where):
 
 
 @jit
+def _record_shape(r, N, shape_r, shape_t, index):
+    """Node positions and tensions |N| of the state as shape sample ``index``."""
+    K, Np = r.shape[0], r.shape[1]
+    for k in range(K):
+        for i in range(Np):
+            node = k * Np + i
+            shape_t[index, node] = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2
+                                             + N[k, i, 2] ** 2)
+            for c in range(3):
+                shape_r[index, node, c] = r[k, i, c]
+
+
+@jit
 def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt_max,
                 fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, work3, q,
                 qt, N, Nstar, faces, slack, fpos, fvel, tmp, bcd, where, damp):
@@ -697,13 +694,7 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
             # N holds the axial force of the state at sample s (from its _record)
-            for k in range(K):
-                for i in range(Np):
-                    node = k * Np + i
-                    nrm = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2 + N[k, i, 2] ** 2)
-                    shape_t[n_shape, node] = nrm
-                    for c in range(3):
-                        shape_r[n_shape, node, c] = r[k, i, c]
+            _record_shape(r, N, shape_r, shape_t, n_shape)
             n_shape += 1
         if s == n - 1:
             break

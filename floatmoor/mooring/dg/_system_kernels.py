@@ -49,6 +49,7 @@ import numpy as np
 
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
+from floatmoor.mooring.dg._banded_kernels import band_solve
 
 __all__ = ["FIXED", "FREE", "BODY", "S_K", "S_NP", "N_SEC", "PP_MASS", "PP_VOLUME",
            "PP_DRAG_AREA", "PP_CA", "PP_KB", "PP_CB", "PP_FRICTION", "N_PP", "E_RHO_W", "E_G", "E_U", "E_ZB", "E_VC",
@@ -283,22 +284,6 @@ _EYE3 = np.eye(3)  # unit velocities of a free point (read-only constant inside 
 
 
 @jit
-def _band_solve(band, e, n, kl, ku):
-    """Solve with the in-place banded LU of ``_kernels._damping_system`` (unit lower factor),
-    the right-hand side ``e`` overwritten by the solution."""
-    for row in range(n):
-        acc = e[row]
-        for cc in range(max(0, row - kl), row):
-            acc -= band[row, kl + cc - row] * e[cc]
-        e[row] = acc
-    for row in range(n - 1, -1, -1):
-        acc = e[row]
-        for cc in range(row + 1, min(n, row + ku + 1)):
-            acc -= band[row, kl + cc - row] * e[cc]
-        e[row] = acc / band[row, kl]
-
-
-@jit
 def _damping_rhs(v, avel, fvel, prm, D, LIFT, qt, faces, tng, cn, e):
     """Right-hand side C T^T Grad(v) of the damping system, the end values of Grad ``avel`` and
     ``fvel`` (as ``_kernels._damping_solve_ends``)."""
@@ -455,10 +440,10 @@ def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q
                                 else:
                                     _damping_rhs(Ns, _k._ZERO3, _EYE3[c], ps, D, LIFT, qts, fcs,
                                                  tngs, cns, col)
-                                _band_solve(bs, col, nn, kl, ku)
+                                band_solve(bs, nn, kl, ku, col)
                         info[s, 4] = info[s, 3]
                     _damping_rhs(vs, pvel[sp], pvel[ep], ps, D, LIFT, qts, fcs, tngs, cns, es)
-                    _band_solve(bs, es, nn, kl, ku)
+                    band_solve(bs, nn, kl, ku, es)
         elif deferred:
             _k._gradient(rs, ppos[sp], ppos[ep], D, LIFT, 2.0 / ps[_k.P_H], fcs, qs)
             _end_masses(rs, qs, ps, tngs, minvs, K, Np)

@@ -355,52 +355,25 @@ class DynamicLine(PathStepper):
         if not (rate > 0.0 and tolerance > 0.0 and max_time > 0.0):
             raise ValueError("settle needs a positive rate, tolerance and max_time")
         start = self.time
-        if self.implicit is not None:
-            return self._settle_implicit(rate, tolerance, max_time)
-        n = max(int(math.ceil(SETTLE_CHUNK / self.time_step)), 2)
-        still = np.repeat(self.fairlead[None, :], 2, axis=0)
-        zero = np.zeros_like(still)
-        ff, af, scratch = np.zeros((2, 3)), np.zeros((2, 3)), np.zeros(2)
-        previous = np.array([np.inf, np.inf])
-        change, converged = np.inf, False
-        self.prm[_k.P_RELAX] = rate
-        try:
-            while self.time - start < max_time:
-                t = self.time + np.array([0.0, n * self.time_step])
-                self.solve_path(t, still, zero, ff, af, scratch, scratch.copy())
-                ends = np.array([np.linalg.norm(ff[1]), np.linalg.norm(af[1])])
-                change = float(np.max(np.abs(ends - previous) / np.maximum(ends, 1e-300)))
-                previous = ends
-                if change < tolerance:
-                    converged = True
-                    break
-        finally:
-            self.prm[_k.P_RELAX] = 0.0
-        elapsed = self.time - start
-        speed = float(np.max(np.linalg.norm(self.v, axis=-1)))
-        self.v[:] = 0.0
-        self.time = start
-        return SettleReport(elapsed, converged, change, speed)
-
-    def _settle_implicit(self, rate: float, tolerance: float, max_time: float) -> SettleReport:
-        """:meth:`settle` with the implicit integration: one step per ``SETTLE_CHUNK`` (the
-        relaxation is inside the implicit solve, so any step is stable), no error control
-        (only the end state counts)."""
         integ = self.implicit
-        start = self.time
+        if integ is None:
+            chunk = max(int(math.ceil(SETTLE_CHUNK / self.time_step)), 2) * self.time_step
+            prm = self.prm
+        else:  # one step a chunk (the relaxation is inside the implicit solve, so any step
+            # is stable), no error control: only the end state counts
+            chunk, prm, saved = SETTLE_CHUNK, self._implicit_prm, integ.ip.copy()
+            integ.ip[_ik.IP_FORCE_TOL] = np.inf
+            integ.ip[_ik.IP_DT_MAX] = SETTLE_CHUNK
+            integ.invalidate()
         still = np.repeat(self.fairlead[None, :], 2, axis=0)
         zero = np.zeros_like(still)
         ff, af, scratch = np.zeros((2, 3)), np.zeros((2, 3)), np.zeros(2)
         previous = np.array([np.inf, np.inf])
         change, converged = np.inf, False
-        saved = integ.ip.copy()
-        self._implicit_prm[_k.P_RELAX] = rate
-        integ.ip[_ik.IP_FORCE_TOL] = np.inf
-        integ.ip[_ik.IP_DT_MAX] = SETTLE_CHUNK
-        integ.invalidate()
+        prm[_k.P_RELAX] = rate
         try:
             while self.time - start < max_time:
-                t = self.time + np.array([0.0, SETTLE_CHUNK])
+                t = self.time + np.array([0.0, chunk])
                 self.solve_path(t, still, zero, ff, af, scratch, scratch.copy())
                 ends = np.array([np.linalg.norm(ff[1]), np.linalg.norm(af[1])])
                 change = float(np.max(np.abs(ends - previous) / np.maximum(ends, 1e-300)))
@@ -409,11 +382,12 @@ class DynamicLine(PathStepper):
                     converged = True
                     break
         finally:
-            self._implicit_prm[_k.P_RELAX] = 0.0
-            integ.ip[:] = saved
-            integ.invalidate()
-            integ.cs[_ik.CS_LEVEL] = 0.0
-            integ.cs[_ik.CS_GOOD] = 0.0
+            prm[_k.P_RELAX] = 0.0
+            if integ is not None:
+                integ.ip[:] = saved
+                integ.invalidate()
+                integ.cs[_ik.CS_LEVEL] = 0.0
+                integ.cs[_ik.CS_GOOD] = 0.0
         elapsed = self.time - start
         speed = float(np.max(np.linalg.norm(self.v, axis=-1)))
         self.v[:] = 0.0
