@@ -232,6 +232,18 @@ def _check_components(case: "Case", context: "ReadContext") -> None:
             step = waves.frequency_step or 2.0 * math.pi / duration
             count = (hi - lo) / step
             key = "frequency_step" if waves.frequency_step else "omega_max"
+            # the components sit at multiples j step of the step inside [lo, hi]
+            # (waves.realisation): none there is a sea with no waves
+            inside = math.floor(hi / step + 1e-9) - max(math.ceil(lo / step - 1e-9), 1) + 1
+            if inside < 1:
+                path = ("waves", "frequency_step") if waves.frequency_step else (
+                    "simulation", "duration")
+                found = (f"{waves.frequency_step!r} rad/s" if waves.frequency_step else
+                         f"{duration!r} s (step 2 pi / duration = {step:.4g} rad/s)")
+                raise context.error(path, f"a frequency step that puts at least one wave "
+                                    f"component in the band [{lo:.4g}, {hi:.4g}] rad/s "
+                                    "(components at multiples of the step; by default "
+                                    "2 pi / simulation.duration)", found)
         if not count <= MAX_WAVE_COMPONENTS:
             raise context.error(("waves", key), f"at most {MAX_WAVE_COMPONENTS:.3g} wave "
                                 "components ((omega_max - omega_min) / frequency_step, the step "

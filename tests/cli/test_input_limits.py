@@ -69,6 +69,13 @@ def test_components_and_frequencies_are_bounded_at_load(capsys, override, key):
     assert f"{key}: expected" in err
 
 
+def test_a_run_too_short_for_its_wave_band_is_bad_input(capsys):
+    """2 pi / 1 s puts no JONSWAP component in LC34's [0.25, 1.85] rad/s: refused at load,
+    naming simulation.duration (it was an uncaught ValueError of the wave realisation)."""
+    err = _refused(capsys, CASES / "deepcwind" / "deepcwind_lc34.toml", "simulation.duration=1.0")
+    assert "simulation.duration: expected a frequency step that puts at least one wave" in err
+
+
 def test_shipped_cases_are_within_the_bounds():
     paths = [p for p in sorted(CASES.glob("*/*.toml")) if "[environment]" in p.read_text()]
     assert len(paths) >= 10  # (the published_*.toml files are reference values, not cases)
