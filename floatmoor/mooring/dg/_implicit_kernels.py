@@ -57,7 +57,8 @@ IP_MAX_ITER = 6  #: Newton iterations before the Jacobian is rebuilt or the step
 IP_DT_MAX = 7  #: largest step [s]
 IP_LEVEL_MAX = 8  #: most halvings of a sample interval (2^LEVEL_MAX steps)
 IP_GROW = 9  #: error ratio below which a step counts as "well inside" the tolerance
-IP_FLAG_REFACTOR = 10  #: 1: rebuild the Jacobian when a node changes state (else on slow contraction only)
+#: 1: rebuild the Jacobian when a node changes state (else on slow contraction only)
+IP_FLAG_REFACTOR = 10
 IP_N = 11
 
 # -- integrator state ``cs`` (carried between calls and checkpointed) ------------------------
@@ -365,10 +366,11 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     start and ``An`` the acceleration A of the start state. On success ``An`` holds A of the
     end state.
 
-    The Jacobian is reused while the nodes keep the taut / seabed / submerged states it was
-    built with (``flags``) and Newton contracts; a node that changes state, or a correction
-    that grows, has it rebuilt at the iterate (a semismooth Newton step: the tension's kink
-    at zero strain and the seabed's at contact are where a stale Jacobian diverges).
+    The Jacobian is reused while Newton contracts (and, with ``ip[IP_FLAG_REFACTOR]``, while
+    the nodes keep the taut / seabed / submerged states it was built with, ``flags``); a
+    correction that does not halve has it rebuilt at the iterate (a semismooth Newton step:
+    the tension's kink at zero strain and the seabed's at contact are where a stale Jacobian
+    diverges).
 
     Returns
     -------

@@ -148,10 +148,11 @@ class CableProperties:
 
     def time_step(self, settings: DynamicSettings) -> float:
         """The DG time step of this cable with ``settings`` [s]; with the implicit integration
-        its largest step (``max_time_step``, default ``IMPLICIT_MAX_STEP``). Explicit: ``cfl`` times the SSP-RK3
-        stability limit of the longitudinal wave on an element (``STABLE_STEP_FACTOR``; with
-        explicit internal damping, from the spectrum of the damped scheme, stability.py) and
-        of the explicit contact where it applies, capped by the user's ``max_time_step``.
+        its largest step (``max_time_step``, default ``IMPLICIT_MAX_STEP``). Explicit: ``cfl``
+        times the SSP-RK3 stability limit of the longitudinal wave on an element
+        (``STABLE_STEP_FACTOR``; with explicit internal damping, from the spectrum of the
+        damped scheme, stability.py) and of the explicit contact where it applies, capped by
+        the user's ``max_time_step``.
         (Not checked: :class:`DynamicLine` refuses a step that is not finite and > 0.)"""
         st = settings
         if st.time_integration == "implicit":
