@@ -37,8 +37,8 @@ PEAK_LIMIT_MB = 300.0
 SHORT_S, LONG_S, WARM_S = 5.0, 20.0, 0.5
 #: How much more the long run may take than the short one [MB]: the run keeps its output
 #: samples until it writes its file, with the file's derived series and scipy's copy of the
-#: whole dataset while writing (1.7 kB per sample of this case, 0.17 MB per simulated second:
-#: 2.5 MB for the long run's 15 s more), plus the scatter of the peak between identical runs
+#: whole dataset while writing (1.6 kB per sample of this case, 0.16 MB per simulated second:
+#: 2.4 MB for the long run's 15 s more), plus the scatter of the peak between identical runs
 #: (under 0.5 MB here).
 GROWTH_TOLERANCE_MB = 6.0
 
