@@ -10,7 +10,6 @@ fairlead moves on a 10 ms body step. The implicit step is bounded by accuracy in
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -145,8 +144,3 @@ def implicit_parameters(prm: NDArray[np.float64]) -> NDArray[np.float64]:
     out[_k.P_IMPLICIT_DAMPING] = 0.0
     return out
 
-
-def default_newton_spacing(element_length: float, min_spacing_reference: float) -> float:
-    """Smallest node spacing [m] of an element of ``element_length`` whose reference nodes
-    on [-1, 1] are at least ``min_spacing_reference`` apart."""
-    return 0.5 * element_length * min_spacing_reference if math.isfinite(element_length) else 1.0
