@@ -288,14 +288,21 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
                     f"{line.line_type.axial_wave_speed:>10.4g}{static}")
         if line.model == "dynamic":
             dg = DynamicLine.from_case(line, case.environment, case.seabed)
-            st = line.dynamic
-            steps = (f"time step {dg.time_step:.3g} s (cfl {st.cfl:g})"
-                     if st.time_integration == "explicit" else
-                     f"implicit steps of at most {dg.time_step:.3g} s (accuracy "
-                     f"{100 * st.accuracy:g} % of the fairlead tension)")
+            st, given = dg.settings, line.dynamic
+            implicit = (f"implicit steps of at most {dg.time_step:.3g} s (accuracy "
+                        f"{100 * st.accuracy:g} % of the fairlead tension)")
+            if st.time_integration == "explicit":
+                steps = f"time step {dg.time_step:.3g} s (cfl {st.cfl:g})"
+            elif dg.auto is None:
+                steps = implicit
+            else:
+                steps = (f"{implicit} while they cost less than explicit steps of "
+                         f"{dg.auto.explicit_step:.3g} s (cfl {st.cfl:g}), those from then on")
+            chosen = ("" if given.elements is not None and given.order is not None
+                      else f", chosen for {100 * st.accuracy:g} % accuracy")
             notes.append(f"  {line.name}: {st.elements} elements of order {st.order} "
-                         f"({st.elements * (st.order + 1)} nodes), {steps}, seabed contact "
-                         f"{st.seabed_contact}")
+                         f"({st.elements * (st.order + 1)} nodes{chosen}), {steps}, seabed "
+                         f"contact {st.seabed_contact}")
     notes.extend(_describe_system(case))
     rows.append("  (m, N, m/s; tensions of the static catenary at the mean fairlead position)")
     rows.extend(notes)

@@ -18,7 +18,7 @@ from floatmoor.errors import CaseError
 
 if TYPE_CHECKING:
     from floatmoor.case.reader import ReadContext
-    from floatmoor.case.schema import Case
+    from floatmoor.case.schema import Case, DynamicSettings
 
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
@@ -42,6 +42,9 @@ MAX_SHAPE_POINTS = 25_000_000
 #: SHAPE_POINTS, floatmoor.mooring.quasidynamic.SHAPE_NODES); a dynamic line records its
 #: elements x (order + 1) nodes.
 _OTHER_SHAPE_NODES = 51
+#: Nodes of a dynamic section whose numerics follow from its accuracy, at most
+#: (floatmoor.mooring.dg.resolution: MAX_AUTO_ELEMENTS x (AUTO_ORDER + 1); a test checks it).
+AUTO_MAX_ELEMENTS, AUTO_ORDER = 32, 3
 #: Most time steps a run may ask for through a prescribed step (duration / time_step,
 #: duration / max_time_step). At a microsecond per step (the cheapest line model) 1e9 steps
 #: take a quarter of an hour; the shipped cases prescribe at most 108 000 (3 h at 0.1 s).
@@ -148,7 +151,7 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
                             f"duration {sim.duration!r} with output_interval "
                             f"{sim.output_interval!r} ({count_text(samples)} samples)")
     if sim.shape_output_interval is not None:
-        nodes = sum(sum(s.dynamic.elements * (s.dynamic.order + 1) for s in line.sections)
+        nodes = sum(sum(_section_nodes(s.dynamic) for s in line.sections)
                     if line.model == "dynamic" else _OTHER_SHAPE_NODES * len(line.sections)
                     for line in case.lines)
         points = (sim.duration / sim.shape_output_interval + 1.0) * nodes
@@ -258,3 +261,10 @@ def _check_components(case: "Case", context: "ReadContext") -> None:
                                 "components (cutoff_hz * simulation.duration; floatmoor.case."
                                 "limits.MAX_WIND_COMPONENTS) [Hz]",
                                 f"{wind.cutoff_hz!r} ({count_text(count)} components)")
+
+
+def _section_nodes(st: DynamicSettings) -> int:
+    """Nodes of a dynamic section: its own, or at most those the accuracy's choice gives."""
+    elements = st.elements if st.elements is not None else AUTO_MAX_ELEMENTS
+    order = st.order if st.order is not None else AUTO_ORDER
+    return elements * (order + 1)

@@ -23,6 +23,7 @@ from floatmoor.case.limits import (
 )
 from floatmoor.case.files import CaseFileKindError, read_case_text
 from floatmoor.case.motion_body import read_body_motion
+from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
@@ -54,9 +55,9 @@ COINCIDENT_ENDS = 1e-9
 #: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
 DEFAULT_CATENARY_TOLERANCE = 1e-12
 DEFAULT_CATENARY_MAX_ITERATIONS = 100
-#: Default DG discretisation: MooDy reproduced the Lindahl chain with 10 elements of order 5
-#: (chain-experiment paper; cases.md case A).
-DEFAULT_DG_ELEMENTS = 10
+#: Order of a DG line whose elements are given but not its order (and of imported decks):
+#: MooDy reproduced the Lindahl chain with order 5 (chain-experiment paper; cases.md case A).
+#: Without either key, both follow from ``accuracy`` (mooring/dg/resolution.py).
 DEFAULT_DG_ORDER = 5
 #: Default time step as a fraction of the linear SSP-RK3 stability limit of the longitudinal
 #: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
@@ -161,6 +162,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     initial = read_initial(root.table("initial")) if root.has("initial") else (0.0,) * 6
     wind = read_wind(root.table("wind"), simulation.duration) if root.has("wind") else None
     root.finish()
+    lines = _with_motion_frequency(lines, fairlead_motion_frequency(motion, waves))
     title = render_title(title_template, original, raw, applied, context.origin(("title",)))
 
     case = Case(title=title, title_template=title_template, source=source, text=text, overrides=overrides,
@@ -250,9 +252,8 @@ def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> Dyna
     (defaults: its line's)."""
     d = defaults
     settings = DynamicSettings(
-        elements=dg.integer("elements", ge=1, le=10_000,
-                            default=d.elements if d else DEFAULT_DG_ELEMENTS),
-        order=dg.integer("order", ge=1, le=8, default=d.order if d else DEFAULT_DG_ORDER),
+        elements=dg.integer("elements", ge=1, le=10_000, default=d.elements if d else None),
+        order=dg.integer("order", ge=1, le=8, default=d.order if d else None),
         cfl=dg.number("cfl", unit="-", gt=0.0, le=1.0, default=d.cfl if d else DEFAULT_DG_CFL),
         max_time_step=dg.number("max_time_step", unit="s", gt=0.0,
                                 default=d.max_time_step if d else None),
@@ -263,12 +264,22 @@ def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> Dyna
         internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
                                    default=d.internal_damping if d else "implicit"),
         time_integration=dg.string("time_integration", choices=TIME_INTEGRATIONS,
-                                   default=d.time_integration if d else "explicit"),
+                                   default=d.time_integration if d else "auto"),
         accuracy=dg.number("accuracy", unit="-", gt=0.0, le=MAX_DG_ACCURACY,
                            default=d.accuracy if d else DEFAULT_DG_ACCURACY),
     )
     dg.finish()
     return settings
+
+
+def _with_motion_frequency(lines: list[Line], omega: float) -> list[Line]:
+    """The lines with the fairlead motion's frequency in their (and their sections') dynamic
+    settings: what the choice of their numerics resolves."""
+    def tag(st: DynamicSettings) -> DynamicSettings:
+        return replace(st, motion_frequency=omega)
+
+    return [replace(ln, dynamic=tag(ln.dynamic), sections=tuple(
+        replace(s, dynamic=tag(s.dynamic)) for s in ln.sections)) for ln in lines]
 
 
 def _line_type_named(t: TableReader, key: str, line_types: dict[str, LineType]) -> LineType:

@@ -32,9 +32,11 @@ AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
 #: Treatments of the dynamic model's Kelvin-Voigt internal damping.
 INTERNAL_DAMPING_METHODS = ("implicit", "explicit")
-#: Time integration of a dynamic line: explicit SSP-RK3 at the axial wave's stability limit, or
-#: the implicit generalised-alpha method at a step bounded by accuracy (mooring/dg/implicit.py).
-TIME_INTEGRATIONS = ("explicit", "implicit")
+#: Time integration of a dynamic line: explicit SSP-RK3 at the axial wave's stability limit,
+#: the implicit generalised-alpha method at a step bounded by accuracy (mooring/dg/implicit.py),
+#: or "auto": implicit while its accuracy-bound steps cost less than the explicit steps they
+#: replace, explicit from then on (mooring/dg/resolution.py).
+TIME_INTEGRATIONS = ("auto", "explicit", "implicit")
 #: Kinds of points (``points[].kind``): fixed in space (anchors), free (joints, clump weights,
 #: buoys: in equilibrium of their lines and loads), or carried by the body (fairleads: moved by
 #: the prescribed motion or the floater).
@@ -109,8 +111,10 @@ class QuasiStaticSettings:
 class DynamicSettings:
     """Numerics of the discontinuous Galerkin cable (``[lines.dynamic]``)."""
 
-    elements: int  #: number of elements
-    order: int  #: polynomial order p (1 to 8)
+    #: number of elements; None: chosen from ``accuracy`` (mooring/dg/resolution.py)
+    elements: int | None
+    #: polynomial order p (1 to 8); None: chosen from ``accuracy``
+    order: int | None
     cfl: float  #: time step as a fraction of the linear SSP-RK3 stability limit [-]
     max_time_step: float | None  #: user cap on the time step [s]
     slack_filter: bool  #: modal filter on elements in compression
@@ -126,6 +130,14 @@ class DynamicSettings:
     time_integration: str = "explicit"
     #: relative error of the fairlead tension accepted [-]
     accuracy: float = 0.01
+    #: characteristic angular frequency of the fairlead motion [rad/s] (the case's waves or
+    #: prescribed motion; 0 when none is declared): what the choice of numerics resolves
+    motion_frequency: float = 0.0
+
+    @property
+    def resolved(self) -> bool:
+        """Whether the discretisation is fixed (elements and order given or chosen)."""
+        return self.elements is not None and self.order is not None
 
 
 @dataclass(frozen=True)

@@ -27,8 +27,10 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
+
+import numpy as np
 
 from floatmoor.io.moordyn.deck import (POINT_COUPLED, POINT_FIXED, POINT_FREE, Deck, DeckLine,
                                        DeckLineType, DeckOption, DeckPoint)
@@ -36,6 +38,7 @@ from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type
                                              seabed_to_moordyn)
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg.line import CableProperties
+from floatmoor.mooring.dg.resolution import resolve_settings
 from floatmoor.mooring.system_statics import case_statics
 
 __all__ = ["ExportResult", "export_case", "SEABED_STEP_FRACTION"]
@@ -60,6 +63,20 @@ class ExportResult:
 
 def _segments(section: Any) -> int:
     return int(section.dynamic.elements * section.dynamic.order)
+
+
+def _explicit_numerics(section: Any, line: Any, env: Any, bed: Any) -> Any:
+    """The section with the explicit DG numerics it would run with (the accuracy's choice,
+    resolution.resolve_settings, where the case leaves it): MoorDyn's segments and dtM
+    follow them."""
+    st = section.dynamic
+    if not st.resolved:
+        props = CableProperties.from_section(section, env, bed)
+        speed = (props.transverse_wave_speed(np.asarray(line.anchor), np.asarray(line.fairlead))
+                 if len(line.sections) == 1 else 0.0)
+        st = resolve_settings(st, section.length, speed, several_sections=True,
+                              share=section.length / line.length)
+    return replace(section, dynamic=replace(st, time_integration="explicit"))
 
 
 def _free_positions(case: Any, notes: list[str]) -> dict[str, tuple[float, float, float]]:
@@ -89,8 +106,8 @@ def export_case(case: Any) -> ExportResult:
     what MoorDyn cannot represent (also to be written into the deck's comments)."""
     notes: list[str] = []
     env, bed = case.environment, case.seabed
-    sections = tuple(case.sections)
     line_of = {line.name: line for line in case.lines}
+    sections = tuple(_explicit_numerics(s, line_of[s.line], env, bed) for s in case.sections)
 
     numbers = {p.name: i for i, p in enumerate(case.points, start=1)}
     at = _free_positions(case, notes)

@@ -9,7 +9,7 @@ will call :meth:`DynamicLine.advance` once per rigid-body step.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -20,6 +20,7 @@ from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg.implicit import ImplicitIntegrator, ImplicitSettings, implicit_parameters
+from floatmoor.mooring.dg.resolution import AutoIntegration, resolve_settings
 from floatmoor.mooring.dg.reference import STABLE_STEP_FACTOR, ReferenceElement, reference_element
 from floatmoor.mooring.dg.stability import stable_step_factor
 from floatmoor.mooring.stepping import PathStepper
@@ -140,6 +141,21 @@ class CableProperties:
         """Longitudinal wave speed sqrt(EA / m) [m/s]."""
         return math.sqrt(self.axial_stiffness / self.mass_per_length)
 
+    def transverse_wave_speed(self, anchor: NDArray[np.float64],
+                              fairlead: NDArray[np.float64]) -> float:
+        """Transverse wave speed sqrt(H / (m + m_a)) of the line at rest between ``anchor``
+        and ``fairlead`` [m/s]: H the horizontal tension of its frictionless catenary, m_a the
+        normal added mass per length; 0 for a line that does not sink (no catenary)."""
+        if self.submerged_weight <= 0.0:
+            return 0.0
+        try:
+            sol = solve_catenary(anchor, fairlead, self.length, self.axial_stiffness,
+                                 self.submerged_weight, 0.0, seabed_z=self.seabed_z)
+        except SolverError:  # no static shape between these ends: resolve the shape only
+            return 0.0
+        added = self.added_mass_coefficient * self.water_density * self.material_area
+        return math.sqrt(max(sol.horizontal_tension, 0.0) / (self.mass_per_length + added))
+
     @property
     def submerged_weight(self) -> float:
         """m g (1 - rho_w / rho_c) [N/m]."""
@@ -155,7 +171,7 @@ class CableProperties:
         the user's ``max_time_step``.
         (Not checked: :class:`DynamicLine` refuses a step that is not finite and > 0.)"""
         st = settings
-        if st.time_integration == "implicit":
+        if st.time_integration != "explicit":
             return st.max_time_step if st.max_time_step is not None else IMPLICIT_MAX_STEP
         h, c = self.length / st.elements, self.wave_speed
         if self.internal_damping > 0.0 and st.internal_damping == "explicit":
@@ -227,7 +243,8 @@ class DynamicLine(PathStepper):
     properties
         Physical properties.
     settings
-        Discretisation (elements, order, CFL, filter, seabed contact treatment).
+        Discretisation (elements, order, CFL, filter, seabed contact treatment), resolved
+        (:func:`resolution.resolve_settings`: no element count or order left to choose).
     anchor, fairlead
         End positions [m]; the line starts at rest in the quasi-static catenary between them
         (frictionless, the equilibrium of the dynamic model, whose ramped Coulomb friction
@@ -242,6 +259,10 @@ class DynamicLine(PathStepper):
                  anchor: NDArray[np.float64], fairlead: NDArray[np.float64], *,
                  name: str = "line", initial_positions: NDArray[np.float64] | None = None,
                  time: float = 0.0) -> None:
+        if not settings.resolved:
+            raise ValueError(f"line '{name}': settings with elements and order chosen "
+                             "(resolution.resolve_settings) expected, found "
+                             f"elements={settings.elements!r}, order={settings.order!r}")
         self.properties = properties
         self.settings = settings
         self.name = name
@@ -264,11 +285,18 @@ class DynamicLine(PathStepper):
         self._work = _Workspace(K, p + 1)
         #: the implicit integration, None when the line steps explicitly
         self.implicit: ImplicitIntegrator | None = None
-        if settings.time_integration == "implicit":
+        #: the run-time choice of ``time_integration = "auto"``, None otherwise
+        self.auto: AutoIntegration | None = None
+        self._settling = False
+        if settings.time_integration != "explicit":
             self._implicit_prm = implicit_parameters(self.prm)
             self.implicit = ImplicitIntegrator(
                 K, p + 1, ImplicitSettings(self.time_step, self._force_tolerance()),
                 properties.axial_stiffness, 0.5 * self.element_length * self.element.min_spacing)
+        if settings.time_integration == "auto":
+            self.auto = AutoIntegration.for_line(
+                settings.motion_frequency,
+                properties.time_step(replace(settings, time_integration="explicit")), p + 1)
         #: sample index of the last failure in :meth:`solve_path`, -1 if none
         self.failed_index = -1
         #: outcome of the initial relaxation (:meth:`settle`), None if not settled
@@ -283,10 +311,14 @@ class DynamicLine(PathStepper):
         end positions (``_SETTLED``), so that a campaign over motions settles each line once.
         """
         props = CableProperties.from_case(line, environment, seabed)
-        obj = cls(props, line.dynamic, np.asarray(line.anchor), np.asarray(line.fairlead),
+        settings = line.dynamic
+        if not settings.resolved:
+            settings = resolve_settings(settings, props.length, props.transverse_wave_speed(
+                np.asarray(line.anchor, dtype=float), np.asarray(line.fairlead, dtype=float)))
+        obj = cls(props, settings, np.asarray(line.anchor), np.asarray(line.fairlead),
                   name=line.name)
-        if line.dynamic.settle:
-            key = (props, line.dynamic,
+        if settings.settle:
+            key = (props, settings,
                    tuple(obj.anchor), tuple(obj.fairlead))
             if key in _SETTLED:
                 obj.r[:], obj.settle_report = _SETTLED[key]
@@ -356,7 +388,7 @@ class DynamicLine(PathStepper):
         if not (rate > 0.0 and tolerance > 0.0 and max_time > 0.0):
             raise ValueError("settle needs a positive rate, tolerance and max_time")
         start = self.time
-        integ = self.implicit
+        integ = self.implicit if self._stepping_implicit() else None
         if integ is None:
             chunk = max(int(math.ceil(SETTLE_CHUNK / self.time_step)), 2) * self.time_step
             prm = self.prm
@@ -372,6 +404,7 @@ class DynamicLine(PathStepper):
         previous = np.array([np.inf, np.inf])
         change, converged = np.inf, False
         prm[_k.P_RELAX] = rate
+        self._settling = True
         try:
             while self.time - start < max_time:
                 t = self.time + np.array([0.0, chunk])
@@ -383,6 +416,7 @@ class DynamicLine(PathStepper):
                     converged = True
                     break
         finally:
+            self._settling = False
             prm[_k.P_RELAX] = 0.0
             if integ is not None:
                 integ.ip[:] = saved
@@ -443,19 +477,17 @@ class DynamicLine(PathStepper):
                 raise ValueError("shape output needs time[0] == the line's time")
         else:
             shape_every, sr, sten = 0, np.zeros((1, 1, 3)), np.zeros((1, 1))
-        if self.implicit is not None:
-            status, index = self.implicit.run(
-                self.r, self.v, time, np.ascontiguousarray(path),
-                np.ascontiguousarray(velocity), self.anchor, self._implicit_prm, self.element,
-                w, ff, af, lb, st, shape_every, sr, sten)
-        else:
-            status, index = _k.dg_run_path(
-                self.r, self.v, time, np.ascontiguousarray(path),
-                np.ascontiguousarray(velocity), self.anchor, self.prm,
-                self.element.differentiation, self.element.lift, self.element.filter,
-                self.element.weights, self.time_step, ff, af, lb, st, shape_every, sr, sten,
-                w.stages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.fpos, w.fvel, w.tmp,
-                w.boundary, w.where, w.damping if self._implicit_damping() else None)
+        i0 = 0
+        while True:  # in segments while "auto" may still switch (_segment_end)
+            i1 = self._segment_end(time, i0, shape_every)
+            status, index = self._run_segment(self._stepping_implicit(), time, path, velocity,
+                                              ff, af, lb, st, shape_every, sr, sten, i0, i1)
+            if status != _k.DG_OK or i1 >= n - 1:
+                break
+            if (self.auto is not None and self._stepping_implicit() and not self._settling
+                    and self.auto.should_switch(time[i1], self.implicit.cs)):
+                self._go_explicit()
+            i0 = i1
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         fairlead_force[:done - first] = ff[first:done]
@@ -473,10 +505,66 @@ class DynamicLine(PathStepper):
         self.time = float(time[-1])
         self.fairlead = np.array(path[-1], dtype=float)
         self.fairlead_velocity = np.array(velocity[-1], dtype=float)
+        if (self.auto is not None and self._stepping_implicit() and not self._settling
+                and self.auto.should_switch(self.time, self.implicit.cs)):
+            self._go_explicit()
+
+    def _segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int) -> int:
+        """Last sample of the kernel call starting at sample ``i0``: the path's end, or, while
+        ``"auto"`` still steps implicitly, the first sample at or after the end of its window
+        (on a shape sample, so the shape records keep their slots)."""
+        n = time.size
+        auto = self.auto
+        if auto is None or self._settling or not self._stepping_implicit():
+            return n - 1
+        if auto.counters is None:
+            auto.restart(float(time[i0]), self.implicit.cs)
+        k = int(np.searchsorted(time, auto.window_start + auto.window, side="left"))
+        if shape_every > 0:
+            k = -(-k // shape_every) * shape_every
+        return min(max(k, i0 + 1), n - 1)
+
+    def _run_segment(self, implicit: bool, time, path, velocity, ff, af, lb, st, shape_every,
+                     sr, sten, i0: int, i1: int) -> tuple[int, int]:
+        """One kernel call over samples ``i0`` to ``i1`` (its first sample, the state the
+        previous call ended in, is recorded again: the earlier record is kept); the status
+        and the failing sample's index in the whole path."""
+        w = self._work
+        seg = slice(i0, i1 + 1)
+        kept = (ff[i0].copy(), af[i0].copy(), lb[i0], st[i0])
+        every = shape_every
+        shapes_r, shapes_t = sr, sten
+        if every > 0:
+            shapes_r, shapes_t = sr[i0 // every:], sten[i0 // every:]
+        t, x, u = (np.ascontiguousarray(a[seg]) for a in (time, path, velocity))
+        if implicit:
+            status, index = self.implicit.run(
+                self.r, self.v, t, x, u, self.anchor, self._implicit_prm, self.element, w,
+                ff[seg], af[seg], lb[seg], st[seg], every, shapes_r, shapes_t)
+        else:
+            status, index = _k.dg_run_path(
+                self.r, self.v, t, x, u, self.anchor, self.prm,
+                self.element.differentiation, self.element.lift, self.element.filter,
+                self.element.weights, self.time_step, ff[seg], af[seg], lb[seg], st[seg],
+                every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
+                w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
+                w.damping if self._implicit_damping() else None)
+        if i0 > 0:
+            ff[i0], af[i0], lb[i0], st[i0] = kept
+        return status, i0 + index
+
+    def _stepping_implicit(self) -> bool:
+        """Whether the next steps are implicit ("auto": until it went explicit)."""
+        return self.implicit is not None and not (self.auto is not None and self.auto.switched)
+
+    def _go_explicit(self) -> None:
+        """``time_integration = "auto"``: continue with the explicit steps (resolution.py)."""
+        self.time_step = self.auto.explicit_step
+        self._work.damping[-1][0] = 0.0  # no factored damping system yet
 
     def _step_text(self) -> str:
         """The step, as failure messages name it."""
-        if self.implicit is None:
+        if not self._stepping_implicit():
             return f"time step {self.time_step:.3g} s"
         return (f"implicit steps of at most {self.time_step:.3g} s, "
                 f"{int(self.implicit.cs[_ik.CS_REJECTED])} rejected")
@@ -484,8 +572,8 @@ class DynamicLine(PathStepper):
     def _implicit_damping(self) -> bool:
         """Whether the steps take the backward-Euler internal-damping step: only then do the
         kernels get its work arrays (and compile its code)."""
-        return (self.implicit is None and self.prm[_k.P_IMPLICIT_DAMPING] != 0.0
-                and self.prm[_k.P_CINT] > 0.0)
+        return (self.settings.time_integration != "implicit"
+                and self.prm[_k.P_IMPLICIT_DAMPING] != 0.0 and self.prm[_k.P_CINT] > 0.0)
 
     # -- state ---------------------------------------------------------------------------------
     def get_state(self) -> DynamicLineState:
@@ -518,6 +606,8 @@ class DynamicLine(PathStepper):
                         for name, a in zip(_DAMPING_ARRAYS, self._work.damping)})
         if self.implicit is not None:
             out.update(self.implicit.state_arrays())
+        if self.auto is not None:
+            out.update(self.auto.state())
         return out
 
     def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
@@ -525,6 +615,10 @@ class DynamicLine(PathStepper):
         self.set_state(DynamicLineState(
             float(arrays["time"]), *(np.asarray(arrays[k], dtype=float) for k in (
                 "positions", "velocities", "fairlead", "fairlead_velocity"))))
+        if self.auto is not None:
+            self.auto.set_state(arrays)
+            if self.auto.switched:
+                self._go_explicit()
         if self._implicit_damping():
             for name, a in zip(_DAMPING_ARRAYS, self._work.damping):
                 a[...] = arrays[f"damping_{name}"]

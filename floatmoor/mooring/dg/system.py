@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Protocol
 
 import numpy as np
@@ -23,6 +23,7 @@ from floatmoor.errors import SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
+from floatmoor.mooring.dg.resolution import resolve_settings
 from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RATE,
                                        SETTLE_TOLERANCE, CableProperties, DynamicLine,
                                        SettleReport)
@@ -77,6 +78,28 @@ class SystemSection:
     def label(self) -> str:
         """How messages name it: line name and section index."""
         return f"line '{self.line}' section {self.index}"
+
+
+def _resolved_sections(sections: list["SystemSection"], points: Sequence[Any],
+                       start: NDArray[np.float64] | None, case: Any) -> list["SystemSection"]:
+    """The sections, their numerics chosen where the case leaves them to the accuracy
+    (resolution.resolve_settings: explicit steps, the line's base nodes shared by length;
+    the transverse wave speed on each section's catenary between its end points at the
+    start)."""
+    index = {p.name: i for i, p in enumerate(points)}
+    where = (np.asarray(start, dtype=float) if start is not None
+             else np.array([p.position for p in points], dtype=float))
+    lengths = {ln.name: ln.length for ln in case.lines}
+    out = []
+    for sec in sections:
+        st = sec.settings
+        if not st.resolved or st.time_integration == "auto":
+            pr = sec.properties
+            speed = pr.transverse_wave_speed(where[index[sec.start]], where[index[sec.end]])
+            st = resolve_settings(st, pr.length, speed, several_sections=True,
+                                  share=pr.length / lengths[sec.line])
+        out.append(replace(sec, settings=st))
+    return out
 
 
 def section_properties(section: Any, environment: Environment, seabed: Seabed
@@ -269,6 +292,7 @@ class DynamicSystem:
         used = {n for s in sections for n in (s.start, s.end)}
         points = [p for p in case.points if p.name in used]
         start, why = static_start(points, dynamic, case.environment, case.seabed)
+        sections = _resolved_sections(sections, points, start, case)
         obj = cls(points, sections, point_positions=start)
         obj.static_start = why
         if settle if settle is not None else any(s.settings.settle for s in sections):
