@@ -13,6 +13,10 @@ matplotlib.use("Agg")
 REPO = Path(__file__).resolve().parents[1]
 CASES = REPO / "cases"
 LINDAHL_CASE = CASES / "lindahl" / "lindahl_r0.20_T1.25.toml"
+#: Overrides giving every dynamic line MooDy's reference numerics (10 elements of order 5,
+#: explicit steps), which the shipped cases name in comments: for tests written at them.
+REFERENCE_NUMERICS = ["lines.*.dynamic.elements=10", "lines.*.dynamic.order=5",
+                      'lines.*.dynamic.time_integration="explicit"']
 #: The measured Lindahl cycles: copies of the project reference's data folder (CC BY 4.0; see
 #: the README there), kept in the repository so that a clean clone runs its tests alone.
 MEASURED = REPO / "tests" / "data" / "lindahl"

@@ -10,7 +10,7 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import CircularMotion, HarmonicMotion, TableMotion
 from floatmoor.errors import CaseError
-from tests.conftest import LINDAHL_CASE
+from tests.conftest import CASES, LINDAHL_CASE
 
 
 def test_lindahl_case_values():
@@ -102,7 +102,9 @@ def test_time_integration_and_accuracy_keys():
     """``[lines.dynamic] time_integration`` and ``accuracy`` (issue 17): defaults, values, and
     what is refused, with the key path and what was found."""
     default = load_case(LINDAHL_CASE).lines[0].dynamic
-    assert default.time_integration == "explicit" and default.accuracy == 0.01
+    assert default.time_integration == "explicit" and default.accuracy == 0.01  # the file's
+    bare = load_case(CASES / "systems" / "three_line_clump_buoy.toml").lines[0].dynamic
+    assert (bare.elements, bare.order, bare.time_integration) == (None, None, "auto")
     st = load_case(LINDAHL_CASE, ['lines.chain.dynamic.time_integration="implicit"',
                                   "lines.chain.dynamic.accuracy=0.05"]).lines[0].dynamic
     assert st.time_integration == "implicit" and st.accuracy == 0.05

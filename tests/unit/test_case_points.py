@@ -37,7 +37,7 @@ def test_sections_points_and_merged_numerics():
     assert line.length == 412.0
     # the line's numerics are every section's defaults; a section's own keys override them
     assert [(s.dynamic.elements, s.dynamic.order) for s in line.sections] == [
-        (10, 3), (20, 3), (10, 3)]
+        (None, 3), (20, 3), (None, 3)]  # None: chosen from the accuracy
     assert case.is_system
     with pytest.raises(ValueError, match="3 sections"):
         line.line_type

@@ -3,6 +3,7 @@ the fairlead motion frequency a case declares (floatmoor.case.motion_frequency).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -57,22 +58,25 @@ def test_given_keys_override_the_choice() -> None:
     assert st.elements == math.ceil(rs.BASE_NODES * 0.5 / (rs.AUTO_ORDER + 1))
 
 
-def test_the_shipped_cases_choices() -> None:
+def test_the_reference_cases_choices() -> None:
     """What the rule gives on issue 17's references at the default 1 % (module docstring of
     resolution.py: 40 to 48 nodes on the Lindahl chain and the buoy chains, 32 on the
-    DeepCwind lines); a user's numerics stay as given (the QD study's 10 x p5)."""
+    DeepCwind lines), their files' reference numerics taken out; numerics a case gives stay
+    as given (the QD study's 10 x p5)."""
     def chosen(path, overrides=()):
         case = load_case(path, list(overrides))
         ln = case.lines[0]
+        ln = dataclasses.replace(ln, dynamic=dataclasses.replace(
+            ln.dynamic, elements=None, order=None, time_integration="auto"))
         return DynamicLine.from_case(ln, case.environment, case.seabed).settings
 
-    assert (chosen(LINDAHL_CASE).elements, chosen(LINDAHL_CASE).order) == (12, 3)
-    buoy = chosen(BUOY)
-    assert (buoy.elements, buoy.order, buoy.time_integration) == (11, 3, "auto")
+    lindahl = chosen(LINDAHL_CASE)
+    assert (lindahl.elements, lindahl.order, lindahl.time_integration) == (12, 3, "auto")
+    assert (chosen(BUOY).elements, chosen(BUOY).order) == (11, 3)
     deep = chosen(LC34, ['lines.*.model="dynamic"'])
     assert (deep.elements, deep.order) == (8, 3)
-    qd = chosen(CASES / "qd_verification" / "s1_d1.toml")
-    assert (qd.elements, qd.order, qd.time_integration) == (10, 5, "auto")
+    qd = load_case(CASES / "qd_verification" / "s1_d1.toml").lines[0].dynamic
+    assert (qd.elements, qd.order, qd.time_integration) == (10, 5, "explicit")
 
 
 def test_motion_frequencies() -> None:

@@ -39,7 +39,8 @@ def settings(K: int, p: int, **kw) -> DynamicSettings:
 @pytest.mark.parametrize("damping", ["implicit", "explicit"])
 def test_one_section_system_is_the_dynamic_line_bit_for_bit(damping: str) -> None:
     case = load_case(CASES / "lindahl" / "lindahl_r0.20_T1.25.toml",
-                     ["lines.chain.dynamic.elements=12",
+                     ["lines.chain.dynamic.elements=12", "lines.chain.dynamic.order=5",
+                      'lines.chain.dynamic.time_integration="explicit"',
                       f'lines.chain.dynamic.internal_damping="{damping}"',
                       "line_types.chain.internal_damping_ratio=0.05"])
     ln = case.lines[0]

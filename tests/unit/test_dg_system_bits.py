@@ -34,7 +34,8 @@ CPU_RTOL = 1e-9
 def run(damping: str) -> dict[str, np.ndarray]:
     """End forces, laid length and final state of the Lindahl line over 0.5 s."""
     case = load_case(CASES / "lindahl" / "lindahl_r0.20_T1.25.toml",
-                     ["lines.chain.dynamic.elements=12",
+                     ["lines.chain.dynamic.elements=12", "lines.chain.dynamic.order=5",
+                      'lines.chain.dynamic.time_integration="explicit"',
                       f'lines.chain.dynamic.internal_damping="{damping}"',
                       "line_types.chain.internal_damping_ratio=0.05"])
     ln = case.lines[0]

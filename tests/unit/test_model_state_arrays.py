@@ -31,6 +31,7 @@ def test_dynamic_line_with_frozen_damping_factors_continues_bit_identically() ->
     differ in the last bits."""
     case = load_case(BUOY_CASE, ['lines.*.model="dynamic"', "lines.*.dynamic.elements=4",
                                  "lines.*.dynamic.order=3",
+                                 'lines.*.dynamic.time_integration="explicit"',
                                  "line_types.chain.internal_damping_ratio=0.2"])
     line = case.lines[0]
     t = np.arange(0, 17) * 2.0 ** -8  # exact binary steps: every interval the same dt

@@ -26,7 +26,7 @@ from floatmoor import load_case, solve_catenary
 from floatmoor.case.schema import DynamicSettings
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
 from floatmoor.mooring.dg.reference import reference_element
-from tests.conftest import LINDAHL_CASE
+from tests.conftest import LINDAHL_CASE, REFERENCE_NUMERICS
 from tests.oracles import dg_numpy as oracle
 
 # -- tolerances -----------------------------------------------------------------------------------
@@ -481,7 +481,7 @@ def test_statics_lindahl_chain_matches_catenary() -> None:
     catenary ignores: it adds (m g - w) z_F to the fairlead tension (1.4e-3 here), so the
     fairlead is compared with the catenary plus that weight. Observed: fairlead 1.4e-3 raw,
     5e-5 after the correction; anchor 3e-5."""
-    case = load_case(LINDAHL_CASE)
+    case = load_case(LINDAHL_CASE, REFERENCE_NUMERICS)
     cl = case.lines[0]
     pr = CableProperties.from_case(cl, case.environment, case.seabed)
     anchor, fair = np.asarray(cl.anchor), np.asarray(cl.fairlead)
@@ -506,8 +506,9 @@ def test_statics_lindahl_chain_matches_catenary() -> None:
 
 # -- 5. step API and state ------------------------------------------------------------------------
 def lindahl_like_line() -> DynamicLine:
-    """The Lindahl chain with everything on (seabed contact, friction, drag, added mass)."""
-    case = load_case(LINDAHL_CASE)
+    """The Lindahl chain with everything on (seabed contact, friction, drag, added mass), at
+    MooDy's numerics (10 x p5, explicit)."""
+    case = load_case(LINDAHL_CASE, REFERENCE_NUMERICS)
     return DynamicLine.from_case(case.lines[0], case.environment, case.seabed)
 
 

@@ -100,7 +100,8 @@ def _deepcwind_line_tension(method: str, tangent_tol: float | None = None):
     fairlead in 1.5 m surge and 0.5 m heave at 10 s after a 10 s ramp; steps per sample."""
     case = load_case(CASES / "deepcwind" / "deepcwind_lc34.toml", ['lines.line2.model="dynamic"'])
     ln = case.lines[1]
-    settings = dataclasses.replace(ln.dynamic, internal_damping=method)
+    settings = dataclasses.replace(ln.dynamic, internal_damping=method, elements=10, order=5,
+                                   time_integration="explicit")
     line = DynamicLine(CableProperties.from_case(ln, case.environment, case.seabed), settings,
                        np.asarray(ln.anchor), np.asarray(ln.fairlead))
     line.settle()

@@ -317,8 +317,8 @@ class DynamicLine(PathStepper):
                 np.asarray(line.anchor, dtype=float), np.asarray(line.fairlead, dtype=float)))
         obj = cls(props, settings, np.asarray(line.anchor), np.asarray(line.fairlead),
                   name=line.name)
-        if settings.settle:
-            key = (props, settings,
+        if settings.settle:  # (the motion frequency only chose the numerics: not in the key)
+            key = (props, replace(settings, motion_frequency=0.0),
                    tuple(obj.anchor), tuple(obj.fairlead))
             if key in _SETTLED:
                 obj.r[:], obj.settle_report = _SETTLED[key]
