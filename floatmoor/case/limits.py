@@ -151,7 +151,7 @@ def check_sizes(case: "Case", context: "ReadContext") -> None:
                             f"duration {sim.duration!r} with output_interval "
                             f"{sim.output_interval!r} ({count_text(samples)} samples)")
     if sim.shape_output_interval is not None:
-        nodes = sum(sum(_section_nodes(s.dynamic) for s in line.sections)
+        nodes = sum(sum(dynamic_nodes_bound(s.dynamic) for s in line.sections)
                     if line.model == "dynamic" else _OTHER_SHAPE_NODES * len(line.sections)
                     for line in case.lines)
         points = (sim.duration / sim.shape_output_interval + 1.0) * nodes
@@ -263,7 +263,7 @@ def _check_components(case: "Case", context: "ReadContext") -> None:
                                 f"{wind.cutoff_hz!r} ({count_text(count)} components)")
 
 
-def _section_nodes(st: DynamicSettings) -> int:
+def dynamic_nodes_bound(st: DynamicSettings) -> int:
     """Nodes of a dynamic section: its own, or at most those the accuracy's choice gives."""
     elements = st.elements if st.elements is not None else AUTO_MAX_ELEMENTS
     order = st.order if st.order is not None else AUTO_ORDER

@@ -20,11 +20,11 @@ from numpy.typing import NDArray
 
 from typing import TYPE_CHECKING
 
-from floatmoor.case.schema import Case, DynamicSettings
+from floatmoor.case.limits import dynamic_nodes_bound
+from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
 from floatmoor.io.dataset import build_result_dataset
 from floatmoor.io.netcdf import write_dataset
-from floatmoor.mooring.dg.resolution import AUTO_ORDER, MAX_AUTO_ELEMENTS
 from floatmoor.signals import deferred_interrupts, signal_name
 
 if TYPE_CHECKING:
@@ -70,18 +70,11 @@ def estimated_output_bytes(case: Case) -> float:
     if getattr(case.motion, "kind", None) == "body":  # the prescribed DOFs and their rates
         values += n_time * 12
     if sim.shape_output_interval is not None:
-        nodes = max((_most_nodes(line.dynamic) if line.model == "dynamic"
+        nodes = max((dynamic_nodes_bound(line.dynamic) if line.model == "dynamic"
                      else max(SHAPE_NODES, SHAPE_POINTS)) for line in case.lines)
         n_shapes = sim.duration / max(sim.shape_output_interval, sim.output_interval) + 1.0
         values += len(case.lines) * n_shapes * nodes * (3 + 1) + nodes * len(case.lines)
     return float(values * _VALUE_BYTES)
-
-
-def _most_nodes(st: DynamicSettings) -> int:
-    """Nodes of a dynamic line, at most (numerics left to the accuracy: the largest choice)."""
-    elements = st.elements if st.elements is not None else MAX_AUTO_ELEMENTS
-    order = st.order if st.order is not None else AUTO_ORDER
-    return elements * (order + 1)
 
 
 def line_system_series(case: Case, variables: dict[str, NDArray[np.float64]],

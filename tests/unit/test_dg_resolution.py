@@ -15,7 +15,6 @@ from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.schema import DynamicSettings, TableMotion
 from floatmoor.mooring.dg import resolution as rs
 from floatmoor.mooring.dg.line import DynamicLine
-from floatmoor.simulation import recorder
 from tests.conftest import CASES, LINDAHL_CASE
 
 BUOY = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
@@ -95,10 +94,11 @@ def test_motion_frequencies() -> None:
 
 
 def test_layers_agree_on_the_largest_choice() -> None:
-    """case.limits and the recorder bound an automatic line's nodes without importing the
-    models' rule (case) or with it (simulation): the same figure."""
+    """case.limits bounds an automatic line's nodes (for the input limits and the recorder's
+    size estimate) without importing the models' rule: the same figure."""
     assert (limits.AUTO_MAX_ELEMENTS, limits.AUTO_ORDER) == (rs.MAX_AUTO_ELEMENTS, rs.AUTO_ORDER)
-    assert recorder._most_nodes(_settings()) == rs.MAX_AUTO_ELEMENTS * (rs.AUTO_ORDER + 1)
+    assert limits.dynamic_nodes_bound(_settings()) == rs.MAX_AUTO_ELEMENTS * (rs.AUTO_ORDER + 1)
+    assert limits.dynamic_nodes_bound(_settings(elements=3, order=2)) == 9
 
 
 def test_work_model() -> None:

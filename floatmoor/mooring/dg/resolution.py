@@ -3,9 +3,11 @@
 Before the run, the discretisation: order ``AUTO_ORDER`` and enough nodes to resolve the
 line's static shape and the transverse wave its fairlead motion drives,
 
-    nodes = (BASE_NODES + NODES_PER_WAVELENGTH L / lambda_t) (REFERENCE_ACCURACY / accuracy)^(1 / (p + 1)),
+    nodes = (BASE_NODES + NODES_PER_WAVELENGTH L / lambda_t) (REFERENCE_ACCURACY / accuracy)^a,
 
-with the transverse wavelength lambda_t = 2 pi c_t / omega at the motion frequency omega
+a = 1 / (p + 1),
+
+the transverse wavelength lambda_t = 2 pi c_t / omega at the motion frequency omega
 (``DynamicSettings.motion_frequency``) and the transverse wave speed c_t = sqrt(H / (m + m_a))
 on the horizontal tension H of the line at rest (its quasi-static catenary). The DG error of
 a smooth solution falls as h^(p + 1), hence the exponent. The two constants are calibrated on
