@@ -52,7 +52,8 @@ import numpy as np
 import xarray as xr
 
 from floatmoor.case.load import load_case
-from floatmoor.case.schema import Case, Line
+from floatmoor.case.motion_frequency import fairlead_motion_frequency
+from floatmoor.case.schema import Case, Line, TableMotion
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.post.statistics import channel_statistics
 from floatmoor.simulation.coupled_run import run_coupled
@@ -243,9 +244,14 @@ def lines_problem(case_path: Path, paths_path: Path, *, start: float,
 
 def _floatmoor_line(problem: LinesProblem, line: Line, offset: float = 0.0) -> DynamicLine:
     """The line at the case's numerics, settled with its fairlead at the path's first point
-    (raised by ``offset`` [m]: a warm-up line that is not the one remembered as settled)."""
+    (raised by ``offset`` [m]: a warm-up line that is not the one remembered as settled).
+    Numerics left to the accuracy see the path's frequency, as from a motion table."""
     first = problem.position[line.name][0] + np.array([0.0, 0.0, offset])
-    moved = dataclasses.replace(line, fairlead=tuple(float(c) for c in first))
+    table = TableMotion(file="(recorded path)", time=problem.time,
+                        displacement=problem.position[line.name])
+    dynamic = dataclasses.replace(line.dynamic,
+                                  motion_frequency=fairlead_motion_frequency(table, None))
+    moved = dataclasses.replace(line, fairlead=tuple(float(c) for c in first), dynamic=dynamic)
     return DynamicLine.from_case(moved, problem.case.environment, problem.case.seabed)
 
 
