@@ -63,6 +63,9 @@ DEFAULT_DG_ORDER = 5
 #: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
 #: drag, contact) and was stable on the whole Lindahl robustness grid.
 DEFAULT_DG_CFL = 0.8
+#: What ``elements = "auto"`` / ``order = "auto"`` (or leaving them out) means: the DG
+#: discretisation follows ``accuracy`` (floatmoor.mooring.dg.resolution).
+_FROM_ACCURACY = "chosen from accuracy"
 #: Default accepted relative error of the fairlead tension (issue 17: 1 %).
 DEFAULT_DG_ACCURACY = 0.01
 #: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
@@ -252,8 +255,10 @@ def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> Dyna
     (defaults: its line's)."""
     d = defaults
     settings = DynamicSettings(
-        elements=dg.integer("elements", ge=1, le=10_000, default=d.elements if d else None),
-        order=dg.integer("order", ge=1, le=8, default=d.order if d else None),
+        elements=dg.integer("elements", ge=1, le=10_000, default=d.elements if d else None,
+                            auto=_FROM_ACCURACY),
+        order=dg.integer("order", ge=1, le=8, default=d.order if d else None,
+                         auto=_FROM_ACCURACY),
         cfl=dg.number("cfl", unit="-", gt=0.0, le=1.0, default=d.cfl if d else DEFAULT_DG_CFL),
         max_time_step=dg.number("max_time_step", unit="s", gt=0.0,
                                 default=d.max_time_step if d else None),

@@ -178,12 +178,17 @@ class TableReader:
         return value
 
     def integer(self, key: str, *, ge: int | None = None, le: int | None = None,
-                default: Any = MISSING) -> int:
-        """A TOML integer within the given bounds."""
+                default: Any = MISSING, auto: str | None = None) -> int:
+        """A TOML integer within the given bounds; with ``auto`` (what it means, for the
+        message) also the string "auto", read as None."""
         expected = _number_text("an integer", "", None, ge, None, le)
+        if auto is not None:
+            expected += f' or "auto" ({auto})'
         value = self._get(key, default, expected)
         if value is default and default is not MISSING:
             return value
+        if auto is not None and value == "auto":
+            return None  # type: ignore[return-value]
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.error(key, expected, value)
         if (ge is not None and value < ge) or (le is not None and value > le):

@@ -10,7 +10,7 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import CircularMotion, HarmonicMotion, TableMotion
 from floatmoor.errors import CaseError
-from tests.conftest import CASES, LINDAHL_CASE
+from tests.conftest import ACCURACY_DEFAULT, CASES, LINDAHL_CASE
 
 
 def test_lindahl_case_values():
@@ -105,10 +105,14 @@ def test_time_integration_and_accuracy_keys():
     assert default.time_integration == "explicit" and default.accuracy == 0.01  # the file's
     bare = load_case(CASES / "systems" / "three_line_clump_buoy.toml").lines[0].dynamic
     assert (bare.elements, bare.order, bare.time_integration) == (None, None, "auto")
+    auto = load_case(LINDAHL_CASE, ACCURACY_DEFAULT).lines[0].dynamic  # "auto" = left out
+    assert (auto.elements, auto.order, auto.time_integration) == (None, None, "auto")
     st = load_case(LINDAHL_CASE, ['lines.chain.dynamic.time_integration="implicit"',
                                   "lines.chain.dynamic.accuracy=0.05"]).lines[0].dynamic
     assert st.time_integration == "implicit" and st.accuracy == 0.05
-    for override, found in (('lines.chain.dynamic.time_integration="rk4"', '"rk4"'),
+    for override, found in (('lines.chain.dynamic.elements="many"', '"many"'),
+                            ('lines.chain.dynamic.order="auto3"', '"auto3"'),
+                            ('lines.chain.dynamic.time_integration="rk4"', '"rk4"'),
                             ("lines.chain.dynamic.accuracy=0.0", "0.0"),
                             ("lines.chain.dynamic.accuracy=0.3", "0.3"),
                             ('lines.chain.dynamic.accuracy="1%"', '"1%"')):
