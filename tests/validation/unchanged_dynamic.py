@@ -44,7 +44,7 @@ import re
 import subprocess
 import sys
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from importlib.metadata import version
 from typing import Any
 
@@ -74,8 +74,10 @@ STORED_DIGITS = 8
 DECAY_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 
 
-def lindahl_figures(radius: float, period: float) -> dict[str, Any]:
-    """One Lindahl run as the validation runs it (dynamic line, the case file's numerics).
+def lindahl_figures(radius: float, period: float, overrides: Sequence[str] = ()
+                    ) -> dict[str, Any]:
+    """One Lindahl run as the validation runs it (dynamic line, the case file's numerics
+    unless ``overrides`` change them).
 
     Returns
     -------
@@ -85,7 +87,7 @@ def lindahl_figures(radius: float, period: float) -> dict[str, Any]:
         ``cycle_range_N`` (its max - min), ``wall_time_s``; with a measured cycle also
         ``measured``: ``rms_relative_to_peak``, ``rms_N``, ``shift_s``, ``measured_peak_N``.
     """
-    result = run_lindahl(period, radius=radius, model="dynamic")
+    result = run_lindahl(period, radius=radius, model="dynamic", extra_overrides=overrides)
     _, cycle = phase_average(result["time"], result["tension"], period=result["period"],
                              start=result["ramp"], n_phase=WAVEFORM_POINTS)
     maxima = cycle_maxima(result["time"], result["tension"], start=result["ramp"],
