@@ -14,6 +14,7 @@ from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type
                                              seabed_to_moordyn, volume_diameter)
 from floatmoor.io.moordyn.parser import read_deck
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
+from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.system_statics import case_statics
 from tests.io.moordyn_decks import REPO, export_file
 
@@ -50,13 +51,17 @@ def test_deck_numbers_are_the_cases(tmp_path):
         assert (dp.attachment, dp.position) == (kinds[p.kind], at)
         assert (dp.mass, dp.volume, dp.drag_area, dp.added_mass_coefficient) == (
             p.mass, p.volume, p.drag_area, p.added_mass_coefficient)
-    # lines: one per section, between the section's points, N = elements x order
+    # lines: one per section, between the section's points, N = elements x order of the
+    # numerics the run takes (given, or the accuracy's choice)
+    run = {(s.line, s.index): s.settings
+           for s in DynamicSystem.from_case(case, settle=False).sections}
     types = {t.name: t for t in deck.line_types}
     assert len(deck.lines) == len(case.sections) == 3
     for dl, sec in zip(deck.lines, case.sections):
         assert (names[dl.start - 1], names[dl.end - 1]) == (sec.start, sec.end)
         assert dl.length == sec.length
-        assert dl.segments == sec.dynamic.elements * sec.dynamic.order
+        st = run[sec.line, sec.index]
+        assert dl.segments == st.elements * st.order
         t = types[dl.line_type]
         md = moordyn_line_type(sec.line_type, t.internal_damping)
         assert (t.diameter, t.mass_per_length, t.axial_stiffness, t.normal_drag_coefficient,
@@ -85,11 +90,14 @@ def test_deck_numbers_are_the_cases(tmp_path):
         bed.stiffness * chain.diameter, rel=TWO_WAYS_RTOL)  # the same force per length
     assert float(opt["FrictionCoefficient"]) == 0.4
     first = case.sections[0]
+    run = {(s.line, s.index): s.settings  # the numerics the run takes (given, or chosen)
+           for s in DynamicSystem.from_case(case, settle=False).sections}
+    numerics = [run[s.line, s.index] for s in case.sections]
     assert float(opt["FricDamp"]) == friction_damping(
-        chain.weight_in_water(env), first.length, 50, 0.02)
+        chain.weight_in_water(env), first.length, numerics[0].elements * numerics[0].order, 0.02)
     assert (opt["tScheme"], float(opt["dtOut"])) == ("RK2", case.simulation.output_interval)
-    steps = [CableProperties.from_section(s, env, bed).time_step(s.dynamic)
-             for s in case.sections]
+    steps = [CableProperties.from_section(s, env, bed).time_step(st)
+             for s, st in zip(case.sections, numerics)]
     seabed = [_moordyn_seabed_limit(case, s.line_type) for s in case.sections]
     assert float(opt["dtM"]) == min(steps + seabed)
     assert deck.title == case.title

@@ -65,17 +65,17 @@ def _segments(section: Any) -> int:
     return int(section.dynamic.elements * section.dynamic.order)
 
 
-def _explicit_numerics(section: Any, line: Any, env: Any, bed: Any) -> Any:
-    """The section with the explicit DG numerics it would run with (the accuracy's choice,
-    resolution.resolve_settings, where the case leaves it): MoorDyn's segments and dtM
+def _explicit_numerics(section: Any, where: dict[str, Any], env: Any, bed: Any) -> Any:
+    """The section with the explicit DG numerics it runs with (the accuracy's choice where
+    the case leaves it, as the dynamic system makes it: resolution.resolve_settings on the
+    section's catenary between its points ``where`` they are): MoorDyn's segments and dtM
     follow them."""
     st = section.dynamic
     if not st.resolved:
         props = CableProperties.from_section(section, env, bed)
-        speed = (props.transverse_wave_speed(np.asarray(line.anchor), np.asarray(line.fairlead))
-                 if len(line.sections) == 1 else 0.0)
-        st = resolve_settings(st, section.length, speed, several_sections=True,
-                              share=section.length / line.length)
+        speed = props.transverse_wave_speed(np.asarray(where[section.start], dtype=float),
+                                            np.asarray(where[section.end], dtype=float))
+        st = resolve_settings(st, section.length, speed, several_sections=True)
     return replace(section, dynamic=replace(st, time_integration="explicit"))
 
 
@@ -107,10 +107,10 @@ def export_case(case: Any) -> ExportResult:
     notes: list[str] = []
     env, bed = case.environment, case.seabed
     line_of = {line.name: line for line in case.lines}
-    sections = tuple(_explicit_numerics(s, line_of[s.line], env, bed) for s in case.sections)
-
     numbers = {p.name: i for i, p in enumerate(case.points, start=1)}
     at = _free_positions(case, notes)
+    where = {p.name: at.get(p.name, p.position) for p in case.points}
+    sections = tuple(_explicit_numerics(s, where, env, bed) for s in case.sections)
     points = tuple(DeckPoint(number=numbers[p.name], attachment=_KINDS[p.kind],
                              position=at.get(p.name,  # type: ignore[arg-type]
                                              tuple(float(c) for c in p.position)),

@@ -69,7 +69,7 @@ MAX_AUTO_ELEMENTS = 32
 
 
 def auto_nodes(length: float, transverse_speed: float, motion_frequency: float,
-               accuracy: float, order: int = AUTO_ORDER, share: float = 1.0) -> float:
+               accuracy: float, order: int = AUTO_ORDER) -> float:
     """Nodes the rule of the module docstring asks for (before rounding to elements).
 
     Parameters
@@ -84,19 +84,16 @@ def auto_nodes(length: float, transverse_speed: float, motion_frequency: float,
         Relative error of the fairlead tension accepted [-].
     order
         Polynomial order p.
-    share
-        Fraction of its line's length that ``length`` is (a section of a line system gets
-        that share of ``BASE_NODES``).
     """
     waves = 0.0
     if motion_frequency > 0.0 and transverse_speed > 0.0:
         waves = length * motion_frequency / (2.0 * math.pi * transverse_speed)
     scale = (REFERENCE_ACCURACY / accuracy) ** (1.0 / (order + 1))
-    return (BASE_NODES * share + NODES_PER_WAVELENGTH * waves) * scale
+    return (BASE_NODES + NODES_PER_WAVELENGTH * waves) * scale
 
 
 def resolve_settings(settings: DynamicSettings, length: float, transverse_speed: float, *,
-                     several_sections: bool = False, share: float = 1.0) -> DynamicSettings:
+                     several_sections: bool = False) -> DynamicSettings:
     """``settings`` with the elements and order chosen from its accuracy where the case left
     them out (a given ``elements`` or ``order`` is kept: it overrides the rule), and, on a
     line of several sections, the ``"auto"`` integration made explicit.
@@ -110,15 +107,14 @@ def resolve_settings(settings: DynamicSettings, length: float, transverse_speed:
     transverse_speed
         Transverse wave speed on the line at rest [m/s] (:func:`auto_nodes`).
     several_sections
-        Whether the line has several sections (explicit only: module docstring).
-    share
-        Fraction of its line's length ``length`` is (:func:`auto_nodes`).
+        Whether the line has several sections (explicit only: module docstring). Each
+        section is resolved on its own: its own catenary between its points.
     """
     order = settings.order if settings.order is not None else AUTO_ORDER
     elements = settings.elements
     if elements is None:
         nodes = auto_nodes(length, transverse_speed, settings.motion_frequency,
-                           settings.accuracy, order, share)
+                           settings.accuracy, order)
         elements = min(max(math.ceil(nodes / (order + 1) - 1e-9), MIN_ELEMENTS),
                        MAX_AUTO_ELEMENTS)
     integration = settings.time_integration

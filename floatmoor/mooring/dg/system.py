@@ -81,23 +81,20 @@ class SystemSection:
 
 
 def _resolved_sections(sections: list["SystemSection"], points: Sequence[Any],
-                       start: NDArray[np.float64] | None, case: Any) -> list["SystemSection"]:
+                       start: NDArray[np.float64] | None) -> list["SystemSection"]:
     """The sections, their numerics chosen where the case leaves them to the accuracy
-    (resolution.resolve_settings: explicit steps, the line's base nodes shared by length;
-    the transverse wave speed on each section's catenary between its end points at the
-    start)."""
+    (resolution.resolve_settings: explicit steps; each section on its own catenary between
+    its end points at the start)."""
     index = {p.name: i for i, p in enumerate(points)}
     where = (np.asarray(start, dtype=float) if start is not None
              else np.array([p.position for p in points], dtype=float))
-    lengths = {ln.name: ln.length for ln in case.lines}
     out = []
     for sec in sections:
         st = sec.settings
         if not st.resolved or st.time_integration == "auto":
             pr = sec.properties
             speed = pr.transverse_wave_speed(where[index[sec.start]], where[index[sec.end]])
-            st = resolve_settings(st, pr.length, speed, several_sections=True,
-                                  share=pr.length / lengths[sec.line])
+            st = resolve_settings(st, pr.length, speed, several_sections=True)
         out.append(replace(sec, settings=st))
     return out
 
@@ -292,7 +289,7 @@ class DynamicSystem:
         used = {n for s in sections for n in (s.start, s.end)}
         points = [p for p in case.points if p.name in used]
         start, why = static_start(points, dynamic, case.environment, case.seabed)
-        sections = _resolved_sections(sections, points, start, case)
+        sections = _resolved_sections(sections, points, start)
         obj = cls(points, sections, point_positions=start)
         obj.static_start = why
         if settle if settle is not None else any(s.settings.settle for s in sections):
