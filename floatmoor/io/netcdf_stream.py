@@ -269,7 +269,7 @@ class NetCDF3Stream:
             block[var.name] = data.astype(DTYPES[var.nc_type], casting="safe")
         end = header.record_begin + header.numrecs * header.recsize
         try:
-            _write_all(self._fd, block.tobytes(), end)
+            _write_all(self._fd, block.view(np.uint8), end)
             os.fsync(self._fd)  # the records are on disk before the count that covers them
             _write_all(self._fd, struct.pack(">i", header.numrecs + n), NUMRECS_OFFSET)
         except OSError as err:

@@ -45,9 +45,11 @@ __all__ = ["Recorder", "FLUSH_INTERVAL_S", "WINDOW_BYTES", "STATUS_ROOM",
 FLUSH_INTERVAL_S = 10.0
 
 #: Bytes of samples a recorder with an output file holds before appending them to it: large
-#: enough that appends are rare (a buoy run's samples take 0.8 kB: 10 000 samples, 100 s
-#: simulated), small beside the ~270 MB of a coupled run's libraries and database.
-WINDOW_BYTES = 8 << 20
+#: enough that appends are rare (a coupled buoy run's samples take 0.37 kB: 5700 samples,
+#: 57 s simulated), small beside the ~270 MB of a coupled run's libraries and database (an
+#: append holds a few copies of the window while it encodes it: 8 MB windows added 17 MB
+#: to the buoy's peak).
+WINDOW_BYTES = 2 << 20
 
 #: Bytes of room of the ``status`` attribute in a file, which changes as the run goes
 #: (``running: ...``, ``complete``, ``failed: message``): a longer one makes the file be
@@ -446,13 +448,18 @@ class Recorder:
             if self.shape_stride:
                 sizes["shape_time"] = self.n_shapes
                 values["shape_time"] = self.time[::self.shape_stride][:self.n_shapes]
-            self._stream = NetCDF3Stream.create(self.path, self._template(0, stop, status),
+            # the first sample from xarray's writer (the layout), the others appended
+            self._stream = NetCDF3Stream.create(self.path, self._template(0, 1, status),
                                                 sizes=sizes, values=values,
                                                 reserve={"status": STATUS_ROOM})
+            appended = 1
         else:
-            records = record_order(self._dataset(first, stop, status, shapes=None))
+            appended = first
+        if stop > appended:
+            records = record_order(self._dataset(appended, stop, status, shapes=None))
             self._stream.append({var.name: records[var.name].values
                                  for var in self._stream.header.record_variables})
+            del records
         if self.shape_stride:
             lo, hi = self._shapes_before(first), self._shapes_before(stop)
             if hi > lo:
