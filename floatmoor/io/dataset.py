@@ -28,7 +28,8 @@ from floatmoor._version import __version__
 from floatmoor.case.schema import Case
 from floatmoor.io.variables import attributes
 
-__all__ = ["build_result_dataset", "record_order", "result_order", "COMPONENTS", "DOFS"]
+__all__ = ["build_result_dataset", "record_order", "result_order", "BEFORE_TIME", "COMPONENTS",
+           "DOFS"]
 
 COMPONENTS = ("x", "y", "z")
 #: capytaine's names of the rigid-body DOFs
@@ -148,7 +149,7 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
 
 
 #: The dimensions that come before ``time`` in a result dataset's variables.
-_BEFORE_TIME = ("line", "point", "section")
+BEFORE_TIME = ("line", "point", "section")
 
 
 def record_order(dataset: xr.Dataset) -> xr.Dataset:
@@ -163,9 +164,9 @@ def result_order(dataset: xr.Dataset) -> xr.Dataset:
     ``point`` or ``section``, then ``time``. Other datasets are returned as they are."""
     if "time" not in dataset.dims:
         return dataset
-    out = dataset.copy(deep=False)
-    for name, var in dataset.variables.items():
-        dims = var.dims
-        if len(dims) >= 2 and dims[0] == "time" and dims[1] in _BEFORE_TIME:
-            out[name] = var.transpose(dims[1], "time", *dims[2:])
-    return out
+    moved = {name: var.transpose(var.dims[1], "time", *var.dims[2:])
+             for name, var in dataset.data_vars.items()
+             if len(var.dims) >= 2 and var.dims[0] == "time" and var.dims[1] in BEFORE_TIME}
+    if not moved:
+        return dataset
+    return dataset.assign(moved)

@@ -17,7 +17,7 @@ import os
 
 import xarray as xr
 
-from floatmoor.io.dataset import result_order
+from floatmoor.io.dataset import BEFORE_TIME, result_order
 from floatmoor.io.netcdf3_format import NetCDF3Error
 from floatmoor.io.netcdf3_reader import open_netcdf3, read_attributes_netcdf3
 from floatmoor.io.output_files import atomic_target
@@ -78,4 +78,4 @@ def open_result(path: str | os.PathLike[str]) -> xr.Dataset:
     NetCDF3Error
         When the file is not a netCDF classic file, or is truncated.
     """
-    return result_order(open_netcdf3(path))
+    return open_netcdf3(path, record_second=BEFORE_TIME)

@@ -104,6 +104,14 @@ def test_lazy_reader_gives_the_scipy_engines_dataset(tmp_path, monkeypatch):
             assert {k: type(v) for k, v in ours[name].attrs.items()} == \
                 {k: type(v) for k, v in var.attrs.items()}
     assert read_attributes_netcdf3(path) == theirs.attrs
+    # record variables presented with their second dimension first, read as such
+    with open_netcdf3(path, record_second=("line",)) as ours:
+        assert ours["tension"].dims == ("line", "time")
+        assert ours["force"].dims == ("line", "time", "component")
+        swapped = theirs.transpose("line", "time", ...)
+        for key in ({"time": slice(None, None, -3)}, {"time": 7, "line": 1}, {"line": 0},
+                    {"time": slice(35, 2, -5), "component": 2}, {"line": slice(None, None, -1)}):
+            xr.testing.assert_identical(ours.isel(key).load(), swapped.isel(key))
     # a fixed-size file too
     fixed = tmp_path / "fixed.nc"
     _dataset(4).to_netcdf(fixed, engine=ENGINE, format=FORMAT)

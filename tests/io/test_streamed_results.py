@@ -185,6 +185,7 @@ def test_run_killed_by_sigkill_leaves_a_valid_file(tmp_path):
         child.wait()
     ds = read_dataset(out)
     n = ds.sizes["time"]
-    assert n > 1 and ds.attrs["status"].startswith("running: partial results up to t = ")
+    assert n > 1 and ds.attrs["status"].startswith("running: partial results up to t = "), \
+        (n, ds.attrs["status"])
     np.testing.assert_allclose(ds["time"].values, np.arange(n) * 0.0025, rtol=1e-12)
     assert np.all(np.isfinite(ds["fairlead_tension"].values))
