@@ -45,7 +45,10 @@ def write_dataset(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
         When the write fails or ``path`` is not a regular file (the old file is kept).
     """
     with atomic_target(path) as tmp:
-        dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT)
+        # no record dimension, whatever the dataset's encoding says (a run's results read
+        # from their file carry ``unlimited_dims={"time"}``, which netCDF-3 cannot store in
+        # their in-memory order): a whole dataset is written whole
+        dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT, unlimited_dims=())
 
 
 def read_attributes(path: str | os.PathLike[str]) -> dict | None:

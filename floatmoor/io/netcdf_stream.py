@@ -20,8 +20,9 @@ killed at any point (SIGKILL included) leaves a file holding every record append
    shapes, whose whole extent is laid out at creation and filled with NaN, the fill value).
 3. :meth:`~NetCDF3Stream.set_attributes` rewrites attribute values in place. A number keeps
    its size; a text attribute that changes (a run's ``status``) is created with room for
-   ``reserve`` bytes, its value padded with zero bytes, which netCDF readers drop (scipy's
-   reader strips trailing zero bytes from text attributes, netCDF-C ends the C string there),
+   ``reserve`` bytes, its value padded with zero bytes, which scipy's reader (and so
+   xarray's ``scipy`` engine, floatmoor's) strips from text attributes and C readers take as
+   the end of the string (a tool that prints every byte, ``ncdump``, shows them as ``\0``),
    so the header's lengths and every data offset stay as they are: a killed update leaves at
    worst a mix of the old and new text, never a broken header. A value longer than its room
    makes the stream rewrite the file with a larger header (through a temporary file that
@@ -105,14 +106,14 @@ class NetCDF3Stream:
 
     def __init__(self, path: Path, fd: int, header: Header) -> None:
         self.path, self._fd, self.header = path, fd, header
-        self._record_dtype = self._records_dtype()
 
     # -- opening -----------------------------------------------------------------------------
     @classmethod
     def create(cls, path: str | os.PathLike[str], template: bytes, *,
                sizes: Mapping[str, int] | None = None,
                values: Mapping[str, np.ndarray] | None = None,
-               reserve: Mapping[str, int] | None = None) -> "NetCDF3Stream":
+               reserve: Mapping[str, int] | None = None,
+               records: Mapping[str, np.ndarray] | None = None) -> "NetCDF3Stream":
         """Write a new file at ``path`` (atomically replacing any file there) from the netCDF
         classic bytes ``template`` and open it.
 
@@ -131,6 +132,9 @@ class NetCDF3Stream:
             Data of resized variables (the whole variable, in any byte order).
         reserve
             Bytes of room of text attributes that :meth:`set_attributes` will change.
+        records
+            More records, after the template's (as :meth:`append` takes them), written with
+            them: the new file has all or, when the write fails, none of them.
 
         Raises
         ------
@@ -159,6 +163,9 @@ class NetCDF3Stream:
         changed = {v.name for v in header.variables if set(v.dim_ids) & resized}
         if any(header.is_record(header.variable(n)) for n in changed):
             raise NetCDF3Error("a resized dimension of a record variable")
+        extra = _encode_records(header, records) if records is not None else None
+        if extra is not None:
+            header.numrecs += extra.shape[0]
         with atomic_target(path) as tmp:
             with open(tmp, "r+b") as fh:
                 fh.write(header.to_bytes())
@@ -174,6 +181,8 @@ class NetCDF3Stream:
                 fh.seek(header.record_begin)
                 fh.write(template[source.record_begin:
                                   source.record_begin + source.numrecs * source.recsize])
+                if extra is not None:
+                    fh.write(extra.view(np.uint8))
                 fh.truncate(header.record_begin + header.numrecs * header.recsize)
         return cls._open_fd(path, header)
 
@@ -216,18 +225,6 @@ class NetCDF3Stream:
             raise OutputWriteError(f"cannot write {path}: {err.strerror or err}") from None
         return cls(path, fd, header)
 
-    def _records_dtype(self) -> np.dtype:
-        """One record as a structured dtype: every record variable at its offset."""
-        header = self.header
-        start = header.record_begin
-        names, formats, offsets = [], [], []
-        for var in header.record_variables:
-            names.append(var.name)
-            formats.append((DTYPES[var.nc_type], header.fixed_shape(var)))
-            offsets.append(var.begin - start)
-        return np.dtype({"names": names, "formats": formats, "offsets": offsets,
-                         "itemsize": header.recsize})
-
     # -- writing -----------------------------------------------------------------------------
     @property
     def numrecs(self) -> int:
@@ -250,23 +247,10 @@ class NetCDF3Stream:
             When the write fails (the file keeps its previous records).
         """
         header = self.header
-        missing = [v.name for v in header.record_variables if v.name not in records]
-        if missing:
-            raise ValueError(f"no values for the record variables {missing}")
-        lengths = {np.shape(records[v.name])[0] for v in header.record_variables}
-        if len(lengths) != 1:
-            raise ValueError(f"record variables of different lengths {sorted(lengths)}")
-        n = lengths.pop()
+        block = _encode_records(header, records)
+        n = block.shape[0]
         if n == 0:
             return
-        block = np.zeros(n, dtype=self._record_dtype)
-        for var in header.record_variables:
-            data = np.asarray(records[var.name])
-            want = (n, *header.fixed_shape(var))
-            if data.shape != want:
-                raise ValueError(f"record variable '{var.name}': shape {data.shape}, "
-                                 f"expected {want}")
-            block[var.name] = data.astype(DTYPES[var.nc_type], casting="safe")
         end = header.record_begin + header.numrecs * header.recsize
         try:
             _write_all(self._fd, block.view(np.uint8), end)
@@ -420,6 +404,47 @@ class NetCDF3Stream:
     def __del__(self) -> None:
         if getattr(self, "_fd", -1) >= 0:
             os.close(self._fd)
+
+
+def _records_dtype(header: Header) -> np.dtype:
+    """One record as a structured dtype: every record variable at its offset."""
+    start = header.record_begin
+    names, formats, offsets = [], [], []
+    for var in header.record_variables:
+        names.append(var.name)
+        formats.append((DTYPES[var.nc_type], header.fixed_shape(var)))
+        offsets.append(var.begin - start)
+    return np.dtype({"names": names, "formats": formats, "offsets": offsets,
+                     "itemsize": header.recsize})
+
+
+def _encode_records(header: Header, records: Mapping[str, np.ndarray]) -> np.ndarray:
+    """Records as stored: a structured array of every record variable's values (the record
+    dimension first), converted to the stored types without loss.
+
+    Raises
+    ------
+    ValueError
+        When a record variable is missing or misshapen, or the variables' lengths differ.
+    TypeError
+        When values do not fit a variable's type without loss.
+    """
+    missing = [v.name for v in header.record_variables if v.name not in records]
+    if missing:
+        raise ValueError(f"no values for the record variables {missing}")
+    lengths = {np.shape(records[v.name])[0] for v in header.record_variables}
+    if len(lengths) != 1:
+        raise ValueError(f"record variables of different lengths {sorted(lengths)}")
+    n = lengths.pop()
+    block = np.zeros(n, dtype=_records_dtype(header))
+    for var in header.record_variables:
+        data = np.asarray(records[var.name])
+        want = (n, *header.fixed_shape(var))
+        if data.shape != want:
+            raise ValueError(f"record variable '{var.name}': shape {data.shape}, "
+                             f"expected {want}")
+        block[var.name] = data.astype(DTYPES[var.nc_type], casting="safe")
+    return block
 
 
 def _write_values(fh, header: Header, var: Variable, values: np.ndarray | None) -> None:

@@ -8,7 +8,8 @@ wall time and whenever the window is full, so the memory a run holds does not gr
 duration, and an interrupted or killed run leaves a valid file holding everything up to the
 last write (:mod:`floatmoor.io.netcdf_stream`: ``time`` is the file's record dimension). The
 file is created, atomically replacing any file there, at the first write; the line shapes,
-whose extent is known, are laid out whole then (NaN until written). :meth:`Recorder.result`
+whose extent is known, are laid out whole then (NaN until written), and its ``created``
+attribute is that moment (a whole-file writer gave the last write's). :meth:`Recorder.result`
 writes the final state with its status and gives the results: read lazily from the file, or
 from memory for a run without one (whose window holds the whole run).
 """
@@ -425,6 +426,12 @@ class Recorder:
         return bytes(dataset.to_netcdf(engine=NETCDF_ENGINE, format=NETCDF_FORMAT,
                                        unlimited_dims=["time"]))
 
+    def _records(self, first: int, stop: int, status: str) -> dict[str, NDArray]:
+        """Samples [first, stop) of every variable along time, time first, by name."""
+        dataset = record_order(self._dataset(first, stop, status, shapes=None))
+        return {name: var.values for name, var in dataset.variables.items()
+                if var.dims[:1] == ("time",)}
+
     # -- the file ----------------------------------------------------------------------------
     def write(self, status: str) -> None:
         """Append the completed samples not yet in the output file (creating it at the
@@ -448,18 +455,14 @@ class Recorder:
             if self.shape_stride:
                 sizes["shape_time"] = self.n_shapes
                 values["shape_time"] = self.time[::self.shape_stride][:self.n_shapes]
-            # the first sample from xarray's writer (the layout), the others appended
-            self._stream = NetCDF3Stream.create(self.path, self._template(0, 1, status),
-                                                sizes=sizes, values=values,
-                                                reserve={"status": STATUS_ROOM})
-            appended = 1
-        else:
-            appended = first
-        if stop > appended:
-            records = record_order(self._dataset(appended, stop, status, shapes=None))
-            self._stream.append({var.name: records[var.name].values
-                                 for var in self._stream.header.record_variables})
-            del records
+            # the first sample from xarray's writer (the layout), the others with it: the
+            # file appears with all of them, or (a failed write) not at all
+            template = self._template(0, 1, status)
+            self._stream = NetCDF3Stream.create(self.path, template, sizes=sizes,
+                                                values=values, reserve={"status": STATUS_ROOM},
+                                                records=self._records(1, stop, status))
+        elif stop > first:
+            self._stream.append(self._records(first, stop, status))
         if self.shape_stride:
             lo, hi = self._shapes_before(first), self._shapes_before(stop)
             if hi > lo:
