@@ -73,8 +73,10 @@ def read_dataset(path: str | os.PathLike[str]) -> xr.Dataset:
 def open_result(path: str | os.PathLike[str]) -> xr.Dataset:
     """A run's results read lazily: values are read from the file as they are asked for, in
     bounded memory (:mod:`floatmoor.io.netcdf3_reader`), so statistics of a long run's series
-    need not hold the whole file. The dataset holds the file open until it is closed or
-    collected.
+    need not hold the whole file; what is held is what is asked for, and the ``time``
+    coordinate and its index (16 bytes per sample). The variables are in the order of
+    :func:`~floatmoor.io.dataset.build_result_dataset`. The dataset holds the file open until
+    it is closed or collected.
 
     Raises
     ------
