@@ -6,6 +6,9 @@ Dimensions: ``line`` (names, with the line model as a ``model`` coordinate), ``t
 the net line force on each point, section tensions at both ends, and the sections' minimum
 breaking loads when a line type gives one. When a line type of the case gives a minimum breaking load, the
 variable ``minimum_breaking_load`` holds it per line (NaN for lines whose type gives none).
+In files, ``time`` is the netCDF record (unlimited) dimension, which must be the first
+dimension of the variables along it: they are stored time first (:func:`record_order`) and
+put back in the order above when read (:func:`result_order`).
 Attributes: the title, the case file's path and text, the ``--set``
 overrides, the floatmoor and numba versions, the creation time (ISO 8601, UTC) and the run
 status (``complete``, ``interrupted ...`` or ``failed: ...``).
@@ -25,7 +28,8 @@ from floatmoor._version import __version__
 from floatmoor.case.schema import Case
 from floatmoor.io.variables import attributes
 
-__all__ = ["build_result_dataset", "COMPONENTS", "DOFS"]
+__all__ = ["build_result_dataset", "record_order", "result_order", "BEFORE_TIME", "COMPONENTS",
+           "DOFS"]
 
 COMPONENTS = ("x", "y", "z")
 #: capytaine's names of the rigid-body DOFs
@@ -142,3 +146,27 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
     if extra_attrs:
         attrs.update(extra_attrs)
     return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+#: The dimensions that come before ``time`` in a result dataset's variables.
+BEFORE_TIME = ("line", "point", "section")
+
+
+def record_order(dataset: xr.Dataset) -> xr.Dataset:
+    """``dataset`` with ``time`` first in every variable along it, as a netCDF file whose
+    record dimension is ``time`` stores them (lazy for lazily read data)."""
+    return dataset.transpose("time", ...) if "time" in dataset.dims else dataset
+
+
+def result_order(dataset: xr.Dataset) -> xr.Dataset:
+    """A result dataset read from a file (``time`` first, :func:`record_order`) with its
+    variables' dimensions in the order :func:`build_result_dataset` gives them: ``line``,
+    ``point`` or ``section``, then ``time``. Other datasets are returned as they are."""
+    if "time" not in dataset.dims:
+        return dataset
+    moved = {name: var.transpose(var.dims[1], "time", *var.dims[2:])
+             for name, var in dataset.data_vars.items()
+             if len(var.dims) >= 2 and var.dims[0] == "time" and var.dims[1] in BEFORE_TIME}
+    if not moved:
+        return dataset
+    return dataset.assign(moved)

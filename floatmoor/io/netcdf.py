@@ -5,7 +5,10 @@ floatmoor's own dependencies provide, so every installation can read every file.
 atomic: the dataset goes to a temporary file beside the target, which then replaces it, so a
 reader (or an interrupted run) never sees a half-written file; the file is on disk before it
 replaces the old one, which keeps its permissions, and a failed write (disk full, read-only
-folder) leaves the old file and no temporary file behind.
+folder) leaves the old file and no temporary file behind. A run's results are not written
+whole: they are appended as the run goes (:mod:`floatmoor.io.netcdf_stream`), ``time`` the
+record dimension, and read back with :func:`open_result` (lazily) or :func:`read_dataset`,
+which give their variables in the order of :func:`floatmoor.io.dataset.build_result_dataset`.
 """
 
 from __future__ import annotations
@@ -14,9 +17,13 @@ import os
 
 import xarray as xr
 
+from floatmoor.io.dataset import BEFORE_TIME, result_order
+from floatmoor.io.netcdf3_format import NetCDF3Error
+from floatmoor.io.netcdf3_reader import open_netcdf3, read_attributes_netcdf3
 from floatmoor.io.output_files import atomic_target
 
-__all__ = ["write_dataset", "read_dataset", "read_attributes", "NETCDF_ENGINE", "NETCDF_FORMAT"]
+__all__ = ["write_dataset", "read_dataset", "open_result", "read_attributes", "NETCDF_ENGINE",
+           "NETCDF_FORMAT"]
 
 NETCDF_ENGINE = "scipy"
 NETCDF_FORMAT = "NETCDF3_64BIT"
@@ -38,22 +45,42 @@ def write_dataset(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
         When the write fails or ``path`` is not a regular file (the old file is kept).
     """
     with atomic_target(path) as tmp:
-        dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT)
+        # no record dimension, whatever the dataset's encoding says (a run's results read
+        # from their file carry ``unlimited_dims={"time"}``, which netCDF-3 cannot store in
+        # their in-memory order): a whole dataset is written whole
+        dataset.to_netcdf(tmp, engine=NETCDF_ENGINE, format=NETCDF_FORMAT, unlimited_dims=())
 
 
 def read_attributes(path: str | os.PathLike[str]) -> dict | None:
-    """The global attributes of a netCDF file (only they are read), or None when it is
+    """The global attributes of a netCDF file (only its header is read), or None when it is
     missing, unreadable or truncated."""
     if not os.path.isfile(path):
         return None
     try:
-        with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
-            return dict(ds.attrs)
-    except Exception:  # noqa: BLE001 - unreadable or truncated: the callers say so
+        return read_attributes_netcdf3(path)
+    except (NetCDF3Error, OSError):  # unreadable or truncated: the callers say so
         return None
 
 
 def read_dataset(path: str | os.PathLike[str]) -> xr.Dataset:
-    """Read a result dataset fully into memory (the file is closed on return)."""
+    """Read a dataset fully into memory (the file is closed on return); a run's results
+    with their variables in the order of
+    :func:`~floatmoor.io.dataset.build_result_dataset` (:func:`~floatmoor.io.dataset.result_order`)."""
     with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
-        return ds.load()
+        return result_order(ds.load())
+
+
+def open_result(path: str | os.PathLike[str]) -> xr.Dataset:
+    """A run's results read lazily: values are read from the file as they are asked for, in
+    bounded memory (:mod:`floatmoor.io.netcdf3_reader`), so statistics of a long run's series
+    need not hold the whole file; what is held is what is asked for, and the ``time``
+    coordinate and its index (16 bytes per sample). The variables are in the order of
+    :func:`~floatmoor.io.dataset.build_result_dataset`. The dataset holds the file open until
+    it is closed or collected.
+
+    Raises
+    ------
+    NetCDF3Error
+        When the file is not a netCDF classic file, or is truncated.
+    """
+    return open_netcdf3(path, record_second=BEFORE_TIME)

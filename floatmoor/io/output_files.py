@@ -10,8 +10,10 @@ plot), which is then replaced (the caller announces it). While the command runs,
 writing the same file stops with a clear message before doing any work; the lock is released
 when the process ends, however it ends, so a killed run leaves no stale lock.
 
-Writes themselves are atomic (:mod:`floatmoor.io.netcdf`); :func:`file_mode_for` gives the
-mode a replaced file keeps.
+Writes themselves are atomic (:mod:`floatmoor.io.netcdf`), or, for a run's results, an
+atomic creation followed by appends that keep the file valid at every moment
+(:mod:`floatmoor.io.netcdf_stream`); :func:`file_mode_for` gives the mode a replaced file
+keeps.
 """
 
 from __future__ import annotations
@@ -272,8 +274,9 @@ def file_state(path: str | os.PathLike[str]) -> tuple[int, int, int] | None:
 
 
 def written_since(path: str | os.PathLike[str], before: tuple[int, int, int] | None) -> bool:
-    """Whether ``path`` exists and was written (replaced) since :func:`file_state` gave
-    ``before``; atomic writes replace the file, so its inode changes."""
+    """Whether ``path`` exists and was written since :func:`file_state` gave ``before``:
+    atomic writes replace the file, so its inode changes; appends change its size and
+    modification time."""
     now = file_state(path)
     return now is not None and now != before
 

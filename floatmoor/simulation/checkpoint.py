@@ -4,9 +4,11 @@ A checkpoint is an uncompressed ``.npz`` (a zip of ``.npy`` arrays, :func:`numpy
 flat set of named arrays -- the format name and version, the floatmoor version, what
 identifies the run (the case text's hash, the ``--set`` overrides, the run settings' hash),
 the state of body and lines (:meth:`floatmoor.simulation.coupled.MooredBody.state_arrays`)
-and the recorded samples it covers. Nothing in it is a pickle, and nothing derivable from
-the case (operators, wave and wind realisations) is stored: a resumed run rebuilds those and
-restores only the state.
+and how far the run got. The samples recorded up to there are in the run's output file,
+written before the checkpoint, which a resumed run continues (version 1 checkpoints held the
+samples too, so their size grew with the run). Nothing in it is a pickle, and nothing
+derivable from the case (operators, wave and wind realisations) is stored: a resumed run
+rebuilds those and restores only the state.
 
 Reading checks, in order, before any value is used: a regular file (not a FIFO or device),
 a zip of ``.npy`` members (a pickle, an empty or a truncated file is refused without being
@@ -40,7 +42,7 @@ __all__ = ["CheckpointError", "RunIdentity", "write_checkpoint", "check_checkpoi
 #: The format name stored in every checkpoint (``meta/format``).
 FORMAT = "floatmoor coupled-run checkpoint"
 #: The layout version (``meta/version``); a checkpoint of another version is refused.
-VERSION = 1
+VERSION = 2
 #: Largest member holding metadata [bytes]: the overrides of a run fit easily (a crafted
 #: header may not make the reader allocate more).
 _META_MAX_BYTES = 1 << 20

@@ -17,6 +17,8 @@ from numpy.typing import NDArray
 from floatmoor.body.kinematics import points_state
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, SolverError
+from floatmoor.io.netcdf3_format import NetCDF3Error
+from floatmoor.io.output_files import OutputWriteError
 from floatmoor.simulation.checkpoint import (
     CheckpointError, RunIdentity, check_checkpoint, read_checkpoint, write_checkpoint,
 )
@@ -74,8 +76,8 @@ def checkpoint_path(output: str | Path) -> Path:
 class _Snapshot:
     """The run's state at the end of a chunk: body and lines (copies of their state arrays,
     which later steps do not touch), body steps done and output samples complete. With the
-    recorder's samples before ``n_done`` (which later steps never rewrite) it is a consistent
-    state to resume from, whenever the run stops."""
+    samples before ``n_done`` (written to the output file before the checkpoint, and never
+    rewritten) it is a consistent state to resume from, whenever the run stops."""
 
     state: dict[str, NDArray]
     done: int
@@ -86,40 +88,33 @@ class _Snapshot:
         return cls(moored.state_arrays(), done, recorder.n_done)
 
 
-def _recorded(recorder: Recorder, n: int) -> dict[str, NDArray]:
-    """The checkpoint's ``recorded/`` arrays: the first ``n`` samples of every series and
-    all the shape buffers."""
-    out = {f"recorded/{k}": v[:, :n] for k, v in recorder.series.items()}
-    out.update({f"recorded/{k}": v[:n] for k, v in recorder.body.items()})
-    if recorder.system is not None:
-        out.update({f"recorded/system/{k}": v[:, :n] for k, v in recorder.system.items()})
-    if recorder.shape_stride:
-        out["recorded/shape_position"] = recorder.shape_position
-        out["recorded/shape_tension"] = recorder.shape_tension
-    return out
-
-
 def _write_checkpoint(path: Path, snapshot: _Snapshot, recorder: Recorder,
                       identity: RunIdentity) -> None:
-    """Write ``snapshot`` with the recorded samples it covers, atomically, as plain arrays
-    (:mod:`floatmoor.simulation.checkpoint`)."""
+    """Write ``snapshot`` atomically, as plain arrays
+    (:mod:`floatmoor.simulation.checkpoint`), after the samples it covers are in the output
+    file: the checkpoint holds the state, the file the samples, which a resumed run
+    continues."""
+    if recorder.written < snapshot.n_done:
+        recorder.write(status=f"running: partial results up to "
+                              f"t = {recorder.simulated_time:.6g} s")
     arrays = {f"state/{k}": v for k, v in snapshot.state.items()}
     arrays["progress/done"] = np.array(snapshot.done, dtype=np.int64)
     arrays["progress/n_done"] = np.array(snapshot.n_done, dtype=np.int64)
-    arrays.update(_recorded(recorder, snapshot.n_done))
     write_checkpoint(path, arrays, identity)
 
 
 def _load_checkpoint(path: Path, identity: RunIdentity, moored: MooredBody,
                      recorder: Recorder, stride: int, n_steps: int) -> int:
-    """Restore the checkpoint ``path`` into ``moored`` and ``recorder`` (both built as for
-    a fresh start); returns the body steps done.
+    """Restore the checkpoint ``path`` into ``moored`` and continue the recorder's output
+    file from the samples it covers (both built as for a fresh start); returns the body
+    steps done.
 
     Raises
     ------
     CheckpointError
-        When the checkpoint is not one of this run (see :func:`read_checkpoint`) or its
-        progress is not a state this run reaches.
+        When the checkpoint is not one of this run (see :func:`read_checkpoint`), its
+        progress is not a state this run reaches, or the output file is not this run's or
+        holds fewer samples than the checkpoint covers.
     """
     int64 = np.dtype(np.int64)
     progress = read_checkpoint(path, identity, {"progress/done": ((), int64),
@@ -131,22 +126,16 @@ def _load_checkpoint(path: Path, identity: RunIdentity, moored: MooredBody,
                               f"{done} steps and {n} samples done")
     template = {f"state/{k}": v for k, v in moored.state_arrays().items()}
     template.update(progress)
-    template.update(_recorded(recorder, n))
     arrays = read_checkpoint(path, identity, {k: (v.shape, v.dtype)
                                               for k, v in template.items()})
+    try:
+        recorder.continue_file(n)
+    except (NetCDF3Error, OutputWriteError) as err:
+        raise CheckpointError(recorder.path, "the output file of the checkpoint's run, which "
+                              "the resumed run continues (run without --resume to start "
+                              "over)", str(err)) from None
     moored.set_state_arrays({k[len("state/"):]: v for k, v in arrays.items()
                              if k.startswith("state/")})
-    for k, v in recorder.series.items():
-        v[:, :n] = arrays[f"recorded/{k}"]
-    for k, v in recorder.body.items():
-        v[:n] = arrays[f"recorded/{k}"]
-    if recorder.system is not None:
-        for k, v in recorder.system.items():
-            v[:, :n] = arrays[f"recorded/system/{k}"]
-    if recorder.shape_stride:
-        recorder.shape_position[:] = arrays["recorded/shape_position"]
-        recorder.shape_tension[:] = arrays["recorded/shape_tension"]
-    recorder.n_done = n
     return done
 
 
@@ -181,7 +170,9 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     time (default: with every partial write), and when the run is interrupted, of the end of
     its last complete chunk (or its start); ``resume=True`` continues from the checkpoint and
     gives the same results as an uninterrupted run (the checkpoint holds plain arrays,
-    checked against this run before use: :mod:`floatmoor.simulation.checkpoint`). A failed
+    checked against this run before use: :mod:`floatmoor.simulation.checkpoint`), appending
+    to the same output file (which must be there: it holds the samples the checkpoint
+    covers; any written after them are replaced). A failed
     run writes none at its failure (resumed, it would fail again). The checkpoint is removed when the run completes. With
     ``simulation.shape_output_interval`` the lines' shapes are recorded too.
 
@@ -198,7 +189,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         not accept (:func:`floatmoor.hydro.database.load_for_case`).
     CheckpointError
         With ``resume``: no checkpoint, or one that is damaged, truncated, foreign or of
-        another run (the message names what differs); nothing is run or written.
+        another run (the message names what differs), or an output file that is missing,
+        not this run's or shorter than the checkpoint; nothing is run or written.
     SolverError
         When a line or the body goes unstable (partial results written first).
     KeyboardInterrupt
@@ -229,7 +221,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     stride_shapes = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval, body=True,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
-                        shape_stride=stride_shapes)
+                        shape_stride=stride_shapes, chunk=CHUNK_STEPS // stride + 1)
     series, bseries = recorder.series, recorder.body
     n_steps = (times.size - 1) * stride
     done = 0
@@ -239,15 +231,16 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x, body.v)
         pos, _ = points_state(body.x, body.v, moored.arms, centre)
+        k = index - recorder.offset  # in the recorder's window
         for i in range(n_lines):
-            series["fairlead_force"][i, index] = ff[i]
-            series["anchor_force"][i, index] = af[i]
-            series["fairlead_position"][i, index] = pos[i]
-            series["laid_length"][i, index] = moored.laid_length[i]
+            series["fairlead_force"][i, k] = ff[i]
+            series["anchor_force"][i, k] = af[i]
+            series["fairlead_position"][i, k] = pos[i]
+            series["laid_length"][i, k] = moored.laid_length[i]
         for group, sample in zip(moored.groups, moored.group_samples(body.x, body.v)):
             recorder.store_group(case, group, sample, index, index + 1)
-        bseries["body_displacement"][index] = body.x - x_eq
-        bseries["body_velocity"][index] = body.v
+        bseries["body_displacement"][k] = body.x - x_eq
+        bseries["body_velocity"][k] = body.v
         if recorder.shape_stride and index % recorder.shape_stride == 0:
             for i, (p, t) in enumerate(moored.line_shapes(pos)):
                 recorder.store_shape(i, index // recorder.shape_stride, p, t)
@@ -257,7 +250,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
 
     def fill_elevation(first: int, last: int) -> None:
         if elevation is not None and last >= first:
-            bseries["wave_elevation"][first:last + 1] = harmonic_sum(
+            off = recorder.offset
+            bseries["wave_elevation"][first - off:last + 1 - off] = harmonic_sum(
                 elevation, sea.omega, times[first:last + 1])
 
     start_wall = _time.perf_counter()
@@ -272,6 +266,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     # on interruption: the partial results first, then the checkpoint
     with _checkpoint_on_interrupt(checkpoint_last), recorder.partial_on_failure():
         if not resume:
+            recorder.reserve(1)
             fill_elevation(0, 0)
             record(0)
             recorder.advance(1)
@@ -279,6 +274,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             snapshot = _Snapshot.take(moored, recorder, done)
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
+            recorder.reserve((done + chunk) // stride + 1)
             fill_elevation(done // stride + 1, (done + chunk) // stride)
             loads.prepare(body.time, chunk)
             for _ in range(chunk):
@@ -297,7 +293,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                     last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)
-    dataset = recorder.write(status="complete")
+    dataset = recorder.result(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()
     return RunResult(dataset=dataset, status="complete",

@@ -114,7 +114,8 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     stride = shape_stride(case)
     recorder = Recorder(case, times, output, flush_interval,
                         shape_nodes=_shape_nodes(models, groups) if stride else None,
-                        shape_stride=stride, prescribed=is_body_motion(case.motion))
+                        shape_stride=stride, prescribed=is_body_motion(case.motion),
+                        chunk=CHUNK_SAMPLES)
     start_wall = _time.perf_counter()
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
@@ -122,7 +123,7 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
             _solve_chunk(case, models, groups, recorder, start, stop)
             if progress is not None:
                 progress(float(times[stop - 1]))
-    dataset = recorder.write(status="complete")
+    dataset = recorder.result(status="complete")
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,
                      simulated_time_s=recorder.simulated_time)
@@ -146,7 +147,9 @@ def _solve_chunk(case: Case, models: list[LineModel | None], groups: list[System
     t = recorder.time[start:stop]
     failure: SolverError | None = None
     limit = stop
+    recorder.reserve(stop)
     series = recorder.series
+    off = recorder.offset  # sample k is at k - off in the recorder's arrays
     stride = recorder.shape_stride
     for i, (line, model) in enumerate(zip(case.lines, models)):
         if limit <= start:
@@ -154,14 +157,15 @@ def _solve_chunk(case: Case, models: list[LineModel | None], groups: list[System
         if model is None:  # a line of a system group
             continue
         path, velocity = prescribed_fairlead_state(case.motion, line, t[:limit - start])
-        series["fairlead_position"][i, start:limit] = path
+        series["fairlead_position"][i, start - off:limit - off] = path
         cuts = {start, limit}
         if stride:
             cuts.update(k + 1 for k in range(start, limit) if k % stride == 0)
         bounds = sorted(cuts)
         for a, b in zip(bounds[:-1], bounds[1:]):
-            outputs = (series["fairlead_force"][i, a:b], series["anchor_force"][i, a:b],
-                       series["laid_length"][i, a:b], series["solver_iterations"][i, a:b])
+            w = slice(a - off, b - off)
+            outputs = (series["fairlead_force"][i, w], series["anchor_force"][i, w],
+                       series["laid_length"][i, w], series["solver_iterations"][i, w])
             seg = slice(a - start, b - start)
             try:
                 if isinstance(model, PathStepper):
@@ -190,8 +194,8 @@ def _solve_chunk(case: Case, models: list[LineModel | None], groups: list[System
             limit = start + group.failed_index
     if recorder.prescribed is not None:
         x, dx = body_motion_state(case.motion, t[:limit - start])
-        recorder.prescribed["prescribed_displacement"][start:limit] = x
-        recorder.prescribed["prescribed_displacement_rate"][start:limit] = dx
+        recorder.prescribed["prescribed_displacement"][start - off:limit - off] = x
+        recorder.prescribed["prescribed_displacement_rate"][start - off:limit - off] = dx
     recorder.advance(limit)
     if failure is not None:
         raise failure

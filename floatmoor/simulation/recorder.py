@@ -1,10 +1,17 @@
-"""Preallocated result buffers that are filled as a run advances and written as it goes.
+"""Result buffers that are filled as a run advances and written out as it goes.
 
-The recorder owns the time series of every line. The run loop writes into views of its
-arrays, then calls :meth:`Recorder.advance`; every ``flush_interval`` seconds of wall time the
-completed part is written to the output file (atomically), so an interrupted or killed run
-leaves a valid file holding everything up to the last flush, and :meth:`Recorder.finish` writes
-the final state with its status.
+The recorder owns the time series of every line, in a window of samples: the run loop makes
+room for a chunk (:meth:`Recorder.reserve`), writes into views of the window's arrays
+(sample ``k`` at index ``k - recorder.offset``), then calls :meth:`Recorder.advance`. With an
+output file, the completed samples are appended to it every ``flush_interval`` seconds of
+wall time and whenever the window is full, so the memory a run holds does not grow with its
+duration, and an interrupted or killed run leaves a valid file holding everything up to the
+last write (:mod:`floatmoor.io.netcdf_stream`: ``time`` is the file's record dimension). The
+file is created, atomically replacing any file there, at the first write; the line shapes,
+whose extent is known, are laid out whole then (NaN until written), and its ``created``
+attribute is that moment (a whole-file writer gave the last write's). :meth:`Recorder.result`
+writes the final state with its status and gives the results: read lazily from the file, or
+from memory for a run without one (whose window holds the whole run).
 """
 
 from __future__ import annotations
@@ -23,18 +30,41 @@ from typing import TYPE_CHECKING
 from floatmoor.case.limits import dynamic_nodes_bound
 from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
-from floatmoor.io.dataset import build_result_dataset
-from floatmoor.io.netcdf import write_dataset
+from floatmoor.io.dataset import build_result_dataset, record_order
+from floatmoor.io.netcdf import NETCDF_ENGINE, NETCDF_FORMAT, open_result
+from floatmoor.io.netcdf3_format import NetCDF3Error
+from floatmoor.io.netcdf_stream import NetCDF3Stream
 from floatmoor.signals import deferred_interrupts, signal_name
 
 if TYPE_CHECKING:
     from floatmoor.simulation.groups import GroupSamples, SystemGroup
 
-__all__ = ["Recorder", "FLUSH_INTERVAL_S", "estimated_output_bytes"]
+__all__ = ["Recorder", "FLUSH_INTERVAL_S", "WINDOW_BYTES", "STATUS_ROOM",
+           "estimated_output_bytes"]
 
 #: Wall time between partial writes of a long run [s]: often enough that a killed run loses
 #: little, rarely enough that rewriting the file costs a negligible share of the run.
 FLUSH_INTERVAL_S = 10.0
+
+#: Bytes of samples a recorder with an output file holds before appending them to it: large
+#: enough that appends are rare (a coupled buoy run's samples take 0.37 kB: 5700 samples,
+#: 57 s simulated), small beside the ~270 MB of a coupled run's libraries and database (an
+#: append holds a few copies of the window while it encodes it: 8 MB windows added 17 MB
+#: to the buoy's peak).
+WINDOW_BYTES = 2 << 20
+
+#: Bytes of room of the ``status`` attribute in a file, which changes as the run goes
+#: (``running: ...``, ``complete``, ``failed: message``): a longer one makes the file be
+#: rewritten with more room.
+STATUS_ROOM = 4096
+
+#: Attributes that change while the run goes, updated in the file at every write.
+_VOLATILE = ("status", "wall_time_s", "simulated_time_s")
+#: Attributes a resumed run need not share with the file it continues: the volatile ones,
+#: when the file was created, the case file's path (the same case may be reached by another
+#: path) and the numba build that ran it.
+_NOT_COMPARED = (*_VOLATILE, "created", "case_file", "numba_version", "llvmlite_version",
+                 "numba_disable_jit")
 
 #: (name, components per sample) of the recorded time series.
 _SERIES = (
@@ -127,17 +157,33 @@ class Recorder:
         netCDF file to write, or None to keep the results in memory only.
     flush_interval
         Wall time between partial writes [s].
+    shape_nodes, shape_stride
+        Arc lengths of every line's shape nodes, and output samples between shape samples
+        (0: no shapes).
+    body, prescribed
+        Whether to record a floater's series, or a prescribed body motion's.
+    chunk
+        Most samples the run writes between two :meth:`reserve` calls: the window holds at
+        least this many.
     """
 
     def __init__(self, case: Case, time: NDArray[np.float64], path: str | Path | None = None,
                  flush_interval: float = FLUSH_INTERVAL_S, *,
                  shape_nodes: list[NDArray[np.float64]] | None = None,
-                 shape_stride: int = 0, body: bool = False, prescribed: bool = False) -> None:
+                 shape_stride: int = 0, body: bool = False, prescribed: bool = False,
+                 chunk: int = 1) -> None:
         self.case = case
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
         self.flush_interval = flush_interval
-        n_lines, n_time = len(case.lines), self.time.size
+        n_lines, n_total = len(case.lines), self.time.size
+        self.capacity = n_total if self.path is None else min(
+            n_total, max(int(chunk), WINDOW_BYTES // _sample_bytes(case, body, prescribed)))
+        n_time = self.capacity
+        #: absolute index of the window's first sample; samples written to the file
+        self.offset = 0
+        self.written = 0
+        self._stream: NetCDF3Stream | None = None
         self.series: dict[str, NDArray[np.float64]] = {
             name: np.zeros((n_lines, n_time, size) if size > 1 else (n_lines, n_time))
             for name, size in _SERIES
@@ -176,16 +222,75 @@ class Recorder:
         # line shapes every shape_stride samples, on each line's nodes; lines with fewer
         # nodes than the longest repeat their last node so every line shares the node axis
         self.shape_stride = shape_stride if shape_nodes else 0
+        self.shape_offset = 0  #: shape index of the window's first shape
         if self.shape_stride:
             n_nodes = max(len(s) for s in shape_nodes)
             self.shape_arc_length = [np.asarray(s, dtype=float) for s in shape_nodes]
             self.shape_arc = np.array([np.pad(s, (0, n_nodes - len(s)), mode="edge")
                                        for s in self.shape_arc_length])
-            n_shapes = (n_time - 1) // self.shape_stride + 1
+            self.n_shapes = (n_total - 1) // self.shape_stride + 1
+            n_shapes = (self.n_shapes if self.path is None else
+                        min(self.n_shapes, (self.capacity - 1) // self.shape_stride + 2))
             self.shape_position = np.zeros((n_lines, n_shapes, n_nodes, 3))
             self.shape_tension = np.zeros((n_lines, n_shapes, n_nodes))
         self._last_flush = _time.perf_counter()
         self._start = _time.perf_counter()
+
+    # -- the window ---------------------------------------------------------------------------
+    def _shapes_before(self, n: int) -> int:
+        """Shape samples among the first ``n`` output samples (0 without shapes)."""
+        return (n - 1) // self.shape_stride + 1 if n > 0 and self.shape_stride else 0
+
+    def reserve(self, stop: int) -> None:
+        """Make the window hold samples up to ``stop`` (exclusive), appending the completed
+        samples to the file and starting the window at the first incomplete one when it is
+        full.
+
+        Raises
+        ------
+        ValueError
+            When ``stop`` is beyond what the window can hold after that (a chunk longer than
+            the recorder was made for).
+        OutputWriteError
+            When the file cannot be written.
+        """
+        if stop - self.offset <= self.capacity:
+            return
+        if self.path is not None and self.n_done > self.written:
+            self.write(status=f"running: partial results up to t = {self.simulated_time:.6g} s")
+        self._move(self.n_done)
+        if stop - self.offset > self.capacity:
+            raise ValueError(f"the recorder holds {self.capacity} samples, not samples "
+                             f"{self.offset} to {stop}")
+
+    def _move(self, first: int) -> None:
+        """Start the window at sample ``first`` (every sample before it written), keeping
+        the samples after it."""
+        if first == self.offset:
+            return
+        if first > self.written or first < self.offset:
+            raise ValueError(f"cannot move the window to sample {first}: samples from "
+                             f"{self.written} are not written yet")
+        shift = first - self.offset
+        arrays = [(a, 1) for a in self.series.values()]
+        arrays += [(a, 0) for group in (self.body, self.prescribed) if group for a in group.values()]
+        arrays += [(a, 1) for a in (self.system or {}).values()]
+        for array, axis in arrays:
+            moved = np.moveaxis(array, axis, 0)
+            keep = moved.shape[0] - shift
+            if keep > 0:
+                moved[:keep] = moved[shift:].copy()
+            moved[max(keep, 0):] = 0.0
+        if self.shape_stride:
+            first_shape = -(-first // self.shape_stride)  # ceil: shapes at or after first
+            move = first_shape - self.shape_offset
+            for array in (self.shape_position, self.shape_tension):
+                keep = array.shape[1] - move
+                if keep > 0:
+                    array[:, :keep] = array[:, move:].copy()
+                array[:, max(keep, 0):] = 0.0
+            self.shape_offset = first_shape
+        self.offset = first
 
     def advance(self, n_done: int) -> None:
         """Mark samples ``[0, n_done)`` complete, after checking they are finite.
@@ -195,8 +300,12 @@ class Recorder:
         SolverError
             If a new sample is not finite, naming the line, the time and the quantity.
         """
+        a, b = self.n_done - self.offset, n_done - self.offset
+        if b > self.capacity:
+            raise ValueError(f"sample {n_done - 1} is beyond the recorder's window (samples "
+                             f"{self.offset} to {self.offset + self.capacity - 1})")
         for name, array in self.series.items():
-            block = array[:, self.n_done:n_done]
+            block = array[:, a:b]
             if not np.all(np.isfinite(block)):
                 bad = np.argwhere(~np.isfinite(block))[0]
                 line, index = int(bad[0]), self.n_done + int(bad[1])
@@ -204,7 +313,7 @@ class Recorder:
                                   f"at t = {self.time[index]:.6g} s")
         if self.body is not None:
             for name, array in self.body.items():
-                block = array[self.n_done:n_done]
+                block = array[a:b]
                 if not np.all(np.isfinite(block)):
                     index = self.n_done + int(np.argwhere(~np.isfinite(block))[0][0])
                     raise SolverError(f"floater: {name} is not finite at "
@@ -226,6 +335,7 @@ class Recorder:
         section_at = {k: j for j, k in enumerate(group.sections)}
         flat = {(s.line, s.index): k for k, s in enumerate(case.sections)}
         series, system = self.series, self.system
+        start, stop = start - self.offset, stop - self.offset  # in the window
         for i in group.lines:
             line = case.lines[i]
             first = section_at[flat[(line.name, 0)]]
@@ -253,47 +363,215 @@ class Recorder:
 
     def store_shape(self, line: int, index: int, positions: NDArray[np.float64],
                     tension: NDArray[np.float64]) -> None:
-        """Store the shape of ``line`` at shape sample ``index``."""
+        """Store the shape of ``line`` at shape sample ``index`` (of the whole run)."""
+        local = index - self.shape_offset
+        if not 0 <= local < self.shape_position.shape[1]:
+            raise ValueError(f"shape sample {index} is outside the recorder's window "
+                             f"({self.shape_offset} to "
+                             f"{self.shape_offset + self.shape_position.shape[1]})")
         n = len(positions)
-        self.shape_position[line, index, :n] = positions
-        self.shape_position[line, index, n:] = positions[-1]
-        self.shape_tension[line, index, :n] = tension
-        self.shape_tension[line, index, n:] = tension[-1]
+        self.shape_position[line, local, :n] = positions
+        self.shape_position[line, local, n:] = positions[-1]
+        self.shape_tension[line, local, :n] = tension
+        self.shape_tension[line, local, n:] = tension[-1]
 
     @property
     def simulated_time(self) -> float:
         """Time of the last complete sample [s] (0 before the first)."""
         return float(self.time[self.n_done - 1]) if self.n_done else 0.0
 
+    # -- datasets ----------------------------------------------------------------------------
     def dataset(self, status: str) -> xr.Dataset:
-        """The completed part as a labelled dataset."""
-        n = self.n_done
-        variables = {name: array[:, :n] for name, array in self.series.items()}
+        """The completed samples in the window as a labelled dataset: the whole run's for a
+        recorder without a file (whose window holds every sample)."""
+        return self._dataset(self.offset, self.n_done, status, shapes="window")
+
+    def _dataset(self, first: int, stop: int, status: str, shapes: str | None) -> xr.Dataset:
+        """Samples [first, stop) (in the window) as a dataset; ``shapes``: ``"window"`` the
+        shape samples among them (a window starting at sample 0), ``"template"`` the first
+        shape sample of the window (its place in the file's layout), None: none."""
+        a, b = first - self.offset, stop - self.offset
+        variables = {name: array[:, a:b] for name, array in self.series.items()}
         variables["fairlead_tension"] = np.linalg.norm(variables["fairlead_force"], axis=-1)
         variables["anchor_tension"] = np.linalg.norm(variables["anchor_force"], axis=-1)
         variables["solver_iterations"] = variables["solver_iterations"].astype(np.int32)
         wall = _time.perf_counter() - self._start
-        shapes = None
-        if self.shape_stride:
-            m = (n - 1) // self.shape_stride + 1 if n else 0
-            shapes = {"shape_time": self.time[:n:self.shape_stride][:m],
-                      "arc_length": self.shape_arc,
-                      "shape_position": self.shape_position[:, :m],
-                      "shape_tension": self.shape_tension[:, :m]}
-        body = None if self.body is None else {k: v[:n] for k, v in self.body.items()}
+        shape_data = None
+        if self.shape_stride and shapes is not None:
+            m = self._shapes_before(stop) - self.shape_offset if shapes == "window" else 1
+            times = self.time[self.shape_offset * self.shape_stride::self.shape_stride]
+            shape_data = {"shape_time": times[:m], "arc_length": self.shape_arc,
+                          "shape_position": self.shape_position[:, :m],
+                          "shape_tension": self.shape_tension[:, :m]}
+        body = None if self.body is None else {k: v[a:b] for k, v in self.body.items()}
         system = line_system_series(self.case, variables, self._independent)
         if self.system is not None:  # the groups' rows from their own series
             for name, rows in (("point_position", self._owned_points),
                                ("section_start_tension", self._owned_sections),
                                ("section_end_tension", self._owned_sections)):
-                system[name][rows] = self.system[name][rows, :n]
-            system["point_force"] += self.system["point_force"][:, :n]
+                system[name][rows] = self.system[name][rows, a:b]
+            system["point_force"] += self.system["point_force"][:, a:b]
         if self.prescribed is not None:
-            body = {**(body or {}), **{k: v[:n] for k, v in self.prescribed.items()}}
-        return build_result_dataset(self.case, self.time[:n], variables, status=status,
-                                    shapes=shapes, body=body, system=system,
+            body = {**(body or {}), **{k: v[a:b] for k, v in self.prescribed.items()}}
+        return build_result_dataset(self.case, self.time[first:stop], variables, status=status,
+                                    shapes=shape_data, body=body, system=system,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
+
+    def _template(self, first: int, stop: int, status: str) -> bytes:
+        """netCDF bytes of samples [first, stop) as xarray writes them, ``time`` the record
+        dimension: the names, types, attributes and layout of the file, and its first
+        records."""
+        dataset = record_order(self._dataset(first, stop, status, shapes="template"))
+        return bytes(dataset.to_netcdf(engine=NETCDF_ENGINE, format=NETCDF_FORMAT,
+                                       unlimited_dims=["time"]))
+
+    def _records(self, first: int, stop: int, status: str) -> dict[str, NDArray]:
+        """Samples [first, stop) of every variable along time, time first, by name."""
+        dataset = record_order(self._dataset(first, stop, status, shapes=None))
+        return {name: var.values for name, var in dataset.variables.items()
+                if var.dims[:1] == ("time",)}
+
+    # -- the file ----------------------------------------------------------------------------
+    def write(self, status: str) -> None:
+        """Append the completed samples not yet in the output file (creating it at the
+        first write) and set its status; an interrupt during the write is delivered after
+        it, so the file is whole. Without an output file: nothing."""
+        if self.path is not None:
+            with deferred_interrupts():
+                self._write(status)
+        self._last_flush = _time.perf_counter()
+
+    def _write(self, status: str) -> None:
+        first, stop = self.written, self.n_done
+        if self._stream is None and first > 0:  # closed after a write: append again
+            self._stream = NetCDF3Stream.open(self.path)
+        if self._stream is None:
+            if stop == 0:
+                return  # a file of no samples is not a result file
+            if self.offset != 0:
+                raise ValueError("the output file is created from the run's first samples")
+            sizes, values = {}, {}
+            if self.shape_stride:
+                sizes["shape_time"] = self.n_shapes
+                values["shape_time"] = self.time[::self.shape_stride][:self.n_shapes]
+            # the first sample from xarray's writer (the layout), the others with it: the
+            # file appears with all of them, or (a failed write) not at all
+            template = self._template(0, 1, status)
+            self._stream = NetCDF3Stream.create(self.path, template, sizes=sizes,
+                                                values=values, reserve={"status": STATUS_ROOM},
+                                                records=self._records(1, stop, status))
+        elif stop > first:
+            self._stream.append(self._records(first, stop, status))
+        if self.shape_stride:
+            lo, hi = self._shapes_before(first), self._shapes_before(stop)
+            if hi > lo:
+                a, b = lo - self.shape_offset, hi - self.shape_offset
+                self._stream.write_along("shape_position", "shape_time", lo,
+                                         self.shape_position[:, a:b])
+                self._stream.write_along("shape_tension", "shape_time", lo,
+                                         self.shape_tension[:, a:b])
+        self._stream.set_attributes({"status": status,
+                                     "wall_time_s": _time.perf_counter() - self._start,
+                                     "simulated_time_s": self.simulated_time})
+        self.written = stop
+
+    def close(self) -> None:
+        """Close the output file (it stays valid; a later :meth:`write` reopens it)."""
+        if self._stream is not None:
+            stream, self._stream = self._stream, None
+            stream.close()
+
+    def result(self, status: str = "complete") -> xr.Dataset:
+        """Write the final state with ``status`` and close the file; the results: read
+        lazily from the file (values are read as they are asked for), or the in-memory
+        dataset of a run without one."""
+        self.write(status)
+        if self.path is None:
+            return self.dataset(status)
+        self.close()
+        return open_result(self.path)
+
+    def continue_file(self, n_done: int) -> None:
+        """Continue the output file of an interrupted run of this case from its sample
+        ``n_done`` (what its checkpoint covers): the file is checked against what this run
+        writes, then cut to ``n_done`` samples (the shapes after them blanked), and the
+        recorder starts there.
+
+        Raises
+        ------
+        NetCDF3Error
+            When the file is not this run's or holds fewer samples (saying what differs).
+        OutputWriteError
+            When it cannot be opened or written.
+        """
+        if self.path is None:
+            raise ValueError("a recorder without an output file has none to continue")
+        stream = NetCDF3Stream.open(self.path)
+        try:
+            self._check_continued(stream)
+            if stream.numrecs < n_done:
+                raise NetCDF3Error(f"a file holding the {n_done} samples its checkpoint "
+                                   f"covers, not {stream.numrecs}")
+            stream.truncate(n_done)
+            if self.shape_stride:
+                self._blank_shapes(stream, self._shapes_before(n_done))
+        except BaseException:
+            stream.close()
+            raise
+        self._stream = stream
+        self.n_done = self.written = n_done
+        self.offset = n_done
+        self.shape_offset = self._shapes_before(n_done)
+
+    def _blank_shapes(self, stream: NetCDF3Stream, first: int) -> None:
+        """Fill the shape samples from ``first`` with NaN, a window at a time."""
+        step = self.shape_position.shape[1]
+        for lo in range(first, self.n_shapes, step):
+            n = min(step, self.n_shapes - lo)
+            stream.write_along("shape_position", "shape_time", lo,
+                               np.full((*self.shape_position.shape[:1], n,
+                                        *self.shape_position.shape[2:]), np.nan))
+            stream.write_along("shape_tension", "shape_time", lo,
+                               np.full((self.shape_tension.shape[0], n,
+                                        self.shape_tension.shape[2]), np.nan))
+
+    def _check_continued(self, stream: NetCDF3Stream) -> None:
+        """Refuse a file whose layout or case differs from what this run writes."""
+        from floatmoor.io.netcdf3_format import parse_header
+
+        # the layout this run gives its file, from a one-sample template
+        saved = self.n_done, self.offset
+        self.n_done, self.offset = 1, 0
+        try:
+            ours = parse_header(self._template(0, 1, "running"))
+        finally:
+            self.n_done, self.offset = saved
+        theirs = stream.header
+        if self.shape_stride:
+            ours.dims = [(d, self.n_shapes if d == "shape_time" else n) for d, n in ours.dims]
+        if ours.dims != theirs.dims:
+            raise NetCDF3Error(f"a file of this run's dimensions {ours.dims}, not "
+                               f"{theirs.dims}")
+        mine = [(v.name, ours.dim_names(v), v.nc_type, [(a.name, a.raw) for a in v.attributes])
+                for v in ours.variables]
+        other = [(v.name, theirs.dim_names(v), v.nc_type,
+                  [(a.name, a.raw) for a in v.attributes]) for v in theirs.variables]
+        if mine != other:
+            names = sorted({m[0] for m in mine} ^ {o[0] for o in other}) or sorted(
+                m[0] for m, o in zip(mine, other) if m != o)
+            raise NetCDF3Error(f"a file of this run's variables (these differ: "
+                               f"{', '.join(names) or 'their order'})")
+        for att in ours.attributes:
+            if att.name in _NOT_COMPARED:
+                continue
+            other_att = theirs.attribute(att.name)
+            if other_att is None or other_att.value() != att.value():
+                raise NetCDF3Error(f"a file of a run of this case (its attribute "
+                                   f"'{att.name}' differs)")
+        missing = [a for a in _VOLATILE if theirs.attribute(a) is None]
+        if missing:
+            raise NetCDF3Error(f"a result file with the attributes {missing}")
 
     @contextmanager
     def partial_on_failure(self) -> Iterator[None]:
@@ -306,19 +584,20 @@ class Recorder:
         except SolverError as err:
             if self.n_done:
                 self.write(status=f"failed: {err}")
+            self.close()
             raise
         except KeyboardInterrupt as stop:
             if self.n_done:
                 self.write(status=f"{signal_name(stop)}: results up to "
                                   f"t = {self.simulated_time:.6g} s")
+            self.close()
             raise
 
-    def write(self, status: str) -> xr.Dataset:
-        """Write the completed part to the output file (if any) and return it; an interrupt
-        during the write is delivered after it, so the file is whole."""
-        dataset = self.dataset(status)
-        if self.path is not None:
-            with deferred_interrupts():
-                write_dataset(dataset, self.path)
-        self._last_flush = _time.perf_counter()
-        return dataset
+
+def _sample_bytes(case: Case, body: bool, prescribed: bool) -> int:
+    """Bytes the recorder's buffers take per output sample."""
+    values = len(case.lines) * sum(size for _, size in _SERIES)
+    values += (_BODY_VALUES if body else 0) + (12 if prescribed else 0)
+    if case.is_system:
+        values += len(case.points) * 6 + len(case.sections) * 2
+    return max(values, 1) * _VALUE_BYTES

@@ -72,7 +72,7 @@ def test_checkpoint_is_numeric_arrays_only(interrupted) -> None:
         arrays = {name: npz[name] for name in npz.files}
     assert not any(a.dtype.hasobject for a in arrays.values())
     assert str(arrays["meta/format"]) == "floatmoor coupled-run checkpoint"
-    assert int(arrays["meta/version"]) == 1
+    assert int(arrays["meta/version"]) == 2
     assert WAVES in [str(o) for o in arrays["meta/overrides"]]
     assert "state/body/position" in arrays and "state/line0/warm_start" in arrays
 

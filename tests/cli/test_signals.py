@@ -107,15 +107,15 @@ def test_second_interrupt_during_the_partial_write_keeps_the_file(tmp_path, capf
         if len(calls) == 2:
             os.kill(os.getpid(), signal.SIGINT)
 
-    real_write = recorder.write_dataset
+    real_write = recorder.Recorder._write
 
-    def interrupted_write(dataset, path):
-        if dataset.attrs["status"].startswith("interrupted"):
+    def interrupted_write(self, status):
+        if status.startswith("interrupted"):
             os.kill(os.getpid(), signal.SIGINT)  # handled before the write below
-        real_write(dataset, path)
+        real_write(self, status)
 
     monkeypatch.setattr(ProgressReporter, "__call__", first_interrupt)
-    monkeypatch.setattr(recorder, "write_dataset", interrupted_write)
+    monkeypatch.setattr(recorder.Recorder, "_write", interrupted_write)
     out = tmp_path / "partial.nc"
     assert main(["run", str(LINDAHL_CASE), "-o", str(out), *QS]) == 130
     err = capfd.readouterr().err  # the handler writes to the file descriptor

@@ -88,7 +88,7 @@ def _rewrite(path, **changes) -> None:
 
 
 @pytest.mark.parametrize("changes, message", [
-    ({"meta__version": np.array(2, dtype=np.int64)}, "found version 2"),
+    ({"meta__version": np.array(1, dtype=np.int64)}, "found version 1"),
     ({"meta__format": np.array("something else")}, "of format 'something else'"),
     ({"meta__format": None}, "without 'meta/format'"),
     ({"meta__floatmoor_version": np.array("0.0.1")}, "written by floatmoor 0.0.1"),

@@ -1,5 +1,5 @@
-"""floatmoor.signals outside a command: an interrupt during an atomic write is delivered after
-it, so the file is whole; SIGTERM inside a command is an interrupt with status 143."""
+"""floatmoor.signals outside a command: an interrupt during an atomic write or an append is
+delivered after it, so the file is whole; SIGTERM inside a command is an interrupt with status 143."""
 
 from __future__ import annotations
 
@@ -23,18 +23,31 @@ def test_interrupt_during_a_library_write_comes_after_it(tmp_path, monkeypatch):
                                     "simulation.duration=3.0"])
     out = tmp_path / "run.nc"
     rec = Recorder(case, output_times(case.simulation), out)
+    rec.reserve(6)
     rec.advance(3)  # three (zero) samples
-    real_write = recorder_module.write_dataset
+    stream = recorder_module.NetCDF3Stream
+    real_create, real_append = stream.create.__func__, stream.append
 
-    def write(dataset, path):
+    def create(cls, *args, **kwargs):
         os.kill(os.getpid(), signal.SIGINT)  # Python's own handler: KeyboardInterrupt
-        real_write(dataset, path)
+        return real_create(cls, *args, **kwargs)
 
-    monkeypatch.setattr(recorder_module, "write_dataset", write)
-    with pytest.raises(KeyboardInterrupt):
+    def append(self, records):
+        os.kill(os.getpid(), signal.SIGINT)
+        real_append(self, records)
+
+    monkeypatch.setattr(stream, "create", classmethod(create))
+    monkeypatch.setattr(stream, "append", append)
+    with pytest.raises(KeyboardInterrupt):  # the file is created whole
         rec.write(status="running")
     written = read_dataset(out)
     assert written.attrs["status"] == "running" and written.sizes["time"] == 3
+    rec.advance(5)
+    with pytest.raises(KeyboardInterrupt):  # two samples are appended, the status updated
+        rec.write(status="running on")
+    written = read_dataset(out)
+    assert written.attrs["status"] == "running on" and written.sizes["time"] == 5
+    rec.close()
     assert not list(tmp_path.glob(".*.tmp"))
 
 
