@@ -485,9 +485,7 @@ class DynamicLine(PathStepper):
                                               ff, af, lb, st, shape_every, sr, sten, i0, i1)
             if status != _k.DG_OK or i1 >= n - 1:
                 break
-            if (self.auto is not None and self._stepping_implicit() and not self._settling
-                    and self.auto.should_switch(time[i1], self.implicit.cs)):
-                self._go_explicit()
+            self._switch_if_dearer(float(time[i1]))
             i0 = i1
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
@@ -506,8 +504,13 @@ class DynamicLine(PathStepper):
         self.time = float(time[-1])
         self.fairlead = np.array(path[-1], dtype=float)
         self.fairlead_velocity = np.array(velocity[-1], dtype=float)
-        if (self.auto is not None and self._stepping_implicit() and not self._settling
-                and self.auto.should_switch(self.time, self.implicit.cs)):
+        self._switch_if_dearer(self.time)
+
+    def _switch_if_dearer(self, time: float) -> None:
+        """``"auto"`` stepping implicitly (not settling): at ``time``, go explicit if its
+        windows say so (resolution.AutoIntegration.should_switch)."""
+        if (self.auto is not None and self._stepping_implicit()
+                and self.auto.should_switch(time, self.implicit.cs)):
             self._go_explicit()
 
     def _segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int) -> int:
@@ -516,7 +519,7 @@ class DynamicLine(PathStepper):
         (on a shape sample, so the shape records keep their slots)."""
         n = time.size
         auto = self.auto
-        if auto is None or self._settling or not self._stepping_implicit():
+        if auto is None or not self._stepping_implicit():  # (False while settling)
             return n - 1
         if auto.counters is None:
             auto.restart(float(time[i0]), self.implicit.cs)
@@ -532,7 +535,7 @@ class DynamicLine(PathStepper):
         and the failing sample's index in the whole path."""
         w = self._work
         seg = slice(i0, i1 + 1)
-        kept = (ff[i0].copy(), af[i0].copy(), lb[i0], st[i0])
+        kept = (ff[i0].copy(), af[i0].copy(), lb[i0], st[i0]) if i0 > 0 else None
         every = shape_every
         shapes_r, shapes_t = sr, sten
         if every > 0:
@@ -550,7 +553,7 @@ class DynamicLine(PathStepper):
                 every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
                 w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
                 w.damping if self._implicit_damping() else None)
-        if i0 > 0:
+        if kept is not None:
             ff[i0], af[i0], lb[i0], st[i0] = kept
         return status, i0 + index
 
