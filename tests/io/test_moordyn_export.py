@@ -16,6 +16,7 @@ from floatmoor.io.moordyn.parser import read_deck
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
 from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.system_statics import case_statics
+from tests.conftest import ACCURACY_DEFAULT, LINDAHL_CASE
 from tests.io.moordyn_decks import REPO, export_file
 
 SYSTEM = REPO / "tests" / "data" / "systems" / "clump_buoy.toml"
@@ -177,3 +178,13 @@ def test_without_a_static_equilibrium_free_points_keep_the_cases_positions(monke
     assert [dp.position for dp in result.deck.points] == [p.position for p in case.points]
     assert any("case's positions (no static equilibrium: point 'buoy'" in n
                for n in result.notes)
+
+
+def test_independent_line_exports_the_numerics_it_runs_with(tmp_path):
+    """A line left to the accuracy: NumSegs = elements x order of the line's own choice
+    (DynamicLine.from_case), not a line system's sections'."""
+    case = load_case(LINDAHL_CASE, ACCURACY_DEFAULT)
+    ln = case.lines[0]
+    st = DynamicLine.from_case(ln, case.environment, case.seabed).settings
+    deck = read_deck(export_file(case, tmp_path / "lindahl.dat"))
+    assert deck.lines[0].segments == st.elements * st.order == 36

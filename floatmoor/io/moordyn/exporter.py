@@ -65,17 +65,18 @@ def _segments(section: Any) -> int:
     return int(section.dynamic.elements * section.dynamic.order)
 
 
-def _explicit_numerics(section: Any, where: dict[str, Any], env: Any, bed: Any) -> Any:
-    """The section with the explicit DG numerics it runs with (the accuracy's choice where
-    the case leaves it, as the dynamic system makes it: resolution.resolve_settings on the
-    section's catenary between its points ``where`` they are): MoorDyn's segments and dtM
-    follow them."""
+def _explicit_numerics(section: Any, line: Any, independent: bool, env: Any, bed: Any) -> Any:
+    """The section with the DG discretisation it runs with (where the case leaves it to the
+    accuracy, resolution.resolve_settings as the run makes it: an independent line's rule on
+    its catenary, a line system's sections' own), stepped explicitly: MoorDyn's segments and
+    dtM follow them."""
     st = section.dynamic
     if not st.resolved:
-        props = CableProperties.from_section(section, env, bed)
-        speed = props.transverse_wave_speed(np.asarray(where[section.start], dtype=float),
-                                            np.asarray(where[section.end], dtype=float))
-        st = resolve_settings(st, section.length, speed, several_sections=True)
+        speed = 0.0
+        if independent:
+            speed = CableProperties.from_section(section, env, bed).transverse_wave_speed(
+                np.asarray(line.anchor, dtype=float), np.asarray(line.fairlead, dtype=float))
+        st = resolve_settings(st, section.length, speed, several_sections=not independent)
     return replace(section, dynamic=replace(st, time_integration="explicit"))
 
 
@@ -109,8 +110,8 @@ def export_case(case: Any) -> ExportResult:
     line_of = {line.name: line for line in case.lines}
     numbers = {p.name: i for i, p in enumerate(case.points, start=1)}
     at = _free_positions(case, notes)
-    where = {p.name: at.get(p.name, p.position) for p in case.points}
-    sections = tuple(_explicit_numerics(s, where, env, bed) for s in case.sections)
+    sections = tuple(_explicit_numerics(s, line_of[s.line], case.is_independent(line_of[s.line]),
+                                        env, bed) for s in case.sections)
     points = tuple(DeckPoint(number=numbers[p.name], attachment=_KINDS[p.kind],
                              position=at.get(p.name,  # type: ignore[arg-type]
                                              tuple(float(c) for c in p.position)),

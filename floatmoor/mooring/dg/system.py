@@ -80,23 +80,14 @@ class SystemSection:
         return f"line '{self.line}' section {self.index}"
 
 
-def _resolved_sections(sections: list["SystemSection"], points: Sequence[Any],
-                       start: NDArray[np.float64] | None) -> list["SystemSection"]:
+def _resolved_sections(sections: list["SystemSection"]) -> list["SystemSection"]:
     """The sections, their numerics chosen where the case leaves them to the accuracy
-    (resolution.resolve_settings: explicit steps; each section on its own catenary between
-    its end points at the start)."""
-    index = {p.name: i for i, p in enumerate(points)}
-    where = (np.asarray(start, dtype=float) if start is not None
-             else np.array([p.position for p in points], dtype=float))
-    out = []
-    for sec in sections:
-        st = sec.settings
-        if not st.resolved or st.time_integration == "auto":
-            pr = sec.properties
-            speed = pr.transverse_wave_speed(where[index[sec.start]], where[index[sec.end]])
-            st = resolve_settings(st, pr.length, speed, several_sections=True)
-        out.append(replace(sec, settings=st))
-    return out
+    (resolution.resolve_settings for a line system's sections: explicit, their own
+    discretisation, no catenary needed)."""
+    return [replace(sec, settings=resolve_settings(sec.settings, sec.properties.length, 0.0,
+                                                   several_sections=True))
+            if not sec.settings.resolved or sec.settings.time_integration == "auto" else sec
+            for sec in sections]
 
 
 def section_properties(section: Any, environment: Environment, seabed: Seabed
@@ -289,7 +280,7 @@ class DynamicSystem:
         used = {n for s in sections for n in (s.start, s.end)}
         points = [p for p in case.points if p.name in used]
         start, why = static_start(points, dynamic, case.environment, case.seabed)
-        sections = _resolved_sections(sections, points, start)
+        sections = _resolved_sections(sections)
         obj = cls(points, sections, point_positions=start)
         obj.static_start = why
         if settle if settle is not None else any(s.settings.settle for s in sections):
