@@ -110,3 +110,35 @@ def test_work_model() -> None:
     assert rs.implicit_work(2, 3, 0, 4) == pytest.approx(2 * rs.IMPLICIT_STEP_WORK
                                                         + 3 * rs.NEWTON_ITERATION_WORK)
     assert rs.implicit_work(0, 0, 1, 6) > rs.implicit_work(0, 0, 1, 4)
+
+
+def _counters(steps: float) -> np.ndarray:
+    """Integrator counters after ``steps`` accepted steps of one Newton iteration each."""
+    from floatmoor.mooring.dg import _implicit_kernels as ik
+    c = np.zeros(ik.CS_N)
+    c[ik.CS_STEPS] = c[ik.CS_ITERATIONS] = steps
+    return c
+
+
+def _window_steps(ratio: float, auto: rs.AutoIntegration) -> float:
+    """Implicit steps (one iteration each) whose work over one window is ``ratio`` times the
+    explicit steps'."""
+    per_step = rs.IMPLICIT_STEP_WORK + rs.NEWTON_ITERATION_WORK
+    return ratio * rs.explicit_work(auto.window, auto.explicit_step) / per_step
+
+
+@pytest.mark.parametrize("ratio, windows", [(0.9, None), (1.1, 2), (1.6, 1), (3.0, 1)])
+def test_switch_rule(ratio: float, windows: int | None) -> None:
+    """Implicit steps dearer than the explicit ones in two consecutive windows switch the line;
+    clearly dearer (CLEARLY_OVER_BUDGET) in one window switch it at once; cheaper never."""
+    auto = rs.AutoIntegration.for_line(2.0 * math.pi / 1.25, 1e-4, 4)
+    assert auto.window == 1.25
+    assert not auto.should_switch(0.0, _counters(0.0))
+    steps, switched = 0.0, None
+    for k in range(1, 5):
+        steps += _window_steps(ratio, auto)
+        if auto.should_switch(k * auto.window, _counters(steps)):
+            switched = k
+            break
+    assert switched == windows
+    assert auto.switched == (windows is not None)
