@@ -10,9 +10,10 @@ outputs) is split by SVD into modes U S V^T, the leading modes that together hol
 :data:`DROPPED_ENERGY` of its sum of squares are fitted one by one (at most n fits whatever m),
 and the outputs' coefficients are the modes' recombined, C = sum_k c_k V_k^T (plus the mean on
 the constant): exact for a linear recombination, so the statistics and Sobol indices computed
-from C are those of the recombined surrogate. For 150 runs x 2000 outputs x 6 inputs at p = 5,
-q = 1, LAR per output took 0.02 s each (43 s in all) on the development machine; by modes it
-takes a few seconds.
+from C are those of the recombined surrogate. For 150 runs x 2000 outputs (smooth series) x 6
+inputs at p = 5, q = 1 (462 candidates), LAR output by output took 0.6 s each (20 min in all) on
+the development machine, by modes 3 s (10 to 16 modes kept), with hold-out errors 100 times
+smaller than LAR output by output with OpenTURNS' early stop (below).
 
 Validation error of each output: the leave-one-out residuals of the modes, each mode's scaled by
 the square root of its correction factor T(P_k, n) = n / (n - P_k) (1 + tr(C_k^-1) / n),
@@ -20,9 +21,18 @@ C_k = A_k^T A_k / n on its P_k selected polynomials (Chapelle et al. 2002, as Op
 ``CorrectedLeaveOneOut``), recombined with V, plus the part of the dropped modes, summed in
 squares over the runs and divided by the output's sum of squares about its mean. For one mode it
 is the corrected LOO relative error of that fit.
+
+OpenTURNS stops the LAR path once the error exceeds twice its minimum so far
+(``LeastSquaresMetaModelSelection-MaximumErrorFactor`` = 2); here the path goes on to its end
+(min(P, n) steps, the UQLab way), as a sparse model's exact set can come after such a rise: with
+the stop a 7-term polynomial in 3 inputs was not recovered from 61 runs (error 1e-3), without it
+it was (error 1e-27).
 """
 
 from __future__ import annotations
+
+import contextlib
+from typing import Iterator
 
 import numpy as np
 import openturns as ot
@@ -36,6 +46,22 @@ __all__ = ["DROPPED_ENERGY", "lar_fit"]
 #: it are round-off of the runs' outputs (double precision, 1e-16 relative, squared 1e-32 is
 #: far below; 1e-12 of the energy is a relative error of 1e-6 in the outputs' spread).
 DROPPED_ENERGY = 1e-12
+
+
+#: OpenTURNS' key for the early stop of the LAR path, and the value that lets it run to its end.
+_STOP_KEY = "LeastSquaresMetaModelSelection-MaximumErrorFactor"
+_NO_STOP = 1e300
+
+
+@contextlib.contextmanager
+def _whole_lar_path() -> Iterator[None]:
+    """Run OpenTURNS' LAR without its early stop (module docstring), restoring the setting."""
+    before = ot.ResourceMap.GetAsScalar(_STOP_KEY)
+    ot.ResourceMap.SetAsScalar(_STOP_KEY, _NO_STOP)
+    try:
+        yield
+    finally:
+        ot.ResourceMap.SetAsScalar(_STOP_KEY, before)
 
 
 def _modes(centred: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -56,7 +82,8 @@ def _lar_one(basis: PolynomialBasis, factory: ot.OrthogonalProductPolynomialFact
     algo = ot.FunctionalChaosAlgorithm(ot.Sample(x), ot.Sample(y[:, None]), basis.distribution,
                                        ot.FixedStrategy(factory, size),
                                        ot.LeastSquaresStrategy(selection))
-    algo.run()
+    with _whole_lar_path():
+        algo.run()
     result = algo.getResult()
     return (np.array(result.getIndices(), dtype=np.int64),
             np.array(result.getCoefficients(), dtype=float)[:, 0])
