@@ -18,7 +18,24 @@ from numpy.typing import NDArray
 from floatmoor.uq.basis import PolynomialBasis
 from floatmoor.uq.inputs import UncertainInput, joint_distribution
 
-__all__ = ["quadrature_design", "lhs_design"]
+__all__ = ["quadrature_design", "lhs_design", "seed_sampling"]
+
+#: OpenTURNS' generator takes 32-bit seeds (larger ones wrap round: 2^32 + 5 draws as 5).
+_SEEDS = 2**32
+
+
+def seed_sampling(seed: int) -> None:
+    """Seed OpenTURNS' random generator, which draws every sample of the inputs.
+
+    Raises
+    ------
+    ValueError
+        When ``seed`` is not an integer in [0, 2^32).
+    """
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) \
+            or not 0 <= seed < _SEEDS:
+        raise ValueError(f"random seed {seed!r}: must be an integer in [0, 2^32)")
+    ot.RandomGenerator.SetSeed(int(seed))
 
 
 def quadrature_design(inputs: Sequence[UncertainInput],
@@ -54,5 +71,5 @@ def lhs_design(inputs: Sequence[UncertainInput], samples: int,
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ValueError(f"Latin-hypercube samples {samples!r}: must be an integer >= 1")
     distribution = joint_distribution(inputs)
-    ot.RandomGenerator.SetSeed(int(seed))
+    seed_sampling(seed)
     return np.array(ot.LHSExperiment(distribution, int(samples)).generate(), dtype=float)

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from floatmoor._version import __version__
 from floatmoor.io.netcdf import NETCDF_ENGINE, write_dataset
 from floatmoor.uq.basis import PolynomialBasis
+from floatmoor.uq.designs import seed_sampling
 from floatmoor.uq.inputs import UncertainInput
 from floatmoor.uq.regression import lar_fit
 
@@ -188,7 +189,9 @@ class Surrogate:
     def sample_inputs(self, n: int, seed: int) -> NDArray[np.float64]:
         """n random input values (n, d) from the joint distribution (same seed, same
         values)."""
-        ot.RandomGenerator.SetSeed(int(seed))
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError(f"number of samples {n!r}: must be an integer >= 1")
+        seed_sampling(seed)
         return np.array(self._basis.distribution.getSample(int(n)), dtype=float)
 
     def sample(self, n: int, seed: int) -> NDArray[np.float64]:

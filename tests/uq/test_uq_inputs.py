@@ -90,6 +90,8 @@ def test_bad_methods_are_refused():
         uq.design(inputs, uq.QuadratureMethod(-1))
     with pytest.raises(ValueError, match="samples 0"):
         uq.design(inputs, uq.RegressionMethod(2, 1.0, 0, 1))
+    with pytest.raises(ValueError, match=r"seed 4294967296: must be an integer in \[0, 2\^32\)"):
+        uq.design(inputs, uq.RegressionMethod(2, 1.0, 10, 2**32))
     x = uq.designs.lhs_design(inputs, 10, 1)
     with pytest.raises(ValueError, match="q-norm 1.5"):
         uq.Surrogate.fit_regression(inputs, 2, 1.5, x, x[:, 0])
