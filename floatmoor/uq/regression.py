@@ -42,9 +42,9 @@ from floatmoor.uq.basis import PolynomialBasis
 
 __all__ = ["DROPPED_ENERGY", "lar_fit"]
 
-#: Share of the centred outputs' sum of squares that the SVD reduction may drop: modes below
-#: it are round-off of the runs' outputs (double precision, 1e-16 relative, squared 1e-32 is
-#: far below; 1e-12 of the energy is a relative error of 1e-6 in the outputs' spread).
+#: Share of the centred outputs' sum of squares that the modes dropped by the SVD reduction may
+#: hold: an RMS error of sqrt(1e-12) = 1e-6 of the outputs' spread, below any surrogate's error,
+#: while the modes of round-off (~1e-32 of it) go.
 DROPPED_ENERGY = 1e-12
 
 

@@ -75,7 +75,8 @@ class Surrogate:
         terms of degree ``order`` exactly, (var_p - var_(p-1)) / var_p, where var_(p-1) is the
         variance of the order p - 1 projection from the same runs (the (p + 1)-point rule
         integrates it exactly too); with coefficients decaying with degree (smooth models) it
-        estimates the truncation error. NaN where the variance is zero.
+        indicates the truncation error's order of magnitude (case E at p = 6: 8e-6, against a
+        true relative error of the variance of 2.8e-5). NaN where the variance is zero.
     coefficients, multi_indices
         Coefficients (P, m) of the orthonormal polynomials of degrees (P, d), constant first.
     """
