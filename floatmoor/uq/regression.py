@@ -91,13 +91,16 @@ def _lar_one(basis: PolynomialBasis, factory: ot.OrthogonalProductPolynomialFact
 
 def _corrected_loo(design: NDArray[np.float64], y: NDArray[np.float64],
                    coefficients: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Leave-one-out residuals of a least-squares fit, scaled by sqrt(T(P, n))."""
+    """Leave-one-out residuals of a least-squares fit, scaled by sqrt(T(P, n)); inf where
+    they are not defined (no more runs than polynomials, a run that alone fixes a
+    coefficient)."""
     n, p = design.shape
     if n <= p:
         return np.full(n, np.inf)
     q, _ = np.linalg.qr(design)
     leverage = np.sum(q**2, axis=1)
-    loo = (y - design @ coefficients) / (1.0 - leverage)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a run of leverage 1: LOO error inf
+        loo = (y - design @ coefficients) / (1.0 - leverage)
     gram = design.T @ design / n
     correction = n / (n - p) * (1.0 + np.trace(np.linalg.inv(gram)) / n)
     return np.sqrt(correction) * loo
