@@ -116,7 +116,8 @@ def lar_fit(basis: PolynomialBasis, order: int, q_norm: float, x: NDArray[np.flo
     multi_indices, coefficients, validation_error
         The polynomials selected for any output (the constant first), (P, d); their
         coefficients (P, m); the corrected LOO relative error (m,) (module docstring; NaN
-        for an output that does not vary over the runs).
+        for an output that does not vary over the runs, inf for one that a mode without a
+        LOO error reaches).
     """
     candidates = basis.multi_indices(order, q_norm)
     factory = basis.ot_factory(q_norm)
@@ -127,12 +128,16 @@ def lar_fit(basis: PolynomialBasis, order: int, q_norm: float, x: NDArray[np.flo
     selected = [np.zeros(1, dtype=np.int64)]
     fits = []
     residual = centred - scores @ shapes
+    unvalidated = np.zeros(y.shape[1], dtype=bool)
     for k in range(scores.shape[1]):
         ranks, coefficients = _lar_one(basis, factory, len(candidates), x, scores[:, k])
         fits.append((ranks, coefficients))
         selected.append(ranks)
-        residual += np.outer(_corrected_loo(psi[:, ranks], scores[:, k], coefficients),
-                             shapes[k])
+        loo = _corrected_loo(psi[:, ranks], scores[:, k], coefficients)
+        if np.all(np.isfinite(loo)):
+            residual += np.outer(loo, shapes[k])
+        else:
+            unvalidated |= shapes[k] != 0.0
     union = np.unique(np.concatenate(selected))
     position = {rank: i for i, rank in enumerate(union)}
     combined = np.zeros((union.size, y.shape[1]))
@@ -143,4 +148,5 @@ def lar_fit(basis: PolynomialBasis, order: int, q_norm: float, x: NDArray[np.flo
     spread = np.sum(centred**2, axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
         error = np.where(spread > 0.0, np.sum(residual**2, axis=0) / spread, np.nan)
+    error[unvalidated] = np.inf
     return candidates[union], combined, error
