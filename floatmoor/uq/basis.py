@@ -104,6 +104,7 @@ class PolynomialBasis:
     def _check(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         x = np.asarray(x, dtype=float)
         if x.ndim != 2 or x.shape[1] != self.dimension:
+            keys = ", ".join(i.key for i in self.inputs)
             raise ValueError(f"points of shape {x.shape}: expected (k, {self.dimension}), one "
-                             f"column per uncertain input ({', '.join(i.key for i in self.inputs)})")
+                             f"column per uncertain input ({keys})")
         return x

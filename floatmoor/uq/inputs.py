@@ -33,7 +33,7 @@ class UncertainInput:
 
     key: str
     distribution: str
-    parameters: Mapping[str, float]
+    parameters: dict[str, float]
 
 
 #: Distribution name -> its parameter names, in the order a loader may list them.
