@@ -32,7 +32,7 @@ def pytest_report_header(config) -> str:
     from importlib.metadata import PackageNotFoundError, version
 
     names = ("numpy", "scipy", "numba", "llvmlite", "capytaine", "xarray", "matplotlib",
-             "netCDF4", "h5netcdf", "moorpy", "moordyn", "dask")
+             "netCDF4", "h5netcdf", "moorpy", "moordyn", "dask", "openturns")
     found = []
     for name in names:
         try:
