@@ -55,13 +55,15 @@ def input_text(study: Study, k: int) -> str:
 def weighted_sobol(indices: NDArray[np.float64], variance: NDArray[np.float64]
                    ) -> NDArray[np.float64]:
     """Sobol indices (inputs, times) of a history aggregated over its window: each time
-    weighted by the output's variance there, sum_t S_i(t) V(t) / sum_t V(t) (zero when the
-    output does not vary)."""
-    variance = np.asarray(variance, dtype=float)
+    weighted by the output's variance there, sum_t S_i(t) V(t) / sum_t V(t). Times whose
+    indices are NaN (the output does not vary there) weigh nothing; all zero when the output
+    never varies."""
+    indices = np.asarray(indices, dtype=float)
+    variance = np.where(np.all(np.isfinite(indices), axis=0), np.asarray(variance, float), 0.0)
     total = float(np.sum(variance))
     if not total > 0.0:
-        return np.zeros(np.shape(indices)[0])
-    return np.asarray(indices, dtype=float) @ variance / total
+        return np.zeros(indices.shape[0])
+    return np.nan_to_num(indices) @ variance / total
 
 
 def _squared(units: str) -> str:

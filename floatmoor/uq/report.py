@@ -22,7 +22,8 @@ from floatmoor.report.figures import DPI, check_series
 from floatmoor.report.markdown import Block, Figure, Heading, Paragraph, render_html, \
     render_markdown
 from floatmoor.report.tables import Table, format_number
-from floatmoor.uq.output import BAND_LEVEL, BAND_SEED, input_text, method_text, weighted_sobol
+from floatmoor.uq.output import BAND_LEVEL, BAND_SEED, input_text, method_text, \
+    weighted_sobol
 from floatmoor.uq.results import StudyResult
 from floatmoor.uq.study import Quantity
 from floatmoor.uq.surrogate import Surrogate
@@ -66,11 +67,15 @@ def _plot_pdf(q: Quantity, s: Surrogate, runs: NDArray[np.float64], samples: int
     low, high = float(draws.min()), float(draws.max())
     pad = _GRID_MARGIN * (high - low) if high > low else max(abs(low), 1.0) * 1e-3
     grid = np.linspace(low - pad, high + pad, DENSITY_POINTS)
-    density = check_series(s.density(0, grid, n=samples, seed=BAND_SEED),
-                           f"density of {q.name}")
     fig, ax = _pyplot().subplots(figsize=(7.0, 3.6))
     fig.subplots_adjust(left=0.12, right=0.97, bottom=0.15, top=0.88)
-    ax.plot(grid, density, color="C0", label=f"kernel density, {samples} surrogate samples")
+    try:
+        density = check_series(s.density(0, grid, n=samples, seed=BAND_SEED),
+                               f"density of {q.name}")
+        ax.plot(grid, density, color="C0", label=f"kernel density, {samples} surrogate "
+                "samples")
+    except ValueError as err:  # an output that does not vary has no density: say so
+        ax.text(0.5, 0.5, str(err), transform=ax.transAxes, ha="center", fontsize=8)
     finite = runs[np.isfinite(runs)]
     ax.plot(finite, np.zeros_like(finite), "|", color="k", markersize=12,
             label="design runs")
@@ -87,10 +92,12 @@ def _plot_bars(q: Quantity, keys: list[str], first: NDArray[np.float64],
     fig.subplots_adjust(left=0.45, right=0.97, bottom=0.25 if len(keys) < 3 else 0.12,
                         top=0.85)
     y = np.arange(len(keys))
-    ax.barh(y + 0.2, check_series(total, f"total Sobol indices of {q.name}"), 0.4,
-            color="C1", label="total")
-    ax.barh(y - 0.2, check_series(first, f"first-order Sobol indices of {q.name}"), 0.4,
-            color="C0", label="first order")
+    first, total = np.asarray(first, dtype=float), np.asarray(total, dtype=float)
+    if not np.all(np.isfinite(total)):  # NaN: the output does not vary, nothing to share
+        ax.text(0.5, 0.5, "the output does not vary: no Sobol indices",
+                transform=ax.transAxes, ha="center", fontsize=8)
+    ax.barh(y + 0.2, np.nan_to_num(total), 0.4, color="C1", label="total")
+    ax.barh(y - 0.2, np.nan_to_num(first), 0.4, color="C0", label="first order")
     ax.set_yticks(y, keys, fontsize=7)
     ax.set_xlim(0.0, 1.05)
     ax.set_xlabel("Sobol index")
@@ -119,22 +126,22 @@ def _plot_band(q: Quantity, s: Surrogate, time: NDArray[np.float64],
 def _plot_sobol_time(q: Quantity, s: Surrogate, keys: list[str], time: NDArray[np.float64],
                      path: Path) -> Path:
     plt = _pyplot()
-    fig, axes = plt.subplots(3, 1, figsize=(8.0, 7.5), sharex=True)
-    fig.subplots_adjust(left=0.1, right=0.72, bottom=0.08, top=0.92, hspace=0.15)
-    total = np.asarray(s.sobol_total, dtype=float)
+    fig, axes = plt.subplots(3, 1, figsize=(10.0, 7.5), sharex=True)
+    fig.subplots_adjust(left=0.08, right=0.6, bottom=0.08, top=0.92, hspace=0.15)
+    total = np.asarray(s.sobol_total, dtype=float)  # NaN where the output does not vary
     axes[0].plot(time, check_series(s.mean, f"mean of {q.name}"), color="k")
     axes[0].set_ylabel(f"mean [{q.units}]")
-    share = total / np.where(total.sum(axis=0) > 0.0, total.sum(axis=0), 1.0)
+    sums = np.nansum(total, axis=0)
+    share = np.nan_to_num(total) / np.where(sums > 0.0, sums, 1.0)
     axes[1].stackplot(time, share, labels=keys, colors=[f"C{k % 10}" for k in range(len(keys))])
     axes[1].set_ylabel("relative total index")
     axes[1].set_ylim(0.0, 1.0)
     for k, key in enumerate(keys):
-        axes[2].plot(time, check_series(total[k], f"total Sobol index of {key}"),
-                     color=f"C{k % 10}", label=key)
+        axes[2].plot(time, total[k], color=f"C{k % 10}", label=key)
     axes[2].set_ylabel("total Sobol index")
     axes[2].set_xlabel("time [s]")
     axes[1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    return _save(fig, path, f"{q.name}: Sobol indices over time")
+    return _save(fig, path, f"{q.name}: Sobol indices over time (gaps: no variance)")
 
 
 def _plot_density_map(q: Quantity, s: Surrogate, time: NDArray[np.float64], samples: int,

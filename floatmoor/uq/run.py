@@ -121,10 +121,13 @@ def run_study(study: Study, folder: str | Path, *, workers: int = 1,
         _refuse_missing(study, runs)
     surrogates = {q.name: fit(list(study.inputs), study.method, runs.nodes, runs.weights,
                               runs.outputs[q.name]) for q in study.quantities}
-    dropped = sorted({int(i) for s in surrogates.values() for i in s.dropped})
+    dropped = sorted({int(k) for values in runs.outputs.values()
+                      for k in np.flatnonzero(~np.all(np.isfinite(values), axis=1))})
     (folder / SURROGATES_NAME).mkdir(exist_ok=True)
-    for name, surrogate in surrogates.items():
-        surrogate.save(folder / SURROGATES_NAME / f"{name}.nc")
+    for q in study.quantities:
+        surrogates[q.name].save(folder / SURROGATES_NAME / f"{q.name}.nc", {
+            "study_file": study.path, "study_toml": study.text, "quantity": q.name,
+            "quantity_description": q.describe()}, output_units=q.units or "1")
     dataset = build_uq_dataset(study, runs, surrogates, dropped)
     write_dataset(dataset, folder / RESULTS_NAME)
     result = StudyResult(study, runs, surrogates, dataset, dropped, folder)
@@ -158,7 +161,7 @@ def _run_model(study: Study, nodes: NDArray[np.float64], weights: NDArray[np.flo
         parameters: dict[str, Any] = {**study.parameters,
                                       **{key: float(v) for key, v in zip(study.keys, row)}}
         try:
-            values[k, 0] = float(model(**parameters))
+            values[k, 0] = float(model.function(**parameters))
             status.append("complete" if math.isfinite(values[k, 0]) else
                           "failed: the model gave a non-finite value")
         except (ArithmeticError, ValueError) as err:  # a model's domain error: that run fails

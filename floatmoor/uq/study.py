@@ -50,7 +50,7 @@ from floatmoor.io.dataset import DOFS
 from floatmoor.simulation.forced import output_times
 from floatmoor.uq.inputs import DISTRIBUTIONS, UncertainInput, check_input
 from floatmoor.uq.propagate import QuadratureMethod, RegressionMethod, design
-from floatmoor.uq.taut_string import BUILTIN_MODELS
+from floatmoor.uq.taut_string import BUILTIN_MODELS, BuiltinModel
 
 __all__ = ["Study", "Quantity", "load_study", "LINE_STATISTICS", "DOF_STATISTICS", "HISTORY",
            "MAX_RUNS", "MAX_ORDER", "DEFAULT_SURROGATE_SAMPLES", "nominal_values"]
@@ -258,9 +258,8 @@ def _model(root: TableReader, inputs: Sequence[UncertainInput]) -> tuple[str, di
     return name, fixed
 
 
-def _parameter_units(model: Any, key: str) -> str:
-    entry = model.parameters[key]
-    return entry[1] if isinstance(entry, tuple) else ""
+def _parameter_units(model: BuiltinModel, key: str) -> str:
+    return model.parameters[key].units
 
 
 def _case(root: TableReader, folder: FilePath) -> tuple[str, Case, tuple[str, ...]]:

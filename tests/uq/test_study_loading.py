@@ -55,8 +55,8 @@ BAD = [
      "a case file (path relative to the study file)", "no such file"),
     ("bad_base_override", ("simulation.duration=3.75", "simulation.duration=-1.0"),
      "base_overrides", "a case that loads with these overrides", "simulation.duration"),
-    ("unknown_distribution", ('distribution = "uniform"', 'distribution = "lognormal"'),
-     "inputs[0].distribution", '"uniform"', 'the string "lognormal"'),
+    ("unknown_distribution", ('distribution = "uniform"', 'distribution = "weibull"'),
+     "inputs[0].distribution", '"uniform"', 'the string "weibull"'),
     ("missing_parameter", ("upper = 3.75\n", ""), "inputs[0].upper", "a finite number",
      "nothing (the key is missing)"),
     ("wrong_type_parameter", ("lower = 1.25", 'lower = "1.25"'), "inputs[0].lower",
@@ -172,9 +172,9 @@ def test_model_study_rules(tmp_path):
 title = "string"
 model = "taut_string"
 [parameters]
-time = 0.25
+t = 0.25
 [[inputs]]
-key = "tension"
+key = "T"
 distribution = "uniform"
 lower = 100.0
 upper = 116.0
@@ -184,11 +184,11 @@ order = 2
 """
     assert load_study(_write(tmp_path, base)).quantities[0].kind == "model"
     cases = [
-        (base.replace('key = "tension"', 'key = "stiffness"'), "inputs[0].key",
+        (base.replace('key = "T"', 'key = "stiffness"'), "inputs[0].key",
          "a parameter of model taut_string"),
-        (base.replace("time = 0.25", "time = 0.25\ncolour = 1.0"), "parameters.colour",
+        (base.replace("t = 0.25", "t = 0.25\ncolour = 1.0"), "parameters.colour",
          "one of the known keys"),
-        (base.replace("time = 0.25", "tension = 108.0"), "parameters.tension",
+        (base.replace("t = 0.25", "T = 108.0"), "parameters.T",
          "not also an uncertain input"),
         (base + '[[quantities]]\nname = "y"\nline = "a"\nstatistic = "max"\n', "quantities",
          "no [[quantities]] with a built-in model"),
