@@ -28,7 +28,8 @@ from floatmoor.uq.results import StudyResult, StudyRuns
 from floatmoor.uq.study import Quantity, Study
 from floatmoor.uq.surrogate import Surrogate
 
-__all__ = ["build_uq_dataset", "study_summary", "weighted_sobol", "BAND_LEVEL", "BAND_SEED", "method_text", "input_text"]
+__all__ = ["build_uq_dataset", "study_summary", "weighted_sobol", "BAND_LEVEL", "BAND_SEED",
+           "method_text", "input_text"]
 
 #: Probability content of the central bands (gpc paper section 4.3: 95 % bands).
 BAND_LEVEL = 0.95

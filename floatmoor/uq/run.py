@@ -33,7 +33,6 @@ from floatmoor.uq.quantities import history_times, quantity_values
 from floatmoor.uq.report import write_study_report
 from floatmoor.uq.results import StudyResult, StudyRuns
 from floatmoor.uq.study import Study
-from floatmoor.uq.surrogate import Surrogate
 from floatmoor.uq.taut_string import BUILTIN_MODELS
 
 __all__ = ["StudyRunsFailed", "run_study", "study_design",
