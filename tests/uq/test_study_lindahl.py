@@ -201,3 +201,27 @@ def test_full_case_g_anchor_positions(tmp_path, capsys, period):
         return q[name]["max_std"] / swing
     assert relative("surge") > relative("heave")
     assert relative("tension_line3") > relative("pitch")
+
+
+@pytest.mark.slow
+def test_quick_case_g_floater_quantities(tmp_path, capsys):
+    """The buoy study on quasi-static lines, 4 s, 10 LHS runs at p = 1 (about 30 s): the
+    floater DOF quantities (a scalar and histories) go through, and the anchors move surge
+    far more than heave, relative to their swing (gpc paper 4.3)."""
+    text = (CASES / "uq" / "buoy_T1.20_anchors.toml").read_text()
+    text = text.replace('case = "../cylinder_buoy/', f'case = "{CASES}/cylinder_buoy/')
+    text = text.replace("surrogate_samples = 3000", "surrogate_samples = 3000\nbase_overrides"
+                        " = ['lines.*.model=\"quasi-static\"', \"simulation.duration=4.0\", "
+                        "\"waves.ramp_duration=1.0\"]")
+    text = text.replace("samples = 150", "samples = 10").replace("order = 5", "order = 1")
+    text = text.replace("window = [55.0, 60.0]", "window = [2.8, 4.0]")
+    text += '\n[[quantities]]\nname = "surge_max"\ndof = "Surge"\nstatistic = "max"\n'
+    out = tmp_path / "g"
+    assert main(["uq", str(_write(tmp_path, text)), "-o", str(out), "--json", "--quiet"]) == 0
+    q = json.loads(capsys.readouterr().out)["quantities"]
+    assert q["surge_max"]["units"] == "m" and q["pitch"]["units"] == "rad"
+    assert np.isfinite(q["surge_max"]["mean"])
+
+    def relative(name: str) -> float:
+        return q[name]["max_std"] / (q[name]["max_mean"] - q[name]["min_mean"])
+    assert relative("surge") > 10.0 * relative("heave")
