@@ -29,7 +29,7 @@ import shlex
 import sys
 from contextlib import nullcontext
 from pathlib import Path
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Callable, Sequence
 
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
@@ -550,20 +550,8 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
     from floatmoor.campaign.runner import run_campaign
     from floatmoor.campaign.store import failed_runs
     from floatmoor.io.output_files import OutputWriteError, file_state
-    from floatmoor.ui.progress import COMPILING_MESSAGE
 
-    def progress(done: int, total: int, left: float) -> None:
-        if not args.quiet:
-            eta = "" if left != left else f", ~{left:.0f} s left"
-            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
-
-    said = []
-
-    def compiling() -> None:  # runs in this process (one worker): say it once
-        if not args.quiet and not said:
-            said.append(True)
-            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
-
+    progress, compiling = _campaign_reporters(args.quiet)
     before = file_state(output)
     try:
         with watch_compilation(compiling, lambda seconds: None):
@@ -587,6 +575,27 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
         report_failures("sweep", failed, int(ds["status"].size))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _campaign_reporters(quiet: bool) -> tuple[Callable[[int, int, float], None],
+                                              Callable[[], None]]:
+    """The progress callback of a campaign's runs (runs done, runs in total, seconds left)
+    and the compiling notice (said once: kernels compile in this process with one worker)."""
+    from floatmoor.ui.progress import COMPILING_MESSAGE
+
+    said = []
+
+    def progress(done: int, total: int, left: float) -> None:
+        if not quiet:
+            eta = "" if left != left else f", ~{left:.0f} s left"
+            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
+
+    def compiling() -> None:
+        if not quiet and not said:
+            said.append(True)
+            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
+
+    return progress, compiling
 
 
 def _say_moved_aside(path: Path, backup: Path) -> None:
@@ -670,22 +679,10 @@ def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
     """Run a checked study into its checked and locked output folder."""
     from floatmoor._numba import watch_compilation
     from floatmoor.io.output_files import OutputWriteError
-    from floatmoor.ui.progress import COMPILING_MESSAGE
     from floatmoor.uq.output import study_summary
     from floatmoor.uq.run import RUNS_NAME, StudyRunsFailed, run_study
 
-    def progress(done: int, total: int, left: float) -> None:
-        if not args.quiet:
-            eta = "" if left != left else f", ~{left:.0f} s left"
-            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
-
-    said = []
-
-    def compiling() -> None:
-        if not args.quiet and not said:
-            said.append(True)
-            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
-
+    progress, compiling = _campaign_reporters(args.quiet)
     runs = folder / RUNS_NAME
     try:
         with watch_compilation(compiling, lambda seconds: None):
