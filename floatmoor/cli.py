@@ -3,6 +3,8 @@
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
 runs it; ``floatmoor sweep CASE --grid ...`` runs a campaign; ``floatmoor study
 qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md case B);
+``floatmoor uq STUDY.toml -o DIR`` runs an uncertainty-quantification study (gPC surrogates of
+quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature design exits 1);
 ``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
 ``floatmoor hydro import FILE... -o PATH`` makes one from WAMIT or BEMIO files,
 ``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
