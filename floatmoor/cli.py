@@ -3,6 +3,8 @@
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
 runs it; ``floatmoor sweep CASE --grid ...`` runs a campaign; ``floatmoor study
 qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md case B);
+``floatmoor uq STUDY.toml -o DIR`` runs an uncertainty-quantification study (gPC surrogates of
+quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature design exits 1);
 ``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
 ``floatmoor hydro import FILE... -o PATH`` makes one from WAMIT or BEMIO files,
 ``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
@@ -29,7 +31,7 @@ import shlex
 import sys
 from contextlib import nullcontext
 from pathlib import Path
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Callable, Sequence
 
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
@@ -48,6 +50,7 @@ if TYPE_CHECKING:
     from floatmoor.campaign.design import CampaignDesign
     from floatmoor.mooring.strength import StaticLineLoad
     from floatmoor.simulation.forced import RunResult
+    from floatmoor.uq.study import Study
 
 __all__ = ["main"]
 
@@ -113,6 +116,21 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("--quick", action="store_true",
                        help="reduced subset (one amplitude, two accelerations per configuration)")
     study.add_argument("--quiet", action="store_true", help="no progress reports")
+    uq = sub.add_parser("uq", help="run an uncertainty-quantification study (gPC surrogates "
+                        "of quantities of interest)")
+    uq.add_argument("study", help="TOML study file (cases/uq/*.toml)")
+    uq.add_argument("-o", "--output", metavar="DIR", required=True,
+                    help="output folder (created if its parent exists): runs.nc, uq.nc, "
+                    "surrogates/, report/; re-running into it resumes the runs")
+    uq.add_argument("--workers", type=int, default=1, help="local worker processes")
+    uq.add_argument("--scheduler", metavar="ADDRESS",
+                    help="run on this Dask distributed scheduler (tcp://host:8786)")
+    uq.add_argument("--json", action="store_true",
+                    help="print the summary as JSON on standard output")
+    uq.add_argument("--restart", action="store_true",
+                    help="start the runs afresh: an existing DIR/runs.nc is moved aside to "
+                    "runs.nc.bak-N (never deleted) instead of resumed")
+    uq.add_argument("--quiet", action="store_true", help="no progress reports")
     hydro = sub.add_parser("hydro", help="hydrodynamic (BEM) databases of floaters")
     hsub = hydro.add_subparsers(dest="hydro_command", required=True)
     hbuild = hsub.add_parser("build", help="run capytaine for a case's [floater] and [hydro]")
@@ -194,6 +212,8 @@ def _command(args: argparse.Namespace) -> int:
             return _sweep(args)
         if args.command == "study":
             return _study(args)
+        if args.command == "uq":
+            return _uq(args)
         if args.command == "hydro":
             from floatmoor.hydro.cli import hydro_command
 
@@ -532,20 +552,8 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
     from floatmoor.campaign.runner import run_campaign
     from floatmoor.campaign.store import failed_runs
     from floatmoor.io.output_files import OutputWriteError, file_state
-    from floatmoor.ui.progress import COMPILING_MESSAGE
 
-    def progress(done: int, total: int, left: float) -> None:
-        if not args.quiet:
-            eta = "" if left != left else f", ~{left:.0f} s left"
-            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
-
-    said = []
-
-    def compiling() -> None:  # runs in this process (one worker): say it once
-        if not args.quiet and not said:
-            said.append(True)
-            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
-
+    progress, compiling = _campaign_reporters(args.quiet)
     before = file_state(output)
     try:
         with watch_compilation(compiling, lambda seconds: None):
@@ -569,6 +577,27 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
         report_failures("sweep", failed, int(ds["status"].size))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _campaign_reporters(quiet: bool) -> tuple[Callable[[int, int, float], None],
+                                              Callable[[], None]]:
+    """The progress callback of a campaign's runs (runs done, runs in total, seconds left)
+    and the compiling notice (said once: kernels compile in this process with one worker)."""
+    from floatmoor.ui.progress import COMPILING_MESSAGE
+
+    said = []
+
+    def progress(done: int, total: int, left: float) -> None:
+        if not quiet:
+            eta = "" if left != left else f", ~{left:.0f} s left"
+            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
+
+    def compiling() -> None:
+        if not quiet and not said:
+            said.append(True)
+            print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
+
+    return progress, compiling
 
 
 def _say_moved_aside(path: Path, backup: Path) -> None:
@@ -630,6 +659,82 @@ def _study(args: argparse.Namespace) -> int:
         report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _uq(args: argparse.Namespace) -> int:
+    from floatmoor.io.output_files import check_output_folder, output_lock
+    from floatmoor.uq.study import load_study
+
+    study = load_study(args.study)
+    if args.workers < 1:
+        raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+    if args.scheduler is not None:
+        from floatmoor.campaign.scheduler import check_address
+
+        check_address(args.scheduler)
+    folder = check_output_folder(args.output, "-o/--output")
+    with output_lock(folder.resolve()):
+        return _uq_locked(args, study, folder)
+
+
+def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
+    """Run a checked study into its checked and locked output folder."""
+    from floatmoor._numba import watch_compilation
+    from floatmoor.io.output_files import OutputWriteError
+    from floatmoor.uq.output import study_summary
+    from floatmoor.uq.run import RUNS_NAME, StudyRunsFailed, run_study
+
+    progress, compiling = _campaign_reporters(args.quiet)
+    runs = folder / RUNS_NAME
+    try:
+        with watch_compilation(compiling, lambda seconds: None):
+            result = run_study(study, folder, workers=args.workers, scheduler=args.scheduler,
+                               progress=progress, restart=args.restart,
+                               moved_aside=_say_moved_aside)
+    except KeyboardInterrupt as stop:
+        held = f"the finished runs are in {runs} (re-run the same command to resume)" \
+            if runs.is_file() else "no run finished"
+        print(f"floatmoor: {signal_name(stop)}; {held}", file=sys.stderr)
+        return exit_status(stop)
+    except StudyRunsFailed as err:
+        print(f"{err.total - len(err.failed)} of {err.total} runs complete; the quadrature "
+              f"rule needs every node: no surrogate built; the runs are in {runs}")
+        report_failures("uq", err.failed, err.total)
+        return EXIT_FAILED
+    except OutputWriteError as err:
+        print(f"floatmoor: uq failed: {err}", file=sys.stderr)
+        return EXIT_FAILED
+    summary = study_summary(result)
+    if summary["dropped_runs"]:
+        print(f"floatmoor: uq: {len(summary['dropped_runs'])} of {summary['runs']} runs "
+              "failed or gave non-finite values and were dropped from the regression: "
+              + "; ".join(summary["dropped_runs"][:_NAMED_FAILURES]), file=sys.stderr)
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(_format_uq_summary(summary))
+    return EXIT_OK
+
+
+def _format_uq_summary(summary: dict) -> str:
+    """The study summary as plain text: one line per quantity."""
+    rows = [f"{summary['title']}: {summary['method']}, {summary['runs']} runs "
+            f"({len(summary['dropped_runs'])} dropped)"]
+    for name, q in summary["quantities"].items():
+        u = q["units"]
+        if "window_s" in q:
+            total = ", ".join(f"{k} {v:.3g}" for k, v in q["sobol_total_weighted"].items())
+            rows.append(f"  {name} [{u}] over {q['window_s'][0]:g} to {q['window_s'][1]:g} s: "
+                        f"mean {q['min_mean']:.5g} to {q['max_mean']:.5g}, band "
+                        f"{q['min_lower']:.5g} to {q['max_upper']:.5g}, largest std "
+                        f"{q['max_std']:.4g}; variance-weighted S_T: {total}")
+        else:
+            total = ", ".join(f"{k} {v:.3g}" for k, v in q["sobol_total"].items())
+            rows.append(f"  {name} [{u}]: mean {q['mean']:.7g}, variance {q['variance']:.7g}, "
+                        f"std {q['std']:.5g}, band {q['lower']:.5g} to {q['upper']:.5g}, "
+                        f"validation error {q['validation_error']:.3g}; S_T: {total}")
+    rows.append(f"results in {summary['output']}")
+    return "\n".join(rows)
 
 
 def _left_behind(output: Path, before: tuple[int, int, int] | None,

@@ -1,0 +1,367 @@
+"""Strict reading of uncertainty-quantification study files (TOML).
+
+A study names what is run, which inputs are uncertain, how the gPC surrogate is built and
+which quantities of interest it is built for (gpc paper section 3.4, steps 1 to 9)::
+
+    title = "Lindahl chain, hydrodynamic coefficients"
+    case = "../lindahl/lindahl_r0.20_T1.25.toml"   # relative to this file; or
+    # model = "taut_string" with [parameters] fixing the model's other parameters
+    base_overrides = ["simulation.duration=5.0"]   # optional --set texts for every run
+
+    [[inputs]]
+    key = "line_types.chain.normal_drag_coefficient"   # a --set key path of the case
+    distribution = "uniform"
+    lower = 1.25
+    upper = 3.75
+
+    [method]
+    kind = "quadrature"   # order; or "regression": order, q_norm, samples, seed
+    order = 5
+
+    [[quantities]]
+    name = "tension_cycle"
+    line = "chain"        # or dof = "Surge" (capytaine's DOF names)
+    statistic = "history" # max, mean_cycle_max, std, mean, min (after the ramp) or history
+    window = [13.75, 15.0]  # [s], history only
+
+Everything is checked before anything runs: unknown, missing and mistyped keys, unphysical
+values, and every uncertain key against the case (the case must load with the input's mean
+set), each error one :class:`~floatmoor.errors.CaseError` naming the study file, the key path,
+what was expected and what was found.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path as FilePath
+from typing import Sequence
+
+import numpy as np
+
+from floatmoor.case.files import CaseFileKindError, read_case_text
+from floatmoor.case.limits import MAX_CASE_FILE_BYTES, parse_toml
+from floatmoor.case.load import load_case
+from floatmoor.case.overrides import parse_override
+from floatmoor.case.reader import ReadContext, TableReader
+from floatmoor.case.schema import Case
+from floatmoor.errors import CaseError
+from floatmoor.io.dataset import DOFS
+from floatmoor.simulation.forced import output_times
+from floatmoor.uq.inputs import DISTRIBUTIONS, UncertainInput, check_input
+from floatmoor.uq.propagate import QuadratureMethod, RegressionMethod, design
+from floatmoor.uq.taut_string import BUILTIN_MODELS, BuiltinModel
+
+__all__ = ["Study", "Quantity", "load_study", "LINE_STATISTICS", "DOF_STATISTICS", "HISTORY",
+           "MAX_RUNS", "MAX_ORDER", "DEFAULT_SURROGATE_SAMPLES", "nominal_values"]
+
+#: The history statistic: the quantity's samples over a time window (a vector output).
+HISTORY = "history"
+#: Statistics of a line's fairlead tension after the ramp, as the run summary gives them
+#: (:func:`floatmoor.post.summary.run_summary`), and its history.
+LINE_STATISTICS = ("max", "mean_cycle_max", "std", "mean", "min", HISTORY)
+#: Statistics of a floater DOF's displacement after the ramp (the run summary gives no cycle
+#: maxima of motions), and its history.
+DOF_STATISTICS = ("max", "std", "mean", "min", HISTORY)
+#: Most model runs a design may ask for: (p + 1)^d quadrature grows fast (p = 5, d = 6 is
+#: 46 656 runs of a mooring simulation); a larger design is almost surely a slip.
+MAX_RUNS = 20000
+#: Highest polynomial order: Gauss rules and orthonormal polynomials lose accuracy in double
+#: precision beyond ~20, and the paper's studies converge by p = 4 to 6.
+MAX_ORDER = 20
+#: Surrogate samples for densities and bands (gpc paper section 4: 3000 for every study).
+DEFAULT_SURROGATE_SAMPLES = 3000
+_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_METHODS = ("quadrature", "regression")
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One quantity of interest.
+
+    ``target`` is a line name (``kind`` "line": fairlead tension [N]), a DOF name (``kind``
+    "dof": displacement [m or rad]) or the built-in model's output (``kind`` "model").
+    ``window`` is the [start, end] time window [s] of a history, else None.
+    """
+
+    name: str
+    kind: str
+    target: str
+    statistic: str
+    window: tuple[float, float] | None = None
+    units: str = ""
+
+    @property
+    def is_history(self) -> bool:
+        """Whether the quantity is a vector over time."""
+        return self.statistic == HISTORY
+
+    def describe(self) -> str:
+        """A short description for long names and captions."""
+        what = {"line": f"fairlead tension of line {self.target}",
+                "dof": f"{self.target} displacement",
+                "model": f"output {self.target} of the model"}[self.kind]
+        if self.kind == "model":
+            return what
+        if self.is_history:
+            return f"{what} over t = {self.window[0]:g} to {self.window[1]:g} s"
+        if self.statistic == "mean_cycle_max":
+            return f"mean of the per-cycle maxima of the {what} after the ramp"
+        return f"{self.statistic} of the {what} after the ramp"
+
+
+@dataclass(frozen=True)
+class Study:
+    """A checked study file (:func:`load_study`)."""
+
+    path: str  #: the study file as given
+    text: str  #: its text (stored in the results)
+    title: str
+    inputs: tuple[UncertainInput, ...]
+    method: QuadratureMethod | RegressionMethod
+    quantities: tuple[Quantity, ...]
+    case: str | None = None  #: case file path (resolved against the study's folder)
+    model: str | None = None  #: built-in model name
+    parameters: dict[str, float] = field(default_factory=dict)  #: the model's fixed ones
+    base_overrides: tuple[str, ...] = ()
+    surrogate_samples: int = DEFAULT_SURROGATE_SAMPLES
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        """The uncertain inputs' keys, in order."""
+        return tuple(inp.key for inp in self.inputs)
+
+    @property
+    def method_name(self) -> str:
+        """``quadrature`` or ``regression``."""
+        return "quadrature" if isinstance(self.method, QuadratureMethod) else "regression"
+
+
+def load_study(path: str | FilePath) -> Study:
+    """Read and check a study file.
+
+    Raises
+    ------
+    CaseError
+        For any problem with the study file, its case, a key or a quantity; nothing has been
+        run or written.
+    """
+    source = str(path)
+    try:
+        text = read_case_text(FilePath(path))
+    except CaseFileKindError as err:
+        raise CaseError(source, "", "a readable study file (a regular file of at most "
+                        f"{MAX_CASE_FILE_BYTES} bytes)", str(err)) from None
+    except FileNotFoundError:
+        raise CaseError(source, "", "a readable study file", "no such file") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise CaseError(source, "", "a readable UTF-8 study file", str(err)) from None
+    root = TableReader(parse_toml(text, source), (), ReadContext(source))
+    title = root.string("title")
+    has_case, has_model = root.has("case"), root.has("model")
+    if has_case == has_model:
+        raise _error(root, "case", 'either case = "FILE.toml" or model = "NAME" (one of '
+                     'them)', "both case and model" if has_case else "neither")
+    inputs = _inputs(root)
+    method = _method(root.table("method"), len(inputs))
+    samples = root.integer("surrogate_samples", ge=100, le=1_000_000,
+                           default=DEFAULT_SURROGATE_SAMPLES)
+    if has_model:
+        model_name, parameters = _model(root, inputs)
+        if root.has("quantities"):
+            raise root.error("quantities", "no [[quantities]] with a built-in model (its "
+                             "output is the one quantity)", root.data["quantities"])
+        model = BUILTIN_MODELS[model_name]
+        quantities = (Quantity(model.output_name, "model", model.output_name, "value",
+                               units=model.output_units),)
+        root.finish()
+        return Study(source, text, title, inputs, method, quantities, model=model_name,
+                     parameters=parameters, surrogate_samples=samples)
+    case_path, base, overrides = _case(root, FilePath(source).parent)
+    _check_keys(root, case_path, overrides, inputs)
+    quantities = _quantities(root, base)
+    root.finish()
+    return Study(source, text, title, inputs, method, quantities, case=case_path,
+                 base_overrides=overrides, surrogate_samples=samples)
+
+
+def nominal_values(inputs: Sequence[UncertainInput]) -> np.ndarray:
+    """The inputs' means: the weighted mean of the nodes of a Gauss rule, exact for any rule
+    that integrates degree-1 polynomials exactly."""
+    nodes, weights = design(list(inputs), QuadratureMethod(1))
+    return np.asarray(weights, dtype=float) @ np.asarray(nodes, dtype=float)
+
+
+def _error(t: TableReader, key: str | tuple[str | int, ...], expected: str,
+           found: str) -> CaseError:
+    """An error at ``key`` of ``t`` with an already worded ``found``."""
+    return t.context.error(t.path + (key if isinstance(key, tuple) else (key,)), expected,
+                           found)
+
+
+# -- sections -----------------------------------------------------------------------------------
+
+def _inputs(root: TableReader) -> tuple[UncertainInput, ...]:
+    inputs: list[UncertainInput] = []
+    for t in root.tables("inputs"):
+        key = t.string("key")
+        if any(inp.key == key for inp in inputs):
+            raise t.error("key", "a key given once among the inputs", key)
+        name = t.string("distribution", choices=tuple(DISTRIBUTIONS))
+        parameters = {p: t.number(p, unit="") for p in DISTRIBUTIONS[name]}
+        t.finish()
+        inp = UncertainInput(key, name, parameters)
+        try:
+            check_input(inp)
+        except ValueError as err:
+            raise t.context.error(t.path, f"valid {name} parameters ({err})", ", ".join(
+                f"{k} = {v:g}" for k, v in parameters.items())) from None
+        inputs.append(inp)
+    return tuple(inputs)
+
+
+def _method(t: TableReader, dimension: int) -> QuadratureMethod | RegressionMethod:
+    kind = t.string("kind", choices=_METHODS)
+    order = t.integer("order", ge=1, le=MAX_ORDER)
+    if kind == "quadrature":
+        runs = (order + 1) ** dimension
+        if runs > MAX_RUNS:
+            raise _error(t, "order", f"an order giving at most {MAX_RUNS} runs ((order + 1)^"
+                          f"{dimension} with {dimension} inputs)", f"{order} ({runs} runs)")
+        t.finish()
+        return QuadratureMethod(order)
+    q_norm = t.number("q_norm", unit="", gt=0.0, le=1.0)
+    samples = t.integer("samples", ge=2, le=MAX_RUNS)
+    seed = t.integer("seed", ge=0)
+    t.finish()
+    return RegressionMethod(order, q_norm, samples, seed)
+
+
+def _model(root: TableReader, inputs: Sequence[UncertainInput]) -> tuple[str, dict[str, float]]:
+    name = root.string("model", choices=tuple(BUILTIN_MODELS))
+    model = BUILTIN_MODELS[name]
+    known = tuple(model.parameters)
+    for i, inp in enumerate(inputs):
+        if inp.key not in known:
+            raise root.error(("inputs", i, "key"), f"a parameter of model {name} ("
+                             + ", ".join(known) + ")", inp.key)
+    t = root.table("parameters", required=False)
+    fixed = {}
+    for key in t.data:
+        if key not in known:
+            continue  # finish() names it
+        if key in {inp.key for inp in inputs}:
+            raise t.error(key, "a parameter that is not also an uncertain input",
+                          t.data[key])
+        fixed[key] = t.number(key, unit=_parameter_units(model, key))
+    t.finish()
+    return name, fixed
+
+
+def _parameter_units(model: BuiltinModel, key: str) -> str:
+    return model.parameters[key].units
+
+
+def _case(root: TableReader, folder: FilePath) -> tuple[str, Case, tuple[str, ...]]:
+    raw = root.string("case")
+    case_path = FilePath(raw) if FilePath(raw).is_absolute() else folder / raw
+    if not case_path.is_file():
+        raise _error(root, "case", "a case file (path relative to the study file)",
+                         f'"{raw}": no such file ({case_path})')
+    overrides = _string_list(root, "base_overrides")
+    for i, text in enumerate(overrides):
+        try:
+            parse_override(text, str(case_path))
+        except CaseError as err:
+            raise _error(root, ("base_overrides", i), "a --set text path.to.key=VALUE",
+                             f'"{text}" ({err})') from None
+    try:
+        base = load_case(case_path, overrides)
+    except CaseError as err:
+        raise _error(root, "base_overrides" if overrides else "case",
+                         "a case that loads" + (" with these overrides" if overrides else ""),
+                         f"{err}") from None
+    return str(case_path), base, tuple(overrides)
+
+
+def _string_list(root: TableReader, key: str) -> list[str]:
+    value = root.data.get(key, [])
+    root._read.add(key)
+    expected = "an array of strings"
+    if not isinstance(value, list):
+        raise root.error(key, expected, value)
+    for i, item in enumerate(value):
+        if not isinstance(item, str) or not item.strip():
+            raise root.error((key, i), "a non-empty string", item)
+    return list(value)
+
+
+def _check_keys(root: TableReader, case_path: str, overrides: Sequence[str],
+                inputs: Sequence[UncertainInput]) -> None:
+    """Every input key must be a key of the case: the case loads with the input's mean."""
+    means = nominal_values(inputs)
+    set_by_base = {text.partition("=")[0].strip(): text for text in overrides}
+    for i, (inp, mean) in enumerate(zip(inputs, means)):
+        if inp.key in set_by_base:
+            raise _error(root, ("inputs", i, "key"), "a key not also set by base_overrides",
+                             f'"{inp.key}" (base_overrides has "{set_by_base[inp.key]}")')
+        text = f"{inp.key}={float(mean)!r}"
+        try:
+            load_case(case_path, [*overrides, text])
+        except CaseError as err:
+            raise _error(root, ("inputs", i, "key"), "a --set key path of the case that takes "
+                             f"the input's mean {float(mean):g}",
+                             f'"{inp.key}", which the case refuses: {err}') from None
+
+
+def _quantities(root: TableReader, case: Case) -> tuple[Quantity, ...]:
+    lines = [line.name for line in case.lines]
+    dofs = list(DOFS) if case.floater is not None else []
+    times = output_times(case.simulation)
+    out: list[Quantity] = []
+    for t in root.tables("quantities"):
+        name = t.string("name")
+        if not _NAME.match(name):
+            raise t.error("name", "a name of letters, digits and _ starting with a letter",
+                          name)
+        if any(q.name == name for q in out):
+            raise t.error("name", "a name given once among the quantities", name)
+        if t.has("line") == t.has("dof"):
+            raise _error(t, "line", 'either line = "NAME" or dof = "NAME" (one of them)',
+                         "both line and dof" if t.has("line") else "neither")
+        if t.has("line"):
+            kind, target = "line", t.string("line", choices=tuple(lines))
+            statistic = t.string("statistic", choices=LINE_STATISTICS)
+            units = "N"
+            if statistic == "mean_cycle_max" and (case.motion is None
+                                                  or case.motion.cycle_period is None):
+                raise t.error("statistic", "a statistic the case gives (mean_cycle_max needs "
+                              "periodic [motion])", statistic)
+        else:
+            if not dofs:
+                raise t.error("dof", "a line quantity (the case has no [floater])",
+                              t.data["dof"])
+            kind, target = "dof", t.string("dof", choices=tuple(dofs))
+            statistic = t.string("statistic", choices=DOF_STATISTICS)
+            units = "m" if DOFS.index(target) < 3 else "rad"
+        window = None
+        if statistic == HISTORY:
+            window = _window(t, times)
+        elif t.has("window"):
+            raise t.error("window", f'no window (only with statistic = "{HISTORY}"; scalar '
+                          "statistics are taken after the ramp)", t.data["window"])
+        t.finish()
+        out.append(Quantity(name, kind, target, statistic, window, units))
+    return tuple(out)
+
+
+def _window(t: TableReader, times: np.ndarray) -> tuple[float, float]:
+    duration = float(times[-1])
+    start, end = t.vector("window", size=2, unit="s", ge=0.0)
+    if not start < end <= duration * (1.0 + 1e-12):
+        raise t.error("window", f"[start, end] with 0 <= start < end <= {duration:g} s (the "
+                      "simulated duration)", [start, end])
+    inside = np.count_nonzero((times >= start - 1e-9) & (times <= end + 1e-9))
+    if inside < 2:
+        raise t.error("window", "a window holding at least two output samples", [start, end])
+    return start, end
