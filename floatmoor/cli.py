@@ -705,14 +705,16 @@ def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
         print(f"floatmoor: uq failed: {err}", file=sys.stderr)
         return EXIT_FAILED
     summary = study_summary(result)
-    if summary["dropped_runs"]:
-        print(f"floatmoor: uq: {len(summary['dropped_runs'])} of {summary['runs']} runs "
-              "failed or gave non-finite values and were dropped from the regression: "
-              + "; ".join(summary["dropped_runs"][:_NAMED_FAILURES]), file=sys.stderr)
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
         print(_format_uq_summary(summary))
+    if summary["dropped_runs"]:  # the surrogate is written, and the study still fails loudly
+        print(f"floatmoor: uq: {len(summary['dropped_runs'])} of {summary['runs']} runs "
+              "failed or gave non-finite values and were dropped from the regression (the "
+              f"results without them are in {folder}): "
+              + "; ".join(summary["dropped_runs"][:_NAMED_FAILURES]), file=sys.stderr)
+        return EXIT_FAILED
     return EXIT_OK
 
 

@@ -3,7 +3,8 @@ coefficients (gpc paper section 4.2).
 
 Default run: a quick variant (one cycle after the ramp, p = 2, two inputs, 9 runs) checked
 for physical sense, a quadrature study with a failed run (exit 1 naming it, no surrogate) and
-a regression that drops a failed run (said and recorded). Slow: the shipped full studies.
+a regression that drops a failed run (results written without it, exit 1 naming it). Slow:
+the shipped full studies.
 """
 
 from __future__ import annotations
@@ -156,7 +157,7 @@ def test_regression_drops_a_failed_run_and_records_it(tmp_path, capsys, monkeypa
     bad = float(nodes[2, 0])
     monkeypatch.setattr(runner, "run_one", _failing(bad))
     out = tmp_path / "f"
-    assert main(["uq", str(study), "-o", str(out), "--quiet"]) == 0
+    assert main(["uq", str(study), "-o", str(out), "--quiet"]) == 1  # loud, results written
     captured = capsys.readouterr()
     assert "1 of 6 runs failed or gave non-finite values and were dropped" in captured.err
     assert f"normal_drag_coefficient={bad!r}" in captured.err
