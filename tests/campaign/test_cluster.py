@@ -27,6 +27,7 @@ from floatmoor.campaign.runner import run_campaign
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_attributes, read_dataset
+from floatmoor.report.compare import model_design
 from tests.campaign.test_coupled_campaign import BUOY_BASE, BUOY_ZIP
 from tests.conftest import LINDAHL_CASE, REPO
 
@@ -43,6 +44,8 @@ TABLE = "time,x,y,z\n0,0,0,0\n5,0.1,0,0.05\n10,0,0,0\n20,0.1,0,0\n"
 DECOY_TABLE = "time,x,y,z\n0,0,0,0\n10,0.3,0,0\n20,0,0,0\n"
 #: Quasi-static forced runs of 5 s: milliseconds each.
 FORCED_BASE = ['lines.chain.model="quasi-static"', "simulation.duration=5.0"]
+#: 10 s of the Lindahl chain: six cycles after the ramp, for the comparison's figures.
+COMPARE_BASE = ["simulation.duration=10.0"]
 #: Two tables by name: each run reads its own file.
 FORCED_GRID = ['motion.file="m.csv","n.csv"', "lines.chain.length=33.0,33.2"]
 #: The coupled buoy by its path relative to the repository (the test's working folder).
@@ -103,8 +106,9 @@ class _Cluster:
                 [dask, "worker", self.address, "--nthreads", "1", "--no-nanny",
                  "--no-dashboard", "--name", f"w{k}", "--local-directory", str(here / "tmp")],
                 cwd=here, env=env, stdout=self.log, stderr=subprocess.STDOUT))
-        with distributed.Client(self.address, timeout=START_TIMEOUT) as client:
-            client.wait_for_workers(workers, timeout=START_TIMEOUT)
+        if workers:
+            with distributed.Client(self.address, timeout=START_TIMEOUT) as client:
+                client.wait_for_workers(workers, timeout=START_TIMEOUT)
 
     def _wait(self, ready):
         end = time.monotonic() + START_TIMEOUT
@@ -290,3 +294,27 @@ def test_killed_worker_loses_no_finished_run_and_a_resume_completes(tmp_path,
     monkeypatch.chdir(client)
     local = run_campaign("case/T.toml", design_from_options(KILL_GRID), base_overrides=KILL_BASE)
     _assert_same_results(local, final)
+
+
+def test_a_scheduler_without_workers_fails_before_anything_runs(tmp_path) -> None:
+    out = tmp_path / "c.nc"
+    with _cluster(tmp_path / "cluster", workers=0) as started:
+        with pytest.raises(cluster.SchedulerError, match="has no workers"):
+            run_campaign(LINDAHL_CASE, design_from_options(["motion.radius=0.1,0.2"]),
+                         base_overrides=FORCED_BASE, output=out, scheduler=started.address)
+    assert not out.exists()
+
+
+def test_compare_runs_its_models_on_the_cluster(dask_cluster, tmp_path, monkeypatch) -> None:
+    """``compare`` goes the same way: the model runs come back into the client's folder."""
+    (tmp_path / "case").mkdir()
+    shutil.copy(LINDAHL_CASE, tmp_path / "case" / "L.toml")
+    monkeypatch.chdir(tmp_path)
+    models = ["quasi-static", "quasi-dynamic"]
+    assert main(["compare", "case/L.toml", "--models", ",".join(models),
+                 *sum((["--set", b] for b in COMPARE_BASE), []), "-o", "report",
+                 "--scheduler", dask_cluster.address, "--quiet"]) == 0
+    local = run_campaign("case/L.toml", model_design(models), base_overrides=COMPARE_BASE,
+                         runs_dir="local", run_names=models)
+    assert (local["status"].values == "complete").all()
+    _assert_same_run_files(Path("local"), Path("report/runs"), [f"{m}.nc" for m in models])
