@@ -141,7 +141,10 @@ def run_bundled(bundle: RunBundle, blobs: Mapping[str, bytes], overrides: Sequen
                                                       overrides),
                             timeseries, None if output is None else str(output))
         if output is not None and output.is_file():
-            result["run_file_bytes"] = output.read_bytes()
+            try:
+                result["run_file_bytes"] = output.read_bytes()
+            except OSError as err:
+                result["status"] = f"failed: run file not read back on the worker: {err}"
     finally:
         if output is not None:
             for leftover in (output, output.with_name(output.name + ".checkpoint")):
