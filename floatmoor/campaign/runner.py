@@ -131,6 +131,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     if files:
         Path(files[0]).parent.mkdir(exist_ok=True)
     todo: list[Job] = []
+    todo_cases: list[Case] = []  # what a cluster's workers are sent: the runs to run
     for k, (index, overrides) in enumerate(runs):
         run_overrides = [*base_overrides, *overrides]
         run_file = None if files is None else files[k]
@@ -141,6 +142,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                 store.set_run_file(index, run_file)
                 continue
         todo.append((index, run_overrides, run_file))
+        todo_cases.append(cases[1 + k])
     total = len(runs)
     if progress is not None:
         progress(total - len(todo), total, float("nan"))
@@ -174,7 +176,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     existed = path is not None and path.exists()
     try:
         _execute(case_path, todo, workers, scheduler, timeseries, record, save,
-                 cases=cases[1:])
+                 cases=todo_cases)
     finally:
         if recorded or existed or not todo:  # no file for a campaign that ran nothing
             save()
@@ -303,8 +305,8 @@ def _execute(case_path: str, todo: list[Job], workers: int, scheduler: str | Non
              cases: Sequence[Case]) -> None:
     """Run ``todo``, passing each result to ``record`` as it completes and calling ``save``
     after each batch; when interrupted, the runs finished meanwhile are recorded and saved
-    before the workers are stopped, then the interrupt goes on. ``cases`` (every run's,
-    loaded here) say what a cluster's workers are sent."""
+    before the workers are stopped, then the interrupt goes on. ``cases`` (those of
+    ``todo``, loaded here) say what a cluster's workers are sent."""
     if not todo:
         return
     if scheduler is not None:

@@ -1,8 +1,10 @@
 """One run of a campaign, as executed on a worker (a local process or a Dask worker).
 
-The function takes and returns plain Python data only, so it pickles to any executor. A case
-with a ``[floater]`` is a coupled run (:func:`~floatmoor.simulation.coupled_run.run_coupled`),
-any other a forced-motion run (:func:`~floatmoor.simulation.forced.run_forced_motion`).
+:func:`run_one` takes and returns plain Python data only, so it pickles to any executor; a
+Dask worker runs :func:`run_loaded` on the case it rebuilt from the client's bundle
+(:func:`floatmoor.campaign.cluster.run_bundled`). A case with a ``[floater]`` is a coupled
+run (:func:`~floatmoor.simulation.coupled_run.run_coupled`), any other a forced-motion run
+(:func:`~floatmoor.simulation.forced.run_forced_motion`).
 """
 
 from __future__ import annotations
