@@ -29,8 +29,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from floatmoor._version import __version__
-from floatmoor.campaign.jobs import Job, Record
 from floatmoor.campaign.bundle import RunBundle, load_bundled_case, make_bundle, materialise
+from floatmoor.campaign.jobs import Job, Record
 from floatmoor.campaign.scheduler import CONNECT_TIMEOUT, SchedulerError, connect
 from floatmoor.campaign.worker import failed_result, run_loaded
 from floatmoor.io.output_files import atomic_target
@@ -44,8 +44,8 @@ __all__ = ["BUNDLE_FORMAT", "WorkerVersionError", "worker_identity", "check_work
            "run_bundled", "execute_on_cluster"]
 
 #: Version of what a task receives and returns (:func:`run_bundled`'s arguments, the bundle
-#: layout, the result dict); raised when they change, so that workers and clients of one
-#: floatmoor version string but different trees do not meet silently.
+#: layout, the result dict); to be raised when they change, so that a worker and a client of
+#: the same floatmoor version string but different code are refused rather than mismatched.
 BUNDLE_FORMAT = 1
 
 
