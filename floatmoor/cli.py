@@ -95,7 +95,9 @@ def _parser() -> argparse.ArgumentParser:
                        "re-running with the same file resumes")
     sweep.add_argument("--workers", type=int, default=1, help="local worker processes")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
-                       help="run on this Dask distributed scheduler (tcp://host:8786)")
+                       help="run on this Dask distributed scheduler (tcp://host:8786): "
+                       "the case and the files it names are sent to its workers (the same "
+                       "floatmoor, nothing else needed) and the results written here")
     sweep.add_argument("--timeseries", action="store_true",
                        help="also keep every run's fairlead tension history (and body "
                        "displacement history of floater cases)")

@@ -9,7 +9,9 @@ before the workers are stopped; local workers die with the parent process, even 
 killed (:func:`floatmoor.signals.die_with_parent`).
 With a runs folder every run also writes its full output file there (``NAME.nc``, named from
 its swept values); a completed run is then skipped only if its file is there and complete.
-Cases with a ``[floater]`` run coupled, the others in forced motion.
+Cases with a ``[floater]`` run coupled, the others in forced motion. On a Dask cluster the
+workers are sent the case and the files it names, and send every result (and run file) back
+to this process, which writes them (:mod:`floatmoor.campaign.cluster`).
 """
 
 from __future__ import annotations
@@ -24,8 +26,9 @@ import numpy as np
 import xarray as xr
 
 from floatmoor.campaign.design import CampaignDesign
+from floatmoor.campaign.jobs import Job, Record
 from floatmoor.campaign.reopen import move_aside
-from floatmoor.campaign.scheduler import check_address, connect
+from floatmoor.campaign.scheduler import check_address
 from floatmoor.campaign.store import CampaignStore, run_file_is_complete, same_campaign
 from floatmoor.campaign.worker import run_one
 from floatmoor.case.load import load_case
@@ -37,8 +40,6 @@ from floatmoor.signals import die_with_parent
 __all__ = ["run_campaign", "validate_campaign"]
 
 Progress = Callable[[int, int, float], None]
-#: (index along each axis, overrides, run file or None) of a run to execute.
-Job = tuple[tuple[int, ...], list[str], str | None]
 
 
 def run_campaign(case_path: str | Path, design: CampaignDesign, *,
@@ -65,7 +66,9 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     workers
         Local worker processes (1: run in this process).
     scheduler
-        Address of a Dask distributed scheduler (``tcp://host:8786``) to run on instead.
+        Address of a Dask distributed scheduler (``tcp://host:8786``) to run on instead: the
+        case and the files it names are sent to the workers, which need the same floatmoor
+        and nothing else (:mod:`floatmoor.campaign.cluster`).
     timeseries
         Also keep each run's fairlead tension history (and the body displacement history of
         coupled runs).
@@ -73,7 +76,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         Folder (created if its parent exists) for every run's full output file,
         ``NAME.nc``; the paths are stored in the ``run_file`` variable. A completed run of
         the output file is run again when its file is missing or incomplete. With a
-        ``scheduler``, the workers must see the folder (a shared file system).
+        ``scheduler`` too, this process writes the files (the workers send them back): the
+        folder is only this machine's.
     run_names
         File-name stems of the runs in :meth:`CampaignDesign.runs` order (default:
         :meth:`CampaignDesign.run_names`, from the swept values).
@@ -111,7 +115,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     case_path = str(case_path)
     if scheduler is not None:
         check_address(scheduler)
-    base = validate_campaign(case_path, design, base_overrides, timeseries=timeseries)
+    cases = _load_campaign(case_path, design, base_overrides, timeseries)
+    base = cases[0]
     runs = design.runs()
     files = _run_files(design, runs_dir, run_names)
     store = CampaignStore(design, case_path, base.text, list(base_overrides), base.line_names,
@@ -126,6 +131,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
     if files:
         Path(files[0]).parent.mkdir(exist_ok=True)
     todo: list[Job] = []
+    todo_cases: list[Case] = []  # what a cluster's workers are sent: the runs to run
     for k, (index, overrides) in enumerate(runs):
         run_overrides = [*base_overrides, *overrides]
         run_file = None if files is None else files[k]
@@ -136,6 +142,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                 store.set_run_file(index, run_file)
                 continue
         todo.append((index, run_overrides, run_file))
+        todo_cases.append(cases[1 + k])
     total = len(runs)
     if progress is not None:
         progress(total - len(todo), total, float("nan"))
@@ -168,7 +175,8 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
 
     existed = path is not None and path.exists()
     try:
-        _execute(case_path, todo, workers, scheduler, timeseries, record, save)
+        _execute(case_path, todo, workers, scheduler, timeseries, record, save,
+                 cases=todo_cases)
     finally:
         if recorded or existed or not todo:  # no file for a campaign that ran nothing
             save()
@@ -207,6 +215,13 @@ def validate_campaign(case_path: str | Path, design: CampaignDesign,
         For a missing, damaged or stale database, or one failing a check the case does not
         accept.
     """
+    return _load_campaign(case_path, design, base_overrides, timeseries)[0]
+
+
+def _load_campaign(case_path: str | Path, design: CampaignDesign, base_overrides: Sequence[str],
+                   timeseries: bool) -> list[Case]:
+    """:func:`validate_campaign`'s checks; returns the base case and then every run's case
+    in :meth:`CampaignDesign.runs` order."""
     from floatmoor.hydro.database import (
         database_inputs, database_path, inputs_hash, load_for_case,
     )
@@ -226,7 +241,7 @@ def validate_campaign(case_path: str | Path, design: CampaignDesign,
         if key not in seen:
             seen.add(key)
             load_for_case(case)
-    return base
+    return [base, *cases]
 
 
 def _check_same_times(cases: Sequence[Case], design: CampaignDesign) -> None:
@@ -281,23 +296,23 @@ def _run_files(design: CampaignDesign, runs_dir: str | Path | None,
 
 
 def _absolute(run_file: str | None) -> str | None:
-    """The path a worker writes to: absolute, as a Dask worker may run in another folder."""
+    """The path a local worker process writes to: absolute, whatever its folder."""
     return None if run_file is None else str(Path(run_file).resolve())
 
 
-#: Called with (index, run file, result) of every run that completes.
-Record = Callable[[tuple[int, ...], str | None, dict[str, Any]], None]
-
-
 def _execute(case_path: str, todo: list[Job], workers: int, scheduler: str | None,
-             timeseries: bool, record: Record, save: Callable[[], None]) -> None:
+             timeseries: bool, record: Record, save: Callable[[], None], *,
+             cases: Sequence[Case]) -> None:
     """Run ``todo``, passing each result to ``record`` as it completes and calling ``save``
     after each batch; when interrupted, the runs finished meanwhile are recorded and saved
-    before the workers are stopped, then the interrupt goes on."""
+    before the workers are stopped, then the interrupt goes on. ``cases`` (those of
+    ``todo``, loaded here) say what a cluster's workers are sent."""
     if not todo:
         return
     if scheduler is not None:
-        _execute_dask(case_path, todo, scheduler, timeseries, record, save)
+        from floatmoor.campaign.cluster import execute_on_cluster
+
+        execute_on_cluster(scheduler, cases, todo, timeseries, record, save)
     elif workers <= 1:
         for index, overrides, run_file in todo:
             record(index, run_file, run_one(case_path, overrides, timeseries,
@@ -351,26 +366,3 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
     for process in processes:
         process.join()
     pool.shutdown(wait=True)
-
-
-def _execute_dask(case_path: str, todo: list[Job], scheduler: str, timeseries: bool,
-                  record: Record, save: Callable[[], None]) -> None:
-    from distributed import as_completed
-
-    with connect(scheduler) as client:
-        futures = {client.submit(run_one, case_path, overrides, timeseries,
-                                 _absolute(run_file), pure=False): (index, run_file)
-                   for index, overrides, run_file in todo}
-        pending = dict(futures)
-        try:
-            for batch in as_completed(futures).batches():
-                for future in batch:
-                    record(*futures[future], future.result())
-                    pending.pop(future)
-                save()
-        except BaseException:
-            finished = {f: job for f, job in pending.items() if f.status == "finished"}
-            _record_finished(finished, record)
-            save()
-            client.cancel([f for f in pending if f.status != "finished"])
-            raise

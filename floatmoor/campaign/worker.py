@@ -1,18 +1,25 @@
 """One run of a campaign, as executed on a worker (a local process or a Dask worker).
 
-The function takes and returns plain Python data only, so it pickles to any executor. A case
-with a ``[floater]`` is a coupled run (:func:`~floatmoor.simulation.coupled_run.run_coupled`),
-any other a forced-motion run (:func:`~floatmoor.simulation.forced.run_forced_motion`).
+:func:`run_one` takes and returns plain Python data only, so it pickles to any executor; a
+Dask worker runs :func:`run_loaded` on the case it rebuilt from the client's bundle
+(:func:`floatmoor.campaign.cluster.run_bundled`). A case with a ``[floater]`` is a coupled
+run (:func:`~floatmoor.simulation.coupled_run.run_coupled`), any other a forced-motion run
+(:func:`~floatmoor.simulation.forced.run_forced_motion`).
 """
 
 from __future__ import annotations
 
 import time
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 
-__all__ = ["run_one", "SUMMARY_STATISTICS", "STRENGTH_STATISTICS", "BODY_STATISTICS"]
+if TYPE_CHECKING:
+    from floatmoor.case.schema import Case
+
+__all__ = ["run_one", "run_loaded", "failed_result", "SUMMARY_STATISTICS",
+           "STRENGTH_STATISTICS", "BODY_STATISTICS"]
 
 #: Fairlead-tension statistics kept per run and line (see floatmoor.post.summary).
 SUMMARY_STATISTICS = ("mean", "std", "min", "max", "mean_cycle_max")
@@ -51,11 +58,26 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
         ``timeseries`` the output ``time``, ``fairlead_tension`` (line, time) and for coupled
         runs ``body_displacement`` (time, dof) arrays.
     """
-    from floatmoor._numba import watch_compilation
     from floatmoor.case.load import load_case
+
+    return run_loaded(lambda: (load_case(case_path, overrides), None), timeseries, run_file)
+
+
+def failed_result(status: str) -> dict[str, Any]:
+    """The result of a run that did not run: ``status`` (``failed: ...``), no statistics,
+    NaN times."""
+    return {"status": status, "statistics": {}, "compile_time_s": 0.0,
+            "compute_time_s": float("nan"), "wall_time_s": float("nan")}
+
+
+def run_loaded(load: Callable[[], "tuple[Case, Path | None]"], timeseries: bool = False,
+               run_file: str | None = None) -> dict[str, Any]:
+    """:func:`run_one` of the case ``load`` returns with the path of its hydrodynamic
+    database (None: the case's own, :func:`floatmoor.hydro.database.database_path`); a
+    failure to load is a failed run like any other."""
+    from floatmoor._numba import watch_compilation
     from floatmoor.mooring.strength import refuse_static_breaking
     from floatmoor.post.summary import run_summary
-    from floatmoor.simulation.run import run_case
 
     cpu, wall = time.process_time(), time.perf_counter()
     out: dict[str, Any] = {"status": "complete", "statistics": {}, "compile_time_s": 0.0}
@@ -64,10 +86,10 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
         out["compile_time_s"] += seconds
 
     try:
-        case = load_case(case_path, overrides)
+        case, database = load()
         refuse_static_breaking(case)  # a line that breaks at rest: the run fails
         with watch_compilation(lambda: None, compiled):
-            dataset = run_case(case, output=run_file).dataset
+            dataset = _run(case, database, run_file).dataset
         summary = run_summary(case, dataset)
         for name, entry in summary["lines"].items():
             stats = entry["fairlead_tension_N"]
@@ -92,3 +114,18 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
     out["compute_time_s"] = time.process_time() - cpu
     out["wall_time_s"] = time.perf_counter() - wall
     return out
+
+
+def _run(case: "Case", database: Path | None, run_file: str | None) -> Any:
+    """:func:`floatmoor.simulation.run.run_case`, with a floater's database at ``database``
+    when given (the coupled run's settings are otherwise the case's own)."""
+    from floatmoor.simulation.run import run_case
+
+    if database is None:
+        return run_case(case, output=run_file)
+    from dataclasses import replace
+
+    from floatmoor.simulation.coupled_run import run_coupled, settings_from_case
+
+    return run_coupled(case, replace(settings_from_case(case), database=database),
+                       output=run_file)

@@ -58,8 +58,8 @@ def add_report_parsers(subparsers: Any) -> None:
                          metavar="KEY=VALUE", help="override a case key for every run")
     compare.add_argument("--workers", default=1, help="local worker processes")
     compare.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                         help="run on this Dask distributed scheduler (tcp://host:8786); its "
-                              "workers must see the output folder")
+                         help="run on this Dask distributed scheduler (tcp://host:8786); "
+                              "its workers are sent the case and send the runs back")
     compare.add_argument("--quiet", action="store_true", help="no progress reports")
     _add_common(compare)
     compare.set_defaults(report_handler=compare_command)

@@ -94,8 +94,8 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
     workers
         Local worker processes (1: run in this process, one after the other).
     scheduler
-        Address of a Dask distributed scheduler to run on instead (its workers must see the
-        output folder).
+        Address of a Dask distributed scheduler to run on instead (its workers are sent the
+        case and send the runs back: :mod:`floatmoor.campaign.cluster`).
     progress
         Called with a message as runs finish.
 

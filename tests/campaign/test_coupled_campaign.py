@@ -1,6 +1,7 @@
 """Campaigns of floater (coupled) cases: motion statistics per DOF beside the line statistics,
-histories, run files, a failing run, resume, two local workers and a Dask cluster giving the
-same numbers; and the run-file resume rules (on fast forced-motion runs)."""
+histories, run files, a failing run, resume, two local workers giving the same numbers (on a
+Dask cluster: tests/campaign/test_cluster.py); and the run-file resume rules (on fast
+forced-motion runs)."""
 
 from __future__ import annotations
 
@@ -131,20 +132,6 @@ def test_coupled_campaign_on_two_workers_gives_the_same_numbers(serial, tmp_path
                  "body_displacement"):
         np.testing.assert_array_equal(parallel[name].values, ds[name].values)
     assert sorted(p.name for p in (tmp_path / "runs").iterdir()) == sorted(BUOY_RUN_FILES)
-
-
-def test_coupled_campaign_on_a_dask_cluster_gives_the_same_numbers(serial, tmp_path) -> None:
-    distributed = pytest.importorskip("distributed")
-    _, ds = serial
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
-        remote = run_campaign(BUOY_CASE, design_from_options([], BUOY_ZIP),
-                              base_overrides=BUOY_BASE, scheduler=cluster.scheduler_address,
-                              runs_dir=tmp_path / "runs")
-    np.testing.assert_array_equal(remote["status"].values, ds["status"].values)
-    np.testing.assert_array_equal(remote["body_displacement_std"].values,
-                                  ds["body_displacement_std"].values)
-    assert read_dataset(tmp_path / "runs" / "waves.period=1.4.nc").attrs["status"] == "complete"
 
 
 def test_stale_database_is_bad_input_before_anything_runs(tmp_path, capsys) -> None:
