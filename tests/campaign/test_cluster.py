@@ -2,7 +2,8 @@
 processes of their own in a folder of their own (``dask scheduler``, ``dask worker``), so the
 client's relative case path and case folder mean nothing to them: forced-motion and coupled
 sweeps give numbers identical to a local run, workers of another floatmoor are refused, and a
-worker killed mid-campaign loses no finished run (a resume completes the rest)."""
+worker killed mid-campaign loses no finished run (a resume completes the rest); a gPC study
+runs on the cluster with the local numbers."""
 
 from __future__ import annotations
 
@@ -318,3 +319,58 @@ def test_compare_runs_its_models_on_the_cluster(dask_cluster, tmp_path, monkeypa
                          runs_dir="local", run_names=models)
     assert (local["status"].values == "complete").all()
     _assert_same_run_files(Path("local"), Path("report/runs"), [f"{m}.nc" for m in models])
+
+
+#: A quick gPC study of the Lindahl chain on quasi-static lines (4 runs of 5 s): the case by
+#: a path relative to the study file, in the client's folder only.
+UQ_STUDY = """
+title = "Lindahl chain on quasi-static lines: uncertain length and motion radius"
+case = "L.toml"
+base_overrides = ['lines.chain.model="quasi-static"', "simulation.duration=5.0"]
+
+[[inputs]]
+key = "lines.chain.length"
+distribution = "uniform"
+lower = 32.9
+upper = 33.1
+
+[[inputs]]
+key = "motion.radius"
+distribution = "normal"
+mean = 0.2
+std = 0.01
+
+[method]
+kind = "quadrature"
+order = 1
+
+[[quantities]]
+name = "tension_max"
+line = "chain"
+statistic = "max"
+
+[[quantities]]
+name = "tension"
+line = "chain"
+statistic = "history"
+window = [2.5, 5.0]
+"""
+
+
+def test_uq_study_on_the_cluster_gives_the_local_numbers(dask_cluster, tmp_path,
+                                                         monkeypatch) -> None:
+    """``floatmoor uq`` runs its design through the same campaign path: the study's
+    statistics, Sobol indices and bands are those of a local run, bit for bit."""
+    (tmp_path / "study").mkdir()
+    shutil.copy(LINDAHL_CASE, tmp_path / "study" / "L.toml")
+    (tmp_path / "study" / "s.toml").write_text(UQ_STUDY, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    assert main(["uq", "study/s.toml", "-o", "local", "--quiet"]) == 0
+    assert main(["uq", "study/s.toml", "-o", "remote", "--quiet",
+                 "--scheduler", dask_cluster.address]) == 0
+    local, remote = read_dataset(tmp_path / "local" / "uq.nc"), \
+        read_dataset(tmp_path / "remote" / "uq.nc")
+    assert float(local["tension_max_variance"]) > 0.0  # the inputs move the result
+    assert sorted(local.data_vars) == sorted(remote.data_vars)
+    for name in local.data_vars:
+        np.testing.assert_array_equal(remote[name].values, local[name].values, err_msg=name)
