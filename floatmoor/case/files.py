@@ -17,8 +17,10 @@ from pathlib import Path
 
 from floatmoor.case.limits import MAX_CASE_FILE_BYTES
 from floatmoor.case.reader import TableReader, _Found
+from floatmoor.errors import CaseError
 
-__all__ = ["CaseFileKindError", "read_case_text", "resolve_case_file", "file_kind"]
+__all__ = ["CaseFileKindError", "read_case_text", "read_input_text", "resolve_case_file",
+           "file_kind"]
 
 
 def file_kind(mode: int) -> str:
@@ -52,6 +54,21 @@ def read_case_text(path: Path) -> str:
     if len(data) > MAX_CASE_FILE_BYTES:
         raise CaseFileKindError(f"a file of more than {MAX_CASE_FILE_BYTES} bytes")
     return data.decode("utf-8")
+
+
+def read_input_text(path: str | os.PathLike[str], kind: str) -> str:
+    """:func:`read_case_text` of an input file of ``kind`` ("case", "study"), every failure a
+    :class:`~floatmoor.errors.CaseError` naming the file and what it should have been."""
+    source = str(path)
+    try:
+        return read_case_text(Path(path))
+    except CaseFileKindError as err:
+        raise CaseError(source, "", f"a readable {kind} file (a regular file of at most "
+                        f"{MAX_CASE_FILE_BYTES} bytes)", str(err)) from None
+    except FileNotFoundError:
+        raise CaseError(source, "", f"a readable {kind} file", "no such file") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise CaseError(source, "", f"a readable UTF-8 {kind} file", str(err)) from None
 
 
 def resolve_case_file(t: TableReader, key: str, base_dir: Path, name: str) -> Path:

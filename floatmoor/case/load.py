@@ -19,9 +19,9 @@ import numpy as np
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
-    MAX_CASE_FILE_BYTES, MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
+    MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
 )
-from floatmoor.case.files import CaseFileKindError, read_case_text
+from floatmoor.case.files import read_input_text
 from floatmoor.case.motion_body import read_body_motion
 from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.motion_table import read_motion_table
@@ -97,15 +97,7 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
         For any problem with the file or the overrides.
     """
     source = str(path)
-    try:
-        text = read_case_text(FilePath(path))
-    except CaseFileKindError as err:
-        raise CaseError(source, "", "a readable case file (a regular file of at most "
-                        f"{MAX_CASE_FILE_BYTES} bytes)", str(err)) from None
-    except FileNotFoundError:
-        raise CaseError(source, "", "a readable case file", "no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise CaseError(source, "", "a readable UTF-8 case file", str(err)) from None
+    text = read_input_text(path, "case")
     raw = parse_toml(text, source)
     return parse_case(raw, source=source, text=text, overrides=tuple(overrides),
                       base_dir=FilePath(path).parent)

@@ -49,9 +49,16 @@ def _pyplot():
     return plt
 
 
+#: Characters per line of a figure title (wrapped: a long quantity description would run off
+#: the figure's edges).
+TITLE_WIDTH = 90
+
+
 def _save(fig, path: Path, title: str) -> Path:
+    import textwrap
+
     plt = _pyplot()
-    fig.suptitle(title, fontsize=10)
+    fig.suptitle("\n".join(textwrap.wrap(title, TITLE_WIDTH)), fontsize=10)
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
     return path

@@ -39,8 +39,8 @@ from typing import Sequence
 
 import numpy as np
 
-from floatmoor.case.files import CaseFileKindError, read_case_text
-from floatmoor.case.limits import MAX_CASE_FILE_BYTES, parse_toml
+from floatmoor.case.files import read_input_text
+from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import load_case
 from floatmoor.case.overrides import parse_override
 from floatmoor.case.reader import ReadContext, TableReader
@@ -147,15 +147,7 @@ def load_study(path: str | FilePath) -> Study:
         run or written.
     """
     source = str(path)
-    try:
-        text = read_case_text(FilePath(path))
-    except CaseFileKindError as err:
-        raise CaseError(source, "", "a readable study file (a regular file of at most "
-                        f"{MAX_CASE_FILE_BYTES} bytes)", str(err)) from None
-    except FileNotFoundError:
-        raise CaseError(source, "", "a readable study file", "no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise CaseError(source, "", "a readable UTF-8 study file", str(err)) from None
+    text = read_input_text(path, "study")
     root = TableReader(parse_toml(text, source), (), ReadContext(source))
     title = root.string("title")
     has_case, has_model = root.has("case"), root.has("model")
