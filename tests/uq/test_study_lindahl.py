@@ -19,6 +19,7 @@ import xarray as xr
 import floatmoor.campaign.runner as runner
 from floatmoor.cli import main
 from tests.conftest import CASES, LINDAHL_CASE
+from tests.uq.case_f_findings import PUBLISHED_PEAK_N, SCENARIOS, all_figures
 
 #: Sobol indices are variance fractions: sum_i S_i <= 1 exactly and S_i <= S_T,i; the
 #: coefficients' squares summed in double precision carry round-off of ~1e-12 relative.
@@ -168,21 +169,73 @@ def test_regression_drops_a_failed_run_and_records_it(tmp_path, capsys, monkeypa
         assert np.isfinite(ds["cycle_max_mean"].values).all()
 
 
+#: Published peaks against ours: the two DG codes' deterministic runs differ (ours: 72.7 N mean
+#: cycle maximum at r = 0.2 m, T = 1.25 s; the measurement 70.3 N, cases.md A), and the paper's
+#: figures are read to ~1 N of their 80 N scale: 5 %.
+PEAK_TOLERANCE = 0.05
+#: "Equal to, or only slightly lower than": the averaged peak of 20 sets of 3000 samples moves
+#: by 1.4 % with the seed (79.5 and 80.6 N at T = 1.25 s, all varied).
+SAMPLING_TOLERANCE = 0.015
+#: "C_dn dominates almost the entire time" (T = 3.5 s): share of the cycle's instants.
+CDN_SHARE_3_5 = 0.8
+#: "Varying C_dt causes no noticeable changes" (T = 3.5 s): its spread against C_dn's.
+NO_CHANGE = 0.1
+#: The published 3.5 s peaks with C_dn varied that this model does not reach (explained in
+#: the README's case F section): (period, scenario) -> our figure when last run.
+NOT_REPRODUCED = {("3.50", "all"): "56.1 N", ("3.50", "cdn"): "56.1 N"}
+
+
+@pytest.fixture(scope="module", params=["1.25", "3.50"])
+def case_f(request, tmp_path_factory):
+    """The shipped p = 5 studies of one period, four scenarios (216 + 3 x 6 runs; ~4 min at
+    1.25 s, ~7 min at 3.5 s on one process), and their figures (case_f_findings.py)."""
+    period, root = request.param, tmp_path_factory.mktemp(f"case_f_{request.param}")
+    for sc in SCENARIOS:
+        study = CASES / "uq" / f"lindahl_T{period}_{sc}.toml"
+        assert main(["uq", str(study), "-o", str(root / f"lindahl_T{period}_{sc}"),
+                     "--quiet"]) == 0
+    fig = all_figures(root, period)
+    print(f"\ncase F, T = {period} s:", json.dumps(fig, indent=1))
+    return period, fig
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("period", ["1.25", "3.50"])
-def test_full_case_f_all_coefficients(tmp_path, capsys, period):
-    """The shipped p = 5 studies (216 runs): peak tension near the published ~79 N (1.25 s)
-    and ~69 N (3.5 s) upper band, C_dn the leading input of the maximum (gpc paper 4.2)."""
-    study = CASES / "uq" / f"lindahl_T{period}_all.toml"
-    out = tmp_path / "f"
-    assert main(["uq", str(study), "-o", str(out), "--json", "--quiet", "--workers", "2"]) == 0
-    q = json.loads(capsys.readouterr().out)["quantities"]
-    total = q["tension_max"]["sobol_total"]
-    assert max(total, key=total.get) == "line_types.chain.normal_drag_coefficient"
-    published = {"1.25": 79.0, "3.50": 69.0}[period]
-    # published peaks read off the paper's figures, +-10 % (measurement error of the maxima
-    # is about 5 %, cases.md A, and the figure reading adds as much)
-    assert q["tension_cycle"]["max_upper"] == pytest.approx(published, rel=0.10)
+@pytest.mark.parametrize("scenario", SCENARIOS)
+def test_case_f_peak_tensions(case_f, scenario, request):
+    """The largest tension the density reaches against the paper's (section 4.2): 79 / 69 N
+    with all varied, C_dn alone 75 / 69 N, C_dt or C_m alone 73-74 / 52 N (1.25 / 3.5 s)."""
+    period, fig = case_f
+    published = PUBLISHED_PEAK_N.get((period, scenario))
+    if published is None:
+        pytest.skip("the paper gives no peak: C_dt changes nothing at 3.5 s")
+    if (period, scenario) in NOT_REPRODUCED:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=(
+            f"published {published:g} N, ours {NOT_REPRODUCED[period, scenario]}: our tension "
+            "rises by ~4 N per unit of C_dn at 3.5 s (46.2 to 55.9 N over the design), so "
+            "69 N would need C_dn ~ 7, outside U(1.25, 3.75); the measured mean maximum is "
+            "50.1 N (README, case F)")))
+    assert fig[scenario]["peak"] == pytest.approx(published, rel=PEAK_TOLERANCE)
+
+
+@pytest.mark.slow
+def test_case_f_spread_and_sensitivities(case_f):
+    """The spread largest with all varied, then C_dn alone, C_dt and C_m lower; the peak with
+    all varied equal to or slightly above C_dn's, above C_dt's and C_m's; C_dn leading the
+    high-tension part; at 1.25 s C_dt leading the low-tension part and more dispersion rising
+    from slack than falling from the maximum; at 3.5 s C_dn leading almost the whole cycle and
+    C_dt changing nothing."""
+    period, fig = case_f
+    assert fig["all"]["peak"] >= fig["cdn"]["peak"] * (1.0 - SAMPLING_TOLERANCE)
+    assert fig["cdn"]["peak"] > max(fig["cdt"]["peak"], fig["cm"]["peak"])
+    assert fig["all"]["spread"] > fig["cdn"]["spread"]
+    assert fig["cdn"]["spread"] > max(fig["cdt"]["spread"], fig["cm"]["spread"])
+    assert fig["all"]["leader_high"] == "cdn"
+    if period == "1.25":
+        assert fig["all"]["leader_low"] == "cdt"
+        assert fig["all"]["rising_std"] > fig["all"]["falling_std"]
+    else:
+        assert fig["all"]["leader_share"]["cdn"] > CDN_SHARE_3_5
+        assert fig["cdt"]["spread"] < NO_CHANGE * fig["cdn"]["spread"]
 
 
 @pytest.mark.slow
