@@ -279,6 +279,7 @@ def test_deepcwind_decay_agrees_between_radiation_paths(dof, deepcwind_bodies) -
     assert diff_conv <= PATH_AGREEMENT
 
 
+@pytest.mark.slow  # 20 s: the default run's time budget (the decays cover the path's accuracy)
 def test_three_hour_deepcwind_run_in_the_lc34_sea_is_stable() -> None:
     """3 h of DeepCwind at the 0.1 s step in the LC34 JONSWAP sea (Hs 10.5 m, Tp 14.3 s) on
     its linearised lines (about 4 s of wall time per path): the state-space path stays

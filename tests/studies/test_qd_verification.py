@@ -52,6 +52,7 @@ def test_periods_follow_eq_5_and_table_4():
         assert qdv.case_path(config).is_file()
 
 
+@pytest.mark.slow  # 37 s: the default run's time budget (the CLI's failure paths stay in it)
 def test_quick_study_through_the_command_line(tmp_path, capsys):
     """``floatmoor study qd-verification --quick``: 6 configurations x A1 x alpha 0.3, 0.6, a
     complete dataset, the summary and the figures; on this subset the quasi-dynamic model is

@@ -67,7 +67,8 @@ def _clump_case(tmp_path, sets: list[str]):
         path.unlink()
 
 
-@pytest.mark.parametrize("model", ["quasi-static", "dynamic"])
+@pytest.mark.parametrize("model", ["quasi-static",  # dynamic: 26 s, the default budget
+                                   pytest.param("dynamic", marks=pytest.mark.slow)])
 def test_clump_weight_on_a_buoy_line_runs_coupled(tmp_path, model):
     """A 20 g clump at a joint of line 1, held by its lines."""
     # 0.3 s of the dynamic group: its start, settle and coupling are what is tested here
