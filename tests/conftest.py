@@ -54,3 +54,17 @@ def _strict_floating_point():
 def rng() -> np.random.Generator:
     """A seeded random generator, so failures reproduce."""
     return np.random.default_rng(20261122)
+
+
+@pytest.fixture
+def python_sigint():
+    """SIGINT with Python's own handler (KeyboardInterrupt) for the test, whatever the test
+    process inherited: a shell without job control starts background jobs with SIGINT
+    ignored (``pytest ... &``), and the signal tests count on Python's default."""
+    import signal
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)

@@ -30,7 +30,10 @@ LONG = ["--set", "simulation.duration=2000"]
 #: Seconds a signalled command may take to write and exit before the test calls it hung.
 EXIT_TIMEOUT_S = 60.0
 
-pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+#: POSIX signals, and Python's SIGINT handler whatever the test process inherited
+#: (tests/conftest.py).
+pytestmark = [pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals"),
+              pytest.mark.usefixtures("python_sigint")]
 
 
 def _start(*args: str) -> subprocess.Popen[str]:

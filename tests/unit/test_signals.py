@@ -17,6 +17,9 @@ from floatmoor.simulation.forced import output_times
 from floatmoor.simulation.recorder import Recorder
 from tests.conftest import LINDAHL_CASE
 
+#: The tests count on Python's SIGINT handler (tests/conftest.py).
+pytestmark = pytest.mark.usefixtures("python_sigint")
+
 
 def test_interrupt_during_a_library_write_comes_after_it(tmp_path, monkeypatch):
     case = load_case(LINDAHL_CASE, ['lines.chain.model="quasi-static"',
