@@ -26,6 +26,10 @@ Entry points: :func:`build_static_system` (the case's points and lines in array 
 once), :class:`SystemStatics` (the solver with its warm start: :meth:`~SystemStatics.solve`
 for one state, :meth:`~SystemStatics.solve_path` for a forced run), :func:`solve_statics`,
 :func:`body_point_stiffness` and :func:`coupled_stiffness`.
+
+Size: the system, its solution and the :class:`SystemStatics` solver (Newton with line
+search over the free points and the body's equilibrium), with the stiffness matrices derived
+from a solution; the numba kernels are in ``_system_statics_kernels``.
 """
 
 from __future__ import annotations

@@ -4,6 +4,10 @@
 from the quasi-static catenary, and advances it with the fairlead driven by a prescribed
 position and velocity. Forced-motion runs call :meth:`DynamicLine.solve_path`; a floater
 will call :meth:`DynamicLine.advance` once per rigid-body step.
+
+Size: :class:`DynamicLine` (settle, path stepping with its explicit/implicit switch,
+state for resume) and the :class:`CableProperties` it is built from; what they compute
+is in the numba kernels.
 """
 
 from __future__ import annotations

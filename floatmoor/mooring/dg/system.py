@@ -6,6 +6,10 @@ them from each section's catenary between its ends, settles them, and advances t
 (``_system_kernels``) at the smallest of the sections' stable steps, with the body points
 driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
 :meth:`DynamicSystem.advance` once per rigid-body step.
+
+Size: :class:`DynamicSystem` (start, settle, path stepping, end forces, state for resume)
+and the small helpers that build its sections and points; the numerics are in
+``_system_kernels``.
 """
 
 from __future__ import annotations
