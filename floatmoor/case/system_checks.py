@@ -17,6 +17,7 @@ import numpy as np
 from floatmoor.body_motion import body_points_state, is_body_motion, prescribed_fairlead_state
 from floatmoor.case.reader import ReadContext
 from floatmoor.case.schema import Case, CircularMotion, HarmonicMotion, Point, Section
+from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.motion import horizontal_direction
 
 __all__ = ["check_system", "check_lines", "check_motion", "MAX_STATIC_STRAIN",
@@ -82,17 +83,11 @@ def check_system(case: Case, context: ReadContext, paths: dict[str, dict[str, An
                                 "solved together)", f'"{name}" joining '
                                 + ", ".join(sorted(f"{s.line} ({line_of[s.line].model})"
                                                    for s in sections)))
-    group = {name: name for name in kinds}
-
-    def root(name: str) -> str:
-        while group[name] != name:
-            group[name] = group[group[name]]
-            name = group[name]
-        return name
-
+    groups = DisjointSets(kinds)
+    root = groups.find
     for section in case.sections:
         if kinds[section.start] == "free" and kinds[section.end] == "free":
-            group[root(section.start)] = root(section.end)
+            groups.union(section.start, section.end)
     held = {root(s.start) for s in case.sections if kinds[s.end] != "free"} | \
         {root(s.end) for s in case.sections if kinds[s.start] != "free"}
     for name, kind in kinds.items():

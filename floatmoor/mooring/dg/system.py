@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import DynamicSettings, Environment, Seabed
+from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
@@ -671,21 +672,14 @@ def free_point_groups(sec: NDArray[np.int64], kind: NDArray[np.int64]
         every point its (group, slot in the group), -1 for fixed and body points.
     """
     P = kind.shape[0]
-    parent = list(range(P))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    joined = DisjointSets(range(P))
     for a, b in sec[:, [_s.S_START, _s.S_END]]:
         if kind[a] == _s.FREE and kind[b] == _s.FREE:
-            parent[root(int(a))] = root(int(b))
+            joined.union(int(a), int(b))
     groups: dict[int, list[int]] = {}
     for p in range(P):
         if kind[p] == _s.FREE:
-            groups.setdefault(root(p), []).append(p)
+            groups.setdefault(joined.find(p), []).append(p)
     index = np.full((P, 2), -1, dtype=np.int64)
     points, offsets = [], [0]
     for g, members in enumerate(groups.values()):
