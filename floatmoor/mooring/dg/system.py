@@ -29,9 +29,9 @@ from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
 from floatmoor.mooring.dg.resolution import resolve_settings
+from floatmoor.mooring.dg.cable import CableProperties
 from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RATE,
-                                       SETTLE_TOLERANCE, CableProperties, DynamicLine,
-                                       SettleReport)
+                                       SETTLE_TOLERANCE, DynamicLine, SettleReport)
 from floatmoor.mooring.system_statics import SystemStatics, build_static_system
 
 __all__ = ["DynamicSystem", "SystemSection", "free_point_groups", "point_contact",
