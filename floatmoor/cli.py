@@ -21,6 +21,10 @@ interrupted floater run also leaves a checkpoint and says the command that resum
 is handled as Ctrl-C but exits with 143; a second Ctrl-C (or SIGTERM) lets the partial writes
 finish, a third stops at once (:mod:`floatmoor.signals`); the message says what was written.
 The first run after an install says that it is compiling the numerical kernels.
+
+Size: the top-level parser and one handler per top-level command (check, run, sweep,
+study, uq), each a few dozen lines; the hydro, report and uq subcommands that need more keep
+their own ``cli`` modules.
 """
 
 from __future__ import annotations

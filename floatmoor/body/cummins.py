@@ -34,13 +34,12 @@ from numpy.typing import NDArray
 from floatmoor.body._memory_kernels import hat_weights, memory_force
 from floatmoor.body._radiation_kernels import radiation_combine, radiation_stage
 from floatmoor.body.radiation_states import RadiationStates
+from floatmoor.hydro.radiation import KERNEL_NEGLIGIBLE
 
 __all__ = ["CumminsBody", "BodyState", "ForceFunction"]
 
 #: f(t, x, x') -> external 6-DOF force [N, N m]
 ForceFunction = Callable[[float, NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]]
-#: Kernel entries below this fraction of the largest are not summed.
-_KERNEL_NEGLIGIBLE = 1e-12
 
 
 @dataclass
@@ -111,7 +110,7 @@ class CumminsBody:
         # (influenced, radiating) for mu_i = sum_j W_ij * v_j
         self.weights = np.ascontiguousarray(np.transpose(weights, (0, 2, 1)))
         peak = float(np.abs(self.weights).max())
-        nz = np.argwhere(np.abs(self.weights).max(axis=0) > _KERNEL_NEGLIGIBLE * peak) \
+        nz = np.argwhere(np.abs(self.weights).max(axis=0) > KERNEL_NEGLIGIBLE * peak) \
             if peak > 0.0 else np.zeros((0, 2), dtype=np.int64)
         self.pairs = np.ascontiguousarray(nz.astype(np.int64))
         m = self.weights.shape[0]

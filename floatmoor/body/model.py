@@ -14,7 +14,7 @@ from floatmoor.hydro.radiation import (
     consistent_infinite_added_mass, hydrostatic_stiffness_total, kernel_samples,
     radiation_kernel,
 )
-from floatmoor.hydro.state_space import StateSpaceRadiation
+from floatmoor.hydro.state_space_model import StateSpaceRadiation
 
 __all__ = ["static_force", "build_body", "consistent_infinite_added_mass", "KERNEL_SUBSTEPS",
            "KERNEL_START_SUBSTEPS",

@@ -74,7 +74,7 @@ class RadiationStates:
         """Pack realisations (radiating, influenced, A, b, c), each rebuilt in real modal form
         from its poles and residues, the modes with |lambda| dt > ``resolved_pole_step``
         residualised into the feedthrough."""
-        from floatmoor.hydro.state_space import modal_realisation, modes
+        from floatmoor.hydro.modal_form import modal_realisation, modes
 
         blocks = []
         feed = np.zeros((6, 6))

@@ -2,6 +2,9 @@
 
 A :class:`Case` is built only by :func:`floatmoor.case.load.load_case`, which checks every
 value; the objects here can therefore be trusted by the models.
+
+Size: one frozen dataclass per case-file table (two dozen of them, most a few fields
+with their docstrings); together they are the one schema :mod:`floatmoor.case.load` fills.
 """
 
 from __future__ import annotations

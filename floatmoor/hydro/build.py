@@ -41,7 +41,7 @@ from floatmoor.case.schema import Environment, Floater, HydroSettings
 from floatmoor.hydro.geometry import HullMesh, build_mesh
 from floatmoor.hydro.hydrostatics import hull_hydrostatics
 
-__all__ = ["DOFS", "BEM_METHOD", "BemResult", "run_bem", "build_database", "lid_depth_for", "LID_KH",
+__all__ = ["DOFS", "BEM_METHOD", "BemResult", "run_bem", "lid_depth_for", "LID_KH",
            "wavenumber", "PRONY_SEED"]
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
@@ -260,14 +260,3 @@ def bem_dataset_arrays(result: BemResult) -> dict[str, xr.DataArray]:
                                               {"radiating_dof": dof, "influenced_dof": dof},
                                               ("radiating_dof", "influenced_dof"))
     return out
-
-
-def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
-    """Run the BEM for a case with ``[floater]`` and ``[hydro]`` and label the result as a
-    database dataset (:func:`floatmoor.hydro.database.to_dataset`)."""
-    from floatmoor.hydro.database import to_dataset
-
-    if case.floater is None or case.hydro is None:
-        raise ValueError(f"{case.source}: a case with [floater] and [hydro] tables is needed")
-    result = run_bem(case.floater, case.hydro, case.environment, progress=progress)
-    return to_dataset(result, case)

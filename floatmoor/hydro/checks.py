@@ -33,7 +33,7 @@ import xarray as xr
 
 from floatmoor.case.schema import Column, CylinderGeometry, FloaterGeometry, Member, \
     MeshGeometry, SemisubmersibleGeometry
-from floatmoor.hydro.database import merge_complex
+from floatmoor.hydro.complex_values import merge_complex
 from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_from_kernel, radiation_kernel
 from floatmoor.hydro.values import value_problems

@@ -131,9 +131,10 @@ def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
 
 def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
     """Build the database of a checked case into its locked output file."""
-    from floatmoor.hydro.build import build_database
     from floatmoor.hydro.checks import run_checks
-    from floatmoor.hydro.database import HydroDatabaseError, load_for_case, write_database
+    from floatmoor.hydro.database import (
+        HydroDatabaseError, build_database, load_for_case, write_database,
+    )
 
     if output.exists() and not args.force:
         try:

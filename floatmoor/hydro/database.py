@@ -40,7 +40,7 @@ import json
 import math
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xarray as xr
@@ -49,10 +49,15 @@ from floatmoor._version import __version__
 from floatmoor.case.schema import Case, Environment, Floater, HydroSettings
 from floatmoor.errors import FloatmoorError
 from floatmoor.file_hash import file_sha256
+from floatmoor.hydro.complex_values import merge_complex
 from floatmoor.io.netcdf import read_dataset, write_dataset
 
+if TYPE_CHECKING:
+    from floatmoor.hydro.build import Progress
+
 __all__ = [
-    "HydroDatabaseError", "database_inputs", "inputs_hash", "to_dataset", "write_database",
+    "HydroDatabaseError", "database_inputs", "inputs_hash", "to_dataset", "build_database",
+    "write_database",
     "read_database", "load_for_case", "database_path", "merge_complex", "REQUIRED_VARIABLES",
     "capytaine_major", "EXCITATION_VARIABLES", "DATABASE_SOURCES", "database_source",
     "is_imported", "has_excitation", "labelled_variable", "database_coords", "stale_keys",
@@ -224,14 +229,6 @@ def database_coords(omega: Any, depth: float, gravity: float,
     return coords
 
 
-def merge_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
-    """Variable ``name`` with its ``complex`` dimension merged back into complex values."""
-    da = ds[name]
-    if "complex" not in da.dims:
-        return da
-    return da.sel(complex="re", drop=True) + 1j * da.sel(complex="im", drop=True)
-
-
 def to_dataset(result, case: Case) -> xr.Dataset:
     """Label a :class:`~floatmoor.hydro.build.BemResult` of ``case`` as a database dataset."""
     import capytaine
@@ -295,6 +292,17 @@ def to_dataset(result, case: Case) -> xr.Dataset:
         attrs["mesh_checks_json"] = json.dumps([c.as_dict() for c in result.mesh_checks])
         attrs["mesh_reference_json"] = json.dumps(result.mesh_reference, sort_keys=True)
     return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
+    """Run the BEM for a case with ``[floater]`` and ``[hydro]`` and label the result as a
+    database dataset (:func:`to_dataset`)."""
+    from floatmoor.hydro.build import run_bem
+
+    if case.floater is None or case.hydro is None:
+        raise ValueError(f"{case.source}: a case with [floater] and [hydro] tables is needed")
+    result = run_bem(case.floater, case.hydro, case.environment, progress=progress)
+    return to_dataset(result, case)
 
 
 def write_database(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:

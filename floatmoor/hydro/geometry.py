@@ -15,8 +15,9 @@ Only the wetted hull (z <= 0) is meshed; normals point into the fluid.
 
 Lids (interior waterplane panels at ``z = -lid_depth`` against irregular frequencies) follow
 the same symmetry. A ``mesh`` geometry meshes nothing: its file is read, placed, clipped and
-given a lid by :mod:`floatmoor.hydro.mesh_file`, into the same :class:`HullMesh`. :func:`geometry_properties` gives the analytic volume, waterplane area and
-centre of buoyancy of the geometry for the checks.
+given a lid by :mod:`floatmoor.hydro.mesh_file`, into the same :class:`HullMesh`
+(:mod:`floatmoor.hydro.hull_mesh`). :func:`geometry_properties` gives the analytic volume,
+waterplane area and centre of buoyancy of the geometry for the checks.
 """
 
 from __future__ import annotations
@@ -24,7 +25,6 @@ from __future__ import annotations
 import hashlib
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from floatmoor.case.schema import (
     Column, CylinderGeometry, FloaterGeometry, Member, MeshGeometry, SemisubmersibleGeometry,
 )
+from floatmoor.hydro.hull_mesh import HullMesh
 
 __all__ = [
     "HullMesh", "build_mesh", "cylinder_mesh", "semisubmersible_mesh", "hemisphere_mesh",
@@ -48,43 +49,6 @@ GEOMETRY_SYMMETRY_TOLERANCE = 1e-5
 #: Bisection steps for the end of a member's generator on another solid: 2^-60 of the search
 #: interval, i.e. exact to round-off.
 _BISECTION_STEPS = 60
-
-
-@dataclass
-class HullMesh:
-    """A hull mesh, its lid and how they were built.
-
-    Attributes
-    ----------
-    hull
-        capytaine mesh of the wetted hull (possibly symmetric).
-    lid
-        capytaine mesh of the lid, or None.
-    full_hull
-        the same hull without symmetry (for hydrostatics and checks).
-    symmetry
-        ``"none"``, ``"rotation-n"``, ``"rotation-n+mirror-xOz"``, ``"mirror-xOz"``,
-        ``"mirror-yOz"`` or ``"mirror-xOz+mirror-yOz"``.
-    source
-        For a hull read from a file, what was read
-        (:class:`floatmoor.hydro.mesh_file.MeshFileInfo`); None for the parametric kinds.
-    """
-
-    hull: object
-    lid: object | None
-    full_hull: object
-    symmetry: str
-    source: Any = None
-
-    @property
-    def hull_panels(self) -> int:
-        """Number of hull panels (whole body)."""
-        return int(self.full_hull.nb_faces)
-
-    @property
-    def lid_panels(self) -> int:
-        """Number of lid panels (whole body)."""
-        return 0 if self.lid is None else int(self.lid.nb_faces)
 
 
 @dataclass(frozen=True)

@@ -365,7 +365,7 @@ def reference_hydrostatics(topology: HullTopology, rotation_center) -> dict[str,
 
 def run_mesh_checks(mesh, *, omega_max: float, wavelength: float, g: float,
                     rotation_center) -> tuple[list[MeshCheck], dict[str, float]]:
-    """The four checks of a :class:`~floatmoor.hydro.geometry.HullMesh` read from a file, in
+    """The four checks of a :class:`~floatmoor.hydro.hull_mesh.HullMesh` read from a file, in
     the module docstring's order, and its :func:`reference_hydrostatics`.
 
     Parameters

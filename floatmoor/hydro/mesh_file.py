@@ -17,7 +17,7 @@ PLY, OFF, VTK, VTU, Gmsh ``msh``; triangles and quads). Then, in this order:
    z = -lid_depth with panels of about ``[hydro] panel_size`` (for a mesh hull the lid's panel
    edge), generated on the full hull and cut to the kept symmetry.
 
-The result is the :class:`~floatmoor.hydro.geometry.HullMesh` the parametric kinds give, so
+The result is the :class:`~floatmoor.hydro.hull_mesh.HullMesh` the parametric kinds give, so
 the BEM and the database code need no special case. A file that cannot be read, holds no
 panels, non-finite vertices, nothing below the waterline, panels below the seabed, or more
 panels than :data:`floatmoor.case.limits.MAX_BEM_PANELS` raises
@@ -36,7 +36,7 @@ import numpy as np
 from floatmoor.case.limits import MAX_BEM_PANELS
 from floatmoor.case.schema import MeshGeometry
 from floatmoor.file_hash import file_sha256
-from floatmoor.hydro.geometry import HullMesh
+from floatmoor.hydro.hull_mesh import HullMesh
 from floatmoor.io.bem_data import BemFileError
 
 __all__ = ["MeshFileInfo", "mesh_from_file", "read_mesh_file", "NATIVE_FORMATS",

@@ -44,8 +44,13 @@ __all__ = [
     "impulse_response", "piecewise_linear_cosine_transform", "sine_moments",
     "added_mass_from_kernel", "consistent_infinite_added_mass", "truncation_time", "RadiationKernel", "radiation_kernel",
     "kernel_samples",
-    "hydrostatic_stiffness_total", "added_mass_at",
+    "hydrostatic_stiffness_total", "added_mass_at", "KERNEL_NEGLIGIBLE",
 ]
+
+#: Kernel entries below this fraction of the largest are not summed: the memory convolution
+#: (:mod:`floatmoor.body.cummins`) and the state-space realisation
+#: (:func:`floatmoor.hydro.state_space.significant_pairs`) drop the same pairs.
+KERNEL_NEGLIGIBLE = 1e-12
 
 #: Exponent p of the damping tail B(omega_N) (omega_N / omega)^p above the top BEM frequency
 #: when it is not fitted (and for DOFs without damping at omega_N): a choice, not a derived

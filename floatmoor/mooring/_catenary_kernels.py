@@ -18,6 +18,10 @@ polish. The result is returned as ``CAT_OK`` only after the residual has been ch
 
 All kernels write into preallocated ``out`` arrays, allocate nothing, and report failure
 through an integer status (``CAT_*``) instead of raising.
+
+Size: one set of numba solvers that call each other's private helpers (the 3-D solve
+runs the 2-D plane solve), with the codes and ``out`` layouts their callers read; the
+equations are already apart, in :mod:`floatmoor.mooring._catenary_equations`.
 """
 
 from __future__ import annotations

@@ -58,6 +58,9 @@ Parameters travel in one float64 array ``prm`` indexed by the ``Q_*`` constants;
 the line is ``hist`` (the last two static solutions), ``cur`` (the ``C_*`` entries), ``X``
 and ``Z`` (station positions on the last three static lines) and two buffers of the stations'
 log references (``qa``, ``la``, ``qb``, ``lb``).
+
+Size: one time step (:func:`qd_step`) and the private numba helpers it alone calls, with
+the statement of the scheme above (this docstring, 60 lines).
 """
 
 from __future__ import annotations

@@ -25,7 +25,7 @@ from floatmoor.case.schema import Case, Point
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
-from floatmoor.hydro.state_space import has_state_space
+from floatmoor.hydro.state_space_file import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Line
+from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.catenary import catenary_profile
 from floatmoor.mooring.dg.system import DynamicSystem
@@ -209,14 +210,7 @@ def _failed_index(solver: SystemStatics | DynamicSystem, n: int) -> int:
 def _components(case: Case, lines: list[int]) -> list[list[int]]:
     """The lines (indices) joined through free points, in file order."""
     kinds = {p.name: p.kind for p in case.points}
-    parent = {i: i for i in lines}
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    joined = DisjointSets(lines)
     owner: dict[str, int] = {}
     for i in lines:
         for s in case.lines[i].sections:
@@ -224,12 +218,12 @@ def _components(case: Case, lines: list[int]) -> list[list[int]]:
                 if kinds[name] != "free":
                     continue
                 if name in owner:
-                    parent[root(i)] = root(owner[name])
+                    joined.union(i, owner[name])
                 else:
                     owner[name] = i
     groups: dict[int, list[int]] = {}
     for i in lines:
-        groups.setdefault(root(i), []).append(i)
+        groups.setdefault(joined.find(i), []).append(i)
     return sorted(groups.values())
 
 

@@ -12,6 +12,9 @@ whose extent is known, are laid out whole then (NaN until written), and its ``cr
 attribute is that moment (a whole-file writer gave the last write's). :meth:`Recorder.result`
 writes the final state with its status and gives the results: read lazily from the file, or
 from memory for a run without one (whose window holds the whole run).
+
+Size: one class, :class:`Recorder`, whose window, flushing and resume share its state;
+the two helpers beside it estimate the size of what it writes.
 """
 
 from __future__ import annotations

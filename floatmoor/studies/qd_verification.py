@@ -15,32 +15,12 @@ with T_S0 the initial static fairlead tension (the quasi-static tension at t = 0
 at rest before the ramp).
 
 Dynamic discretisation: 10 elements of order 5 (DYNAMIC_ELEMENTS, 60 nodes, as the case files;
-the paper's dynamic model 31 nodes), settled to its own static equilibrium before the
-ramp (DynamicLine.settle: the interpolated catenary rang on undamped in these stiff,
-frictionless chains, a ripple of the order of T_S0 that set an error floor of ~18 % RMSE_QD on
-C31 A1). ``discretisation_check`` compares two discretisations.
+the paper's dynamic model 31 nodes), settled to its own static equilibrium before the ramp
+(DynamicLine.settle: the interpolated catenary rings on undamped in these stiff, frictionless
+chains). ``discretisation_check`` compares two discretisations.
 
-Observed on the development machine (full study, 1479 s with 2 workers on a loaded machine):
-RMSE_QD < 10 % / 20 % in 53 % / 87 % of the runs (paper 48 % / 84 %), RMSE_S in 10 % / 34 %
-(paper 2 % / 18 %), QD peak errors max(e_Tmin, e_Tmax) in 41 % / 71 % (paper 67 % / about
-90 %), worst RMSE_QD 35.5 % on C11 (paper 37.6 % on C11). Mean RMSE_QD grows with alpha (2.8 %
-to 19.2 %) and with amplitude (A1 5.7 % to A5 14.7 %); mean RMSE_S grows from S3 to S1 (27.0,
-32.1, 44.5 %), mean RMSE_QD does not (S1 12.3 %, S2 9.4 %, S3 10.5 %).
-
-Sensitivity to the dynamic reference (sweeps with these functions, one process): the reference
-is not converged pointwise at alpha 0.5-0.6. The undamped, frictionless chains carry axial
-ringing excited at touchdown and near slack; 10, 20 and 30 elements differ by 7-30 % of T_S0
-(RMSE of the difference over the last cycle) on C22 A3, C31 A5, C32 A4 at alpha 0.5-0.6,
-against 0.3-2.4 % up to alpha 0.4. Above the tenth harmonic of the cycle it carries 6.9 % of
-T_S0 on S3 on average (up to 26 %), 3.5 % on S2 and 2.4 % on S1: against the first ten
-harmonics of the reference the mean RMSE_QD is S1 12.0 %, S2 8.6 %, S3 7.4 %, the paper's
-ordering. The fraction RMSE_S < 20 % stays 31-34 % for every discretisation (6 x p5, 10 x p3,
-30 x p1 = the paper's 31 nodes, 10 x p5; all 180 runs) and physical variant tried on the 82
-runs near the thresholds (added mass on the nominal area, no tangential drag, a seabed of
-1e5 Pa/m instead of 1e5 N/m^2 per metre of line, axial damping 1 % and 3 %): 33-34 % of the
-180 with the other runs as before. The shape ordering of the mean RMSE_QD returns (barely:
-S3 9.1-9.3 %, S2 9.2 %, S1 12.2 %) only with what damps the ringing (axial damping 1-3 %, the
-soft seabed), not with any discretisation of the undamped line; coarser ones make S3 worse.
+The study's findings against the paper's, and the sensitivity of the dynamic reference behind
+them, are in docs/validation_notes.md.
 """
 
 from __future__ import annotations

@@ -10,10 +10,8 @@ outputs) is split by SVD into modes U S V^T, the leading modes that together hol
 :data:`DROPPED_ENERGY` of its sum of squares are fitted one by one (at most n fits whatever m),
 and the outputs' coefficients are the modes' recombined, C = sum_k c_k V_k^T (plus the mean on
 the constant): exact for a linear recombination, so the statistics and Sobol indices computed
-from C are those of the recombined surrogate. For 150 runs x 2000 outputs (smooth series) x 6
-inputs at p = 5, q = 1 (462 candidates), LAR output by output took 0.6 s each (20 min in all) on
-the development machine, by modes 3 s (10 to 16 modes kept), with hold-out errors 100 times
-smaller than LAR output by output with OpenTURNS' early stop (below).
+from C are those of the recombined surrogate; fitting by modes is what makes a time series of
+thousands of outputs affordable (timings in docs/validation_notes.md).
 
 Validation error of each output: the leave-one-out residuals of the modes, each mode's scaled by
 the square root of its correction factor T(P_k, n) = n / (n - P_k) (1 + tr(C_k^-1) / n),

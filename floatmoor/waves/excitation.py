@@ -13,10 +13,9 @@ physics.md section 5's Re{X_W a_j e^{i(omega_j t + phi_j)}} with WAMIT-conventio
 coefficients c_j are computed once; one time then costs N complex exponentials and an (N x 6)
 product, a whole record a blocked matrix product (floatmoor.waves.synthesis).
 
-Measured on the project machine (loaded; time.thread_time): a 3 h full-scale JONSWAP record,
-3094 components over 0.2-2.0 rad/s, elevation plus 6-DOF force at 0.05 s steps (216 000 times)
-takes about 2.7 s (1.1 s elevation, 1.6 s force); at 0.1 s steps half that. See the benchmark
-tests/waves/test_bench_waves.py::test_three_hour_record_cost (pytest -m benchmark).
+A 3 h full-scale record costs a few seconds (benchmark
+tests/waves/test_bench_waves.py::test_three_hour_record_cost; figures in
+docs/validation_notes.md).
 """
 
 from __future__ import annotations

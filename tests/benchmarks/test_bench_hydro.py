@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from floatmoor.case.load import load_case
-from floatmoor.hydro.build import build_database
+from floatmoor.hydro.database import build_database
 from floatmoor.hydro.database import read_database, write_database
 
 REPO = Path(__file__).resolve().parents[2]

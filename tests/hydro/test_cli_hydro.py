@@ -89,12 +89,12 @@ def test_build_runs_the_checks_and_exits_1_when_one_fails(tmp_path, buoy_db, cap
     (here the Haskind relation of a database whose excitation is 20 % too large, built by a
     stand-in for the BEM) exits 1 naming it, the database written with the failure recorded
     for inspection."""
-    import floatmoor.hydro.build as build
+    import floatmoor.hydro.database as database
 
     bad = buoy_db.copy(deep=True)
     bad["excitation_force"] = bad["excitation_force"] * 1.2
     bad.attrs["build_seconds"] = 0.0
-    monkeypatch.setattr(build, "build_database", lambda case, progress=None: bad)
+    monkeypatch.setattr(database, "build_database", lambda case, progress=None: bad)
     target = tmp_path / "built.nc"
     assert main(["hydro", "build", str(BUOY_CASE), "-o", str(target), "--quiet"]) == 1
     out = capsys.readouterr()
@@ -110,7 +110,7 @@ def test_build_runs_the_checks_and_exits_1_when_one_fails(tmp_path, buoy_db, cap
     assert recorded == {"symmetry": True, "damping_psd": True, "kramers_kronig": True,
                         "kernel_decay": True, "haskind": False, "hydrostatics": True}
     # a database passing every check builds with status 0
-    monkeypatch.setattr(build, "build_database", lambda case, progress=None: buoy_db)
+    monkeypatch.setattr(database, "build_database", lambda case, progress=None: buoy_db)
     assert main(["hydro", "build", str(BUOY_CASE), "-o", str(tmp_path / "good.nc"),
                  "--quiet", "--force"]) == 0
     assert "all checks pass" in capsys.readouterr().out

@@ -16,7 +16,7 @@ from floatmoor.body.morison import DragSettings, build_strips
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import Column, SemisubmersibleGeometry
 from floatmoor.errors import CaseError
-from floatmoor.hydro.build import build_database
+from floatmoor.hydro.database import build_database
 from floatmoor.hydro.checks import geometry_from_dataset, run_checks
 from floatmoor.hydro.database import database_inputs, inputs_hash, merge_complex
 from floatmoor.hydro.geometry import build_mesh

@@ -37,7 +37,7 @@ from floatmoor.io.moordyn.deck import (POINT_COUPLED, POINT_FIXED, POINT_FREE, D
 from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type,
                                              seabed_to_moordyn)
 from floatmoor.errors import SolverError
-from floatmoor.mooring.dg.line import CableProperties
+from floatmoor.mooring.dg.cable import CableProperties
 from floatmoor.mooring.dg.resolution import resolve_settings
 from floatmoor.mooring.system_statics import case_statics
 

@@ -33,6 +33,10 @@ position and velocity inside an interval come from the cubic Hermite interpolant
 values at its ends.
 
 Parameters travel in one float64 array ``prm`` indexed by the ``P_*`` constants.
+
+Size: the numba kernels of one DG cable, which share the private operators (tension
+field, acceleration, implicit damping) that the system kernels also reuse; the docstring
+states the scheme they implement.
 """
 
 from __future__ import annotations

@@ -5,32 +5,31 @@ section with its own elements and order) and the free points' positions and velo
 them from each section's catenary between its ends, settles them, and advances them together
 (``_system_kernels``) at the smallest of the sections' stable steps, with the body points
 driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
-:meth:`DynamicSystem.advance` once per rigid-body step.
+:meth:`DynamicSystem.advance` once per rigid-body step. Its sections, points and starting
+shape are :mod:`floatmoor.mooring.dg.system_parts`.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.case.schema import DynamicSettings, Environment, Seabed
+from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import SolverError
-from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
-from floatmoor.mooring.dg.resolution import resolve_settings
 from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RATE,
-                                       SETTLE_TOLERANCE, CableProperties, DynamicLine,
-                                       SettleReport)
-from floatmoor.mooring.system_statics import SystemStatics, build_static_system
+                                       SETTLE_TOLERANCE, DynamicLine, SettleReport)
+from floatmoor.mooring.dg.system_parts import (
+    PointLike, SystemSection, catenary_positions, point_contact, resolved_sections,
+    section_properties, static_start,
+)
 
-__all__ = ["DynamicSystem", "SystemSection", "free_point_groups", "point_contact",
-           "section_properties", "static_start"]
+__all__ = ["DynamicSystem", "SystemSection", "free_point_groups"]
 
 _STATUS_TEXT = {
     _k.DG_NOT_FINITE: "the position or velocity is not finite",
@@ -48,111 +47,6 @@ SYSTEM_SETTLE_RATE = 2.0
 #: quarter period of the modes it is for (~1.5 s at 1 rad/s).
 KINETIC_CHUNK = 0.02
 _KINDS = {"fixed": _s.FIXED, "free": _s.FREE, "body": _s.BODY}
-
-
-class PointLike(Protocol):
-    """What the system reads of a point (``floatmoor.case.schema.Point``)."""
-
-    name: str
-    kind: str
-    position: tuple[float, float, float]
-    mass: float
-    volume: float
-    drag_area: float
-    added_mass_coefficient: float
-
-
-@dataclass(frozen=True)
-class SystemSection:
-    """One DG section of a system: its line's name, index from the line's start, properties,
-    numerics and the names of the points at its start (s = 0) and end."""
-
-    line: str
-    index: int
-    properties: CableProperties
-    settings: DynamicSettings
-    start: str
-    end: str
-
-    @property
-    def label(self) -> str:
-        """How messages name it: line name and section index."""
-        return f"line '{self.line}' section {self.index}"
-
-
-def _resolved_sections(sections: list["SystemSection"]) -> list["SystemSection"]:
-    """The sections, their numerics chosen where the case leaves them to the accuracy
-    (resolution.resolve_settings for a line system's sections: explicit, their own
-    discretisation, no catenary needed)."""
-    return [replace(sec, settings=resolve_settings(sec.settings, sec.properties.length, 0.0,
-                                                   several_sections=True))
-            if not sec.settings.resolved or sec.settings.time_integration == "auto" else sec
-            for sec in sections]
-
-
-def section_properties(section: Any, environment: Environment, seabed: Seabed
-                       ) -> CableProperties:
-    """The :class:`CableProperties` of a case's section (``schema.Section``): its line type and
-    length, with the internal damping ratio on the section's own first longitudinal mode."""
-    return CableProperties.from_section(section, environment, seabed)
-
-
-def point_contact(point: PointLike, props: CableProperties) -> tuple[float, float, float]:
-    """Seabed contact of a free point (``_system_kernels`` docstring): stiffness k_p = K_b A_p
-    [N/m] with A_p the projected area of the sphere of its displaced volume, damping
-    2 xi sqrt(M_eff k_p) [N s/m] and the full friction force mu (M - rho_w V) g [N] (zero for
-    a point without volume, or that floats). ``props`` carries the sea and the seabed."""
-    V = float(point.volume)
-    if point.kind != "free" or V <= 0.0:
-        return 0.0, 0.0, 0.0
-    area = math.pi * (3.0 * V / (4.0 * math.pi)) ** (2.0 / 3.0)
-    k = props.seabed_stiffness * area
-    meff = point.mass + point.added_mass_coefficient * props.water_density * V
-    c = 2.0 * props.seabed_damping_ratio * math.sqrt(meff * k)
-    weight = (point.mass - props.water_density * V) * props.gravity
-    return k, c, props.friction_coefficient * max(weight, 0.0)
-
-
-def static_start(points: Sequence[PointLike], lines: Sequence[Any], environment: Environment,
-                 seabed: Seabed) -> tuple[NDArray[np.float64] | None, str]:
-    """Point positions of the system's static equilibrium (``SystemStatics``, body points at
-    rest, free points resting on the seabed included), to start the dynamic model from.
-
-    Returns
-    -------
-    positions, why
-        The positions (points in the order given, (points, 3)) and "statics"; or None and
-        the statics' message when they cannot give the equilibrium: a section that floats,
-        a free point held at the surface (the dynamic model handles these; it then starts
-        from the case's positions and relaxes).
-    """
-    if not any(p.kind == "free" for p in points):
-        return None, "no free point"
-    try:
-        system = build_static_system(points, lines, environment, seabed)
-        solution = SystemStatics(system).solve()
-    except SolverError as exc:
-        return None, str(exc)
-    return np.array(solution.positions, dtype=float), "statics"
-
-
-def _catenary(props: CableProperties, start: NDArray, end: NDArray, s: NDArray) -> NDArray:
-    """Node positions of the frictionless static catenary between two ends (inverted for a
-    buoyant section, straight for a weightless one)."""
-    w = props.submerged_weight
-    if w == 0.0:
-        return start + np.outer(s / props.length, end - start)
-    flip = np.array([1.0, 1.0, 1.0 if w > 0.0 else -1.0])
-    bed = props.seabed_z if w > 0.0 else -math.inf
-    a, f = start * flip, end * flip
-    try:
-        sol = solve_catenary(a, f, props.length, props.axial_stiffness, abs(w), 0.0,
-                             seabed_z=bed)
-        pos, _ = catenary_profile(a, f, props.length, props.axial_stiffness, abs(w), 0.0,
-                                  seabed_z=bed, arc_lengths=s, solution=sol)
-    except SolverError:
-        return start + np.outer(s / props.length, end - start)
-    return pos * flip
 
 
 class DynamicSystem:
@@ -245,7 +139,8 @@ class DynamicSystem:
             for j, (sec, ln) in enumerate(zip(self.sections, self.lines)):
                 a = self.x[self.sec[j, _s.S_START]]
                 b = self.x[self.sec[j, _s.S_END]]
-                self._section(self.r, j)[:] = _catenary(sec.properties, a, b, ln.arc_length)
+                self._section(self.r, j)[:] = catenary_positions(sec.properties, a, b,
+                                                                 ln.arc_length)
         else:
             self.r[:] = np.asarray(initial_positions, dtype=float).reshape(node, 3)
         self._w = _SystemWorkspace(self.sec, self.kind, len(body_points), node, elem, face,
@@ -280,7 +175,7 @@ class DynamicSystem:
         used = {n for s in sections for n in (s.start, s.end)}
         points = [p for p in case.points if p.name in used]
         start, why = static_start(points, dynamic, case.environment, case.seabed)
-        sections = _resolved_sections(sections)
+        sections = resolved_sections(sections)
         obj = cls(points, sections, point_positions=start)
         obj.static_start = why
         if settle if settle is not None else any(s.settings.settle for s in sections):
@@ -667,21 +562,14 @@ def free_point_groups(sec: NDArray[np.int64], kind: NDArray[np.int64]
         every point its (group, slot in the group), -1 for fixed and body points.
     """
     P = kind.shape[0]
-    parent = list(range(P))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    joined = DisjointSets(range(P))
     for a, b in sec[:, [_s.S_START, _s.S_END]]:
         if kind[a] == _s.FREE and kind[b] == _s.FREE:
-            parent[root(int(a))] = root(int(b))
+            joined.union(int(a), int(b))
     groups: dict[int, list[int]] = {}
     for p in range(P):
         if kind[p] == _s.FREE:
-            groups.setdefault(root(p), []).append(p)
+            groups.setdefault(joined.find(p), []).append(p)
     index = np.full((P, 2), -1, dtype=np.int64)
     points, offsets = [], [0]
     for g, members in enumerate(groups.values()):

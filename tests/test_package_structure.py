@@ -1,0 +1,250 @@
+"""The package's house rules, checked statically: imports run one way, modules stay small.
+
+Imports (issue 19): the project layers its code one way (case -> models -> simulation ->
+campaigns/reports -> CLI), so no module may, directly or through others, import itself. The
+import graph is read from the source with :mod:`ast` (nothing is imported, so a circle that
+Python happens to survive today is found as well):
+
+* module-level imports (also inside ``try``/``if`` at module level) are the graph Python
+  executes when a module is imported: it must have no cycle;
+* imports inside functions (lazy imports, made to defer a heavy dependency such as capytaine
+  or matplotlib) are dependencies too: the graph with them added must have no cycle either.
+  A lazy import may defer a cost; it may not hide a circle;
+* imports under ``if TYPE_CHECKING:`` are annotations only and are not edges.
+
+An import of ``pkg.mod.name`` is an edge to ``pkg.mod`` (the module that defines ``name``),
+or to the package ``pkg.mod`` when ``name`` is what its ``__init__`` re-exports. The implicit
+import of a module's parent packages is not an edge (every package's ``__init__`` may import
+its own children). ``importlib.import_module`` with a string (the top-level package's lazy
+attributes) is not followed.
+
+Size: a module over :data:`MAX_MODULE_LINES` lines must say why in its docstring, on a line
+starting with ``Size:`` (e.g. ``Size: one numba kernel set that shares its private helpers;
+split, the helpers would have to be public``).
+"""
+
+from __future__ import annotations
+
+import ast
+from collections import deque
+from collections.abc import Set
+from functools import lru_cache
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parents[1] / "floatmoor"
+#: The "about 600 lines" of issue 19: past it a module must give its reason.
+MAX_MODULE_LINES = 600
+#: The docstring line that gives that reason.
+SIZE_REASON_PREFIX = "Size:"
+
+
+def _modules() -> dict[str, tuple[Path, bool]]:
+    """Every module of the package: dotted name -> (file, is a package ``__init__``)."""
+    found = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        is_package = parts[-1] == "__init__"
+        if is_package:
+            parts = parts[:-1]
+        found[".".join(parts)] = (path, is_package)
+    return found
+
+
+MODULES = _modules()
+
+
+def _owner(name: str) -> str | None:
+    """The package module a dotted import target lives in (None outside the package)."""
+    while name and name not in MODULES:
+        name = name.rpartition(".")[0]
+    return name or None
+
+
+def _targets(module: str, is_package: bool, node: ast.Import | ast.ImportFrom) -> list[str]:
+    """The package modules one import statement of ``module`` reaches."""
+    if isinstance(node, ast.Import):
+        names = [alias.name for alias in node.names]
+    else:
+        if node.level:
+            base = module.split(".")
+            if not is_package:
+                base = base[:-1]
+            base = base[: len(base) - (node.level - 1)]
+            source = ".".join(base + ([node.module] if node.module else []))
+        else:
+            source = node.module or ""
+        names = [f"{source}.{alias.name}" if f"{source}.{alias.name}" in MODULES else source
+                 for alias in node.names]
+    owners = (_owner(name) for name in names)
+    return [owner for owner in owners if owner is not None and owner != module]
+
+
+def _is_type_checking(node: ast.AST) -> bool:
+    return isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
+
+
+def _imports_of(source: str, module: str, is_package: bool
+                ) -> tuple[frozenset[str], frozenset[str]]:
+    """(module-level, function-level) package imports in the ``source`` of ``module``."""
+    top: set[str] = set()
+    lazy: set[str] = set()
+
+    def visit(node: ast.AST, in_function: bool) -> None:
+        for child in ast.iter_child_nodes(node):
+            if _is_type_checking(child):
+                continue
+            if isinstance(child, (ast.Import, ast.ImportFrom)):
+                (lazy if in_function else top).update(_targets(module, is_package, child))
+            inner = in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef,
+                                                      ast.Lambda))
+            visit(child, inner)
+
+    visit(ast.parse(source), False)
+    return frozenset(top), frozenset(lazy - top)
+
+
+@lru_cache(maxsize=None)
+def _imports(module: str) -> tuple[frozenset[str], frozenset[str]]:
+    path, is_package = MODULES[module]
+    return _imports_of(path.read_text(encoding="utf-8"), module, is_package)
+
+
+def _graph(with_lazy: bool) -> dict[str, Set[str]]:
+    graph = {}
+    for module in MODULES:
+        top, lazy = _imports(module)
+        graph[module] = top | lazy if with_lazy else top
+    return graph
+
+
+def _components(graph: dict[str, Set[str]]) -> list[set[str]]:
+    """The strongly connected components of ``graph`` with more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    components: list[set[str]] = []
+
+    def connect(node: str) -> None:  # recursion depth is bounded by the package's size
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on_stack.add(node)
+        for target in graph[node]:
+            if target not in index:
+                connect(target)
+                low[node] = min(low[node], low[target])
+            elif target in on_stack:
+                low[node] = min(low[node], index[target])
+        if low[node] == index[node]:
+            component = set()
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                component.add(member)
+                if member == node:
+                    break
+            if len(component) > 1:
+                components.append(component)
+
+    for node in sorted(graph):
+        if node not in index:
+            connect(node)
+    return components
+
+
+def _cycles(graph: dict[str, Set[str]]) -> list[list[str]]:
+    """One shortest cycle through each strongly connected component of ``graph``."""
+    return [_shortest_cycle(graph, component) for component in _components(graph)]
+
+
+def _shortest_cycle(graph: dict[str, Set[str]], component: Set[str]) -> list[str]:
+    """A shortest cycle through the first (sorted) member of a strongly connected component."""
+    start = min(component)
+    previous: dict[str, str] = {}
+    queue = deque([start])
+    while queue:
+        node = queue.popleft()
+        for target in sorted(graph[node] & component):
+            if target == start:
+                path = [node]
+                while path[-1] != start:
+                    path.append(previous[path[-1]])
+                return [start, *reversed(path[:-1]), start]
+            if target not in previous:
+                previous[target] = node
+                queue.append(target)
+    raise AssertionError(f"{sorted(component)} is not strongly connected")
+
+
+def _describe(graph: dict[str, Set[str]]) -> str:
+    """Each circle as one shortest cycle, and every module caught in it."""
+    return "\n".join(f"{' -> '.join(_shortest_cycle(graph, component))} (modules in this "
+                     f"circle: {', '.join(sorted(component))})"
+                     for component in _components(graph))
+
+
+def test_cycle_finder_names_a_planted_circle() -> None:
+    """The finder itself: a three-module circle beside a one-way chain is found, and only it."""
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a", "d"}, "d": set(), "e": {"d"}}
+    assert _cycles(graph) == [["a", "b", "c", "a"]]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_relative_imports_resolve_to_package_modules() -> None:
+    """``from . import x`` and ``from .x import y`` reach the modules they name."""
+    node = ast.parse("from .state_space import x\nfrom . import database").body
+    module = "floatmoor.hydro.radiation"
+    assert _targets(module, False, node[0]) == ["floatmoor.hydro.state_space"]
+    assert _targets(module, False, node[1]) == ["floatmoor.hydro.database"]
+
+
+def test_module_level_imports_have_no_circle() -> None:
+    graph = _graph(with_lazy=False)
+    circles = _components(graph)
+    assert not circles, "import circles among module-level imports:\n" + _describe(graph)
+
+
+def test_imports_including_lazy_ones_run_one_way() -> None:
+    graph = _graph(with_lazy=True)
+    circles = _components(graph)
+    assert not circles, ("import circles once the imports inside functions are counted:\n"
+                         + _describe(graph))
+
+
+def _size_problem(name: str, text: str) -> str | None:
+    """Why the module ``name`` with source ``text`` breaks the size rule, or None."""
+    lines = len(text.splitlines())
+    if lines <= MAX_MODULE_LINES:
+        return None
+    docstring = ast.get_docstring(ast.parse(text)) or ""
+    if any(line.strip().startswith(SIZE_REASON_PREFIX) for line in docstring.splitlines()):
+        return None
+    return (f"{name} has {lines} lines (over {MAX_MODULE_LINES}) and its docstring has no "
+            f"line starting {SIZE_REASON_PREFIX!r} saying why")
+
+
+def test_import_kinds_are_told_apart() -> None:
+    """Module-level, function-level and TYPE_CHECKING-only imports of a made-up module."""
+    source = ("from floatmoor.errors import CaseError\n"
+              "if TYPE_CHECKING:\n    from floatmoor.case.schema import Case\n"
+              "def f():\n    from floatmoor.hydro import radiation\n    import floatmoor.cli\n")
+    top, lazy = _imports_of(source, "floatmoor.made_up", False)
+    assert top == {"floatmoor.errors"}
+    assert lazy == {"floatmoor.hydro.radiation", "floatmoor.cli"}
+
+
+def test_size_rule_wants_a_reason_past_the_limit() -> None:
+    body = "x = 1\n" * MAX_MODULE_LINES
+    assert _size_problem("short", '"""Short."""\n' + "x = 1\n" * (MAX_MODULE_LINES - 1)) is None
+    assert "601 lines" in _size_problem("long", '"""Long."""\n' + body)
+    assert _size_problem("long", f'"""Long.\n\n{SIZE_REASON_PREFIX} one kernel set."""\n'
+                         + body) is None
+
+
+def test_every_long_module_says_why() -> None:
+    problems = [_size_problem(str(path.relative_to(PACKAGE.parent)),
+                              path.read_text(encoding="utf-8"))
+                for path, _ in MODULES.values()]
+    problems = [p for p in problems if p is not None]
+    assert not problems, ("split these modules by what they hold, or say why not:\n"
+                          + "\n".join(problems))
