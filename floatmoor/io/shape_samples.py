@@ -20,7 +20,8 @@ from numpy.typing import NDArray
 from floatmoor.errors import FloatmoorError
 
 __all__ = ["ShapeDataError", "LineShape", "has_shapes", "node_count", "line_shape",
-           "complete_shape_samples", "nearest_shape_samples"]
+           "complete_shape_samples", "nearest_shape_samples",
+           "window_samples"]
 
 #: Variables a dataset must hold for its line shapes to be read.
 SHAPE_VARIABLES = ("shape_position", "shape_tension", "arc_length")
@@ -138,3 +139,27 @@ def nearest_shape_samples(dataset: xr.Dataset, times: Sequence[float],
                                  f"({t[0]:g} to {t[-1]:g} s), found {value:g} s")
         out.append(int(samples[k]))
     return out
+
+
+def window_samples(dataset: xr.Dataset, *, start: float | None = None,
+                   end: float | None = None, every: int = 1,
+                   option: str = "--start/--end") -> list[int]:
+    """Every ``every``-th complete shape sample at ``start`` <= t <= ``end`` [s] (None: the
+    first or the last complete sample).
+
+    Raises
+    ------
+    ShapeDataError
+        Without shapes, or when no complete sample lies in the window.
+    """
+    samples = complete_shape_samples(dataset)
+    t = np.asarray(dataset["shape_time"].values, dtype=float)[samples]
+    lo = t[0] if start is None else start
+    hi = t[-1] if end is None else end
+    tol = 1e-9 * max(abs(lo), abs(hi), 1.0)
+    inside = samples[(t >= lo - tol) & (t <= hi + tol)]
+    if inside.size == 0:
+        raise ShapeDataError(f"{option}: expected a window holding line-shape samples (the "
+                             f"complete ones span {t[0]:g} to {t[-1]:g} s), found {lo:g} to "
+                             f"{hi:g} s")
+    return [int(k) for k in inside[::every]]
