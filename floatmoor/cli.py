@@ -535,7 +535,7 @@ def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output:
                    simulated_time_s=result.simulated_time_s)
     if args.plot is not None:
         from floatmoor.plots.run_figures import plot_run
-        from floatmoor.report.figures import FigureDataError
+        from floatmoor.plots.series import FigureDataError
 
         try:
             figures = plot_run(result.dataset, args.plot, args.plot_times_s)

@@ -129,7 +129,7 @@ def _bad_input_types() -> tuple[type[Exception], ...]:
     """The errors of these commands that are bad input (status 2)."""
     from floatmoor.io.shape_samples import ShapeDataError
     from floatmoor.plots.animation import AnimationWriterError
-    from floatmoor.report.figures import FigureDataError
+    from floatmoor.plots.series import FigureDataError
     from floatmoor.report.runs import ReportInputError
 
     return (CaseError, ReportInputError, ShapeDataError, FigureDataError, AnimationWriterError)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import xarray as xr
 
-from floatmoor.report.runs import case_from_dataset, default_start
+from floatmoor.io.run_case import case_from_dataset, default_start
 
 __all__ = ["RunContext", "run_context"]
 

@@ -10,17 +10,20 @@ import xarray as xr
 
 from floatmoor.io.dataset import DOFS
 from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure
-from floatmoor.report.figures import MOTION_ACTIVE_STD, check_series
+from floatmoor.plots.series import check_series
 
-__all__ = ["plot_body_motions", "moving_dofs", "TRANSLATIONS"]
+__all__ = ["plot_body_motions", "moving_dofs", "TRANSLATIONS", "MOTION_ACTIVE_STD"]
 
+#: A DOF whose standard deviation over the window is below this [m or rad] in every run is
+#: not plotted in motion figures (symmetric cases leave sway, roll and yaw at round-off).
+MOTION_ACTIVE_STD = 1e-9
 #: Degrees of freedom drawn in metres; the others are rotations, drawn in degrees.
 TRANSLATIONS = ("Surge", "Sway", "Heave")
 
 
 def moving_dofs(dataset: xr.Dataset) -> list[str]:
     """The DOFs whose displacement has a standard deviation of at least
-    :data:`~floatmoor.report.figures.MOTION_ACTIVE_STD` (m or rad) over the run (symmetric
+    :data:`MOTION_ACTIVE_STD` (m or rad) over the run (symmetric
     cases leave sway, roll and yaw at round-off)."""
     disp = dataset["body_displacement"]
     return [d for d in DOFS if float(disp.sel(dof=d).std("time")) >= MOTION_ACTIVE_STD]

@@ -17,7 +17,8 @@ from floatmoor.plots.motions import plot_body_motions
 from floatmoor.plots.shapes import plot_line_shapes
 from floatmoor.plots.tensions import plot_tension_along_line, plot_tensions
 
-__all__ = ["figure_paths", "default_shape_samples", "envelope_start", "plot_run", "DEFAULT_SHAPE_TIMES"]
+__all__ = ["figure_paths", "default_shape_samples", "envelope_start", "plot_run",
+           "plot_shape_views", "DEFAULT_SHAPE_TIMES"]
 
 #: Shape samples drawn when no times are chosen: evenly spread from the end of the ramp to
 #: the end of the run (the first and last included).
@@ -89,9 +90,31 @@ def plot_run(dataset: xr.Dataset, path: str | Path,
     if "motions" in paths:
         plot_body_motions(dataset, paths["motions"], ramp_duration=context.ramp)
     if "shapes" in paths:
-        samples = (default_shape_samples(dataset, context.ramp) if times is None
-                   else nearest_shape_samples(dataset, times, "--plot-times"))
-        plot_line_shapes(dataset, paths["shapes"], samples, context)
-        plot_tension_along_line(dataset, paths["line_tension"], samples,
-                                start=envelope_start(dataset, context.ramp))
+        plot_shape_views(dataset, paths["shapes"], paths["line_tension"], start=context.ramp,
+                         times=times)
     return paths
+
+
+def plot_shape_views(dataset: xr.Dataset, shapes_path: str | Path, tension_path: str | Path,
+                     *, start: float, times: Sequence[float] | None = None) -> None:
+    """The line shapes and the tension along the lines of a run with shapes.
+
+    Parameters
+    ----------
+    start
+        End of the transient [s]: the default shape times and the tension envelope begin
+        there (:func:`envelope_start`).
+    times
+        Times of the shapes drawn [s]; None: :func:`default_shape_samples` after ``start``.
+
+    Raises
+    ------
+    ShapeDataError, FigureDataError, OutputWriteError
+        As :func:`plot_run`.
+    """
+    context = run_context(dataset)
+    samples = (default_shape_samples(dataset, start) if times is None
+               else nearest_shape_samples(dataset, times, "--plot-times"))
+    plot_line_shapes(dataset, shapes_path, samples, context)
+    plot_tension_along_line(dataset, tension_path, samples,
+                            start=envelope_start(dataset, start))

@@ -19,7 +19,7 @@ from floatmoor.io.shape_samples import LineShape, line_shape
 from floatmoor.plots.context import RunContext
 from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure
 from floatmoor.post.line_shapes import touchdown_point
-from floatmoor.report.figures import check_series
+from floatmoor.plots.series import check_series
 
 __all__ = ["Frame", "frame", "scene_limits", "draw_references", "plot_line_shapes",
            "SCENE_MARGIN"]

@@ -12,7 +12,7 @@ import xarray as xr
 from floatmoor.io.shape_samples import line_shape
 from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure, tension_unit
 from floatmoor.post.line_shapes import tension_envelope
-from floatmoor.report.figures import check_series
+from floatmoor.plots.series import check_series
 
 __all__ = ["plot_tensions", "plot_tension_along_line"]
 

@@ -15,6 +15,8 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from floatmoor._version import __version__
+from floatmoor.io.shape_samples import has_shapes
+from floatmoor.plots.run_figures import plot_shape_views
 from floatmoor.report import figures as fig
 from floatmoor.report.markdown import Block, Figure, Heading, Paragraph, render_html, \
     render_markdown
@@ -188,6 +190,19 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
                    lambda p: fig.plot_motion_timeseries(runs, p, dofs))
             figure("motion_psd.png", "Power spectral densities of floater displacements",
                    lambda p: fig.plot_motion_psd(runs, p, dofs))
+    shaped = [(k, run) for k, run in enumerate(runs) if has_shapes(run.dataset)]
+    if shaped:
+        blocks.append(Heading("Line shapes and tension along the lines"))
+        for k, run in shaped:
+            shapes_name = f"line_shapes_{k + 1}.png"
+            tension_name = f"line_tension_{k + 1}.png"
+            plot_shape_views(run.dataset, work / shapes_name, work / tension_name,
+                             start=run.start)
+            made.extend([work / shapes_name, work / tension_name])
+            blocks.append(Figure(shapes_name, f"Line shapes (side and plan views), run "
+                                 f"{run.label}"))
+            blocks.append(Figure(tension_name, f"Tension along the lines and its envelope "
+                                 f"after the window start, run {run.label}"))
     decay = decay_table(runs, analyses)
     if decay is not None:
         blocks.append(Heading("Free decay"))
