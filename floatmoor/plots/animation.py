@@ -96,10 +96,11 @@ def animate_run(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *
     plan_lines = [plan.plot([], [], lw=1.3, color=f"C{j + 1}")[0] for j in range(n_lines)]
     side_td = side.plot([], [], "x", color="k", ms=6, label="touchdown point")[0]
     plan_td = plan.plot([], [], "x", color="k", ms=6)[0]
-    side_body = side.plot([], [], "o-", color="0.3", ms=6, mfc="none", lw=0.6,
-                          label="floater: reference point, fairleads")[0] if fairleads is not None else None
-    plan_body = plan.plot([], [], "o-", color="0.3", ms=6, mfc="none", lw=0.6)[0] \
-        if fairleads is not None else None
+    side_body = plan_body = None
+    if fairleads is not None:
+        side_body = side.plot([], [], "o-", color="0.3", ms=6, mfc="none", lw=0.6,
+                              label="floater: reference point, fairleads")[0]
+        plan_body = plan.plot([], [], "o-", color="0.3", ms=6, mfc="none", lw=0.6)[0]
     side.legend(loc="lower left", fontsize=7, ncol=2)
     clock = fig.suptitle("", fontsize=10)
     title = figure_title(dataset.attrs.get("title"))

@@ -3,6 +3,8 @@ position, and the incident wave elevation at the reference point."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +14,11 @@ from floatmoor.io.dataset import DOFS
 from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure
 from floatmoor.plots.series import check_series
 
-__all__ = ["plot_body_motions", "moving_dofs", "TRANSLATIONS", "MOTION_ACTIVE_STD"]
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["draw_body_motions", "plot_body_motions", "moving_dofs", "TRANSLATIONS",
+           "MOTION_ACTIVE_STD"]
 
 #: A DOF whose standard deviation over the window is below this [m or rad] in every run is
 #: not plotted in motion figures (symmetric cases leave sway, roll and yaw at round-off).
@@ -29,8 +35,8 @@ def moving_dofs(dataset: xr.Dataset) -> list[str]:
     return [d for d in DOFS if float(disp.sel(dof=d).std("time")) >= MOTION_ACTIVE_STD]
 
 
-def plot_body_motions(dataset: xr.Dataset, path: str | Path, *,
-                      ramp_duration: float = 0.0) -> Path:
+def draw_body_motions(dataset: xr.Dataset, *,
+                      ramp_duration: float = 0.0) -> Figure:
     """Floater displacements of the moving DOFs (translations in m, rotations in degrees) and
     the wave elevation, one panel each; the DOFs at rest are named in the title.
 
@@ -40,8 +46,6 @@ def plot_body_motions(dataset: xr.Dataset, path: str | Path, *,
         Without ``body_displacement`` (not a floater run).
     FigureDataError
         When a series is empty or not finite.
-    OutputWriteError
-        When the image cannot be written.
     """
     dofs = moving_dofs(dataset)
     still = [d for d in DOFS if d not in dofs]
@@ -75,4 +79,17 @@ def plot_body_motions(dataset: xr.Dataset, path: str | Path, *,
                  "position" + (", ramp shaded" if ramp_duration > 0.0 else "") + note,
                  fontsize=10)
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
+
+
+def plot_body_motions(dataset: xr.Dataset, path: str | Path, *,
+                      ramp_duration: float = 0.0) -> Path:
+    """:func:`draw_body_motions` saved to ``path`` (.png, .pdf or .svg; written
+    atomically: an old file is kept on failure).
+
+    Raises
+    ------
+    OutputWriteError
+        When the image cannot be written.
+    """
+    return save_figure(draw_body_motions(dataset, ramp_duration=ramp_duration), path)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 import xarray as xr
@@ -18,11 +18,14 @@ from numpy.typing import NDArray
 from floatmoor.io.shape_samples import LineShape, line_shape
 from floatmoor.plots.context import RunContext
 from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure
-from floatmoor.post.line_shapes import touchdown_point
 from floatmoor.plots.series import check_series
+from floatmoor.post.line_shapes import touchdown_point
 
-__all__ = ["Frame", "frame", "scene_limits", "draw_references", "plot_line_shapes",
-           "SCENE_MARGIN"]
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["draw_line_shapes", "plot_line_shapes", "Frame", "frame", "scene_limits",
+           "draw_references", "SCENE_MARGIN"]
 
 #: Margin around the drawn lines, as a fraction of the larger extent of a view.
 SCENE_MARGIN = 0.05
@@ -101,8 +104,8 @@ def draw_references(side, plan, context: RunContext, xlim: tuple[float, float]) 
         plain_axes(ax)
 
 
-def plot_line_shapes(dataset: xr.Dataset, path: str | Path, samples: Sequence[int],
-                     context: RunContext) -> Path:
+def draw_line_shapes(dataset: xr.Dataset, samples: Sequence[int],
+                     context: RunContext) -> Figure:
     """Side (x-z) and plan (x-y) views of every line at the shape samples ``samples`` (one
     colour per time), with anchors, touchdown points, the seabed and z = 0.
 
@@ -112,8 +115,6 @@ def plot_line_shapes(dataset: xr.Dataset, path: str | Path, samples: Sequence[in
         Without shapes.
     FigureDataError
         When a shape is not finite.
-    OutputWriteError
-        When the image cannot be written.
     """
     frames = [frame(dataset, k, context) for k in samples]
     xlim, _, zlim = scene_limits(frames, context)
@@ -149,4 +150,17 @@ def plot_line_shapes(dataset: xr.Dataset, path: str | Path, samples: Sequence[in
     side.legend(loc="upper left", bbox_to_anchor=(1.005, 1.0), fontsize=8)
     fig.suptitle(figure_title(dataset.attrs.get("title")) + "\nline shapes", fontsize=11)
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
+
+
+def plot_line_shapes(dataset: xr.Dataset, path: str | Path, samples: Sequence[int],
+                     context: RunContext) -> Path:
+    """:func:`draw_line_shapes` saved to ``path`` (.png, .pdf or .svg; written
+    atomically: an old file is kept on failure).
+
+    Raises
+    ------
+    OutputWriteError
+        When the image cannot be written.
+    """
+    return save_figure(draw_line_shapes(dataset, samples, context), path)

@@ -4,7 +4,7 @@ each line (at chosen shape times, with its min/max envelope after the ramp)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 import xarray as xr
@@ -14,7 +14,11 @@ from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure,
 from floatmoor.post.line_shapes import tension_envelope
 from floatmoor.plots.series import check_series
 
-__all__ = ["plot_tensions", "plot_tension_along_line"]
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = ["draw_tensions", "plot_tensions", "draw_tension_along_line",
+           "plot_tension_along_line"]
 
 
 def _line_panels(n: int, height: float):
@@ -27,15 +31,13 @@ def _legend(ax) -> None:
     ax.legend(loc="upper left", bbox_to_anchor=(1.005, 1.0), fontsize=8)
 
 
-def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float = 0.0) -> Path:
+def draw_tensions(dataset: xr.Dataset, *, ramp_duration: float = 0.0) -> Figure:
     """Fairlead and anchor tension histories of every line, one panel per line.
 
     Parameters
     ----------
     dataset
         A result dataset.
-    path
-        Image file (.png, .pdf or .svg).
     ramp_duration
         The start-up ramp, shaded [s].
 
@@ -43,8 +45,6 @@ def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float
     ------
     FigureDataError
         When a series is empty or not finite.
-    OutputWriteError
-        When the image cannot be written (written atomically: an old file is kept).
     """
     lines = [str(x) for x in dataset["line"].values]
     factor, unit = tension_unit([dataset["fairlead_tension"].values,
@@ -67,11 +67,24 @@ def plot_tensions(dataset: xr.Dataset, path: str | Path, *, ramp_duration: float
         _legend(ax)
     fig.suptitle(figure_title(dataset.attrs.get("title")), fontsize=11)
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_tension_along_line(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *,
-                            start: float = 0.0) -> Path:
+def plot_tensions(dataset: xr.Dataset, path: str | Path, *,
+                  ramp_duration: float = 0.0) -> Path:
+    """:func:`draw_tensions` saved to ``path`` (.png, .pdf or .svg; written
+    atomically: an old file is kept on failure).
+
+    Raises
+    ------
+    OutputWriteError
+        When the image cannot be written.
+    """
+    return save_figure(draw_tensions(dataset, ramp_duration=ramp_duration), path)
+
+
+def draw_tension_along_line(dataset: xr.Dataset, samples: Sequence[int], *,
+                            start: float = 0.0) -> Figure:
     """Effective tension against arc length from the anchor, one panel per line: at the shape
     samples ``samples`` and the envelope (min to max at every node) over the shape samples at
     t >= ``start`` [s].
@@ -82,8 +95,6 @@ def plot_tension_along_line(dataset: xr.Dataset, path: str | Path, samples: Sequ
         Without shapes, or none complete after ``start``.
     FigureDataError
         When a series is empty or not finite.
-    OutputWriteError
-        When the image cannot be written.
     """
     lines = [str(x) for x in dataset["line"].values]
     envelopes = {name: tension_envelope(dataset, name, start=start) for name in lines}
@@ -111,4 +122,17 @@ def plot_tension_along_line(dataset: xr.Dataset, path: str | Path, samples: Sequ
         _legend(ax)
     fig.suptitle(figure_title(dataset.attrs.get("title")), fontsize=11)
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
+
+
+def plot_tension_along_line(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *,
+                            start: float = 0.0) -> Path:
+    """:func:`draw_tension_along_line` saved to ``path`` (.png, .pdf or .svg; written
+    atomically: an old file is kept on failure).
+
+    Raises
+    ------
+    OutputWriteError
+        When the image cannot be written.
+    """
+    return save_figure(draw_tension_along_line(dataset, samples, start=start), path)
