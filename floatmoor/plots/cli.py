@@ -143,12 +143,31 @@ def _progress(quiet: bool, what: str) -> Callable[[int, int], None]:
     return report
 
 
-def animate_command(args: argparse.Namespace) -> int:
-    """``floatmoor animate RUN.nc -o OUT.gif``; returns the exit status."""
-    from floatmoor.io.output_files import OutputWriteError, check_output_file, output_lock
-    from floatmoor.plots.animation import animate_run, animation_writer
+def _guarded(what: str, interrupted: str, work: Callable[[], str]) -> int:
+    """Run a command's ``work`` (which returns its closing line): bad input exits 2, a
+    failed write 1, an interruption 130 or 143 saying ``interrupted``."""
+    from floatmoor.io.output_files import OutputWriteError
 
     try:
+        done = work()
+    except _bad_input_types() as err:
+        return _bad_input(err)
+    except OutputWriteError as err:
+        print(f"floatmoor: {what} failed: {err}", file=sys.stderr)
+        return EXIT_FAILED
+    except KeyboardInterrupt as stop:
+        print(f"floatmoor: {signal_name(stop)}; {interrupted}", file=sys.stderr)
+        return exit_status(stop)
+    print(done)
+    return EXIT_OK
+
+
+def animate_command(args: argparse.Namespace) -> int:
+    """``floatmoor animate RUN.nc -o OUT.gif``; returns the exit status."""
+    from floatmoor.io.output_files import check_output_file, output_lock
+    from floatmoor.plots.animation import animate_run, animation_writer
+
+    def work() -> str:
         fps = parse_positive(args.fps, "--fps")
         animation_writer(args.output, fps)
         output = check_output_file(args.output, "-o/--output", kind=ANIMATION,
@@ -157,39 +176,25 @@ def animate_command(args: argparse.Namespace) -> int:
         with output_lock(output):
             frames = animate_run(dataset, output, samples, fps=fps,
                                  progress=_progress(args.quiet, "frame"))
-    except _bad_input_types() as err:
-        return _bad_input(err)
-    except OutputWriteError as err:
-        print(f"floatmoor: animate failed: {err}", file=sys.stderr)
-        return EXIT_FAILED
-    except KeyboardInterrupt as stop:
-        print(f"floatmoor: {signal_name(stop)}; nothing written (the animation is written "
-              "whole or not at all)", file=sys.stderr)
-        return exit_status(stop)
-    print(f"{frames} frames at {fps:g} per second in {output}")
-    return EXIT_OK
+        return f"{frames} frames at {fps:g} per second in {output}"
+
+    return _guarded("animate", "nothing written (the animation is written whole or not at "
+                    "all)", work)
 
 
 def vtk_command(args: argparse.Namespace) -> int:
     """``floatmoor vtk RUN.nc -o DIR``; returns the exit status."""
-    from floatmoor.io.output_files import OutputWriteError, check_output_folder, output_lock
+    from floatmoor.io.output_files import check_output_folder, output_lock
 
-    try:
+    def work() -> str:
         folder = check_output_folder(args.output, "-o/--output")
         dataset, samples = _window(args)
         with output_lock(folder.resolve()):
             pvd = write_vtk(dataset, folder, samples, quiet=args.quiet)
-    except _bad_input_types() as err:
-        return _bad_input(err)
-    except OutputWriteError as err:
-        print(f"floatmoor: vtk failed: {err}", file=sys.stderr)
-        return EXIT_FAILED
-    except KeyboardInterrupt as stop:
-        print(f"floatmoor: {signal_name(stop)}; the frames written so far are in {folder}, without "
-              "the .pvd collection", file=sys.stderr)
-        return exit_status(stop)
-    print(f"{len(samples)} line-shape samples in {folder}; open {pvd} in ParaView")
-    return EXIT_OK
+        return f"{len(samples)} line-shape samples in {folder}; open {pvd} in ParaView"
+
+    return _guarded("vtk", f"the files written so far are in {args.output}, without the "
+                    ".pvd collection", work)
 
 
 def write_vtk(dataset, folder: Path, samples, *, quiet: bool) -> Path:

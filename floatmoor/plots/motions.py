@@ -5,19 +5,18 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
 from floatmoor.io.dataset import DOFS
-from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure
 from floatmoor.plots.series import check_series
+from floatmoor.plots.style import figure_title, plain_axes, pyplot
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["draw_body_motions", "plot_body_motions", "moving_dofs", "TRANSLATIONS",
+__all__ = ["draw_body_motions", "moving_dofs", "TRANSLATIONS",
            "MOTION_ACTIVE_STD"]
 
 #: A DOF whose standard deviation over the window is below this [m or rad] in every run is
@@ -80,16 +79,3 @@ def draw_body_motions(dataset: xr.Dataset, *,
                  fontsize=10)
     fig.tight_layout()
     return fig
-
-
-def plot_body_motions(dataset: xr.Dataset, path: str | Path, *,
-                      ramp_duration: float = 0.0) -> Path:
-    """:func:`draw_body_motions` saved to ``path`` (.png, .pdf or .svg; written
-    atomically: an old file is kept on failure).
-
-    Raises
-    ------
-    OutputWriteError
-        When the image cannot be written.
-    """
-    return save_figure(draw_body_motions(dataset, ramp_duration=ramp_duration), path)

@@ -13,9 +13,10 @@ import xarray as xr
 from floatmoor.io.shape_samples import complete_shape_samples, has_shapes, \
     nearest_shape_samples
 from floatmoor.plots.context import run_context
-from floatmoor.plots.motions import plot_body_motions
-from floatmoor.plots.shapes import plot_line_shapes
-from floatmoor.plots.tensions import plot_tension_along_line, plot_tensions
+from floatmoor.plots.motions import draw_body_motions
+from floatmoor.plots.shapes import draw_line_shapes
+from floatmoor.plots.style import save_figure
+from floatmoor.plots.tensions import draw_tension_along_line, draw_tensions
 
 __all__ = ["figure_paths", "default_shape_samples", "envelope_start", "plot_run",
            "plot_shape_views", "DEFAULT_SHAPE_TIMES"]
@@ -86,9 +87,9 @@ def plot_run(dataset: xr.Dataset, path: str | Path,
     context = run_context(dataset)
     paths = figure_paths(path, floater="body_displacement" in dataset,
                          shapes=has_shapes(dataset))
-    plot_tensions(dataset, paths["tensions"], ramp_duration=context.ramp)
+    save_figure(draw_tensions(dataset, ramp_duration=context.ramp), paths["tensions"])
     if "motions" in paths:
-        plot_body_motions(dataset, paths["motions"], ramp_duration=context.ramp)
+        save_figure(draw_body_motions(dataset, ramp_duration=context.ramp), paths["motions"])
     if "shapes" in paths:
         plot_shape_views(dataset, paths["shapes"], paths["line_tension"], start=context.ramp,
                          times=times)
@@ -115,6 +116,6 @@ def plot_shape_views(dataset: xr.Dataset, shapes_path: str | Path, tension_path:
     context = run_context(dataset)
     samples = (default_shape_samples(dataset, start) if times is None
                else nearest_shape_samples(dataset, times, "--plot-times"))
-    plot_line_shapes(dataset, shapes_path, samples, context)
-    plot_tension_along_line(dataset, tension_path, samples,
-                            start=envelope_start(dataset, start))
+    save_figure(draw_line_shapes(dataset, samples, context), shapes_path)
+    save_figure(draw_tension_along_line(dataset, samples, start=envelope_start(dataset, start)),
+                tension_path)

@@ -8,7 +8,6 @@ with :mod:`floatmoor.plots.animation`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
@@ -17,14 +16,14 @@ from numpy.typing import NDArray
 
 from floatmoor.io.shape_samples import LineShape, line_shape
 from floatmoor.plots.context import RunContext
-from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure
 from floatmoor.plots.series import check_series
+from floatmoor.plots.style import figure_title, plain_axes, pyplot
 from floatmoor.post.line_shapes import touchdown_point
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["draw_line_shapes", "plot_line_shapes", "Frame", "frame", "scene_limits",
+__all__ = ["draw_line_shapes", "Frame", "frame", "scene_limits",
            "draw_references", "SCENE_MARGIN"]
 
 #: Margin around the drawn lines, as a fraction of the larger extent of a view.
@@ -151,16 +150,3 @@ def draw_line_shapes(dataset: xr.Dataset, samples: Sequence[int],
     fig.suptitle(figure_title(dataset.attrs.get("title")) + "\nline shapes", fontsize=11)
     fig.tight_layout()
     return fig
-
-
-def plot_line_shapes(dataset: xr.Dataset, path: str | Path, samples: Sequence[int],
-                     context: RunContext) -> Path:
-    """:func:`draw_line_shapes` saved to ``path`` (.png, .pdf or .svg; written
-    atomically: an old file is kept on failure).
-
-    Raises
-    ------
-    OutputWriteError
-        When the image cannot be written.
-    """
-    return save_figure(draw_line_shapes(dataset, samples, context), path)

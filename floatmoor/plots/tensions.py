@@ -3,22 +3,19 @@ each line (at chosen shape times, with its min/max envelope after the ramp)."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING, Sequence
 
-import numpy as np
 import xarray as xr
 
 from floatmoor.io.shape_samples import line_shape
-from floatmoor.plots.style import figure_title, plain_axes, pyplot, save_figure, tension_unit
-from floatmoor.post.line_shapes import tension_envelope
 from floatmoor.plots.series import check_series
+from floatmoor.plots.style import figure_title, plain_axes, pyplot, tension_unit
+from floatmoor.post.line_shapes import tension_envelope
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["draw_tensions", "plot_tensions", "draw_tension_along_line",
-           "plot_tension_along_line"]
+__all__ = ["draw_tensions", "draw_tension_along_line"]
 
 
 def _line_panels(n: int, height: float):
@@ -70,18 +67,6 @@ def draw_tensions(dataset: xr.Dataset, *, ramp_duration: float = 0.0) -> Figure:
     return fig
 
 
-def plot_tensions(dataset: xr.Dataset, path: str | Path, *,
-                  ramp_duration: float = 0.0) -> Path:
-    """:func:`draw_tensions` saved to ``path`` (.png, .pdf or .svg; written
-    atomically: an old file is kept on failure).
-
-    Raises
-    ------
-    OutputWriteError
-        When the image cannot be written.
-    """
-    return save_figure(draw_tensions(dataset, ramp_duration=ramp_duration), path)
-
 
 def draw_tension_along_line(dataset: xr.Dataset, samples: Sequence[int], *,
                             start: float = 0.0) -> Figure:
@@ -123,16 +108,3 @@ def draw_tension_along_line(dataset: xr.Dataset, samples: Sequence[int], *,
     fig.suptitle(figure_title(dataset.attrs.get("title")), fontsize=11)
     fig.tight_layout()
     return fig
-
-
-def plot_tension_along_line(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *,
-                            start: float = 0.0) -> Path:
-    """:func:`draw_tension_along_line` saved to ``path`` (.png, .pdf or .svg; written
-    atomically: an old file is kept on failure).
-
-    Raises
-    ------
-    OutputWriteError
-        When the image cannot be written.
-    """
-    return save_figure(draw_tension_along_line(dataset, samples, start=start), path)
