@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from floatmoor.errors import FloatmoorError
 
-__all__ = ["ShapeDataError", "LineShape", "has_shapes", "node_count", "line_shape",
+__all__ = ["ShapeDataError", "LineShape", "has_shapes", "has_complete_shapes", "node_count", "line_shape",
            "complete_shape_samples", "nearest_shape_samples",
            "window_samples"]
 
@@ -60,6 +60,18 @@ def has_shapes(dataset: xr.Dataset) -> bool:
     """True when ``dataset`` holds line shapes (one sample or more)."""
     return (all(name in dataset.variables for name in SHAPE_VARIABLES)
             and dataset.sizes.get("shape_time", 0) > 0)
+
+
+def has_complete_shapes(dataset: xr.Dataset) -> bool:
+    """True when ``dataset`` holds a shape sample with finite values on every line (a
+    partial run may hold none)."""
+    if not has_shapes(dataset):
+        return False
+    try:
+        complete_shape_samples(dataset)
+    except ShapeDataError:
+        return False
+    return True
 
 
 def node_count(arc_length: NDArray[np.float64]) -> int:

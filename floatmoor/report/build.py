@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from floatmoor._version import __version__
-from floatmoor.io.shape_samples import has_shapes
+from floatmoor.io.shape_samples import has_complete_shapes
 from floatmoor.plots.run_figures import plot_shape_views
 from floatmoor.report import figures as fig
 from floatmoor.report.markdown import Block, Figure, Heading, Paragraph, render_html, \
@@ -190,7 +190,7 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
                    lambda p: fig.plot_motion_timeseries(runs, p, dofs))
             figure("motion_psd.png", "Power spectral densities of floater displacements",
                    lambda p: fig.plot_motion_psd(runs, p, dofs))
-    shaped = [(k, run) for k, run in enumerate(runs) if has_shapes(run.dataset)]
+    shaped = [(k, run) for k, run in enumerate(runs) if has_complete_shapes(run.dataset)]
     if shaped:
         blocks.append(Heading("Line shapes and tension along the lines"))
         for k, run in shaped:

@@ -267,3 +267,23 @@ def test_views_of_a_run_without_shapes_are_refused(dataset, tmp_path, capsys):
     assert "--plot-times: expected comma-separated times from 0 to 2 s" in \
         capsys.readouterr().err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["noshape.nc"]
+
+
+def test_a_partial_run_shows_its_complete_shapes_only(dataset):
+    """An interrupted run leaves NaN in its unfinished shape samples: the views stop before
+    them, and a run with none complete has no shape views."""
+    from floatmoor.io.shape_samples import has_complete_shapes
+
+    partial = dataset.copy(deep=True)
+    for name in ("shape_position", "shape_tension"):
+        partial[name][{"shape_time": slice(15, None)}] = np.nan
+    assert window_samples(partial) == list(range(15))
+    assert window_samples(partial, every=7) == [0, 7, 14]
+    fig = draw_tension_along_line(partial, [14], start=0.0)
+    assert "envelope 0 to 1.4 s (15 shapes)" in fig.axes[0].collections[0].get_label()
+    assert has_complete_shapes(partial)
+    for name in ("shape_position", "shape_tension"):
+        partial[name][:] = np.nan
+    assert not has_complete_shapes(partial)
+    with pytest.raises(ShapeDataError, match="none complete among 21"):
+        window_samples(partial)
