@@ -24,8 +24,19 @@ def _line_panels(n: int, height: float):
     return fig, list(axes[:, 0])
 
 
-def _legend(ax) -> None:
+def _finish_panel(ax, xlabel: str, ylabel: str, title: str) -> None:
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    plain_axes(ax)
     ax.legend(loc="upper left", bbox_to_anchor=(1.005, 1.0), fontsize=8)
+
+
+def _finish(fig, dataset: xr.Dataset) -> Figure:
+    fig.suptitle(figure_title(dataset.attrs.get("title")), fontsize=11)
+    fig.tight_layout()
+    return fig
 
 
 def draw_tensions(dataset: xr.Dataset, *, ramp_duration: float = 0.0) -> Figure:
@@ -56,15 +67,8 @@ def draw_tensions(dataset: xr.Dataset, *, ramp_duration: float = 0.0) -> Figure:
         if ramp_duration > 0.0:
             ax.axvspan(0.0, min(ramp_duration, float(time[-1])), color="0.9", label="ramp")
         model = str(dataset["model"].sel(line=name).values)
-        ax.set_ylabel(f"tension [{unit}]")
-        ax.set_xlabel("time [s]")
-        ax.set_title(f"line {name} ({model})", fontsize=10)
-        ax.grid(alpha=0.3)
-        plain_axes(ax)
-        _legend(ax)
-    fig.suptitle(figure_title(dataset.attrs.get("title")), fontsize=11)
-    fig.tight_layout()
-    return fig
+        _finish_panel(ax, "time [s]", f"tension [{unit}]", f"line {name} ({model})")
+    return _finish(fig, dataset)
 
 
 
@@ -99,12 +103,6 @@ def draw_tension_along_line(dataset: xr.Dataset, samples: Sequence[int], *,
             t = check_series(shape.tension, f"tension along line {name} at t = {shape.time:g} s")
             ax.plot(shape.arc_length, t / factor, lw=1.1, color=f"C{(i + 1) % 10}",
                     label=f"t = {shape.time:g} s")
-        ax.set_xlabel("arc length from the anchor [m]")
-        ax.set_ylabel(f"tension [{unit}]")
-        ax.set_title(f"line {name}: effective tension along the line", fontsize=10)
-        ax.grid(alpha=0.3)
-        plain_axes(ax)
-        _legend(ax)
-    fig.suptitle(figure_title(dataset.attrs.get("title")), fontsize=11)
-    fig.tight_layout()
-    return fig
+        _finish_panel(ax, "arc length from the anchor [m]", f"tension [{unit}]",
+                      f"line {name}: effective tension along the line")
+    return _finish(fig, dataset)
