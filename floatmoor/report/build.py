@@ -152,7 +152,7 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
     made: list[Path] = []
     blocks: list[Block] = [Heading(title, 1), Paragraph(
         f"floatmoor {__version__} report of {len(runs)} run(s). Tensions in N, displacements "
-        "in m and rad, times in s. Statistics, spectra, extremes and fatigue are taken over "
+        "in m and rad (in degrees in the motion histories), times in s. Statistics, spectra, extremes and fatigue are taken over "
         "each run's analysis window, which excludes the start-up transient.")]
     blocks.append(runs_table(runs, analyses))
     if reference is not None:

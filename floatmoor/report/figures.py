@@ -30,8 +30,9 @@ from floatmoor.post.extremes import exceedance_probability
 from floatmoor.post.rainflow import rainflow_cycles
 from floatmoor.post.spectra import welch_psd
 from floatmoor.post.statistics import time_window
-from floatmoor.plots.motions import MOTION_ACTIVE_STD
+from floatmoor.plots.motions import MOTION_ACTIVE_STD, TRANSLATIONS
 from floatmoor.plots.series import FigureDataError, check_series
+from floatmoor.plots.style import plain_axes
 from floatmoor.report.runs import RunData
 
 __all__ = [
@@ -249,7 +250,8 @@ def plot_tension_timeseries(runs: Sequence[RunData], path: str | Path) -> Path:
 
 def plot_motion_timeseries(runs: Sequence[RunData], path: str | Path,
                            dofs: Sequence[str]) -> Path:
-    """Floater displacements (active DOFs) and the wave elevation, one panel each."""
+    """Floater displacements (active DOFs; rotations in degrees) and the wave elevation, one
+    panel each."""
     body_runs = [(i, r) for i, r in enumerate(runs) if r.has_body]
     waves = any("wave_elevation" in r.dataset for _, r in body_runs)
     plt, fig, axes = _panels(len(dofs) + int(waves), height=2.2)
@@ -258,9 +260,12 @@ def plot_motion_timeseries(runs: Sequence[RunData], path: str | Path,
             t = check_series(run.dataset["time"].values, f"time of run {run.label}")
             y = check_series(run.dataset["body_displacement"].sel(dof=dof).values,
                              f"motion time series: run {run.label}, {dof}")
-            ax.plot(t, y, lw=0.8, color=_colour(i), label=run.label)
-        ax.set_ylabel(f"{dof} [{_dof_unit(dof)}]")
+            metres = dof in TRANSLATIONS  # rotations drawn in degrees
+            ax.plot(t, y if metres else np.degrees(y), lw=0.8, color=_colour(i),
+                    label=run.label)
+        ax.set_ylabel(f"{dof} [{'m' if dof in TRANSLATIONS else 'deg'}]")
         ax.grid(alpha=0.3)
+        plain_axes(ax)
         _legend(ax)
     if waves:
         ax = axes[-1]
