@@ -10,7 +10,9 @@ quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature de
 ``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
 hydro info NAME`` describes it and where its data came from, and ``floatmoor hydro
 fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
-``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; a missing, damaged or stale database, or one failing a
+``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; ``floatmoor animate
+RUN.nc -o OUT.gif`` and ``floatmoor vtk RUN.nc -o DIR`` draw a run's line shapes
+(:mod:`floatmoor.plots.cli`); a missing, damaged or stale database, or one failing a
 check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
 (exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
 exits with status 2, without a traceback and without writing output. A run that fails (no
@@ -81,7 +83,16 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("-o", "--output", metavar="OUT.nc",
                      help="netCDF result file (default, here: the case name, then the --set "
                      "overrides as key=value_key=value, then .nc)")
-    run.add_argument("--plot", metavar="OUT.png", help="plot the tension histories")
+    run.add_argument("--plot", metavar="OUT.png",
+                     help="plot the tension histories in OUT.png and, beside it, the floater "
+                     "motions (OUT_motions.png), the line shapes (OUT_shapes.png) and the "
+                     "tension along the lines (OUT_line_tension.png) when the run has them")
+    run.add_argument("--plot-times", metavar="T1,T2,...", default=None,
+                     help="times [s] of the line shapes drawn by --plot (default: 4 spread "
+                     "from the end of the ramp to the end of the run)")
+    run.add_argument("--vtk", metavar="DIR", default=None,
+                     help="also write the line shapes as a VTK time series for ParaView into "
+                     "DIR (as floatmoor vtk does)")
     run.add_argument("--json", action="store_true",
                      help="print the summary as JSON on standard output")
     run.add_argument("--quiet", action="store_true", help="no progress reports")
@@ -196,6 +207,9 @@ def _parser() -> argparse.ArgumentParser:
 
     add_report_parsers(sub)
     add_moordyn_parsers(sub)
+    from floatmoor.plots.cli import add_view_parsers
+
+    add_view_parsers(sub)
     return parser
 
 
@@ -228,6 +242,8 @@ def _command(args: argparse.Namespace) -> int:
             return args.report_handler(args)
         if args.command in ("import", "export"):
             return args.moordyn_handler(args)
+        if args.command in ("animate", "vtk"):
+            return args.view_handler(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -385,7 +401,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
     """The run's checked output file (and its plot's, when asked for); a file there that the
     run will replace is announced on standard error once every check has passed."""
     from floatmoor.io.output_files import IMAGE, check_output_file
-    from floatmoor.plot import SUPPORTED_FORMATS
+    from floatmoor.plots.style import SUPPORTED_FORMATS
     from floatmoor.simulation.recorder import estimated_output_bytes
 
     protected = {"case file": case.source}
@@ -396,17 +412,60 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
     text = args.output if args.output else _default_stem(case) + ".nc"
     output = check_output_file(text, "-o/--output", protected=protected,
                                expected_bytes=int(min(estimated_output_bytes(case), 2**62)))
-    plot = None
+    plot = []
+    shapes = case.simulation.shape_output_interval is not None
     if args.plot is not None:
+        from floatmoor.plots.run_figures import figure_paths
+
         if Path(args.plot).suffix.lower() not in SUPPORTED_FORMATS:
             raise CaseError("--plot", "", "an image file (" + ", ".join(SUPPORTED_FORMATS)
                             + ") in an existing folder", f"'{args.plot}'")
-        plot = check_output_file(args.plot, "--plot", kind=IMAGE, protected={
-            **protected, "result file (-o)": output.path})
-    for checked in (output, plot):
+        taken = {"result file (-o)": output.path}
+        for view, path in figure_paths(args.plot, floater=case.floater is not None,
+                                       shapes=shapes).items():
+            plot.append(check_output_file(path, "--plot", kind=IMAGE,
+                                          protected={**protected, **taken}))
+            taken[f"--plot {view} image"] = path
+    args.plot_times_s = _plot_times(args, case, shapes)
+    if args.vtk is not None:
+        from floatmoor.io.output_files import check_output_folder
+
+        if not shapes:
+            raise CaseError("--vtk", "", "a case that records line shapes (set "
+                            "simulation.shape_output_interval)", "no line shapes")
+        check_output_folder(args.vtk, "--vtk")
+    for checked in (output, *plot):
         if checked is not None and checked.replaces and not (checked is output and args.resume):
             print(f"floatmoor: replacing the existing {checked.path}", file=sys.stderr)
     return output.path
+
+
+def _plot_times(args: argparse.Namespace, case: Case, shapes: bool) -> list[float] | None:
+    """``--plot-times`` as seconds within the run (None when not given).
+
+    Raises
+    ------
+    CaseError
+        Without --plot or line shapes, or for a time that is not a number in the run.
+    """
+    if args.plot_times is None:
+        return None
+    if args.plot is None or not shapes:
+        raise CaseError("--plot-times", "", "--plot and a case that records line shapes "
+                        "(simulation.shape_output_interval)",
+                        "no --plot" if args.plot is None else "no line shapes")
+    duration = case.simulation.duration
+    times = []
+    for text in str(args.plot_times).split(","):
+        try:
+            value = float(text)
+        except ValueError:
+            value = float("nan")
+        if not 0.0 <= value <= duration:
+            raise CaseError("--plot-times", "", f"comma-separated times from 0 to {duration:g} "
+                            "s (the run's duration)", f"'{text.strip()}'")
+        times.append(value)
+    return times
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -415,7 +474,9 @@ def _run(args: argparse.Namespace) -> int:
     case = load_case(args.case, args.overrides)
     output = _output_path(args, case)
     with output_lock(output), (nullcontext() if args.plot is None
-                               else output_lock(args.plot, "--plot")):
+                               else output_lock(args.plot, "--plot")), \
+            (nullcontext() if args.vtk is None else output_lock(Path(args.vtk).resolve(),
+                                                                 "--vtk")):
         return _run_case(args, case, output)
 
 
@@ -479,22 +540,36 @@ def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output:
     summary.update(output=str(output), wall_time_s=result.wall_time_s,
                    simulated_time_s=result.simulated_time_s)
     if args.plot is not None:
-        from floatmoor.plot import plot_tensions
+        from floatmoor.plots.run_figures import plot_run
+        from floatmoor.plots.series import FigureDataError
 
-        ramp = case.motion.ramp_duration if case.motion is not None else 0.0
         try:
-            plot_tensions(result.dataset, args.plot, ramp_duration=ramp)
-        except OutputWriteError as err:
+            figures = plot_run(result.dataset, args.plot, args.plot_times_s)
+        except (OutputWriteError, FigureDataError) as err:
             print(f"floatmoor: the plot failed: {err}\n  the run completed; results in "
                   f"{output}", file=sys.stderr)
             return EXIT_FAILED
         summary["plot"] = str(args.plot)
+        summary["figures"] = [str(p) for p in figures.values()]
+    if args.vtk is not None:
+        from floatmoor.io.shape_samples import window_samples
+        from floatmoor.plots.cli import write_vtk
+
+        try:
+            summary["vtk"] = str(write_vtk(result.dataset, Path(args.vtk),
+                                           window_samples(result.dataset), quiet=args.quiet))
+        except OutputWriteError as err:
+            print(f"floatmoor: the VTK output failed: {err}\n  the run completed; results in "
+                  f"{output}", file=sys.stderr)
+            return EXIT_FAILED
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
         print(format_summary(summary))
         print(f"simulated {result.simulated_time_s:.6g} s in {result.wall_time_s:.3g} s of wall "
-              f"time; results in {output}" + (f", plot in {args.plot}" if args.plot else ""))
+              f"time; results in {output}"
+              + (f", plots in {', '.join(summary['figures'])}" if args.plot else "")
+              + (f", VTK series {summary['vtk']}" if args.vtk else ""))
     return EXIT_OK
 
 
@@ -511,8 +586,9 @@ def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
     command = ["floatmoor", "run", args.case, "-o", str(output), "--resume"]
     for text in args.overrides:
         command += ["--set", text]
-    if args.plot is not None:
-        command += ["--plot", args.plot]
+    for option in ("plot", "plot_times", "vtk"):
+        if getattr(args, option) is not None:
+            command += [f"--{option.replace('_', '-')}", getattr(args, option)]
     return f"\n  checkpoint written to {ckpt}; continue with: {shlex.join(command)}"
 
 

@@ -15,6 +15,8 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from floatmoor._version import __version__
+from floatmoor.io.shape_samples import has_complete_shapes
+from floatmoor.plots.run_figures import plot_shape_views
 from floatmoor.report import figures as fig
 from floatmoor.report.markdown import Block, Figure, Heading, Paragraph, render_html, \
     render_markdown
@@ -150,7 +152,7 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
     made: list[Path] = []
     blocks: list[Block] = [Heading(title, 1), Paragraph(
         f"floatmoor {__version__} report of {len(runs)} run(s). Tensions in N, displacements "
-        "in m and rad, times in s. Statistics, spectra, extremes and fatigue are taken over "
+        "in m and rad (in degrees in the motion histories), times in s. Statistics, spectra, extremes and fatigue are taken over "
         "each run's analysis window, which excludes the start-up transient.")]
     blocks.append(runs_table(runs, analyses))
     if reference is not None:
@@ -188,6 +190,19 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
                    lambda p: fig.plot_motion_timeseries(runs, p, dofs))
             figure("motion_psd.png", "Power spectral densities of floater displacements",
                    lambda p: fig.plot_motion_psd(runs, p, dofs))
+    shaped = [(k, run) for k, run in enumerate(runs) if has_complete_shapes(run.dataset)]
+    if shaped:
+        blocks.append(Heading("Line shapes and tension along the lines"))
+        for k, run in shaped:
+            shapes_name = f"line_shapes_{k + 1}.png"
+            tension_name = f"line_tension_{k + 1}.png"
+            plot_shape_views(run.dataset, work / shapes_name, work / tension_name,
+                             start=run.start)
+            made.extend([work / shapes_name, work / tension_name])
+            blocks.append(Figure(shapes_name, f"Line shapes (side and plan views), run "
+                                 f"{run.label}"))
+            blocks.append(Figure(tension_name, f"Tension along the lines and its envelope "
+                                 f"after the window start, run {run.label}"))
     decay = decay_table(runs, analyses)
     if decay is not None:
         blocks.append(Heading("Free decay"))

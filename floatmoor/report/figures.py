@@ -25,12 +25,14 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from floatmoor.errors import FloatmoorError
 from floatmoor.io.dataset import DOFS
 from floatmoor.post.extremes import exceedance_probability
 from floatmoor.post.rainflow import rainflow_cycles
 from floatmoor.post.spectra import welch_psd
 from floatmoor.post.statistics import time_window
+from floatmoor.plots.motions import MOTION_ACTIVE_STD, TRANSLATIONS
+from floatmoor.plots.series import FigureDataError, check_series
+from floatmoor.plots.style import plain_axes
 from floatmoor.report.runs import RunData
 
 __all__ = [
@@ -46,9 +48,6 @@ TENSION_PSD_SEGMENT = 200.0
 #: Welch segment of motion PSDs [s]: long enough to resolve slow-drift surge near 0.01 Hz
 #: (the DeepCwind surge period is ~107 s) with several cycles per segment.
 MOTION_PSD_SEGMENT = 600.0
-#: A DOF whose standard deviation over the window is below this [m or rad] in every run is
-#: not plotted in motion figures (symmetric cases leave sway, roll and yaw at round-off).
-MOTION_ACTIVE_STD = 1e-9
 #: Fewest extrema (3 ranges) a free-decay fit takes.
 MIN_DECAY_EXTREMA = 4
 #: Ranges below this fraction of the first are decay noise (round-off ripples), not fitted.
@@ -64,35 +63,6 @@ PSD_AXIS_MARGIN = 1.5
 PSD_DECADES = 8.0
 #: Resolution of saved figures [dots per inch].
 DPI = 110
-
-
-class FigureDataError(FloatmoorError, ValueError):
-    """A series to plot is empty or holds NaN or infinite samples."""
-
-
-def check_series(values: ArrayLike, what: str) -> NDArray[np.float64]:
-    """The samples of ``values`` as floats, after checking they can be plotted.
-
-    Parameters
-    ----------
-    values
-        The series.
-    what
-        Description for the message (figure, run, line or DOF).
-
-    Raises
-    ------
-    FigureDataError
-        When the series is empty or any sample is NaN or infinite.
-    """
-    x = np.asarray(values, dtype=float)
-    if x.size == 0:
-        raise FigureDataError(f"{what}: expected a non-empty series to plot, found no samples")
-    bad = ~np.isfinite(x)
-    if np.any(bad):
-        raise FigureDataError(f"{what}: expected finite samples to plot, found "
-                              f"{int(bad.sum())} NaN or infinite of {x.size}")
-    return x
 
 
 @dataclass(frozen=True)
@@ -280,7 +250,8 @@ def plot_tension_timeseries(runs: Sequence[RunData], path: str | Path) -> Path:
 
 def plot_motion_timeseries(runs: Sequence[RunData], path: str | Path,
                            dofs: Sequence[str]) -> Path:
-    """Floater displacements (active DOFs) and the wave elevation, one panel each."""
+    """Floater displacements (active DOFs; rotations in degrees) and the wave elevation, one
+    panel each."""
     body_runs = [(i, r) for i, r in enumerate(runs) if r.has_body]
     waves = any("wave_elevation" in r.dataset for _, r in body_runs)
     plt, fig, axes = _panels(len(dofs) + int(waves), height=2.2)
@@ -289,9 +260,12 @@ def plot_motion_timeseries(runs: Sequence[RunData], path: str | Path,
             t = check_series(run.dataset["time"].values, f"time of run {run.label}")
             y = check_series(run.dataset["body_displacement"].sel(dof=dof).values,
                              f"motion time series: run {run.label}, {dof}")
-            ax.plot(t, y, lw=0.8, color=_colour(i), label=run.label)
-        ax.set_ylabel(f"{dof} [{_dof_unit(dof)}]")
+            metres = dof in TRANSLATIONS  # rotations drawn in degrees
+            ax.plot(t, y if metres else np.degrees(y), lw=0.8, color=_colour(i),
+                    label=run.label)
+        ax.set_ylabel(f"{dof} [{'m' if dof in TRANSLATIONS else 'deg'}]")
         ax.grid(alpha=0.3)
+        plain_axes(ax)
         _legend(ax)
     if waves:
         ax = axes[-1]

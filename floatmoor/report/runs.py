@@ -18,12 +18,12 @@ from typing import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from floatmoor.case.load import parse_case
 from floatmoor.case.naming import override_label, value_text
 from floatmoor.case.overrides import resolve_key
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, FloatmoorError
 from floatmoor.io.netcdf import read_dataset
+from floatmoor.io.run_case import case_from_dataset, default_start, run_overrides
 
 __all__ = ["ReportInputError", "LineChain", "NominalDiameter", "RunData", "load_run",
            "prepare_run", "case_from_dataset", "default_start", "resolve_nominal_diameters",
@@ -145,36 +145,6 @@ class RunData:
         return float(self.dataset["time"].values[-1])
 
 
-def case_from_dataset(dataset: xr.Dataset) -> Case | None:
-    """The case of a run, re-read from the dataset's ``case_toml`` and ``case_overrides``.
-
-    Returns None when the attributes are missing or no longer give a valid case (for example
-    a motion table file that moved).
-    """
-    text = dataset.attrs.get("case_toml")
-    if not isinstance(text, str) or not text.strip():
-        return None
-    overrides = tuple(run_overrides(dataset))
-    source = str(dataset.attrs.get("case_file", "case"))
-    try:
-        raw = tomllib.loads(text)
-        return parse_case(raw, source=source, text=text, overrides=overrides,
-                          base_dir=Path(source).parent)
-    except (tomllib.TOMLDecodeError, CaseError, OSError, ValueError, RecursionError):
-        return None
-
-
-def default_start(case: Case | None) -> tuple[float, str]:
-    """The end of a case's transient: its motion ramp or wave ramp, else 0 [s]."""
-    if case is None:
-        return 0.0, "record start (the case could not be re-read from the dataset)"
-    if case.motion is not None:
-        return float(case.motion.ramp_duration), "motion ramp"
-    if case.waves is not None:
-        return float(case.waves.ramp_duration), "wave ramp"
-    return 0.0, "record start (no ramp)"
-
-
 def _chains(case: Case | None) -> dict[str, LineChain]:
     if case is None:
         return {}
@@ -256,12 +226,6 @@ def load_run(path: str | Path, *, start: float | None = None,
         text = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
         raise ReportInputError(str(path), "a readable netCDF result file", text) from None
     return prepare_run(dataset, label or path.stem, start=start, path=path)
-
-
-def run_overrides(dataset: xr.Dataset) -> list[str]:
-    """The ``--set`` overrides of a run, as typed (the dataset's ``case_overrides``)."""
-    text = str(dataset.attrs.get("case_overrides", "none"))
-    return [s for s in text.splitlines() if s.strip()] if text != "none" else []
 
 
 def run_labels(runs: Sequence[RunData]) -> list[str]:

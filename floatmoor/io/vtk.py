@@ -1,0 +1,91 @@
+"""Line shapes as a VTK time series for ParaView: one ``.vtu`` file per shape sample and a
+``.pvd`` collection naming them with their times.
+
+Each ``.vtu`` (written by meshio) holds every line as a chain of two-node ``line`` cells
+through its nodes, anchor to fairlead, with the point data ``tension`` (effective tension
+[N]) and ``arc_length`` (unstretched, from the anchor [m]) and the cell data ``line_index``
+(the line's position in the result's ``line`` coordinate, whose names the ``.pvd`` lists in a
+comment). The ``.pvd`` is written last, so a folder without it holds no finished series.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Callable, Sequence
+from xml.sax.saxutils import escape, quoteattr
+
+import numpy as np
+import xarray as xr
+
+from floatmoor.io.output_files import atomic_target
+from floatmoor.io.shape_samples import line_shape
+
+__all__ = ["write_vtk_series", "vtk_file_name", "PVD_NAME"]
+
+#: Name of the collection file in the output folder.
+PVD_NAME = "lines.pvd"
+
+
+def vtk_file_name(sample: int) -> str:
+    """The ``.vtu`` file of shape sample ``sample``."""
+    return f"lines_{sample:06d}.vtu"
+
+
+def _mesh(dataset: xr.Dataset, sample: int):
+    import meshio
+
+    points, tension, arc, cells, index = [], [], [], [], []
+    offset = 0
+    for j, name in enumerate(dataset["line"].values):
+        shape = line_shape(dataset, str(name), sample)
+        n = shape.arc_length.size
+        points.append(shape.position)
+        tension.append(shape.tension)
+        arc.append(shape.arc_length)
+        nodes = offset + np.arange(n)
+        cells.append(np.column_stack([nodes[:-1], nodes[1:]]))
+        index.append(np.full(n - 1, j, dtype=np.int32))
+        offset += n
+    return meshio.Mesh(np.concatenate(points), [("line", np.concatenate(cells))],
+                       point_data={"tension": np.concatenate(tension),
+                                   "arc_length": np.concatenate(arc)},
+                       cell_data={"line_index": [np.concatenate(index)]})
+
+
+def write_vtk_series(dataset: xr.Dataset, folder: str | os.PathLike[str],
+                     samples: Sequence[int],
+                     progress: Callable[[int, int], None] | None = None) -> Path:
+    """Write the shape samples ``samples`` of ``dataset`` into ``folder`` (created if its
+    parent exists); returns the ``.pvd`` file.
+
+    Raises
+    ------
+    ShapeDataError
+        Without shapes.
+    OutputWriteError
+        When a file cannot be written (each is written atomically).
+    """
+    folder = Path(folder)
+    folder.mkdir(exist_ok=True)
+    times = np.asarray(dataset["shape_time"].values, dtype=float)
+    entries = []
+    for i, k in enumerate(samples):
+        name = vtk_file_name(int(k))
+        with atomic_target(folder / name, suffix=".vtu") as tmp:
+            _mesh(dataset, int(k)).write(tmp, file_format="vtu")
+        entries.append(f'    <DataSet timestep="{float(times[k])!r}" group="" part="0" '
+                       f'file={quoteattr(name)}/>')
+        if progress is not None:
+            progress(i + 1, len(samples))
+    names = ", ".join(f"{j}: {n}" for j, n in enumerate(dataset["line"].values))
+    text = "\n".join([
+        '<?xml version="1.0"?>',
+        f"<!-- {escape(str(dataset.attrs.get('title', '')))}; line_index {escape(names)}; "
+        f"floatmoor {escape(str(dataset.attrs.get('floatmoor_version', '')))} -->",
+        '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+        "  <Collection>", *entries, "  </Collection>", "</VTKFile>", ""])
+    pvd = folder / PVD_NAME
+    with atomic_target(pvd, suffix=".pvd") as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return pvd
