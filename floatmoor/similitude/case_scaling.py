@@ -5,8 +5,9 @@ factor of that kind (:mod:`floatmoor.similitude.laws`); keys the scaling cannot 
 motion table, a mesh hull, Morison presets, wind) are refused with a message saying what to
 do. The original case is validated first, the scaled one afterwards, through the same loader
 as any case, and the groups of both are compared to say which the new case keeps exactly.
-Scaled values are written to 12 significant digits, so that scaling by lambda and then
-1 / lambda gives back values of up to 11 significant digits exactly.
+Scaled values are written exactly, except those within round-off of a short decimal
+(:data:`SIGNIFICANT_DIGITS`), so that scaling by lambda and then 1 / lambda gives back the
+original values exactly.
 """
 
 from __future__ import annotations
@@ -33,11 +34,17 @@ from floatmoor.similitude.laws import ScaleLaw
 __all__ = ["ScaledCase", "KEY_KINDS", "SIGNIFICANT_DIGITS", "scale_case_text",
            "scale_case_file", "GROUP_TOLERANCE"]
 
-#: Digits of the scaled values written: 12 keeps every group to ~1e-12 and makes a round
-#: trip (lambda, then 1 / lambda) exact for inputs of up to 11 digits.
+#: A scaled value within :data:`SNAP_ULPS` units in the last place of a decimal of at most
+#: this many significant digits is written as that decimal, any other value exactly (repr):
+#: scaling by lambda and then by 1 / lambda lands within a few ulps of the original value
+#: (each factor is a product of a few rounded operations), so the round trip gives back
+#: every input of up to 12 digits exactly, while a generic scaled value is left untouched.
 SIGNIFICANT_DIGITS = 12
-#: A group counts as kept when new / old is 1 within this: the rounding of
-#: :data:`SIGNIFICANT_DIGITS`, compounded over the few factors of a group.
+#: Round-off tolerance of that snapping [ulp]: 64 ulp ~ 1.4e-14 relative, above the few ulps
+#: of a round trip, far below any physical significance.
+SNAP_ULPS = 64
+#: A group counts as kept when new / old is 1 within this: round-off of the few factors of
+#: a group (~1e-15), with a wide margin, far below any physical difference.
 GROUP_TOLERANCE = 1e-9
 
 _LINE_DYNAMIC = {"elements": "same", "order": "same", "cfl": "same", "max_time_step": "time",
@@ -145,7 +152,12 @@ def _kind(path: tuple[str | int, ...]) -> tuple[str, str] | None:
 
 
 def _rounded(value: float) -> float:
-    return float(f"{value:.{SIGNIFICANT_DIGITS}g}")
+    """``value``, or the shortest decimal within round-off of it (:data:`SNAP_ULPS`)."""
+    for digits in range(1, SIGNIFICANT_DIGITS + 1):
+        short = float(f"{value:.{digits}g}")
+        if abs(short - value) <= SNAP_ULPS * math.ulp(value):
+            return short
+    return value
 
 
 def _scaled_value(value: Any, factor: float) -> Any:
