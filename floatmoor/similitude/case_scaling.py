@@ -190,6 +190,10 @@ def _scale_node(node: Any, path: tuple[str | int, ...], law: ScaleLaw, options: 
             raise CaseError(source, key, "--hydro-database NAME for the scaled case: its "
                             "BEM database differs (frequencies, lengths, masses) and must be "
                             f"built for it (the case names \"{node}\")", f'"{node}"')
+        if options["database"] == node:
+            raise CaseError(source, key, "--hydro-database naming a new database: the "
+                            f"scaled case's differs from \"{node}\", which would be stale for "
+                            "it", f'"{node}" again')
         return options["database"]
     if kind == "hydro_source":
         if node != "bem":

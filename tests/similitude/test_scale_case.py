@@ -168,6 +168,9 @@ def test_what_cannot_be_scaled_is_refused(tmp_path: Path, capsys) -> None:
     assert main(["scale", str(BUOY), "--length-scale", "2", "-o", str(out)]) == 2
     err = capsys.readouterr().err
     assert "hydro.database" in err and "--hydro-database" in err
+    assert main(["scale", str(BUOY), "--length-scale", "2", "--hydro-database",
+                 "cylinder_buoy", "-o", str(out)]) == 2
+    assert "stale" in capsys.readouterr().err
     # a floater with line forces not scaled like its own (Froude)
     assert main(["scale", str(BUOY), "--length-scale", "2", "--diameter-scale", "1",
                  "--match", "elastic", "--hydro-database", "b", "-o", str(out)]) == 2
