@@ -10,7 +10,9 @@ quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature de
 ``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
 hydro info NAME`` describes it and where its data came from, and ``floatmoor hydro
 fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
-``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; a missing, damaged or stale database, or one failing a
+``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; ``floatmoor scale
+CASE --length-scale LAMBDA -o NEW.toml`` writes the case at another scale
+(:mod:`floatmoor.similitude`); a missing, damaged or stale database, or one failing a
 check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
 (exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
 exits with status 2, without a traceback and without writing output. A run that fails (no

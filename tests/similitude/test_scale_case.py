@@ -176,3 +176,31 @@ def test_what_cannot_be_scaled_is_refused(tmp_path: Path, capsys) -> None:
                  "--match", "elastic", "--hydro-database", "b", "-o", str(out)]) == 2
     assert "--match froude" in capsys.readouterr().err
     assert not out.exists()
+
+
+#: Shipped cases floatmoor scale refuses, and the key it names: DeepCwind's Morison preset
+#: (full-scale areas and coefficients).
+REFUSED = {"deepcwind_free_decay.toml": "floater.drag", "deepcwind_free_decay_wamit.toml":
+           "floater.drag", "deepcwind_lc34.toml": "floater.drag",
+           "deepcwind_lc43.toml": "floater.drag"}
+
+
+def test_every_shipped_case_scales_or_is_refused_by_name(tmp_path: Path) -> None:
+    """Every key of the shipped cases has a rule: a case scales (every alpha kept by plain
+    Froude scaling) or is refused naming the key it cannot rewrite."""
+    from floatmoor.errors import CaseError
+
+    cases = [p for p in sorted((ROOT / "cases").glob("*/*.toml"))
+             if p.parent.name != "uq" and not p.name.startswith("published")]
+    assert len(cases) >= 15
+    for path in cases:
+        try:
+            scaled = scale_case_file(path, ScaleLaw(0.02, 0.02, 1.0), output=tmp_path / "s.toml",
+                                     hydro_database="scaled_db")
+        except CaseError as err:
+            assert REFUSED.get(path.name, "not refused") in str(err), (path, err)
+            assert "no scaling rule" not in str(err)
+            continue
+        assert path.name not in REFUSED
+        assert scaled.kept[:5] == ["alpha_1", "alpha_2", "alpha_3", "alpha_4", "alpha_5"], path
+        assert list(scaled.changed) == ["reynolds_number"], path
