@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
@@ -68,7 +69,7 @@ def scale_command(args: argparse.Namespace) -> int:
                              keep_coefficients=args.keep_coefficients,
                              hydro_database=args.hydro_database)
     if output.replaces:
-        print(f"floatmoor: replacing the existing {output.path}")
+        print(f"floatmoor: replacing the existing {output.path}", file=sys.stderr)
     with atomic_target(output.path) as tmp:
         tmp.write_text(scaled.text, encoding="utf-8")
     print(f"wrote {output.path} from {args.case}: lambda = {law.length:.6g}, beta = "

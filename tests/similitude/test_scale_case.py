@@ -204,3 +204,23 @@ def test_every_shipped_case_scales_or_is_refused_by_name(tmp_path: Path) -> None
         assert path.name not in REFUSED
         assert scaled.kept[:5] == ["alpha_1", "alpha_2", "alpha_3", "alpha_4", "alpha_5"], path
         assert list(scaled.changed) == ["reynolds_number"], path
+
+
+def test_the_match_options_set_phi() -> None:
+    from argparse import Namespace
+
+    from floatmoor.similitude.cli import law_from_arguments
+
+    def law(**given):
+        args = dict(length_scale="0.1", diameter_scale="0.05", volume_coefficient_ratio=None,
+                    match=None, water_density=None)
+        return law_from_arguments(Namespace(**{**args, **given}), 1000.0)
+
+    froude = law(match="froude", water_density="1025")
+    # line forces phi lambda beta^2 = rho lambda^3, the floater's (eq. 37 against Froude)
+    assert froude.force == pytest.approx(1.025 * 0.1 ** 3, rel=1e-12)
+    assert froude.volume_coefficient == pytest.approx(1.025 * 4.0, rel=1e-12)
+    assert law(match="elastic").volume_coefficient == 1.0
+    assert law(volume_coefficient_ratio="0.772").volume_coefficient == 0.772
+    plain = law(diameter_scale=None)  # beta = lambda: plain Froude scaling, phi = 1
+    assert (plain.diameter, plain.volume_coefficient, plain.name) == (0.1, 1.0, "froude")
