@@ -101,8 +101,9 @@ KEY_KINDS: dict[str, str] = {
         "x", "y", "diameter", "z_top", "z_bottom", "heave_plate_diameter",
         "heave_plate_height")},
     **{f"floater.geometry.members.*.{k}": "length" for k in ("start", "end", "diameter")},
-    "floater.geometry.file": _REFUSE + ": a mesh hull is not rescaled; write the mesh at the "
-    "new scale (or give its length_unit) and scale a case with a cylinder or semisubmersible",
+    **{f"floater.geometry.{k}": _REFUSE + ": a mesh hull is not rescaled; write the mesh at "
+       "the new scale and name it in the scaled case" for k in (
+           "file", "format", "length_unit", "position", "symmetry")},
     "floater.drag": _REFUSE + ": Morison drag settings (presets, coefficients by name, "
     "areas) are not rescaled; remove [floater.drag], scale, and set it for the new scale",
     "hydro.database": "database", "hydro.frequency_ranges": "frequency_ranges",
