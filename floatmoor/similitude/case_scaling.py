@@ -29,7 +29,7 @@ from floatmoor.case.reader import format_path
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError
 from floatmoor.similitude.groups import cable_groups
-from floatmoor.similitude.laws import ScaleLaw
+from floatmoor.similitude.laws import SAME_FACTOR, ScaleLaw
 
 __all__ = ["ScaledCase", "KEY_KINDS", "SIGNIFICANT_DIGITS", "scale_case_text",
            "scale_case_file", "GROUP_TOLERANCE"]
@@ -336,7 +336,8 @@ def scale_case_text(text: str, source: str, law: ScaleLaw, *, output: str | Path
     """
     raw = parse_toml(text, source)
     original = parse_case(raw, source=source, text=text, base_dir=Path(source).parent)
-    if original.floater is not None and not math.isclose(law.force, law.mass, rel_tol=1e-12):
+    if original.floater is not None and \
+            not math.isclose(law.force, law.mass, rel_tol=SAME_FACTOR):
         raise CaseError(source, "floater", "line forces scaling like the floater's (rho "
                         f"lambda^3 = {law.mass:.6g}): --match froude, or beta = lambda and phi "
                         "= 1", f"phi lambda beta^2 = {law.force:.6g}")

@@ -14,7 +14,7 @@ from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
 from floatmoor.io.output_files import atomic_target, check_output_file
 from floatmoor.similitude.case_scaling import scale_case_file
-from floatmoor.similitude.laws import ScaleLaw, froude_volume_coefficient_ratio
+from floatmoor.similitude.laws import SAME_FACTOR, ScaleLaw, froude_volume_coefficient_ratio
 
 __all__ = ["scale_command", "law_from_arguments"]
 
@@ -45,7 +45,7 @@ def law_from_arguments(args: argparse.Namespace, water_density: float) -> ScaleL
     ratio = 1.0 if rho is None else rho / water_density
     match = args.match
     if phi is None and match is None:
-        if not math.isclose(beta, length, rel_tol=1e-12):
+        if not math.isclose(beta, length, rel_tol=SAME_FACTOR):
             raise CaseError("--diameter-scale", "", "with a diameter scale other than the "
                             "length scale, how the line mass scales: --volume-coefficient-"
                             "ratio PHI or --match froude|elastic", "neither")

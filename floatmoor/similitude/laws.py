@@ -23,7 +23,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["ScaleLaw", "QUANTITY_KINDS", "LAW_NAMES", "froude_volume_coefficient_ratio"]
+__all__ = ["ScaleLaw", "QUANTITY_KINDS", "LAW_NAMES", "froude_volume_coefficient_ratio",
+           "SAME_FACTOR"]
+
+#: Two scale factors count as the same within this relative difference: round-off of the
+#: decimal inputs and of the products that make a factor (~1e-16 each).
+SAME_FACTOR = 1e-12
 
 #: How ``floatmoor scale`` sets phi: given by the user, ``froude`` (line forces scale like a
 #: Froude-scaled floater's, rho lambda^3) or ``elastic`` (phi = 1: the line keeps its volume
