@@ -12,7 +12,9 @@ hydro info NAME`` describes it and where its data came from, and ``floatmoor hyd
 fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
 ``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; ``floatmoor animate
 RUN.nc -o OUT.gif`` and ``floatmoor vtk RUN.nc -o DIR`` draw a run's line shapes
-(:mod:`floatmoor.plots.cli`); a missing, damaged or stale database, or one failing a
+(:mod:`floatmoor.plots.cli`); ``floatmoor scale CASE --length-scale LAMBDA -o NEW.toml``
+writes the case at another scale (:mod:`floatmoor.similitude`); a missing, damaged or
+stale database, or one failing a
 check its case does not accept (``[hydro] accept_failed_checks``), is bad input for a run
 (exit 2). Bad input (a malformed case, a bad ``--set`` or output path) prints one message and
 exits with status 2, without a traceback and without writing output. A run that fails (no
@@ -202,6 +204,30 @@ def _parser() -> argparse.ArgumentParser:
                       help="replace a realisation the database already holds, or overwrite "
                       "an existing -o file")
     hfit.add_argument("--json", action="store_true", help="the fit's errors as JSON")
+    scale = sub.add_parser("scale", help="write a case at another scale (dynamic similitude "
+                           "of the cable equation, docs/similitude.md)")
+    scale.add_argument("case", help="TOML case file")
+    scale.add_argument("--length-scale", required=True, metavar="LAMBDA",
+                       help="new / old lengths (eq. 32); times scale sqrt(LAMBDA)")
+    scale.add_argument("--diameter-scale", metavar="BETA",
+                       help="new / old line diameters (eq. 35; default LAMBDA)")
+    law = scale.add_mutually_exclusive_group()
+    law.add_argument("--volume-coefficient-ratio", metavar="PHI",
+                     help="new / old volume coefficient m / (rho_c pi d^2 / 4) (eq. 36)")
+    law.add_argument("--match", choices=["froude", "elastic"],
+                     help="froude: PHI such that line forces scale like a Froude-scaled "
+                     "floater's (rho LAMBDA^3); elastic: PHI = 1 (default: froude when BETA "
+                     "= LAMBDA, required otherwise)")
+    scale.add_argument("--water-density", metavar="RHO",
+                       help="water density of the scaled case [kg/m^3] (default unchanged)")
+    scale.add_argument("--keep-coefficients", action="store_true",
+                       help="leave drag and added-mass coefficients as they are (alpha_1, "
+                       "alpha_4, alpha_5 then change)")
+    scale.add_argument("--hydro-database", metavar="NAME",
+                       help="database name of the scaled case (required with [hydro]; build "
+                       "it with floatmoor hydro build)")
+    scale.add_argument("-o", "--output", required=True, metavar="NEW.toml",
+                       help="the scaled case file")
     from floatmoor.io.moordyn.cli import add_moordyn_parsers
     from floatmoor.report.cli import add_report_parsers
 
@@ -244,6 +270,10 @@ def _command(args: argparse.Namespace) -> int:
             return args.moordyn_handler(args)
         if args.command in ("animate", "vtk"):
             return args.view_handler(args)
+        if args.command == "scale":
+            from floatmoor.similitude.cli import scale_command
+
+            return scale_command(args)
         return _run(args)
     except CaseError as err:
         print(f"floatmoor: error: {err}", file=sys.stderr)
@@ -384,7 +414,26 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "
                     f"{case.simulation.output_interval:g} s")
+    rows.extend(_describe_groups(case))
     return "\n".join(rows)
+
+
+def _describe_groups(case: Case) -> list[str]:
+    """The dimensionless groups of each line section (floatmoor.similitude.groups)."""
+    from floatmoor.similitude.groups import cable_groups
+
+    groups = cable_groups(case)
+    names = ("alpha_1", "alpha_2", "alpha_3", "alpha_4", "alpha_5", "reynolds_number",
+             "keulegan_carpenter_number")
+    heads = ("alpha_1", "alpha_2", "alpha_3", "alpha_4", "alpha_5", "Re", "KC")
+    rows = [f"  dimensionless groups (chain-experiment paper eqs. 29-31; "
+            f"{groups.attrs['characteristic_motion']}, T = {float(groups.period[0]):.4g} s, "
+            f"a = {float(groups.amplitude[0]):.4g} m):" if groups.sizes["section"] else
+            "  dimensionless groups: no lines",
+            f"    {'section':<16}" + "".join(f"{h:>11}" for h in heads)]
+    for i, label in enumerate(groups.section.values):
+        rows.append(f"    {label:<16}" + "".join(f"{float(groups[n][i]):>11.4g}" for n in names))
+    return rows if groups.sizes["section"] else rows[:1]
 
 
 def _default_stem(case: Case) -> str:

@@ -1,0 +1,378 @@
+"""Rewrite a case at another scale (``floatmoor scale``).
+
+Every key a case file may hold has a quantity kind (:data:`KEY_KINDS`), scaled by the law's
+factor of that kind (:mod:`floatmoor.similitude.laws`); keys the scaling cannot follow (a
+motion table, a mesh hull, Morison presets, wind) are refused with a message saying what to
+do. The original case is validated first, the scaled one afterwards, through the same loader
+as any case, and the groups of both are compared to say which the new case keeps exactly.
+Scaled values are written exactly, except those within round-off of a short decimal
+(:data:`SIGNIFICANT_DIGITS`), so that scaling by lambda and then 1 / lambda gives back the
+original values exactly.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import textwrap
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from floatmoor.case.files import read_input_text
+from floatmoor.case.limits import parse_toml
+from floatmoor.case.load import parse_case
+from floatmoor.case.reader import format_path
+from floatmoor.case.schema import Case
+from floatmoor.errors import CaseError
+from floatmoor.similitude.groups import cable_groups
+from floatmoor.similitude.laws import SAME_FACTOR, ScaleLaw
+
+__all__ = ["ScaledCase", "KEY_KINDS", "SIGNIFICANT_DIGITS", "scale_case_text",
+           "scale_case_file", "GROUP_TOLERANCE"]
+
+#: A scaled value within :data:`SNAP_ULPS` units in the last place of a decimal of at most
+#: this many significant digits is written as that decimal, any other value exactly (repr):
+#: scaling by lambda and then by 1 / lambda lands within a few ulps of the original value
+#: (each factor is a product of a few rounded operations), so the round trip gives back
+#: every input of up to 12 digits exactly, while a generic scaled value is left untouched.
+SIGNIFICANT_DIGITS = 12
+#: Round-off tolerance of that snapping [ulp]: 64 ulp ~ 1.4e-14 relative, above the few ulps
+#: of a round trip, far below any physical significance.
+SNAP_ULPS = 64
+#: A group counts as kept when new / old is 1 within this: round-off of the few factors of
+#: a group (~1e-15), with a wide margin, far below any physical difference.
+GROUP_TOLERANCE = 1e-9
+
+_LINE_DYNAMIC = {"elements": "same", "order": "same", "cfl": "same", "max_time_step": "time",
+                 "slack_filter": "same", "seabed_contact": "same", "settle": "same",
+                 "internal_damping": "same", "time_integration": "same", "accuracy": "same"}
+_REFUSE = "refuse"
+
+#: Quantity kind of every key (``*`` = any entry name or index); kinds of
+#: :data:`floatmoor.similitude.laws.QUANTITY_KINDS`, ``diameter`` (beta), or a refusal.
+KEY_KINDS: dict[str, str] = {
+    "title": "same", "description": "same",
+    "environment.water_density": "water_density", "environment.water_depth": "length",
+    "environment.gravity": "same", "environment.current_velocity": "velocity",
+    "seabed.stiffness": "seabed_stiffness", "seabed.damping_ratio": "same",
+    "seabed.friction_coefficient": "same", "seabed.slip_speed": "velocity",
+    "line_types.*.mass_per_length": "mass_per_length", "line_types.*.axial_stiffness": "force",
+    "line_types.*.diameter": "diameter", "line_types.*.material_density": "same",
+    "line_types.*.normal_drag_coefficient": "drag_coefficient",
+    "line_types.*.tangential_drag_coefficient": "drag_coefficient",
+    "line_types.*.added_mass_coefficient": "added_mass_coefficient",
+    "line_types.*.tangential_added_mass_coefficient": "added_mass_coefficient",
+    "line_types.*.internal_damping_ratio": "same",
+    "line_types.*.minimum_breaking_load": "force",
+    "points.*.name": "same", "points.*.kind": "same", "points.*.position": "length",
+    "points.*.mass": "point_mass", "points.*.volume": "point_volume",
+    "points.*.drag_area": "point_drag_area", "points.*.added_mass_coefficient": "same",
+    **{f"lines.*.{k}": "same" for k in ("name", "type", "model", "start", "end")},
+    "lines.*.length": "length", "lines.*.anchor": "length", "lines.*.fairlead": "length",
+    "lines.*.quasi_static.*": "same", "lines.*.quasi_dynamic.integration_points": "same",
+    "lines.*.quasi_dynamic.max_time_step": "time",
+    **{f"lines.*.dynamic.{k}": v for k, v in _LINE_DYNAMIC.items()},
+    "lines.*.sections.*.type": "same", "lines.*.sections.*.length": "length",
+    "lines.*.sections.*.end": "same",
+    **{f"lines.*.sections.*.dynamic.{k}": v for k, v in _LINE_DYNAMIC.items()},
+    "motion.kind": "same", "motion.sense": "same", "motion.phase_deg": "same",
+    "motion.radius": "length", "motion.period": "time", "motion.ramp_duration": "time",
+    "motion.amplitude": "length", "motion.reference_point": "length",
+    **{f"motion.{d}.{k}": v for d in ("surge", "sway", "heave") for k, v in
+       (("amplitude", "length"), ("period", "time"), ("phase_deg", "same"))},
+    **{f"motion.{d}.{k}": v for d in ("roll", "pitch", "yaw") for k, v in
+       (("amplitude_deg", "same"), ("period", "time"), ("phase_deg", "same"))},
+    "motion.file": _REFUSE + ": a motion table is not rewritten; write a copy with its times "
+    "scaled by sqrt(lambda) and its displacements by lambda (angles unchanged), name it in "
+    "motion.file and scale that case",
+    "simulation.duration": "time", "simulation.output_interval": "time",
+    "simulation.shape_output_interval": "time", "simulation.time_step": "time",
+    "campaign.*": _REFUSE + ": the swept values are not rewritten; scale the case without "
+    "its [campaign] and sweep the scaled values",
+    "floater.name": "same", "floater.mass": "mass", "floater.centre_of_mass": "length",
+    "floater.inertia": "inertia", "floater.reference_point": "length",
+    "floater.radiation": "same", "floater.geometry.kind": "same",
+    **{f"floater.geometry.{k}": "length" for k in ("diameter", "height", "draft")},
+    **{f"floater.geometry.columns.*.{k}": "length" for k in (
+        "x", "y", "diameter", "z_top", "z_bottom", "heave_plate_diameter",
+        "heave_plate_height")},
+    **{f"floater.geometry.members.*.{k}": "length" for k in ("start", "end", "diameter")},
+    **{f"floater.geometry.{k}": _REFUSE + ": a mesh hull is not rescaled; write the mesh at "
+       "the new scale and name it in the scaled case" for k in (
+           "file", "format", "length_unit", "position", "symmetry")},
+    "floater.drag": _REFUSE + ": Morison drag settings (presets, coefficients by name, "
+    "areas) are not rescaled; remove [floater.drag], scale, and set it for the new scale",
+    "hydro.database": "database", "hydro.frequency_ranges": "frequency_ranges",
+    "hydro.frequencies": "frequency", "hydro.directions_deg": "same",
+    "hydro.panel_size": "length", "hydro.lid_depth": "length",
+    **{f"hydro.{k}": "same" for k in ("lid", "infinite_depth", "symmetry", "radial_panels",
+                                      "accept_failed_checks")},
+    "hydro.source": "hydro_source",
+    **{f"waves.{k}": "same" for k in ("kind", "direction_deg", "phase_deg", "seed", "gamma",
+                                      "spacing", "n_components")},
+    "waves.height": "length", "waves.hs": "length", "waves.period": "time", "waves.tp": "time",
+    "waves.ramp_duration": "time", "waves.frequency_step": "frequency",
+    "waves.omega_min": "frequency", "waves.omega_max": "frequency",
+    "initial.surge": "length", "initial.sway": "length", "initial.heave": "length",
+    "initial.roll_deg": "same", "initial.pitch_deg": "same", "initial.yaw_deg": "same",
+    "wind": _REFUSE + ": the rotor thrust (the NREL 5 MW turbine's curves) has no scaled "
+    "version; scale the case without [wind]",
+}
+#: Keys whose value is a table of names (``[line_types.NAME]``) or an array of tables.
+_NAMED = ("line_types",)
+_BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
+#: Characters a multi-line TOML string cannot hold unescaped (tab and newline it can).
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f]")
+
+
+@dataclass(frozen=True)
+class ScaledCase:
+    """A scaled case: its TOML text, the validated case, and the groups' new / old ratios."""
+
+    text: str
+    case: Case
+    kept: list[str]  #: groups equal in every section (within :data:`GROUP_TOLERANCE`)
+    changed: dict[str, tuple[float, float]]  #: group -> (min, max) new / old over sections
+    notes: list[str]
+
+
+def _kind(path: tuple[str | int, ...]) -> tuple[str, str] | None:
+    """The kind of a key path and the pattern that gave it (None: unknown key)."""
+    parts = [("*" if isinstance(p, int) or (i > 0 and path[i - 1] in _NAMED) else p)
+             for i, p in enumerate(path)]
+    for n in range(len(parts), 0, -1):  # the longest pattern first, then its parents'
+        for pattern in (".".join(parts[:n]), ".".join(parts[:n - 1] + ["*"])):
+            if pattern in KEY_KINDS and (n == len(parts) or KEY_KINDS[pattern].startswith(
+                    _REFUSE) or pattern.endswith("*")):
+                return KEY_KINDS[pattern], pattern
+    return None
+
+
+def _rounded(value: float) -> float:
+    """``value``, or the shortest decimal within round-off of it (:data:`SNAP_ULPS`)."""
+    for digits in range(1, SIGNIFICANT_DIGITS + 1):
+        short = float(f"{value:.{digits}g}")
+        if abs(short - value) <= SNAP_ULPS * math.ulp(value):
+            return short
+    return value
+
+
+def _scaled_value(value: Any, factor: float) -> Any:
+    if isinstance(value, list):
+        return [_scaled_value(v, factor) for v in value]
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return value
+    return _rounded(value * factor)
+
+
+def _scale_node(node: Any, path: tuple[str | int, ...], law: ScaleLaw, options: dict[str, Any],
+                source: str) -> Any:
+    if isinstance(node, dict):
+        return {k: _scale_node(v, path + (k,), law, options, source) for k, v in node.items()}
+    if isinstance(node, list) and node and all(isinstance(v, dict) for v in node):
+        return [_scale_node(v, path + (i,), law, options, source) for i, v in enumerate(node)]
+    found = _kind(path)
+    key = format_path(path)
+    if found is None:
+        raise CaseError(source, key, "a key floatmoor scale knows how to scale",
+                        "a key with no scaling rule")
+    kind, _ = found
+    if kind.startswith(_REFUSE):
+        raise CaseError(source, key, "a case floatmoor scale can rewrite ("
+                        + kind[len(_REFUSE) + 2:] + ")", "this key")
+    if kind == "same":
+        return node
+    if kind == "database":
+        if options["database"] is None:
+            raise CaseError(source, key, "--hydro-database NAME for the scaled case: its "
+                            "BEM database differs (frequencies, lengths, masses) and must be "
+                            f"built for it (the case names \"{node}\")", f'"{node}"')
+        if options["database"] == node:
+            raise CaseError(source, key, "--hydro-database naming a new database: the "
+                            f"scaled case's differs from \"{node}\", which would be stale for "
+                            "it", f'"{node}" again')
+        return options["database"]
+    if kind == "hydro_source":
+        if node != "bem":
+            raise CaseError(source, key, 'source = "bem": an imported database cannot be '
+                            "rebuilt at another scale (import the scaled BEM results)",
+                            f'"{node}"')
+        return node
+    if kind == "frequency_ranges":
+        return [[_rounded(lo * law.frequency), _rounded(hi * law.frequency), n]
+                for lo, hi, n in node]
+    if kind == "diameter":
+        return _scaled_value(node, law.diameter)
+    if kind in ("drag_coefficient", "added_mass_coefficient") and options["keep_coefficients"]:
+        return node
+    return _scaled_value(node, law.factor(kind))
+
+
+# -- TOML text ---------------------------------------------------------------------------------
+
+def _toml_key(key: str) -> str:
+    return key if _BARE_KEY.match(key) else json.dumps(key, ensure_ascii=False)
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        if "\n" in value and not _CONTROL.search(value):  # a multi-line basic string
+            return '"""\n' + value.replace("\\", "\\\\").replace('"""', '""\\"') + '"""'
+        return json.dumps(value, ensure_ascii=False)  # a TOML basic string
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}" for k, v in value.items()) \
+            + "}"
+    raise TypeError(f"no TOML form for {type(value).__name__}")
+
+
+def _is_table_array(value: Any) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
+
+
+def _toml_table(table: dict[str, Any], path: tuple[str, ...], out: list[str]) -> None:
+    for k, v in table.items():
+        if not isinstance(v, dict) and not _is_table_array(v):
+            out.append(f"{_toml_key(k)} = {_toml_value(v)}")
+    for k, v in table.items():
+        name = ".".join(_toml_key(p) for p in path + (k,))
+        if isinstance(v, dict):
+            out.extend(["", f"[{name}]"])
+            _toml_table(v, path + (k,), out)
+        elif _is_table_array(v):
+            for entry in v:
+                out.extend(["", f"[[{name}]]"])
+                _toml_table(entry, path + (k,), out)
+
+
+# -- the scaled case ---------------------------------------------------------------------------
+
+def _group_ratios(old: Case, new: Case) -> tuple[list[str], dict[str, tuple[float, float]]]:
+    a, b = cable_groups(old), cable_groups(new)
+    kept, changed = [], {}
+    for name in ("alpha_1", "alpha_2", "alpha_3", "alpha_4", "alpha_5", "reynolds_number",
+                 "keulegan_carpenter_number"):
+        old_v, new_v = a[name].values, b[name].values
+        if np.all(np.isnan(old_v)):
+            continue
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(old_v == new_v, 1.0, new_v / old_v)
+        if np.all(np.abs(ratio - 1.0) <= GROUP_TOLERANCE):
+            kept.append(name)
+        else:
+            changed[name] = (float(np.nanmin(ratio)), float(np.nanmax(ratio)))
+    return kept, changed
+
+
+def _header(source: str, law: ScaleLaw, keep_coefficients: bool, floater: bool,
+            kept: list[str], changed: dict[str, tuple[float, float]],
+            notes: list[str]) -> list[str]:
+    f = law
+    how = f"from --match {f.name}" if f.name != "given" else "given"
+    coefficients = ("drag and added-mass coefficients unchanged (--keep-coefficients)"
+                    if keep_coefficients else
+                    f"drag coefficients {f.drag_coefficient:.6g} (eq. 38), added-mass "
+                    f"coefficients {f.added_mass_coefficient:.6g} (eq. 42; C_a on m / rho_c)")
+    text = [
+        f"Scaled by floatmoor scale from {source}: dynamic similitude of the cable equation "
+        "(Bergdahl, Palm, Eskilsson & Lindahl 2016, section 2; docs/similitude.md).",
+        f"Law: length lambda = {f.length:.12g} (eq. 32), diameter beta = {f.diameter:.12g} "
+        f"(eq. 35), volume coefficient phi = {f.volume_coefficient:.12g} (eq. 36, {how}), "
+        f"water density x {f.water_density:.12g}.",
+        f"Factors (new / old): lengths, positions, depths {f.length:.6g}; times, periods, "
+        f"time steps {f.time:.6g} (eq. 33); velocities {f.velocity:.6g} (eq. 39); mass per "
+        f"length {f.mass_per_length:.6g} (eq. 30); EA, forces, MBL {f.force:.6g} (eqs. "
+        f"36-37); {coefficients}; seabed stiffness {f.seabed_stiffness:.6g}"
+        + (f"; floater mass {f.mass:.6g}, inertia {f.inertia:.6g} (Froude)" if floater else "")
+        + "; element counts, orders and CFL numbers unchanged.",
+        "Groups kept exactly: " + (", ".join(kept) if kept else "none") + ".",
+    ]
+    if changed:
+        text.append("Groups not kept (new / old): " + "; ".join(
+            f"{k} {lo:.4g}" + (f" to {hi:.4g}" if not math.isclose(lo, hi) else "")
+            for k, (lo, hi) in changed.items()) + ".")
+    text.extend(notes)
+    text.append("The description below is the original case's.")
+    return [row for paragraph in text
+            for row in textwrap.wrap(paragraph, 96, initial_indent="# ",
+                                     subsequent_indent="#   ")]
+
+
+def scale_case_text(text: str, source: str, law: ScaleLaw, *, output: str | Path,
+                    keep_coefficients: bool = False,
+                    hydro_database: str | None = None) -> ScaledCase:
+    """Scale a case file's text.
+
+    Parameters
+    ----------
+    text, source
+        The case file's text and path (named in errors).
+    law
+        The scale factors.
+    output
+        Where the scaled case will be written (its folder resolves relative paths).
+    keep_coefficients
+        Leave the drag and added-mass coefficients as they are (their Reynolds dependence
+        decided by the user) instead of keeping alpha_1, alpha_4 and alpha_5.
+    hydro_database
+        Database name of the scaled case (required for a case with ``[hydro]``).
+
+    Raises
+    ------
+    CaseError
+        The case is invalid, holds what the scaling cannot rewrite, or its scaled version is
+        not a valid case.
+    """
+    raw = parse_toml(text, source)
+    original = parse_case(raw, source=source, text=text, base_dir=Path(source).parent)
+    if original.floater is not None and \
+            not math.isclose(law.force, law.mass, rel_tol=SAME_FACTOR):
+        raise CaseError(source, "floater", "line forces scaling like the floater's (rho "
+                        f"lambda^3 = {law.mass:.6g}): --match froude, or beta = lambda and phi "
+                        "= 1", f"phi lambda beta^2 = {law.force:.6g}")
+    scaled = _scale_node(raw, (), law, {"database": hydro_database,
+                                        "keep_coefficients": keep_coefficients}, source)
+    scaled["description"] = (f"Scaled from {source} by floatmoor scale (see the header).\n"
+                             + raw.get("description", "").strip()).strip() + "\n"
+    body: list[str] = []
+    _toml_table(scaled, (), body)
+    notes = []
+    if original.hydro is not None:
+        notes.append(f"The BEM database \"{hydro_database}\" must be built for this case: "
+                     f"floatmoor hydro build {Path(output).name} (the frequencies, panel size "
+                     "and lengths are scaled; linear potential flow is Froude-exact, but the "
+                     "database is not rescaled here).")
+    draft = "\n".join(body) + "\n"
+    try:
+        case = parse_case(parse_toml(draft, str(output)), source=str(output), text=draft,
+                          base_dir=Path(output).parent)
+    except CaseError as err:
+        raise CaseError(source, "", "a case whose scaled version is valid",
+                        f"a scaled case that is not: {err}") from None
+    kept, changed = _group_ratios(original, case)
+    header = _header(source, law, keep_coefficients, original.floater is not None, kept,
+                     changed, notes)
+    full = "\n".join(header) + "\n\n" + draft
+    case = parse_case(parse_toml(full, str(output)), source=str(output), text=full,
+                      base_dir=Path(output).parent)
+    return ScaledCase(full, case, kept, changed, notes)
+
+
+def scale_case_file(path: str | Path, law: ScaleLaw, *, output: str | Path,
+                    keep_coefficients: bool = False,
+                    hydro_database: str | None = None) -> ScaledCase:
+    """Read a case file and scale it (:func:`scale_case_text`); nothing is written."""
+    text = read_input_text(path, "case")
+    return scale_case_text(text, str(path), law, output=output,
+                           keep_coefficients=keep_coefficients, hydro_database=hydro_database)
