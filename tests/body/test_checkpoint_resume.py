@@ -19,9 +19,10 @@ BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 
 
 @pytest.mark.parametrize("overrides,kept", [
-    # the damping's frozen factors are kept
-    (['lines.line2.model="quasi-static"', "line_types.chain.internal_damping_ratio=0.2"],
-     "state/line0/damping_info"),
+    # the damping's frozen factors are kept (14 s: slow, for the default run's time budget)
+    pytest.param(['lines.line2.model="quasi-static"',
+                  "line_types.chain.internal_damping_ratio=0.2"], "state/line0/damping_info",
+                 marks=pytest.mark.slow, id="internal-damping"),
     # the implicit integration's acceleration variable, step level and factored Jacobian
     (['lines.*.dynamic.time_integration="implicit"', "lines.*.dynamic.max_time_step=0.0025"],
      "state/line0/implicit_band"),

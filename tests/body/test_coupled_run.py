@@ -140,7 +140,8 @@ def test_run_stopped_in_its_first_chunk_resumes_from_the_start(tmp_path, monkeyp
         assert np.array_equal(resumed[name].values, whole[name].values), name
 
 
-@pytest.mark.parametrize("model", ["quasi-static", "quasi-dynamic", "dynamic"])
+@pytest.mark.parametrize("model", ["quasi-static", "quasi-dynamic",  # dynamic: 15 s, slow
+                                   pytest.param("dynamic", marks=pytest.mark.slow)])
 def test_line_shapes_of_a_coupled_run(model) -> None:
     """With ``shape_output_interval`` a coupled run records every line's shape: its ends at
     the anchor and at the moving fairlead, its end tension the fairlead tension."""
