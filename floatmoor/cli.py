@@ -205,7 +205,7 @@ def _parser() -> argparse.ArgumentParser:
                       "an existing -o file")
     hfit.add_argument("--json", action="store_true", help="the fit's errors as JSON")
     scale = sub.add_parser("scale", help="write a case at another scale (dynamic similitude "
-                           "of the cable equation, docs/similitude.md)")
+                           "of the cable equation, docs/guide/similitude.md)")
     scale.add_argument("case", help="TOML case file")
     scale.add_argument("--length-scale", required=True, metavar="LAMBDA",
                        help="new / old lengths (eq. 32); times scale sqrt(LAMBDA)")

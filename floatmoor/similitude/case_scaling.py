@@ -286,7 +286,7 @@ def _header(source: str, law: ScaleLaw, keep_coefficients: bool, floater: bool,
                     f"coefficients {f.added_mass_coefficient:.6g} (eq. 42; C_a on m / rho_c)")
     text = [
         f"Scaled by floatmoor scale from {source}: dynamic similitude of the cable equation "
-        "(Bergdahl, Palm, Eskilsson & Lindahl 2016, section 2; docs/similitude.md).",
+        "(Bergdahl, Palm, Eskilsson & Lindahl 2016, section 2; docs/guide/similitude.md).",
         f"Law: length lambda = {f.length:.12g} (eq. 32), diameter beta = {f.diameter:.12g} "
         f"(eq. 35), volume coefficient phi = {f.volume_coefficient:.12g} (eq. 36, {how}), "
         f"water density x {f.water_density:.12g}.",

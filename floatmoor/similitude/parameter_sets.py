@@ -3,7 +3,7 @@
 Chain-experiment paper section 3.3: Webster (1995, the paper's ref. [9]; its Tables 4 and
 5) and Papazoglou & Mavrakos (1990, ref. [2]; Table 6) group the same data differently from
 alpha_1 to alpha_5. The paper's printed tables carry slips this module does not copy (see
-docs/similitude.md): Table 5's second parameter is w L / T_s (labelled T_s / (w V)), its
+docs/guide/similitude.md): Table 5's second parameter is w L / T_s (labelled T_s / (w V)), its
 prototype entries of parameters 4 and 5 use C_v = 3.80 and 3.82 instead of Table 3's 3.58
 (the ratios 1.14 and 1.30 follow 3.58), and Table 6's parameter 8 uses the equivalent
 solid-rod diameter d_e (rho_c pi d_e^2 / 4 = m), not d_o.

@@ -20,7 +20,7 @@ the paper's dynamic model 31 nodes), settled to its own static equilibrium befor
 chains). ``discretisation_check`` compares two discretisations.
 
 The study's findings against the paper's, and the sensitivity of the dynamic reference behind
-them, are in docs/validation_notes.md.
+them, are in docs/validation/notes.md.
 """
 
 from __future__ import annotations

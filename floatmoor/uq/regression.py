@@ -11,7 +11,7 @@ outputs) is split by SVD into modes U S V^T, the leading modes that together hol
 and the outputs' coefficients are the modes' recombined, C = sum_k c_k V_k^T (plus the mean on
 the constant): exact for a linear recombination, so the statistics and Sobol indices computed
 from C are those of the recombined surrogate; fitting by modes is what makes a time series of
-thousands of outputs affordable (timings in docs/validation_notes.md).
+thousands of outputs affordable (timings in docs/validation/notes.md).
 
 Validation error of each output: the leave-one-out residuals of the modes, each mode's scaled by
 the square root of its correction factor T(P_k, n) = n / (n - P_k) (1 + tr(C_k^-1) / n),

@@ -15,7 +15,7 @@ product, a whole record a blocked matrix product (floatmoor.waves.synthesis).
 
 A 3 h full-scale record costs a few seconds (benchmark
 tests/waves/test_bench_waves.py::test_three_hour_record_cost; figures in
-docs/validation_notes.md).
+docs/validation/notes.md).
 """
 
 from __future__ import annotations

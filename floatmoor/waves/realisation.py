@@ -54,7 +54,7 @@ a_j = sqrt(2 S(omega_j) d omega_j) with S the one-sided spectrum, phases uniform
 
 The equal spacing is the default because it guarantees non-repetition by construction for any
 seed and reproduces the target spectrum exactly over the repeat period; the measured cost of
-3094 components over 3 h is a few seconds (docs/validation_notes.md).
+3094 components over 3 h is a few seconds (docs/validation/notes.md).
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ does) or sea water in the prototype (alpha_3).
 The runs start from the case's catenary without the DG relaxation (``settle = false``): the
 relaxation runs on fixed times (floatmoor.mooring.dg.line.SETTLE_RATE, SETTLE_CHUNK), not on
 the case's, and leaves the prototype ~0.5 % of the peak tension apart (measured, see
-docs/similitude.md).
+docs/guide/similitude.md).
 """
 
 from __future__ import annotations
