@@ -94,7 +94,7 @@ def test_angular_convention_is_the_same_spectrum(elevation):
     np.testing.assert_allclose(zero_upcrossing_period(rad), zero_upcrossing_period(hz),
                                rtol=1e-12)
     np.testing.assert_allclose(peak_period(rad), peak_period(hz), rtol=1e-12)
-    # the wave spectrum S(w) of docs/theory/floater.md is recovered around its peak: the energy
+    # the wave spectrum S(w) of docs/theory/environment.md is recovered around its peak: the energy
     # in the bins within 0.8 to 1.2 w_p against the target integrated over the same bins
     wp = 2 * np.pi / TP
     dw = float(rad["angular_frequency"][1] - rad["angular_frequency"][0])

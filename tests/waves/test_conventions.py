@@ -93,7 +93,7 @@ def test_froude_krylov_force_phase_from_capytaine(body):
 
 
 def test_wamit_form_is_the_conjugate_convention():
-    """docs/theory/floater.md: Re{X_W a e^{i(omega t + phi)}} with X_W = conj(X) (WAMIT) is our
+    """The WAMIT-style form (docs/conventions.md): Re{X_W a e^{i(omega t + phi)}} with X_W = conj(X) (WAMIT) is our
     Re{X a e^{-i phi} e^{-i omega t}}: the same signal with the phase sign flipped."""
     x = np.array([[3.0 - 4.0j]])
     omega, a, phi = 0.8, 1.2, 0.5
