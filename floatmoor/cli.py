@@ -2,7 +2,7 @@
 
 ``floatmoor check CASE`` validates a case and prints what follows from it; ``floatmoor run CASE``
 runs it; ``floatmoor sweep CASE --grid ...`` runs a campaign; ``floatmoor study
-qd-verification -o DIR`` runs the quasi-dynamic verification study (cases.md case B);
+qd-verification -o DIR`` runs the quasi-dynamic verification study (docs/cases/qd_verification.md);
 ``floatmoor uq STUDY.toml -o DIR`` runs an uncertainty-quantification study (gPC surrogates of
 quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature design exits 1);
 ``floatmoor hydro build CASE`` builds the floater's BEM database and checks it,
@@ -128,7 +128,7 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("--quiet", action="store_true", help="no progress reports")
     study = sub.add_parser("study", help="run a built-in study (results, summary and figures)")
     study.add_argument("name", choices=["qd-verification"],
-                       help="qd-verification: quasi-dynamic verification, cases.md case B")
+                       help="qd-verification: quasi-dynamic verification, docs/cases/qd_verification.md")
     study.add_argument("-o", "--output", metavar="DIR", required=True,
                        help="output folder (created if its parent exists)")
     study.add_argument("--workers", type=int, default=1, help="local worker processes")

@@ -1,2 +1,2 @@
 """The rigid floating body: kinematics, radiation memory, hydrostatics and its Cummins equation
-(physics.md section 5)."""
+(docs/theory/floater.md)."""

@@ -1,4 +1,4 @@
-"""Numba kernel of the radiation memory of the Cummins equation (physics.md section 5).
+"""Numba kernel of the radiation memory of the Cummins equation (docs/theory/floater.md).
 
 mu(t_n) = int_0^T_K K(s) v(t_n - s) ds with the velocity piecewise linear between the step
 points t_n - k dt: mu_n = sum_k W_k v(t_n - k dt), the weights W_k = int K(s) phi_k(s) ds

@@ -1,4 +1,4 @@
-"""The Cummins equation of a rigid floating body (physics.md section 5; gpc paper eq. 8):
+"""The Cummins equation of a rigid floating body (docs/theory/floater.md; gpc paper eq. 8):
 
     (M + A_inf) x'' + mu(t) + C x = F_0 + f(t, x, x') + f_lin + f_quad,
     mu(t) = int_0^t K(t - tau) x'(tau) d tau,

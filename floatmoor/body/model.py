@@ -1,5 +1,5 @@
 """The floating body of a case: its Cummins equation from the case's mass properties and the
-floater's hydrodynamic database (physics.md section 5)."""
+floater's hydrodynamic database (docs/theory/floater.md)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Viscous (Morison) drag on a floater's members: strips, coefficients and a per-stage force.
 
-Issue 6 item 3, physics.md section 5 ("viscous effects potential flow misses: quadratic Morison
-drag on members"). Only the DRAG term of Morison's equation is computed here. The inertia
+Issue 6 item 3, docs/theory/floater.md (viscous effects potential flow misses: quadratic Morison
+drag on members). Only the DRAG term of Morison's equation is computed here. The inertia
 terms (Froude-Krylov, diffraction, added mass) of the same members are already in the
 potential-flow hydrodynamics of the Cummins body (BEM excitation X, A_inf and the radiation
 memory K); adding Morison inertia would count them twice. This is the usual hybrid model of
@@ -39,8 +39,8 @@ AxCd = 9.60) and none at its top (z = -14 m, AxCd = 0). HydroDyn's joint drag
 disc pi R^2 of the 24 m base, and 1/4 rho AxCd where the standard form has 1/2 rho Cd, i.e.
 Cd = AxCd / 2 = 4.8 on the full disc. Here: ``heave_plate_area = "disc"`` (default) uses the
 full disc pi/4 D_plate^2 at the plate's bottom face, HydroDyn's geometry; ``"annulus"`` uses
-pi/4 (D_plate^2 - D_column^2). The coefficient of the preset is cases.md's (1.60), which is a
-third of the r-test's effective 4.8: cases.md Table 6 is the quasi-dynamic paper's choice and
+pi/4 (D_plate^2 - D_column^2). The coefficient of the preset is the quasi-dynamic paper's (1.60, docs/cases/deepcwind.md), which is a
+third of the r-test's effective 4.8: that Table 6 is the quasi-dynamic paper's choice and
 is kept as given (see :data:`DEEPCWIND_OC4`).
 
 Kinematics. Strip points are body-fixed; their velocity is v[:3] + v[3:] x R r0 with the full
@@ -62,8 +62,8 @@ grid t0 + k dt/2 of a chunk of steps with blocked complex products
 interpolation (module constant :data:`KINEMATICS_PHASE_STEP`); :meth:`MorisonDrag.force` is
 then O(strips) per stage in a numba kernel (floatmoor/body/_morison_kernels.py).
 
-Linear and quadratic damping matrices (physics.md section 5, "and/or a linear/quadratic damping
-matrix") are not here: :class:`floatmoor.body.cummins.CumminsBody` takes ``linear_damping`` and
+Linear and quadratic damping matrices (docs/theory/floater.md: the viscous
+effects potential flow misses) are not here: :class:`floatmoor.body.cummins.CumminsBody` takes ``linear_damping`` and
 ``quadratic_damping`` (6x6) directly.
 
 References
@@ -146,7 +146,7 @@ class MorisonCoefficients:
             _check_coefficient(f.name, getattr(self, f.name))
 
 
-#: OC4 DeepCwind, cases.md D Table 6 (quasi-dynamic paper Table 6): upper columns Cd_t 0.600;
+#: OC4 DeepCwind, quasi-dynamic paper Table 6 (docs/cases/deepcwind.md): upper columns Cd_t 0.600;
 #: lower columns (the heave-plate bases) Cd_t 0.600 and Cd long 1.60 (the heave plates' axial
 #: drag); cross braces (pontoons and braces here) Cd_t 0.564. The tower column (dry) and the
 #: mooring elements (own model) are not the floater's. No axial drag on the central column's
@@ -157,8 +157,8 @@ class MorisonCoefficients:
 DEEPCWIND_OC4 = MorisonCoefficients(
     column_transverse=0.600, heave_plate_transverse=0.600, heave_plate_axial=1.60,
     member_transverse=0.564)
-#: No drag: the default of the cylinder buoy (cases.md C gives no Morison coefficients, and
-#: the gpc paper's buoy model is potential flow plus the lines), and of any case that does
+#: No drag: the default of the cylinder buoy (the gpc paper gives the buoy no Morison coefficients,
+#: docs/cases/cylinder_buoy.md; its buoy model is potential flow plus the lines), and of any case that does
 #: not ask for drag.
 NO_DRAG = MorisonCoefficients()
 #: Named presets, the values of ``[floater.drag] preset``.

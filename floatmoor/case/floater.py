@@ -9,7 +9,7 @@ of K(t), ``floatmoor hydro fit-state-space``), and ``[floater.geometry]``:
 
 * ``kind = "cylinder"``: ``diameter``, ``height`` (bottom to top) and optionally ``draft``
   [m]. Without ``draft`` the draft is the one at which the cylinder floats freely,
-  ``mass / (water_density pi R^2)`` (cases.md case C: "the draft follows from the mass"); the
+  ``mass / (water_density pi R^2)`` (docs/cases/cylinder_buoy.md: "the draft follows from the mass"); the
   cylinder's axis passes through the reference point.
 * ``kind = "semisubmersible"``: ``[[floater.geometry.columns]]`` (``x``, ``y``, ``diameter``,
   ``z_top``, ``z_bottom``, optional ``heave_plate_diameter`` and ``heave_plate_height``, the
@@ -58,7 +58,7 @@ from floatmoor.file_hash import file_sha256
 __all__ = ["read_floater", "read_hydro", "check_panel_size", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS"]
 
 #: More frequencies than this is a typing error rather than a plan (a 400-frequency buoy
-#: database took 84 s; capytaine_notes.md).
+#: database took 84 s with capytaine 3.0 on one core).
 MAX_FREQUENCIES = 2000
 
 

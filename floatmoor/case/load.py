@@ -46,7 +46,7 @@ __all__ = ["load_case", "parse_case", "MAX_STATIC_STRAIN", "SEABED_TOLERANCE"]
 DEFAULT_CATENARY_TOLERANCE = 1e-12
 DEFAULT_CATENARY_MAX_ITERATIONS = 100
 #: Order of a DG line whose elements are given but not its order (and of imported decks):
-#: MooDy reproduced the Lindahl chain with order 5 (chain-experiment paper; cases.md case A).
+#: MooDy reproduced the Lindahl chain with order 5 (chain-experiment paper; docs/cases/lindahl.md).
 #: Without either key, both follow from ``accuracy`` (mooring/dg/resolution.py).
 DEFAULT_DG_ORDER = 5
 #: Default time step as a fraction of the linear SSP-RK3 stability limit of the longitudinal

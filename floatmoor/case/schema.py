@@ -75,7 +75,7 @@ class Seabed:
 
 @dataclass(frozen=True)
 class LineType:
-    """Properties of a line material (physics.md section 1)."""
+    """Properties of a line material (docs/theory/cable.md)."""
 
     name: str
     mass_per_length: float  #: dry mass per unstretched length [kg/m]

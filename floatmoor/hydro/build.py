@@ -2,7 +2,7 @@
 
 For each finite frequency the six radiation problems and one diffraction problem per wave
 direction are solved on the hull with its lid (irregular frequencies); omega = infinity is
-solved without the lid (capytaine_notes.md pitfall 1: the lid spoils A_inf) and omega = 0 only
+solved without the lid (docs/theory/hydrodynamics.md, practical note 1: the lid spoils A_inf) and omega = 0 only
 in infinite depth (pitfall 2). The finite-depth Green function uses the "python" Prony
 decomposition, the one that supports omega = infinity. The cache of block-circulant matrices
 is cleared after every frequency (pitfall 5). Hydrostatics are integrated on the merged hull
@@ -51,7 +51,7 @@ DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 #: damping nearly cancels, against 3.4 % with the direct method (surge: 2.4 % and 1.2 %).
 BEM_METHOD = "direct"
 #: Largest wavenumber times lid depth that kept the lid harmless on the trial databases
-#: (capytaine_notes.md pitfall 3: k d <= 0.15 worked; a lid at z = 0 or too deep spoiled the
+#: (docs/theory/hydrodynamics.md, practical note 3: k d <= 0.15 worked; a lid at z = 0 or too deep spoiled the
 #: damping at the top frequencies).
 LID_KH = 0.15
 

@@ -15,7 +15,7 @@ held at the end values outside the BEM range).
 det(C - omega^2 (M + A(omega))) = 0, by the same fixed-point iteration, a mode labelled by the
 DOF holding the largest share of its kinetic energy. For the semisubmersible the pitch mode
 then carries surge along (M15 = m z_G, A15), which shortens it: 25.4 s against 27.4 s
-uncoupled (cases.md D quotes 26.8 s).
+uncoupled (docs/cases/deepcwind.md quotes 26.8 s).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Time-domain radiation quantities from a database (physics.md section 5).
+"""Time-domain radiation quantities from a database (docs/theory/floater.md).
 
 Cummins: (M + A_inf) x'' + int_0^t K(t - tau) x'(tau) dtau + C x = f, with the radiation
 impulse response
@@ -13,7 +13,7 @@ Integration choices (tested against closed-form pairs in tests/hydro/test_radiat
   the frequency step causes no aliasing or spurious periodicity of K(t); K inherits only the
   interpolation error of B.
 * Above the top BEM frequency omega_N the damping is continued by the tail
-  B(omega) = B(omega_N) (omega_N / omega)^p (capytaine_notes.md pitfall 8: surge and pitch
+  B(omega) = B(omega_N) (omega_N / omega)^p (docs/theory/hydrodynamics.md, practical note 8: surge and pitch
   damping have not decayed at the top frequency). By default p is fitted per DOF so that the
   Kramers-Kronig rebuild of A(omega_N) is exact (:func:`fit_tail_exponents`: the only
   information the BEM data hold about the tail); a fixed p (:data:`TAIL_EXPONENT`) can be
@@ -294,7 +294,7 @@ def consistent_infinite_added_mass(ds: xr.Dataset, time: NDArray[np.float64],
     the BEM frequencies of A(w) + (1 / w) int K(t) sin(w t) dt (Ogilvie 1964), so that the
     time-domain model's A(w) = A_inf - (1 / w) int K sin matches the BEM A(w) best in the
     mean. On the buoy database the implied values scatter by 0.2 % (heave) over the band,
-    while the BEM A_inf (computed without the lid, capytaine_notes.md) sits 0.75 % below
+    while the BEM A_inf (computed without the lid, docs/theory/hydrodynamics.md, practical note 1) sits 0.75 % below
     their mean: with it, the heave response near resonance misses the RAO by 2 %."""
     omega = ds["omega"].values
     added = ds["added_mass"].transpose("omega", "radiating_dof", "influenced_dof").values

@@ -1,4 +1,4 @@
-"""Numba kernels of the quasi-dynamic line model (quasi-dynamic paper section 3; physics.md 4).
+"""Numba kernels of the quasi-dynamic line model (quasi-dynamic paper section 3; docs/theory/quasi_dynamic.md).
 
 The line carries fixed stations ("nodes") at unstretched arc lengths s_j = L - j h from the
 anchor, j = 0 .. M - 1, spaced h apart from the fairlead end (``Q_H``: the suspended length

@@ -1,6 +1,6 @@
 """Numba kernel of the quasi-static line model: the catenary solved along a fairlead path.
 
-Each fairlead position is solved warm-started from the previous one (physics.md section 3);
+Each fairlead position is solved warm-started from the previous one (docs/theory/quasi_static.md);
 results go into preallocated arrays, and the first failure stops the loop and is reported
 through ``failure`` rather than an exception.
 """

@@ -6,7 +6,7 @@ fairlead tension is the static one scaled by the quasi-dynamic factor (eqs. 1 an
     T_QD = k_QD T_S,   k_QD = int_{s_0}^{l} (f_w + f_HD - f_I).k ds / int_{s_0}^{l} f_w.k ds >= 0,
 
 the ratio of the vertical resultant of weight, Morison drag and added mass and line inertia on
-the suspended part to its weight (physics.md section 4). Velocities and accelerations come from
+the suspended part to its weight (docs/theory/quasi_dynamic.md). Velocities and accelerations come from
 backward differences of the static positions over the time steps (eq. 4); the integrals from the
 composite Simpson rule. The model adds the inertia and drag that the quasi-static line lacks
 and predicts slack (k_QD = 0), at the cost of one catenary solve and O(stations) work per step,

@@ -2,7 +2,7 @@
 
 The line has no memory beyond the Newton warm start: its fairlead and anchor forces are those
 of the static elastic catenary with seabed contact (and optional seabed friction) for the
-current fairlead position (physics.md section 3). It neglects line inertia and drag, which is
+current fairlead position (docs/theory/quasi_static.md). It neglects line inertia and drag, which is
 why it underestimates dynamic tension (quasi-dynamic paper, section 5).
 """
 

@@ -1,6 +1,6 @@
 """Local maxima and minima of time series and their empirical probability of exceedance.
 
-Physics reference: physics.md section 6 (quasi-dynamic paper section 5.2, its Figure 14 plots
+Physics reference: docs/theory/post_processing.md (quasi-dynamic paper section 5.2, its Figure 14 plots
 the probability of exceedance of the local maxima and minima of fairlead tension).
 
 Two definitions of the extrema, chosen by ``method``:

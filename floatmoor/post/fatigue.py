@@ -1,6 +1,6 @@
 """Fatigue of mooring lines: S-N and T-N curves, Miner damage, damage equivalent loads.
 
-Physics reference: physics.md section 6 (quasi-dynamic paper section 5.2). The tension history
+Physics reference: docs/theory/post_processing.md (quasi-dynamic paper section 5.2). The tension history
 is rainflow counted (ASTM E1049, :mod:`floatmoor.post.rainflow`); the stress range of a chain
 is the tension range over the nominal area of its two legs, ``A = 2 pi d^2 / 4``; the number of
 cycles to failure at a stress range S is ``n = a_D S^-m`` and the damage is Miner's sum
@@ -132,7 +132,7 @@ DNV_STUDLINK_CHAIN = SNCurve(a_d=1.2e11, m=3.0, stress_unit=MPA,
 
 
 def chain_nominal_area(diameter: float) -> float:
-    """Nominal area of a chain link's two legs, ``2 pi d^2 / 4`` [m^2] (physics.md 6).
+    """Nominal area of a chain link's two legs, ``2 pi d^2 / 4`` [m^2] (docs/theory/post_processing.md).
 
     Parameters
     ----------

@@ -9,7 +9,7 @@ Welch's method (scipy.signal.welch) with these defaults, chosen for long offshor
 * one-sided density: ``S(f)`` in unit^2/Hz over ``frequency`` [Hz], with
   ``integral S(f) df = variance``; or, with ``angular=True``, ``S(w) = S(f) / (2 pi)`` in
   unit^2 s/rad over ``angular_frequency`` w = 2 pi f [rad/s], the convention of the wave
-  spectra in physics.md section 5, with ``integral S(w) dw = variance``.
+  spectra in docs/theory/environment.md, with ``integral S(w) dw = variance``.
 
 Spectral moments ``m_n = integral x^n S(x) dx`` (x = f or w, the PSD's own coordinate) are sums
 over the PSD's uniform frequency grid times its spacing (the rectangle rule, which is the

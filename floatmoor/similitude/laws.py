@@ -1,7 +1,7 @@
 """Scale factors of a cable (and its floater) under dynamic similitude.
 
 Bergdahl, Palm, Eskilsson & Lindahl (2016), "Dynamically scaled model experiment of a mooring
-cable", section 2.3 (physics.md section 8): the cable equation has five groups alpha_1 to
+cable", section 2.3 (docs/theory/similitude.md): the cable equation has five groups alpha_1 to
 alpha_5 (eqs. 29-31); they are kept when, with lambda = L_new / L_old (eq. 32), beta =
 d_new / d_old (eq. 35) and phi = C_v,new / C_v,old (eq. 36), the time scales sqrt(lambda)
 (eq. 33), the stiffness and every force phi lambda beta^2 (eqs. 36-37) and the drag
@@ -9,8 +9,7 @@ coefficients beta phi / lambda (eq. 38). Every factor here is new / old.
 
 Two differences from the paper, both following its equations rather than its text:
 
-* floatmoor's added-mass coefficient refers to the material area m / rho_c (physics.md
-  section 1), the paper's C_MN to the nominal area pi d^2 / 4, so C_MN = C_a C_v. Keeping
+* floatmoor's added-mass coefficient refers to the material area m / rho_c (docs/theory/cable.md), the paper's C_MN to the nominal area pi d^2 / 4, so C_MN = C_a C_v. Keeping
   alpha_1 = C_MN rho_w / (C_v rho_c) (eq. 31a) therefore keeps C_a rho_w / rho_c: C_a is
   unchanged when the water is (the paper's C_MN scales with phi, eq. 43).
 * the water density may change (sea water for a fresh-water model): the drag and added-mass

@@ -1,5 +1,5 @@
 """Coupled runs: a floating body integrated with the Cummins equation, sub-stepped with its
-mooring lines (physics.md section 5; issue 6).
+mooring lines (docs/theory/floater.md; issue 6).
 
 Coupling scheme, per body step [t_n, t_n + dt] (classical RK4 for the body):
 

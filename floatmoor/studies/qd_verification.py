@@ -1,4 +1,4 @@
-"""Quasi-dynamic verification study (cases.md case B; quasi-dynamic paper section 4).
+"""Quasi-dynamic verification study (docs/cases/qd_verification.md; quasi-dynamic paper section 4).
 
 Six line configurations (shapes S1 to S3 by anchor position x chains D1, D2; Tables 2, 3), each
 with its fairlead in horizontal harmonic motion at five amplitudes A1 to A5 and six dimensionless
@@ -273,7 +273,7 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
                       {"long_name": "time in the last cycle over the period", "units": "1"}),
         },
         attrs={
-            "title": "Quasi-dynamic verification study (cases.md case B)",
+            "title": "Quasi-dynamic verification study (docs/cases/qd_verification.md)",
             "source": "floatmoor " + __version__ + ", floatmoor.studies.qd_verification",
             "reference": "Trubat, Molins & Gironella, quasi-dynamic mooring model, section 4, "
                          "Tables 2-4, eqs. 5-9",
@@ -340,7 +340,7 @@ def summary(ds) -> str:
     """The table of fractions beside the paper's, and mean errors by shape and amplitude."""
     fr = fractions(ds)
     n = int(np.isfinite(ds["rmse_qd"].values).sum())
-    rows = [f"Quasi-dynamic verification study (cases.md case B): {n} runs "
+    rows = [f"Quasi-dynamic verification study (docs/cases/qd_verification.md): {n} runs "
             f"({ds.attrs['design']}; failed {ds.attrs['failed_runs']}), "
             f"wall time {ds.attrs['wall_time_s']} s",
             "", f"{'measure':<28}{'< 10 %':>9}{'< 20 %':>9}{'paper < 10 %':>15}"

@@ -9,7 +9,8 @@ hydrodynamics module interpolates it, this module only takes the array), the for
            e^{-i\\omega_j t}\\Big\\},\\qquad c_j = X_j a_j e^{i\\phi_j},
 
 capytaine's e^{-i omega t} convention (see floatmoor.waves.realisation for why this equals
-physics.md section 5's Re{X_W a_j e^{i(omega_j t + phi_j)}} with WAMIT-convention X_W). The
+the WAMIT-style Re{X_W a_j e^{i(omega_j t + phi_j)}} with WAMIT-convention X_W,
+docs/conventions.md). The
 coefficients c_j are computed once; one time then costs N complex exponentials and an (N x 6)
 product, a whole record a blocked matrix product (floatmoor.waves.synthesis).
 

@@ -26,12 +26,12 @@ Re{X_j A_j e^{-i omega_j t}}. With phi = 0 the crest is at the origin at t = 0 a
 passes x = lambda/4 a quarter period later (the wave travels towards +x for beta = 0);
 tests/waves/test_conventions.py checks both against capytaine's own functions.
 
-physics.md section 5 writes the same sum as Re{X a_j e^{+i(omega_j t + phi_j)}}, the WAMIT-style
-e^{+i omega t} convention, where X_W = conj(X) (capytaine docs: "F_e = conj(F_e,W)"). Since
+Programs in the WAMIT-style e^{+i omega t} convention (docs/conventions.md) write the same
+sum as Re{X_W a_j e^{+i(omega_j t + phi_j)}}, where X_W = conj(X) (capytaine docs: "F_e = conj(F_e,W)"). Since
 Re{conj(Z)} = Re{Z}, Re{X_W a e^{i(omega t + phi)}} = Re{X a e^{-i(omega t + phi)}}: the same
 real signal as ours with phi_j -> -phi_j. Phases are uniform on [0, 2 pi), so both describe the
 same random sea; what matters is that X from capytaine is only ever paired with e^{-i omega t}
-(using capytaine's X in physics.md's formula would put the force a phase 2 arg X off the wave).
+(using capytaine's X in that formula would put the force a phase 2 arg X off the wave).
 
 Irregular seas: frequency discretisation
 ----------------------------------------

@@ -1,7 +1,7 @@
 """Wave spectra: JONSWAP (Pierson-Moskowitz as gamma = 1) and their spectral moments.
 
 One-sided spectral density S(omega) [m^2 s/rad] of the wave elevation over the angular
-frequency omega [rad/s] (physics.md section 5; DNV-RP-C205 section 3.5.5):
+frequency omega [rad/s] (docs/theory/environment.md; DNV-RP-C205 section 3.5.5):
 
 .. math::
     S(\\omega) = \\alpha g^2 \\omega^{-5} \\exp\\left(-\\tfrac54 (\\omega/\\omega_p)^{-4}\\right)

@@ -3,7 +3,7 @@
 .. math::
     u(t) = U + \\sum_j a_j \\cos(2\\pi f_j t + \\phi_j), \\qquad a_j = \\sqrt{2 \\int_{bin_j} S(f) df}
 
-(for a narrow bin, a_j -> sqrt(2 S(f_j) df), physics.md section 5's wave synthesis applied to
+(for a narrow bin, a_j -> sqrt(2 S(f_j) df), docs/theory/environment.md's wave synthesis applied to
 the wind). The longitudinal wind at one point (the hub) stands for the whole rotor; the spatial
 averaging of a 126 m rotor, which filters the incoherent high-frequency gusts, is not modelled,
 and the band cutoff (default 0.5 Hz) is where the point spectrum stops.

@@ -1,6 +1,6 @@
 """Benchmark: what MoorDyn (v2, lumped mass, the peer code) needs on the Lindahl chain.
 
-Case A of cases.md (``cases/lindahl/lindahl_r0.20_T1.25.toml``, period and ramp overridden):
+Case A (docs/cases/lindahl.md; ``cases/lindahl/lindahl_r0.20_T1.25.toml``, period and ramp overridden):
 the 33 m chain with its upper end on a vertical circle, r = 0.2 m, T = 1.25 s (slack and snap)
 and T = 3.5 s (smooth), physical seabed (3e9 Pa/m, critical damping, friction 0.3 reached at
 0.01 m/s), driven through ``tests/peer/moordyn_runner.py``. For each period:
@@ -62,7 +62,7 @@ COUPLING_INTERVAL = 1e-3  # s
 RAMP_PERIODS = 2
 #: Post-ramp cycles skipped and measured, per period.
 CYCLES = {1.25: (1, 5), 3.5: (0, 4)}
-#: Published measured mean maxima (cases.md case A), for orientation only.
+#: Published measured mean maxima (docs/cases/lindahl.md), for orientation only.
 MEASURED = {1.25: 70.3, 3.5: 50.1}
 
 

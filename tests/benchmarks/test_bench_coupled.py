@@ -1,6 +1,6 @@
 """Benchmark: wall time of the coupled runs (issue 6): the 3-hour DeepCwind LC34 sea state with
 each line model on one core (goals: dynamic lines under 10 minutes, quasi-dynamic under 1
-minute), and the moored cylinder of cases.md C with its dynamic chains.
+minute), and the moored cylinder of docs/cases/cylinder_buoy.md with its dynamic chains.
 
 Each run is a whole ``floatmoor run`` in this process (start-up, equilibrium, line settling,
 the radiation kernel and the writing of the output included), with the case's own numerics.

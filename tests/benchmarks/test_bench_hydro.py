@@ -1,7 +1,7 @@
 """Build time and panel counts of the hydrodynamic databases.
 
 Run with ``pytest -m benchmark tests/benchmarks/test_bench_hydro.py -s``. The buoy database
-(cases.md C) is rebuilt into a temporary folder and timed; the DeepCwind build (about 20 to 40
+(docs/cases/cylinder_buoy.md) is rebuilt into a temporary folder and timed; the DeepCwind build (about 20 to 40
 minutes on a shared machine) is not repeated: its time and panel count are read from the
 shipped file's metadata.
 """

@@ -1,6 +1,6 @@
 """Benchmark: peak resident memory of a coupled buoy run (issue 17, item 3).
 
-The moored cylinder of cases.md C (``cases/cylinder_buoy/buoy_regular_T1.20.toml``: the
+The moored cylinder of docs/cases/cylinder_buoy.md (``cases/cylinder_buoy/buoy_regular_T1.20.toml``: the
 Cummins body from its BEM database, three chains, output every 0.01 s) runs as ``floatmoor
 run`` in a child process; the child's peak resident set size (``ru_maxrss`` of its ``wait4``,
 what ``/usr/bin/time -v`` prints as "Maximum resident set size") must stay under the issue's

@@ -1,4 +1,4 @@
-"""Benchmark: the whole quasi-dynamic set of the verification study (cases.md case B, 180 runs)
+"""Benchmark: the whole quasi-dynamic set of the verification study (docs/cases/qd_verification.md, 180 runs)
 on one core, the issue's goal being under a minute (issue 4).
 
 Each of the 180 combinations (6 configurations x 5 amplitudes x 6 accelerations) runs the

@@ -1,5 +1,5 @@
 """Benchmark: the cost of one quasi-dynamic step against one quasi-static and one dynamic step
-of the same line (the verification chain of cases.md case B, its fairlead path, 2.5 ms steps).
+of the same line (the verification chain of docs/cases/qd_verification.md, its fairlead path, 2.5 ms steps).
 
 The issue's goals: a quasi-dynamic step at most 3 times a quasi-static one, and at least 30
 times cheaper than the dynamic model over the same simulated time. Each model runs its

@@ -1,4 +1,4 @@
-"""Coupled runs end to end on the moored buoy (cases.md C): the dataset a run writes, its
+"""Coupled runs end to end on the moored buoy (docs/cases/cylinder_buoy.md): the dataset a run writes, its
 partial file, and the waves and initial offset of a case file."""
 
 from __future__ import annotations
@@ -197,7 +197,7 @@ def test_wind_thrust_offsets_the_equilibrium_and_pushes_downwind() -> None:
 
 
 def test_member_drag_of_the_case_damps_heave() -> None:
-    """The DeepCwind case's [floater.drag] (cases.md D Table 6) damps a heave decay that the
+    """The DeepCwind case's [floater.drag] (docs/cases/deepcwind.md, quasi-dynamic paper Table 6) damps a heave decay that the
     potential flow alone barely damps; a bad preset is a case error naming the key."""
     from floatmoor.errors import CaseError
 

@@ -13,14 +13,14 @@ lambda = Z / M: the velocity is multiplied per step by
 
 stable for z <= 2.785: a body step dt <= 2.785 M / Z, whatever the line's own step; the
 heavier (stiffer) the line and the lighter the body, the smaller the body step. For the
-shipped cases the bound is far away (cases.md C buoy: M + A11 ~ 60 kg against Z = 481 N s/m
+shipped cases the bound is far away (docs/cases/cylinder_buoy.md buoy: M + A11 ~ 60 kg against Z = 481 N s/m
 per chain, dt <= 0.35 s against the 0.01 s used; DeepCwind: M + A11 ~ 2.3e7 kg against
 Z = 3.1e5 N s/m, ~200 s against 0.1 s). Taking the stage forces at the fairlead velocity the
 line was driven with (the predicted one) instead made the scheme unstable from z ~ 1; and
 replacing the fairlead position as well would feel the end tangent's lift term, a spurious
 stiffness ~EA (p + 1)^2 / h.
 
-The test builds the model problem with a 1 kg body on a 300 m chain of cases.md C (Z = 481 N
+The test builds the model problem with a 1 kg body on a 300 m chain of docs/cases/cylinder_buoy.md (Z = 481 N
 s/m: dt_crit = 5.8 ms) and checks the analytic limit: at z = 2 the kick dies out, at
 z = 3.25 the velocity grows by R(-3.25) = 1.96 per step, as predicted.
 """
@@ -36,7 +36,7 @@ from floatmoor.body.cummins import CumminsBody
 from floatmoor.case.load import load_case
 from floatmoor.simulation.coupled import MooredBody
 
-#: The line: cases.md C chain (m = 0.1447 kg/m, EA = 1.6 MN: c = 3325 m/s), 300 m long, taut
+#: The line: docs/cases/cylinder_buoy.md chain (m = 0.1447 kg/m, EA = 1.6 MN: c = 3325 m/s), 300 m long, taut
 #: (0.1 % strain, 1.6 kN) and horizontal in air (no buoyancy or drag: the dashpot alone).
 CASE = """
 title = "coupling stability model problem"

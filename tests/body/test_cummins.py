@@ -1,4 +1,4 @@
-"""The Cummins body on the committed buoy database (cases.md C): regular-wave response against
+"""The Cummins body on the committed buoy database (docs/cases/cylinder_buoy.md): regular-wave response against
 the frequency-domain RAO of the database, heave free decay against the linear natural period,
 and a body on quasi-static lines against the linearised mooring stiffness."""
 
@@ -32,7 +32,7 @@ MOORED_PERIOD_RTOL = 0.02
 #: Surge spring of the regular-wave test [N/m] (the free buoy has no surge stiffness): surge
 #: natural period ~5 s, away from the wave periods.
 SURGE_SPRING = 50.0
-WAVE_AMPLITUDE = 0.02  # m: H = 0.04 m, cases.md C
+WAVE_AMPLITUDE = 0.02  # m: H = 0.04 m, docs/cases/cylinder_buoy.md
 STEPS_PER_PERIOD = 60
 
 

@@ -238,7 +238,7 @@ def test_deepcwind_preset_strips() -> None:
     expected_cn = 0.5 * RHO * (0.6 * (6.5 * 20 + 12.0 * 3 * 14) + 0.6 * 24.0 * 18
                                + 0.564 * 1.6 * wet)
     assert s.normal.sum() == pytest.approx(expected_cn, rel=1e-12)
-    # heave-plate axial: full 24 m discs with Cd 1.60 (HydroDyn's area, cases.md's Cd)
+    # heave-plate axial: full 24 m discs with Cd 1.60 (HydroDyn's area, the quasi-dynamic paper's Cd, docs/cases/deepcwind.md)
     plate = s.axial[s.kind == 2]
     np.testing.assert_allclose(plate, 0.5 * RHO * 1.6 * math.pi / 4 * 24.0 ** 2, rtol=1e-14)
 

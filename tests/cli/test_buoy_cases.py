@@ -1,4 +1,4 @@
-"""The moored cylinder buoy in regular waves H = 0.04 m, T = 1.0, 1.2, 1.4 s (cases.md C):
+"""The moored cylinder buoy in regular waves H = 0.04 m, T = 1.0, 1.2, 1.4 s (docs/cases/cylinder_buoy.md):
 the three case files load, share the up-to-date database, and run (briefly, on quasi-static
 lines) to finite motions in waves of the right height and period."""
 
@@ -19,7 +19,7 @@ from tests.conftest import CASES
 
 PERIODS = (1.00, 1.20, 1.40)
 BUOY_FILES = {T: CASES / "cylinder_buoy" / f"buoy_regular_T{T:.2f}.toml" for T in PERIODS}
-#: cases.md C: regular waves of height 0.04 m.
+#: docs/cases/cylinder_buoy.md: regular waves of height 0.04 m.
 WAVE_HEIGHT = 0.04
 #: The sampled half range of a cosine misses its amplitude by at most 1 - cos(pi dt / T):
 #: 4.9e-4 at dt = 0.01 s, T = 1.0 s.
@@ -50,7 +50,7 @@ def test_buoy_case_loads_on_its_up_to_date_database(period: float) -> None:
     assert case.waves is not None and case.waves.settings.period == period
     assert f"H = 0.04 m, T = {period:.2f} s" in case.title
     assert case.waves.settings.height == WAVE_HEIGHT
-    # cases.md C reference numerics: body step 0.01 s, dynamic lines of 10 elements of order 5
+    # docs/cases/cylinder_buoy.md reference numerics: body step 0.01 s, dynamic lines of 10 elements of order 5
     assert case.simulation.time_step == 0.01
     assert all(ln.model == "dynamic" and (ln.dynamic.elements, ln.dynamic.order) == (10, 5)
                for ln in case.lines)

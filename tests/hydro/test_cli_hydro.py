@@ -187,7 +187,7 @@ def test_floatmoor_check_prints_floater_cases(capsys, case):
 
 
 def test_infinite_depth_build_adds_zero_frequency_added_mass(tiny_case, capsys):
-    """omega = 0 is solved only in deep water (capytaine_notes.md pitfall 2); the heave added
+    """omega = 0 is solved only in deep water (docs/theory/hydrodynamics.md, practical note 2); the heave added
     mass falls from omega = 0 to infinity for a floating cylinder."""
     out = tiny_case.parent / "deep.nc"
     assert main(["hydro", "build", str(tiny_case), "--quiet", "-o", str(out),

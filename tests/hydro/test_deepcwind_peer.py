@@ -2,18 +2,18 @@
 
 References
 ----------
-* Added mass: cases.md D notes (OC4 WAMIT model with pontoons and braces, sea water
+* Added mass: docs/cases/deepcwind.md, notes (OC4 WAMIT model with pontoons and braces, sea water
   1025 kg/m^3, reference point on the centreline at the still water line).
 * Excitation: WAMIT file ``marin_semi.3`` of the OpenFAST regression tests
   (OpenFAST/r-test, glue-codes/openfast/5MW_Baseline/HydroData), heading 0, periods 12.5664,
   7.9534 and 4.98666 s, as transcribed in the trimmed fixture
   xabi80/HSP tests/fixtures/bem/wamit/marin_semi_trimmed.3 (the full 10 MB file was not
   available to us). WAMIT's non-dimensional |X| / (rho g L^k), L = 1 m (confirmed by the .1
-  file: 8526.887 x 1025 = 8.74e6 kg = A11 at omega = 0 of cases.md), rho = 1025 kg/m^3 and
+  file: 8526.887 x 1025 = 8.74e6 kg = A11 at omega = 0 of docs/cases/deepcwind.md), rho = 1025 kg/m^3 and
   g = 9.80665 m/s^2. The marin_semi model is the OC4 platform in the OC4 orientation
   (an offset column on -x); the case file turns it by 180 degrees, so WAMIT's heading 0 is
   heading 180 degrees here, and |X| is unchanged.
-* C33 = 3.836 MN/m (cases.md D notes).
+* C33 = 3.836 MN/m (docs/cases/deepcwind.md, notes).
 
 The excitation comparison covers the three periods in the available data (4.99 to 12.57 s);
 issue 13 accepted that range in place of the 5 to 15 s band issue 5 asked for.
@@ -30,7 +30,7 @@ from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_at
 
 RHO, G = 1025.0, 9.80665
-#: cases.md D notes: WAMIT added mass at omega = 0.5 rad/s and at infinity.
+#: docs/cases/deepcwind.md, notes: WAMIT added mass at omega = 0.5 rad/s and at infinity.
 WAMIT_ADDED_MASS = {
     "A11": (0, 9.68e6, 6.49e6),
     "A33": (2, 1.522e7, 1.470e7),
@@ -43,7 +43,7 @@ WAMIT_EXCITATION = {12.5664: (392.4632, 92.08018), 7.95340: (274.8945, 112.0903)
                     4.98666: (356.7737, 121.9046)}
 #: Issue 5: |X1| within 5 %, |X3| within 10 %.
 X1_TOLERANCE, X3_TOLERANCE = 0.05, 0.10
-#: cases.md D: C33 = 3.836 MN/m; issue 5: within 3 %, and within 0.5 % of rho g A_wp.
+#: docs/cases/deepcwind.md: C33 = 3.836 MN/m; issue 5: within 3 %, and within 0.5 % of rho g A_wp.
 C33_PUBLISHED, C33_TOLERANCE, C33_WATERPLANE_TOLERANCE = 3.836e6, 0.03, 0.005
 
 

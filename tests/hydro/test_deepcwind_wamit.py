@@ -29,7 +29,7 @@ DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 ADDED_MASS_RTOL = 0.05
 #: Diagonal damping, |B_WAMIT - B| / peak B (the scale check_haskind uses: the damping is the
 #: small imaginary part of the radiation impedance, and heave and pitch damping nearly cancel
-#: between 0.4 and 0.6 rad/s, capytaine_notes.md). 8 %: our database's own damping error at
+#: between 0.4 and 0.6 rad/s in the BEM results). 8 %: our database's own damping error at
 #: the Haskind check's 5 % (heave measured at 4.6 % at 1.0 rad/s, the case file's [hydro]
 #: notes) plus the 3 % the two hull models differ by in the added mass.
 DAMPING_PEAK_RTOL = 0.08

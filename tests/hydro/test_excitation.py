@@ -43,7 +43,7 @@ def test_direction_interpolation_between_bem_directions(deepcwind_db):
     """Every other BEM direction (30 deg steps) is kept; the spline at the left-out ones (15,
     45, ... deg) is compared with the BEM for wave periods 9 to 15 s. Shorter waves turn X
     faster with direction than 30 deg steps resolve (7 % at 7 s, 16 % at 5 s); the shipped
-    15 deg grid has half the step, and cases.md D's waves travel along an exact BEM direction.
+    15 deg grid has half the step, and docs/cases/deepcwind.md's waves travel along an exact BEM direction.
     """
     directions = deepcwind_db["wave_direction"].values
     assert np.allclose(np.diff(directions), math.radians(15.0))

@@ -44,7 +44,7 @@ def test_cylinder_mesh_converges_to_the_circle():
 def test_deepcwind_mesh_matches_the_geometry(deepcwind_case):
     geometry = deepcwind_case.floater.geometry
     props = geometry_properties(geometry)
-    # OC4 published displacement 13,917 m^3 (cases.md D): the analytic geometry within 0.1 %
+    # OC4 published displacement 13,917 m^3 (docs/cases/deepcwind.md): the analytic geometry within 0.1 %
     assert props.volume == pytest.approx(13917.0, rel=1e-3)
     mesh = semisubmersible_mesh(geometry, panel_size=deepcwind_case.hydro.panel_size,
                                 lid_depth=0.1)

@@ -27,7 +27,7 @@ from tests.hydro.conftest import REPO
 OC4 = REPO / "tests" / "data" / "wamit_oc4"
 OC4_FILES = [str(OC4 / "marin_semi.1"), str(OC4 / "marin_semi.hst")]
 RHO, G = 1025.0, 9.80665
-#: Options the WAMIT files need (OC4: volume of cases.md D; any centre of buoyancy on the axis).
+#: Options the WAMIT files need (OC4: volume of docs/cases/deepcwind.md; any centre of buoyancy on the axis).
 OC4_OPTIONS = ImportOptions(water_depth=200.0, disp_volume=13917.0,
                             centre_of_buoyancy=(0.0, 0.0, -13.17))
 #: A_inf derived from the OC4 file's damping and added mass (0.01-4.98 rad/s) against the

@@ -1,5 +1,5 @@
 """Natural periods of the moored DeepCwind platform and its linearised mooring stiffness
-against the published OC4 values (cases.md D notes)."""
+against the published OC4 values (docs/cases/deepcwind.md, notes)."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ from floatmoor.hydro.natural_periods import mooring_stiffness, natural_periods
 #: Issue 5: heave about 17.3 s and pitch about 26.8 s, within 3 %.
 PERIOD_TOLERANCE = 0.03
 OC4_PERIODS = {"Heave": 17.3, "Pitch": 26.8}
-#: OC4 linearised mooring stiffness (cases.md D notes). The case uses the OC5 line properties
-#: of cases.md D Table 7 (835.5 m, 125.6 kg/m, EA 7.49e8 N) while the published values belong
+#: OC4 linearised mooring stiffness (docs/cases/deepcwind.md, notes). The case uses the OC5 line properties
+#: of docs/cases/deepcwind.md, quasi-dynamic paper Table 7 (835.5 m, 125.6 kg/m, EA 7.49e8 N) while the published values belong
 #: to the OC4 lines (835.35 m, 113.35 kg/m in air, EA 7.536e8 N): about 1 % apart, so 2 %.
 OC4_STIFFNESS = {(0, 0): 70.8e3, (2, 2): 19.1e3, (4, 4): 87.3e6}
 STIFFNESS_TOLERANCE = 0.02
@@ -41,7 +41,7 @@ def test_natural_period_against_oc4(deepcwind_db, deepcwind_case, k_moor, dof):
 
 def test_buoy_heave_period_from_its_database(buoy_db, buoy_case):
     """Case C buoy: heave period of the free-floating cylinder, sqrt((m + A33) / (rho g A_wp)),
-    with A33 at that frequency: capytaine_notes.md's trial database gave 1.10 s."""
+    with A33 at that frequency: an earlier trial database (capytaine 3.0, draft 0.1721 m, depth 0.9 m) gave 1.10 s."""
     periods = natural_periods(buoy_db, buoy_case.floater)
     assert periods["Heave"] == pytest.approx(1.10, rel=0.02)
 

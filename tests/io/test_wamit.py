@@ -83,7 +83,7 @@ def test_oc4_hydrostatics(oc4):
     assert any("buoyancy part" in note for note in oc4.notes)
 
 
-#: The OC4 WAMIT figures the project's references give (cases.md D notes: A at 0.5 rad/s and
+#: The OC4 WAMIT figures the project's references give (docs/cases/deepcwind.md, notes: A at 0.5 rad/s and
 #: at infinity, 3-4 digits); the reader's dimensional values must round to them.
 REFERENCE_ADDED_MASS = {0: (9.68e6, 6.49e6), 2: (1.522e7, 1.470e7), 4: (7.99e9, 7.21e9)}
 #: Rounding of those figures (the last digit given).

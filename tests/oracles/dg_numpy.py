@@ -1,6 +1,6 @@
 """Plain NumPy reference of the DG cable right-hand side, independent of the numba kernels.
 
-Written from physics.md sections 1-2 and the semi-discretisation stated in the docstring of
+Written from docs/theory/cable.md and docs/theory/dynamic_line.md and the semi-discretisation stated in the docstring of
 :mod:`floatmoor.mooring.dg._kernels` (nodal DG on Legendre-Gauss-Lobatto nodes, strong form,
 Hesthaven & Warburton 2008, chapter 3), vectorised over elements and nodes, without numba and
 without :mod:`floatmoor.mooring.dg.reference`:

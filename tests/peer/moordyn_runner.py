@@ -12,7 +12,7 @@ MoorDyn has one line diameter ``d`` that it uses at once as the volume-equivalen
 (buoyancy ``rho_w g pi d^2/4`` and added mass ``Ca rho_w pi d^2/4`` per length) and as the drag
 reference (normal drag ``0.5 rho_w Cdn d |v_n| v_n``, tangential drag
 ``0.5 rho_w Cdt pi d |v_t| v_t`` -- note the ``pi``: MoorDyn's axial coefficient refers to the
-circumference). floatmoor (physics.md section 1) has the material area ``A_c = m / rho_c`` for
+circumference). floatmoor (docs/theory/cable.md) has the material area ``A_c = m / rho_c`` for
 buoyancy and added mass and a separate drag diameter ``d`` (the nominal chain diameter, for
 the Lindahl chain 2.2 mm against a volume-equivalent 3.65 mm). So we write:
 

@@ -1,9 +1,9 @@
 """The dynamic line against MoorDyn 2.7 run fine, on a forced catenary case without slack.
 
-The Lindahl chain (cases.md case A) with its upper end on a circle of r = 0.1 m every 3 s:
+The Lindahl chain (docs/cases/lindahl.md) with its upper end on a circle of r = 0.1 m every 3 s:
 touchdown on the seabed, drag, added mass, the top in air, tension never near zero. Seabed
 friction is off in both codes: MoorDyn ramps it linearly, floatmoor with the sine of
-physics.md, and this test compares the cable dynamics, not friction models.
+docs/theory/cable.md, and this test compares the cable dynamics, not friction models.
 """
 
 from __future__ import annotations

@@ -36,7 +36,7 @@ AVERAGE_WINDOW = 1.0  # s
 
 
 def lindahl(friction: float = 0.0) -> MoorDynLine:
-    """Case A, the Lindahl chain (cases.md), fairlead at its mean position."""
+    """Case A, the Lindahl chain (docs/cases/lindahl.md), fairlead at its mean position."""
     return MoorDynLine(33.0, 0.0818, 1.0e4, 2.2e-3, 7800.0, 2.5, 0.5, 3.8,
                        anchor=(0.0, 0.0, -3.0), fairlead=(32.554, 0.0, 0.3), water_depth=3.0,
                        seabed_stiffness=3e9, seabed_damping_ratio=1.0,
@@ -77,7 +77,7 @@ def test_static_tension_matches_catenary(line, capfd):
 
 def test_mapping_read_back_from_moordyn():
     """Weight in water, added mass and drag per length as MoorDyn computes them equal floatmoor's
-    definitions (physics.md section 1) with the nominal drag diameter and the material area."""
+    definitions (docs/theory/cable.md) with the nominal drag diameter and the material area."""
     line = suspended()
     n = 20
     seg = line.length / n

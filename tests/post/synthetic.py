@@ -3,13 +3,13 @@
 Kept apart from floatmoor's wave module on purpose: these are test signals, written from the
 definitions they are checked against.
 
-* :func:`jonswap` is physics.md section 5: ``S(w) = alpha g^2 w^-5 exp(-5/4 (w/w_p)^-4)
+* :func:`jonswap` is the spectrum of docs/theory/environment.md: ``S(w) = alpha g^2 w^-5 exp(-5/4 (w/w_p)^-4)
   gamma^exp(-(w - w_p)^2 / (2 sigma^2 w_p^2))``, sigma = 0.07 for w <= w_p and 0.09 above,
   alpha set so that 4 sqrt(m0) = Hs (m0 integrated numerically on a fine grid).
 * :func:`gaussian_band` is a narrow Gaussian-shaped band ``S(f) ∝ exp(-(f - f0)^2 /
   (2 (delta f0)^2))`` with a prescribed variance.
 * :func:`realisation` draws a record from a one-sided spectrum by the random-phase method of
-  physics.md section 5 (amplitudes ``a_j = sqrt(2 S(f_j) df)``, phases uniform from a seeded
+  docs/theory/environment.md (amplitudes ``a_j = sqrt(2 S(f_j) df)``, phases uniform from a seeded
   generator) on the Fourier grid ``f_j = j / (N dt)``, summed by an inverse FFT, so the record is
   periodic and its variance is exactly ``sum a_j^2 / 2``.
 """
@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: Gravity [m/s^2] (physics.md constants).
+#: Standard gravity [m/s^2] (the conventional value, CGPM 1901).
 G = 9.80665
 
 
@@ -36,7 +36,7 @@ def _jonswap_shape(w: np.ndarray, tp: float, gamma: float) -> np.ndarray:
 
 
 def jonswap(w: np.ndarray, hs: float, tp: float, gamma: float) -> np.ndarray:
-    """JONSWAP S(w) [m^2 s/rad] at angular frequencies w [rad/s] (physics.md section 5)."""
+    """JONSWAP S(w) [m^2 s/rad] at angular frequencies w [rad/s] (docs/theory/environment.md)."""
     fine = np.linspace(0.0, 40.0 * 2.0 * np.pi / tp, 400_001)
     m0_unit = np.trapezoid(_jonswap_shape(fine, tp, gamma), fine)
     alpha = hs**2 / 16.0 / m0_unit

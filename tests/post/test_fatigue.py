@@ -1,4 +1,4 @@
-"""Fatigue damage (physics.md section 6): units of the DNV curves, constant-amplitude closed
+"""Fatigue damage (docs/theory/post_processing.md): units of the DNV curves, constant-amplitude closed
 form, the Rayleigh closed form of a narrow-band Gaussian process, damage equivalent loads."""
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ CLOSED_FORM_RTOL = 1e-12
 #: Narrow-band damage against the Rayleigh closed form (issue 7's acceptance criterion) [-].
 RAYLEIGH_DAMAGE_RTOL = 0.05
 
-#: DeepCwind chain nominal diameter (cases.md D, Table 7) [m].
+#: DeepCwind chain nominal diameter (docs/cases/deepcwind.md, quasi-dynamic paper Table 7) [m].
 DEEPCWIND_CHAIN_D = 0.0779
 
 

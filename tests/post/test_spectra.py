@@ -31,7 +31,7 @@ PEAK_BAND_RTOL = 0.05
 #: Peak period: the estimate's peak lies within one 0.005 Hz bin of the target's [Hz].
 PEAK_FREQUENCY_ATOL = 1.0 / DEFAULT_SEGMENT_DURATION
 
-#: LC34 sea state (cases.md D): Hs 10.5 m, Tp 14.3 s; gamma 3.3 (the standard JONSWAP value).
+#: LC34 sea state (docs/cases/deepcwind.md): Hs 10.5 m, Tp 14.3 s; gamma 3.3 (the standard JONSWAP value).
 HS, TP, GAMMA = 10.5, 14.3, 3.3
 #: 3-hour full-scale record at 4 Hz.
 DT, DURATION = 0.25, 10800.0
@@ -94,7 +94,7 @@ def test_angular_convention_is_the_same_spectrum(elevation):
     np.testing.assert_allclose(zero_upcrossing_period(rad), zero_upcrossing_period(hz),
                                rtol=1e-12)
     np.testing.assert_allclose(peak_period(rad), peak_period(hz), rtol=1e-12)
-    # the wave spectrum S(w) of physics.md section 5 is recovered around its peak: the energy
+    # the wave spectrum S(w) of docs/theory/environment.md is recovered around its peak: the energy
     # in the bins within 0.8 to 1.2 w_p against the target integrated over the same bins
     wp = 2 * np.pi / TP
     dw = float(rad["angular_frequency"][1] - rad["angular_frequency"][0])

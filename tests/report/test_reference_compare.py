@@ -16,7 +16,7 @@ from floatmoor.case.load import load_case
 from tests.conftest import CASES, LINDAHL_CASE
 from tests.report.test_report import TABLE_RTOL, assert_png_not_blank, cell, table_rows
 
-#: Published LC34 / LC43 files (cases.md D Tables 8 to 10).
+#: Published LC34 / LC43 files (docs/cases/deepcwind.md, quasi-dynamic paper Tables 8 to 10).
 PUBLISHED = {"lc34": CASES / "deepcwind" / "published_lc34.toml",
              "lc43": CASES / "deepcwind" / "published_lc43.toml"}
 

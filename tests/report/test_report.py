@@ -192,7 +192,7 @@ def test_a_nan_series_fails_the_report_and_writes_nothing(runs_dir, tmp_path, ca
 
 
 def test_volume_equivalent_diameter_is_flagged() -> None:
-    # cases.md D: 125.6 kg/m; volume-equivalent 0.1393 m, nominal 0.0779 m
+    # docs/cases/deepcwind.md: 125.6 kg/m; volume-equivalent 0.1393 m, nominal 0.0779 m
     assert LineChain("line1", "chain", 0.1393, 125.6).looks_volume_equivalent
     assert not LineChain("line1", "chain", 0.0779, 125.6).looks_volume_equivalent
     # Lindahl's chain: 0.0818 kg/m at its nominal 2.2 mm

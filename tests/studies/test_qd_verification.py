@@ -1,4 +1,4 @@
-"""The quasi-dynamic verification study (cases.md case B; quasi-dynamic paper section 4).
+"""The quasi-dynamic verification study (docs/cases/qd_verification.md; quasi-dynamic paper section 4).
 
 The error measures of eqs. (6) to (9) on synthetic signals with known values, the study's
 ``--quick`` subset through the command line, and (slow) the full 180-run study against the

@@ -22,7 +22,7 @@ def test_lindahl_case_values():
     assert line.dynamic.elements == 10 and line.dynamic.order == 5
     assert line.anchor == (0.0, 0.0, -3.0) and line.fairlead == (32.554, 0.0, 0.3)
     assert line.line_type.tangential_added_mass_coefficient == 0.0  # default
-    # wave celerity sqrt(EA/m) about 350 m/s (cases.md case A)
+    # wave celerity sqrt(EA/m) about 350 m/s (docs/cases/lindahl.md)
     assert line.line_type.axial_wave_speed == pytest.approx(349.64, abs=0.01)
     # submerged weight m g (1 - rho_w/rho_c)
     assert line.line_type.weight_in_water(case.environment) == pytest.approx(

@@ -3,7 +3,7 @@
 ``tests/data/dg_system/lindahl_baseline.npz`` was written by :func:`run` with the kernels as
 they were before the start end could move (commit efa0522, the head of main when issue 15
 began): regenerate it only from such a commit (``python -m tests.unit.test_dg_system_bits
-FILE``). The Lindahl chain (cases.md) runs 0.5 s of harmonic fairlead motion with the
+FILE``). The Lindahl chain (docs/cases/lindahl.md) runs 0.5 s of harmonic fairlead motion with the
 Kelvin-Voigt damping implicit and explicit.
 
 Bit-identity holds on the processor that wrote the baseline: numba compiles for the host CPU,

@@ -1,7 +1,7 @@
 """The numba DG cable kernels and the reference-element operators against the NumPy oracle.
 
 Two implementations of one method (style.md 4.7 and 5.4): :mod:`tests.oracles.dg_numpy` writes
-the semi-discretisation of physics.md sections 1-2 vectorised in NumPy, with reference-element
+the semi-discretisation of docs/theory/cable.md and docs/theory/dynamic_line.md vectorised in NumPy, with reference-element
 operators built from the barycentric Lagrange basis instead of the Legendre Vandermonde
 matrix. The states are random: taut and slack, in air and in water, above, on and below the
 seabed, moving faster and slower than the friction slip speed, with current, drag, added mass,
@@ -229,7 +229,7 @@ def make_properties(overrides: dict) -> CableProperties:
 
 
 def oracle_params(pr: CableProperties, K: int, contact: str) -> dict:
-    """The oracle's parameters from physics.md section 1, computed here (not by ``packed``)."""
+    """The oracle's parameters from docs/theory/cable.md, computed here (not by ``packed``)."""
     A_c = pr.mass_per_length / pr.material_density
     k_b = pr.seabed_stiffness * pr.diameter  # per length: contact width = diameter
     return dict(h=pr.length / K, m=pr.mass_per_length, EA=pr.axial_stiffness, d=pr.diameter,

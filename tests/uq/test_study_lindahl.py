@@ -91,7 +91,7 @@ def test_quick_case_f_makes_physical_sense(tmp_path, capsys):
     mean = float(ds["cycle_max_mean"])
     assert runs.min() - MEAN_RANGE_TOLERANCE * spread <= mean \
         <= runs.max() + MEAN_RANGE_TOLERANCE * spread
-    # the measured mean maximum is 70.3 N (cases.md A): the chain's snap loads stay near it
+    # the measured mean maximum is 70.3 N (docs/cases/lindahl.md): the chain's snap loads stay near it
     assert 60.0 < mean < 85.0
     assert summary["quantities"]["cycle_max"]["mean"] == pytest.approx(mean, rel=1e-12)
     for name in ("cycle_max", "cycle"):
@@ -170,7 +170,7 @@ def test_regression_drops_a_failed_run_and_records_it(tmp_path, capsys, monkeypa
 
 
 #: Published peaks against ours: the two DG codes' deterministic runs differ (ours: 72.7 N mean
-#: cycle maximum at r = 0.2 m, T = 1.25 s; the measurement 70.3 N, cases.md A), and the paper's
+#: cycle maximum at r = 0.2 m, T = 1.25 s; the measurement 70.3 N, docs/cases/lindahl.md), and the paper's
 #: figures are read to ~1 N of their 80 N scale: 5 %.
 PEAK_TOLERANCE = 0.05
 #: "Equal to, or only slightly lower than": the averaged peak of 20 sets of 3000 samples moves

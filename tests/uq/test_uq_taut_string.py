@@ -1,4 +1,4 @@
-"""Case E (cases.md; gpc paper section 4.1): the taut string with uncertain tension and mass.
+"""Case E (docs/cases/taut_string.md; gpc paper section 4.1): the taut string with uncertain tension and mass.
 
 y = A sin(pi x / L) cos(pi sqrt(T / m) t / L) at x = 1.5 m, t = 0.25 s, T ~ U(100, 116) N,
 m ~ U(1, 5) kg/m, Legendre basis, full quadrature. The exact mean and variance come from direct

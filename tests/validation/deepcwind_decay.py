@@ -1,4 +1,4 @@
-"""The DeepCwind surge free decay of the validation (cases.md D), shared by
+"""The DeepCwind surge free decay of the validation (docs/cases/deepcwind.md), shared by
 ``test_deepcwind_decay.py`` (the published period, the damping the memory lines add) and
 ``test_unchanged_dynamic.py`` (issue 17: the decays unchanged by the dynamic line's numerics).
 

@@ -1,4 +1,4 @@
-"""Runner and comparison plot of the Lindahl chain validation (cases.md case A).
+"""Runner and comparison plot of the Lindahl chain validation (docs/cases/lindahl.md).
 
 The upper end of the 33 m chain moves on a circle of radius r with period T. We run the case
 for a two-period ramp and then ``n_cycles`` full cycles, and compare with the measured data of
@@ -34,7 +34,7 @@ __all__ = ["PUBLISHED_MEAN_MAX_N", "MEASURED_PEAK_N", "measured_cycle_path", "ru
            "describe", "plot_lindahl_comparison"]
 
 #: Published measured mean maximum upper-end tension [N], by (radius [m], period [s])
-#: (chain-experiment paper Tables 7-8; cases.md case A). Measurement error about +/- 5 %.
+#: (chain-experiment paper Tables 7-8; docs/cases/lindahl.md). Measurement error about +/- 5 %.
 PUBLISHED_MEAN_MAX_N: dict[tuple[float, float], float] = {(0.20, 1.25): 70.3, (0.20, 3.5): 50.1}
 
 #: Peak of the phase-averaged measured cycle [N] (data/README.md), by (radius, period).

@@ -1,4 +1,4 @@
-"""DeepCwind semisubmersible surge free decay from 16.58 m (cases.md D; quasi-dynamic paper
+"""DeepCwind semisubmersible surge free decay from 16.58 m (docs/cases/deepcwind.md; quasi-dynamic paper
 section 5), with the members' Morison drag: the period with quasi-static lines against the
 published 107.5 s, and the surge damping the dynamic and quasi-dynamic lines add (the paper's
 finding). Slow: the dynamic lines take about 5 minutes on the development machine."""
@@ -12,7 +12,7 @@ from tests.validation.deepcwind_decay import surge_decay
 
 pytestmark = pytest.mark.slow
 
-#: Published surge natural period of the OC4 DeepCwind (cases.md D notes) and the issue's 5 %.
+#: Published surge natural period of the OC4 DeepCwind (docs/cases/deepcwind.md, notes) and the issue's 5 %.
 PUBLISHED_SURGE_PERIOD = 107.5
 PERIOD_RTOL = 0.05
 #: Memory lines must damp more: the first return peak below this fraction of the quasi-static

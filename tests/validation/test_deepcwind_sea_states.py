@@ -1,4 +1,4 @@
-"""DeepCwind LC34 and LC43 (cases.md D): 3-hour sea states with each line model, compared as the
+"""DeepCwind LC34 and LC43 (docs/cases/deepcwind.md): 3-hour sea states with each line model, compared as the
 quasi-dynamic paper's section 5 does (issues 6 and 7).
 
 Each load case runs once per line model through ``floatmoor compare`` (a campaign over the
@@ -32,7 +32,7 @@ pytestmark = pytest.mark.slow
 MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 DEEPCWIND = CASES / "deepcwind"
 #: Issue 6: LC34 standard deviation of the most loaded line against the published dynamic
-#: model (cases.md D Table 8: 392.0 kN).
+#: model (docs/cases/deepcwind.md, quasi-dynamic paper Table 8: 392.0 kN).
 STD_RTOL = 0.25
 #: Issue 7, "well below": the quasi-static standard deviation of line 2 at most half of the
 #: others' (published: 119.6 against 364.3 and 392.0 kN, 0.31 and 0.33).

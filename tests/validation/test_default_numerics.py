@@ -1,7 +1,7 @@
 """Issue 17: the DG numerics chosen from the default accuracy (1 %) reproduce the shipped cases'
 reference numerics within the accuracy asked.
 
-Lindahl (cases.md A), all 30 runs (r x T) as the validation runs them
+Lindahl (docs/cases/lindahl.md), all 30 runs (r x T) as the validation runs them
 (``unchanged_dynamic.lindahl_figures``: two ramp periods, six cycles), at the accuracy default
 (12 elements of order 3, ``"auto"`` integration: the file's reference numerics set to "auto")
 and held with MooDy's 10 x p5 (the file's, stored in ``issue17_unchanged.json``) against a

@@ -1,4 +1,4 @@
-"""Validation against the Lindahl (1985) chain experiment, r = 0.20 m (cases.md case A).
+"""Validation against the Lindahl (1985) chain experiment, r = 0.20 m (docs/cases/lindahl.md).
 
 The upper end of a 33 m chain moves on a circle of radius 0.2 m with period 1.25 s (the chain
 goes slack and snaps) and 3.5 s (smooth response). With the dynamic line model we check
@@ -47,7 +47,7 @@ PERIODS = (1.25, 3.5)
 
 #: Relative tolerance on the mean per-cycle maximum against the published measured mean
 #: maximum: the +-5 % measurement error of the maxima the chain-experiment paper gives
-#: (cases.md case A), as issue 13 decided.
+#: (docs/cases/lindahl.md), as issue 13 decided.
 MEAN_MAX_RTOL = 0.05
 #: Largest RMS difference between the aligned simulated mean cycle and the measured mean
 #: cycle, relative to the measured cycle's peak (71.02 N at T = 1.25 s, 51.41 N at 3.5 s): 8 %.

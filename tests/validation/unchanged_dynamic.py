@@ -8,7 +8,7 @@ tests/data/references holds them from the code before the change, and
 ``test_unchanged_dynamic.py`` recomputes and compares them.
 
 - **Lindahl** (tests/validation/lindahl.py, test_lindahl.py, test_lindahl_robustness.py): the
-  30 experiment runs, radii 0.075-0.2 m x periods 1.25-3.5 s (cases.md case A), each as the
+  30 experiment runs, radii 0.075-0.2 m x periods 1.25-3.5 s (docs/cases/lindahl.md), each as the
   validation runs it (:func:`run_lindahl`: two ramp periods, six cycles): the mean of the
   per-cycle maxima of the fairlead tension, the maxima, and the mean cycle (phase time 0 at the
   end of the ramp) at :data:`WAVEFORM_POINTS` phase points; for the two runs with a measured
@@ -61,7 +61,7 @@ from tests.validation.lindahl import DEFAULT_CYCLES, RAMP_PERIODS, run_lindahl
 
 #: The stored figures of the code before issue 17.
 BASELINE = REPO / "tests" / "data" / "references" / "issue17_unchanged.json"
-#: The 30 Lindahl experiment runs (cases.md case A): radii [m] x periods [s].
+#: The 30 Lindahl experiment runs (docs/cases/lindahl.md): radii [m] x periods [s].
 LINDAHL_RADII = (0.075, 0.100, 0.125, 0.150, 0.200)
 LINDAHL_PERIODS = (1.25, 1.5, 2.0, 2.5, 3.0, 3.5)
 #: Phase points of the stored Lindahl mean cycles (500 samples per cycle at T = 1.25 s: every

@@ -4,7 +4,7 @@ mean-tension comparison; README, DeepCwind sea states).
 
 The quasi-dynamic paper runs LC34 without second-order wave forces and says that "the mean
 tension of the three lines will only differ due to the initial offset of the platform"
-(section 5); that offset is not given. On the mooring of cases.md D (our case file), the
+(section 5); that offset is not given. On the mooring of docs/cases/deepcwind.md (our case file), the
 static tensions at a shifted fairlead triangle show:
 
 * a surge of -2.27 m with the fairleads 1.84 m lower gives the published quasi-static means
@@ -12,7 +12,7 @@ static tensions at a shifted fairlead triangle show:
 * a surge-only offset of -1.5 to -2.0 m puts both of our lines within 5 % of the published
   dynamic means (1030 / 1202 kN), so the gap is the offset, not the line models;
 * no surge offset gives the published three-line sum (3261 kN): the published static set-up
-  differs from the cases.md values, not only by an offset.
+  differs from the values of docs/cases/deepcwind.md, not only by an offset.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from floatmoor.mooring.quasistatic import QuasiStaticLine
 from tests.conftest import CASES
 
 LC34 = CASES / "deepcwind" / "deepcwind_lc34.toml"
-#: cases.md D Table 8 [N]: quasi-static and dynamic model means of lines 1 and 2.
+#: docs/cases/deepcwind.md, quasi-dynamic paper Table 8 [N]: quasi-static and dynamic model means of lines 1 and 2.
 PUBLISHED_QS = np.array([1034e3, 1193e3])
 PUBLISHED_DYNAMIC = np.array([1030e3, 1202e3])
 #: The offset (surge, heave of the fairleads) [m] quoted in the README, to the quoted digits.

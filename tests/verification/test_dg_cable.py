@@ -3,7 +3,7 @@
 References, per test: d'Alembert travel time and impedance of longitudinal waves; the exact
 axial standing wave of a taut line driven at its fairlead (the cable equation is exactly linear
 for axial motion of a straight taut line, so this solution is exact for the nonlinear model);
-h-, p- and time convergence (Hesthaven & Warburton 2008; MooDy, physics.md section 2);
+h-, p- and time convergence (Hesthaven & Warburton 2008; MooDy, docs/theory/dynamic_line.md);
 energy conservation up to the Lax-Friedrichs dissipation; the elastic catenary
 (:func:`floatmoor.solve_catenary`) for statics; the taut-string and bar frequencies with
 Morison added mass; sinking with added mass and the terminal settling velocity.
@@ -647,7 +647,7 @@ def test_sinking_with_added_mass() -> None:
 def test_terminal_settling_velocity() -> None:
     """With normal drag C_dn = 1.2 the middle of the slack line settles at
     v_t = sqrt(2 w / (rho_w C_dn d sqrt(1 + eps))), the Morison drag per unstretched length
-    with the sqrt(1 + eps) of physics.md (here 1 + eps = 0.9, the compressed layout). After
+    with the sqrt(1 + eps) of docs/theory/cable.md (here 1 + eps = 0.9, the compressed layout). After
     3 s (v(t) = v_t tanh(a t / v_t) is then within 1e-4 of v_t)."""
     line, props, ratio = slack_sinking_line(drag=1.2, depth=-50.0)
     vt = math.sqrt(2 * props.submerged_weight / (props.water_density * 1.2 * props.diameter

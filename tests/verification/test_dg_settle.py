@@ -1,7 +1,7 @@
 """The dynamic line's initial relaxation (DynamicLine.settle, from_case's default).
 
 The interpolated catenary is not exactly the equilibrium of the DG discretisation; on a stiff,
-light chain without damping or friction (cases.md case B, C31: c = 2044 m/s, 1.95 N static
+light chain without damping or friction (docs/cases/qd_verification.md, C31: c = 2044 m/s, 1.95 N static
 fairlead tension) the mismatch rings on undamped. Settled, the line must stay at rest.
 """
 

@@ -1,8 +1,8 @@
-"""Verification of the quasi-dynamic line model (quasi-dynamic paper section 3; physics.md 4).
+"""Verification of the quasi-dynamic line model (quasi-dynamic paper section 3; docs/theory/quasi_dynamic.md).
 
 Limits the model must reach by construction (the quasi-static line at rest and for slow motion,
 slack when the vertical resultant reverses), convergence in the number of Simpson stations,
-a forced run through the command line, and the paper's verification study (cases.md case B):
+a forced run through the command line, and the paper's verification study (docs/cases/qd_verification.md):
 on the C22 / A3 / alpha = 0.3 configuration the quasi-dynamic tension is closer to the dynamic
 model's than the quasi-static one, with the error measures of the paper's eqs. (6) to (9).
 """
@@ -47,7 +47,7 @@ PERIOD_DECADE_RATIO = 80.0
 CONVERGENCE_RATIO = 1.8
 CONVERGENCE_REFERENCE_N = 641
 #: Case B, C22 A3 alpha 0.3: the paper found RMSE_QD < 10 % in 48 % of its 180 runs and
-#: RMSE_S < 10 % in only 2 %, growing with amplitude and alpha (cases.md case B). Here
+#: RMSE_S < 10 % in only 2 %, growing with amplitude and alpha (docs/cases/qd_verification.md). Here
 #: observed RMSE_QD 6.4 %, RMSE_S 24.5 % (dynamic model 10 elements of order 5; 6.6 % with the
 #: former, unconverged 6): QD must be below 10 % and below half of QS's.
 RMSE_QD_MAX = 0.10

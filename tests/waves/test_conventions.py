@@ -92,14 +92,14 @@ def test_froude_krylov_force_phase_from_capytaine(body):
     assert np.corrcoef(f[::20, 0], acc)[0, 1] > 0.999
 
 
-def test_physics_md_form_is_the_conjugate_convention():
-    """physics.md 5: Re{X_W a e^{i(omega t + phi)}} with X_W = conj(X) (WAMIT) is our
+def test_wamit_form_is_the_conjugate_convention():
+    """The WAMIT-style form (docs/conventions.md): Re{X_W a e^{i(omega t + phi)}} with X_W = conj(X) (WAMIT) is our
     Re{X a e^{-i phi} e^{-i omega t}}: the same signal with the phase sign flipped."""
     x = np.array([[3.0 - 4.0j]])
     omega, a, phi = 0.8, 1.2, 0.5
     t = np.linspace(0, 30, 301)
-    physics_md = (np.conj(x[0, 0]) * a * np.exp(1j * (omega * t + phi))).real
+    wamit_form = (np.conj(x[0, 0]) * a * np.exp(1j * (omega * t + phi))).real
     ours = WaveExcitation(WaveField.from_components([omega], [a], [-phi], gravity=G), x)
-    np.testing.assert_allclose(ours.series(t)[:, 0], physics_md, atol=1e-12)
-    # using capytaine's X directly in physics.md's formula is a different (wrong) signal
-    assert np.abs((x[0, 0] * a * np.exp(1j * (omega * t + phi))).real - physics_md).max() > 1
+    np.testing.assert_allclose(ours.series(t)[:, 0], wamit_form, atol=1e-12)
+    # using capytaine's X directly in that formula is a different (wrong) signal
+    assert np.abs((x[0, 0] * a * np.exp(1j * (omega * t + phi))).real - wamit_form).max() > 1

@@ -1,4 +1,4 @@
-"""Numba kernels of the discontinuous Galerkin (DG) cable (physics.md sections 1 and 2).
+"""Numba kernels of the discontinuous Galerkin (DG) cable (docs/theory/cable.md and docs/theory/dynamic_line.md).
 
 Semi-discretisation (nodal DG on LGL nodes, strong form, Hesthaven & Warburton 2008):
 
@@ -7,7 +7,7 @@ Semi-discretisation (nodal DG on LGL nodes, strong form, Hesthaven & Warburton 2
   the prescribed anchor / fairlead positions at the ends (the local-DG auxiliary variable of
   MooDy, with alternating fluxes: central traces lose an order at odd p);
 * axial force N = T(eps) q / |q|, eps = |q| - 1, T = EA eps (+ c_int d(eps)/dt) for eps > 0 and
-  0 in compression (bilinear, physics.md section 1);
+  0 in compression (bilinear, docs/theory/cable.md);
 * momentum flux: N from the fairlead side (alternating with r*, which makes the interface terms
   conserve energy, Chou, Shu & Xing 2014) plus the local Lax-Friedrichs penalty:
   N* = N+ + (Z / 2) (v+ - v-), with the axial impedance
@@ -294,7 +294,7 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv):
                 fy += scale * (cdt * abs(vt) * vt * ty + cdn * vn * vny)
                 fz += scale * (cdt * abs(vt) * vt * tz + cdn * vn * vnz)
             if z < zb:
-                # Coulomb friction, ramped in up to the slip speed (physics.md section 1)
+                # Coulomb friction, ramped in up to the slip speed (docs/theory/cable.md)
                 vx, vy = v[k, i, 0], v[k, i, 1]
                 speed = math.sqrt(vx * vx + vy * vy)
                 if speed > 0.0:

@@ -1,4 +1,4 @@
-"""Numba kernels of a DG mooring system: sections joined at points (physics.md sections 1-2).
+"""Numba kernels of a DG mooring system: sections joined at points (docs/theory/cable.md and docs/theory/dynamic_line.md).
 
 Every section is a DG cable (``_kernels``) with its own elements, order and parameters, its
 start and end driven by the points it joins. Points are fixed, free (a 3-DOF mass) or body
@@ -30,7 +30,7 @@ a normal spring-damper of stiffness k_p = K_b A_p (K_b the case's seabed stiffne
 contact area, A_p = pi (3 V / 4 pi)^(2/3) the projected area of the sphere of volume V) and
 damping 2 xi sqrt(M_eff k_p), taken like the nodes' contact as a backward-Euler step after each
 SSP-RK3 step (unconditionally stable), and a Coulomb friction mu (M - rho_w V) g ramped in up
-to the slip speed as the nodes' (physics.md section 1), linearised about u in the substep like
+to the slip speed as the nodes' (docs/theory/cable.md), linearised about u in the substep like
 the drag. A point without volume has no contact of its own: its sections' end nodes carry it,
 which is all a point has in MoorDyn-C 2.x (its ``Point::doRHS`` has no seabed term; the line
 end nodes' contact reaches the point through ``getEndStuff``).

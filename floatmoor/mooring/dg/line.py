@@ -1,4 +1,4 @@
-"""The dynamic line model: a discontinuous Galerkin cable (physics.md sections 1 and 2).
+"""The dynamic line model: a discontinuous Galerkin cable (docs/theory/cable.md and docs/theory/dynamic_line.md).
 
 :class:`DynamicLine` owns the DG state of one line (node positions and velocities), starts it
 from the quasi-static catenary, and advances it with the fairlead driven by a prescribed
@@ -212,7 +212,7 @@ class DynamicLine(PathStepper):
         discretisation (the touchdown kink and the stretch of a stiff line are represented to
         the discretisation error). Left alone, the mismatch rings on as longitudinal and
         transverse waves that nothing damps in an undamped line: on the stiff chains of
-        cases.md case B (c ~ 2000 m/s), fairlead-tension ripple from 0.03 to 13.5 N about a
+        docs/cases/qd_verification.md (c ~ 2000 m/s), fairlead-tension ripple from 0.03 to 13.5 N about a
         static 1.95 N. Like MoorDyn's initialisation (dynamic relaxation), the line is first
         run with its fairlead still and a linear damping dv/dt -= ``rate`` v on every node
         (kernel parameter ``P_RELAX``; it leaves the stability limit unchanged), in chunks of
