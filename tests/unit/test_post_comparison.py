@@ -41,7 +41,7 @@ def test_read_measured_cycle_real_files(name, period, peak, peak_time):
     assert np.all(std >= 0.0)
     i = int(np.argmax(mean))
     assert mean[i] == pytest.approx(peak, abs=0.005)
-    assert t[i] == pytest.approx(peak_time, abs=0.5e-3 + 0.5 * t[1])  # README rounds to 1 ms
+    assert t[i] == pytest.approx(peak_time, abs=0.5e-3 + 0.5 * t[1])  # the validation page rounds to 1 ms
 
 
 def test_read_measured_cycle_rejects_a_wrong_header(tmp_path):

@@ -181,7 +181,7 @@ CDN_SHARE_3_5 = 0.8
 #: "Varying C_dt causes no noticeable changes" (T = 3.5 s): its spread against C_dn's.
 NO_CHANGE = 0.1
 #: The published 3.5 s peaks with C_dn varied that this model does not reach (explained in
-#: the README's case F section): (period, scenario) -> our figure when last run.
+#: docs/validation/uq.md, case F): (period, scenario) -> our figure when last run.
 NOT_REPRODUCED = {("3.50", "all"): "56.1 N", ("3.50", "cdn"): "56.1 N"}
 
 
@@ -213,7 +213,7 @@ def test_case_f_peak_tensions(case_f, scenario, request):
             f"published {published:g} N, ours {NOT_REPRODUCED[period, scenario]}: our tension "
             "rises by ~4 N per unit of C_dn at 3.5 s (46.2 to 55.9 N over the design), so "
             "69 N would need C_dn ~ 7, outside U(1.25, 3.75); the measured mean maximum is "
-            "50.1 N (README, case F)")))
+            "50.1 N (docs/validation/uq.md, case F)")))
     assert fig[scenario]["peak"] == pytest.approx(published, rel=PEAK_TOLERANCE)
 
 

@@ -1,6 +1,6 @@
 """What the published DeepCwind LC34 mean tensions imply about the platform's mean position
 (why the published means are not a check of the line models: issue 13 retired the LC34
-mean-tension comparison; README, DeepCwind sea states).
+mean-tension comparison; docs/validation/coupled.md, DeepCwind sea states).
 
 The quasi-dynamic paper runs LC34 without second-order wave forces and says that "the mean
 tension of the three lines will only differ due to the initial offset of the platform"
@@ -29,7 +29,7 @@ LC34 = CASES / "deepcwind" / "deepcwind_lc34.toml"
 #: docs/cases/deepcwind.md, quasi-dynamic paper Table 8 [N]: quasi-static and dynamic model means of lines 1 and 2.
 PUBLISHED_QS = np.array([1034e3, 1193e3])
 PUBLISHED_DYNAMIC = np.array([1030e3, 1202e3])
-#: The offset (surge, heave of the fairleads) [m] quoted in the README, to the quoted digits.
+#: The offset (surge, heave of the fairleads) [m] quoted in docs/validation/coupled.md, to the quoted digits.
 RECONSTRUCTED = np.array([-2.27, -1.84])
 OFFSET_ATOL = 0.005
 #: Issue 6's tolerance on the LC34 means.

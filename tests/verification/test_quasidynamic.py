@@ -53,7 +53,7 @@ CONVERGENCE_REFERENCE_N = 641
 RMSE_QD_MAX = 0.10
 RMSE_RATIO_MAX = 0.5
 #: Published means of the per-cycle maxima on the Lindahl case (r = 0.2 m, T = 1.25 s):
-#: measured and floatmoor's dynamic model (README), for the printout.
+#: measured and floatmoor's dynamic model (docs/validation/quasi_dynamic.md), for the printout.
 LINDAHL_MEASURED_N = 70.3
 LINDAHL_DYNAMIC_N = 73.2
 
