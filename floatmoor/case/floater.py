@@ -104,6 +104,8 @@ def _drag(t: TableReader):
     """``[floater.drag]``: Morison drag on the members (floatmoor.body.morison.DragSettings:
     ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
     ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
+    from dataclasses import fields
+
     from floatmoor.body.morison import DragSettings
 
     try:
@@ -111,8 +113,9 @@ def _drag(t: TableReader):
     except (ValueError, TypeError) as err:
         raise t.error(next(iter(t.data), "preset"), f"valid drag settings ({err})",
                       t.data) from None
-    for key in t.data:  # all read by DragSettings.from_settings
-        t._read.add(key)
+    own = {"preset", *(f.name for f in fields(DragSettings))} - {"coefficients"}
+    for key in list(t.data):  # all read by DragSettings.from_settings
+        t.claim(key, "drag setting", name=None if key in own else "<coefficient>")
     t.finish()
     return settings
 
@@ -170,8 +173,8 @@ def _mesh_geometry(t: TableReader, environment: Environment, base_dir: Path) -> 
     position = t.vector("position", size=3, unit="m", default=(0.0, 0.0, 0.0))
     symmetry: tuple[str, ...] = ()
     if t.has("symmetry"):
-        raw = t.data["symmetry"]
-        t._read.add("symmetry")
+        raw = t.claim("symmetry", "array of strings", choices=tuple(MESH_SYMMETRY_PLANES),
+                      default=[])
         if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
                 not all(isinstance(p, str) and p in MESH_SYMMETRY_PLANES for p in raw):
             raise t.error("symmetry", "an array of distinct symmetry planes among "
@@ -247,8 +250,8 @@ def read_hydro(t: TableReader) -> HydroSettings:
         return _imported_hydro(t, database)
     omegas: list[float] = []
     if t.has("frequency_ranges"):
-        ranges = t.data["frequency_ranges"]
-        t._read.add("frequency_ranges")
+        ranges = t.claim("frequency_ranges", "array of [first, last, count]", unit="rad/s",
+                         default=None)
         expected = "an array of [first, last, count] triples with 0 < first < last [rad/s] " \
                    "and count >= 2"
         if not isinstance(ranges, list) or not ranges:
@@ -320,8 +323,8 @@ def _accepted_checks(t: TableReader) -> tuple[str, ...]:
     """``accept_failed_checks``: distinct names of database checks (default none)."""
     if not t.has("accept_failed_checks"):
         return ()
-    raw = t.data["accept_failed_checks"]
-    t._read.add("accept_failed_checks")
+    raw = t.claim("accept_failed_checks", "array of strings", choices=tuple(HYDRO_CHECKS),
+                  default=[])
     if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
             not all(isinstance(name, str) and name in HYDRO_CHECKS for name in raw):
         raise t.error("accept_failed_checks", "an array of distinct database check names "
