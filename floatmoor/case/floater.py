@@ -47,7 +47,7 @@ import numpy as np
 
 from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
-from floatmoor.case.reader import TableReader, _Found
+from floatmoor.case.reader import MISSING, TableReader, _Found
 from floatmoor.case.schema import (
     GEOMETRY_KINDS, HYDRO_CHECKS, HYDRO_SOURCES, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
     RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
@@ -104,18 +104,29 @@ def _drag(t: TableReader):
     """``[floater.drag]``: Morison drag on the members (floatmoor.body.morison.DragSettings:
     ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
     ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
-    from dataclasses import fields
-
-    from floatmoor.body.morison import DragSettings
+    from floatmoor.body.morison import (
+        DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, PRESETS, DragSettings,
+    )
 
     try:
         settings = DragSettings.from_settings(t.data)
     except (ValueError, TypeError) as err:
         raise t.error(next(iter(t.data), "preset"), f"valid drag settings ({err})",
                       t.data) from None
-    own = {"preset", *(f.name for f in fields(DragSettings))} - {"coefficients"}
-    for key in list(t.data):  # all read by DragSettings.from_settings
-        t.claim(key, "drag setting", name=None if key in own else "<coefficient>")
+    if t.context.recorder is not None:  # what DragSettings.from_settings reads, for the record
+        own = {"preset": ("string", "", "", tuple(PRESETS), "none"),
+               "strip_length": ("number", "m", "> 0", (), DEFAULT_STRIP_LENGTH),
+               "min_strips": ("integer", "", ">= 1", (), MIN_STRIPS),
+               "heave_plate_area": ("string", "", "", HEAVE_PLATE_AREAS, "disc"),
+               "kinematics_interval": ("number", "s", ">= 0", ("auto",), "auto")}
+        for key in t.data:
+            kind, unit, bounds, choices, default = own.get(key, ("number", "-", ">= 0", (),
+                                                                MISSING))
+            t.claim(key, kind, unit=unit, bounds=bounds, choices=choices, default=default,
+                    name=None if key in own else "<coefficient>")
+    else:
+        for key in t.data:  # all read by DragSettings.from_settings
+            t.claim(key, "drag setting")
     t.finish()
     return settings
 

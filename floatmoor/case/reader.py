@@ -202,13 +202,15 @@ class TableReader:
             self.context.source, generic_path(self.generic, name or key), kind, unit, bounds,
             tuple(choices or ()), default, size, format_path(self.path)))
 
-    def claim(self, key: str, kind: str, *, unit: str = "", choices: tuple[str, ...] = (),
-              default: Any = MISSING, name: str | None = None) -> Any:
+    def claim(self, key: str, kind: str, *, unit: str = "", bounds: str = "",
+              choices: tuple[str, ...] = (), default: Any = MISSING,
+              name: str | None = None) -> Any:
         """Mark ``key`` read and return its raw value (``default`` when absent), for a key
         the caller checks itself (an array of triples, of names, ...); ``kind`` and
         ``name`` (its generic name, e.g. ``<coefficient>``) are for the record."""
         if self.context.recorder is not None:
-            self._record(key, kind, unit=unit, choices=choices, default=default, name=name)
+            self._record(key, kind, unit=unit, bounds=bounds, choices=choices, default=default,
+                         name=name)
         self._read.add(key)
         return self.data.get(key, default)
 
