@@ -93,7 +93,8 @@ _CASE = {
     "title": "Title of the run, written into its output. It may name values with "
              "placeholders such as `T = {motion.period:.2f} s` (a key path and an optional "
              "format), filled from the final values, so a run with `--set` shows its own.",
-    "description": "Free text about the case, kept in the output's attributes.",
+    "description": "Free text about the case for its readers (the output keeps the whole "
+                   "case text in its attributes).",
     # environment
     "environment": "Water and gravity: still water at z = 0, a flat seabed at "
                    "z = -water_depth (theory/environment.md).",
@@ -101,8 +102,8 @@ _CASE = {
                                  "hydrodynamic database.",
     "environment.water_depth": "Depth of the flat seabed below the still water line.",
     "environment.gravity": "Acceleration of gravity.",
-    "environment.current_velocity": "Steady, uniform current [x, y, z] acting in the drag "
-                                    "of the lines.",
+    "environment.current_velocity": "Steady, uniform current [x, y, z], in the drag of the "
+                                    "lines and of a floater's Morison members.",
     # seabed
     "seabed": "Seabed contact of the lines: a normal spring-damper and smoothed Coulomb "
               "friction (theory/dynamic_line.md).",
@@ -318,8 +319,8 @@ _CASE = {
     "hydro.directions_deg": "Wave directions of the excitation, distinct and increasing.",
     "hydro.panel_size": "Target panel edge of a parametric hull, or of a mesh hull's lid; "
                         "not needed for a mesh hull without a lid.",
-    "hydro.lid": "Put a lid on the water plane inside the hull, against irregular "
-                 "frequencies.",
+    "hydro.lid": "Close the hull's water plane with a lid of panels just below the water line, "
+                 "against the BEM's irregular frequencies.",
     "hydro.lid_depth": "Depth of the lid below the water line; default where wavenumber "
                        "times depth is 0.15 at the highest frequency.",
     "hydro.infinite_depth": "Solve the BEM in infinite depth instead of "
@@ -361,11 +362,12 @@ _CASE = {
     # wind
     "wind": "Rotor thrust of the NREL 5 MW turbine in a steady or turbulent wind "
             "(theory/environment.md).",
-    "wind.mean_speed": "Mean wind speed at `reference_height`.",
-    "wind.reference_height": "Height of `mean_speed`.",
-    "wind.spectrum": "`npd` (turbulent, NPD/API spectrum) or `steady`.",
+    "wind.mean_speed": "One-hour mean wind speed at `reference_height`.",
+    "wind.reference_height": "Height of `mean_speed` above the still water line.",
+    "wind.spectrum": "`npd` (turbulent, the NPD spectrum of DNV-RP-C205) or `steady` "
+                     "(constant wind).",
     "wind.seed": "Seed of the turbulent wind's random phases.",
-    "wind.direction_deg": "Direction the wind blows towards, from the x axis.",
+    "wind.direction_deg": "Direction the wind blows towards, from +x towards +y.",
     "wind.relative_velocity": "Thrust on the wind relative to the moving rotor "
                               "(quasi-steady; gives the negative aerodynamic damping above "
                               "rated speed).",
