@@ -285,7 +285,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
     if not omegas:
         raise t.error("frequency_ranges", "frequency_ranges or frequencies (at least 2 "
                       "frequencies) [rad/s]", t.data.get("frequency_ranges", None)
-                      if t.has("frequency_ranges") else _missing())
+                      if t.has("frequency_ranges") else MISSING)
     values = np.unique(np.round(np.asarray(omegas, float), 12))
     if len(values) < 2 or len(values) > MAX_FREQUENCIES:
         raise t.error("frequency_ranges", f"between 2 and {MAX_FREQUENCIES} distinct "
@@ -343,12 +343,6 @@ def _accepted_checks(t: TableReader) -> tuple[str, ...]:
     return tuple(raw)
 
 
-def _missing():
-    from floatmoor.case.reader import MISSING
-
-    return MISSING
-
-
 def check_panel_size(floater: Floater, hydro: HydroSettings, error) -> None:
     """``[hydro] panel_size`` is required to mesh a parametric hull and, for a mesh file, to
     panel its lid; a mesh hull without a lid needs none. ``error(key, expected, found)``
@@ -361,5 +355,5 @@ def check_panel_size(floater: Floater, hydro: HydroSettings, error) -> None:
         else "the hull's target panel edge"
     from floatmoor.case.reader import describe_value
 
-    error("panel_size", f"a panel size [m] ({what})", describe_value(_missing()))
+    error("panel_size", f"a panel size [m] ({what})", describe_value(MISSING))
 

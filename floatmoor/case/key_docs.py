@@ -383,7 +383,7 @@ _CASE_DEFAULTS = {
     "lines[].dynamic.max_time_step": "none (implicit: 0.5 s)",
     "lines[].quasi_dynamic.max_time_step": "one step per output sample",
     "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
-    "motion.phase_deg": "0",
+    "motion.phase_deg": "default 0 (every axis)",
     "waves.ramp_duration": "two (peak) periods",
     "floater.drag.<coefficient>": "the preset's",
     "floater.geometry.draft": "from the mass",
@@ -443,7 +443,8 @@ _STUDY = {
     "base_overrides": "`--set` texts (`path.to.key=VALUE`) applied to every run of the case.",
     "surrogate_samples": "Samples of the surrogate from which the output statistics and "
                          "densities are estimated.",
-    "inputs": "The uncertain inputs, one table each.",
+    "inputs": "The uncertain inputs, one table each; a distribution's parameters are in the "
+              "unit of its key.",
     "inputs[].key": "What is uncertain: a `--set` key path of the case (e.g. "
                     "`line_types.chain.normal_drag_coefficient`), or a parameter of the "
                     "built-in model.",

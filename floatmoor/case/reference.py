@@ -138,11 +138,14 @@ def _value_text(value: Any) -> str:
 
 
 def _type_text(entry: KeyEntry) -> str:
-    kinds = [_KIND_TEXT.get(kind, kind) for kind in entry.kinds]
-    if "vector" in entry.kinds and entry.sizes:
-        sizes = " or ".join(str(s) for s in entry.sizes)
-        kinds = [k.replace("array of numbers", f"array of {sizes} numbers") for k in kinds]
-    return "; ".join(_unique(kinds))
+    kinds = list(entry.kinds)
+    if "number_or_vector" in kinds and "number" in kinds:  # one kind of motion takes one
+        kinds.remove("number")
+    texts = [_KIND_TEXT.get(kind, kind) for kind in kinds]
+    if entry.sizes:
+        sizes = " or ".join(str(s) for s in sorted(entry.sizes))
+        texts = [t.replace("array of numbers", f"array of {sizes} numbers") for t in texts]
+    return "; ".join(_unique(texts))
 
 
 def _need_text(entry: KeyEntry, default_text: str | None) -> str:
