@@ -52,7 +52,10 @@ type, unit, range and default they check: it is generated from the loaders thems
 cannot disagree with them. Loading is strict: an unknown key, a missing required key, a wrong
 type or a value out of range is an error that names the file, the key path, what was expected
 and what was found (`floatmoor check CASE.toml` runs these checks alone). Any key can be
-changed for one run with `--set path.to.key=VALUE`, VALUE a TOML value.
+changed for one run with `--set path.to.key=VALUE`, VALUE a TOML value; entries of an array of
+named tables are addressed by name or all at once by `*` (`--set lines.chain.length=34.0`,
+`--set 'lines.*.model="quasi-static"'`), those of an array without names by index
+(`floater.geometry.columns.0.diameter`).
 
 Units are SI; angles are in degrees in the keys whose name ends in `_deg` and nowhere else.
 Coordinates are global, z up, z = 0 at the still water line (see
