@@ -47,7 +47,7 @@ import numpy as np
 
 from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
-from floatmoor.case.reader import TableReader, _Found
+from floatmoor.case.reader import MISSING, TableReader, _Found
 from floatmoor.case.schema import (
     GEOMETRY_KINDS, HYDRO_CHECKS, HYDRO_SOURCES, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
     RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
@@ -104,15 +104,29 @@ def _drag(t: TableReader):
     """``[floater.drag]``: Morison drag on the members (floatmoor.body.morison.DragSettings:
     ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
     ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
-    from floatmoor.body.morison import DragSettings
+    from floatmoor.body.morison import (
+        DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, PRESETS, DragSettings,
+    )
 
     try:
         settings = DragSettings.from_settings(t.data)
     except (ValueError, TypeError) as err:
         raise t.error(next(iter(t.data), "preset"), f"valid drag settings ({err})",
                       t.data) from None
-    for key in t.data:  # all read by DragSettings.from_settings
-        t._read.add(key)
+    if t.context.recorder is not None:  # what DragSettings.from_settings reads, for the record
+        own = {"preset": ("string", "", "", tuple(PRESETS), "none"),
+               "strip_length": ("number", "m", "> 0", (), DEFAULT_STRIP_LENGTH),
+               "min_strips": ("integer", "", ">= 1", (), MIN_STRIPS),
+               "heave_plate_area": ("string", "", "", HEAVE_PLATE_AREAS, "disc"),
+               "kinematics_interval": ("number", "s", ">= 0", ("auto",), "auto")}
+        for key in t.data:
+            kind, unit, bounds, choices, default = own.get(key, ("number", "-", ">= 0", (),
+                                                                MISSING))
+            t.claim(key, kind, unit=unit, bounds=bounds, choices=choices, default=default,
+                    name=None if key in own else "<coefficient>")
+    else:
+        for key in t.data:  # all read by DragSettings.from_settings
+            t.claim(key, "drag setting")
     t.finish()
     return settings
 
@@ -170,8 +184,8 @@ def _mesh_geometry(t: TableReader, environment: Environment, base_dir: Path) -> 
     position = t.vector("position", size=3, unit="m", default=(0.0, 0.0, 0.0))
     symmetry: tuple[str, ...] = ()
     if t.has("symmetry"):
-        raw = t.data["symmetry"]
-        t._read.add("symmetry")
+        raw = t.claim("symmetry", "array of strings", choices=tuple(MESH_SYMMETRY_PLANES),
+                      default=[])
         if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
                 not all(isinstance(p, str) and p in MESH_SYMMETRY_PLANES for p in raw):
             raise t.error("symmetry", "an array of distinct symmetry planes among "
@@ -247,8 +261,8 @@ def read_hydro(t: TableReader) -> HydroSettings:
         return _imported_hydro(t, database)
     omegas: list[float] = []
     if t.has("frequency_ranges"):
-        ranges = t.data["frequency_ranges"]
-        t._read.add("frequency_ranges")
+        ranges = t.claim("frequency_ranges", "array of [first, last, count]", unit="rad/s",
+                         default=None)
         expected = "an array of [first, last, count] triples with 0 < first < last [rad/s] " \
                    "and count >= 2"
         if not isinstance(ranges, list) or not ranges:
@@ -271,7 +285,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
     if not omegas:
         raise t.error("frequency_ranges", "frequency_ranges or frequencies (at least 2 "
                       "frequencies) [rad/s]", t.data.get("frequency_ranges", None)
-                      if t.has("frequency_ranges") else _missing())
+                      if t.has("frequency_ranges") else MISSING)
     values = np.unique(np.round(np.asarray(omegas, float), 12))
     if len(values) < 2 or len(values) > MAX_FREQUENCIES:
         raise t.error("frequency_ranges", f"between 2 and {MAX_FREQUENCIES} distinct "
@@ -320,19 +334,13 @@ def _accepted_checks(t: TableReader) -> tuple[str, ...]:
     """``accept_failed_checks``: distinct names of database checks (default none)."""
     if not t.has("accept_failed_checks"):
         return ()
-    raw = t.data["accept_failed_checks"]
-    t._read.add("accept_failed_checks")
+    raw = t.claim("accept_failed_checks", "array of strings", choices=tuple(HYDRO_CHECKS),
+                  default=[])
     if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
             not all(isinstance(name, str) and name in HYDRO_CHECKS for name in raw):
         raise t.error("accept_failed_checks", "an array of distinct database check names "
                       "among " + ", ".join(f'"{name}"' for name in HYDRO_CHECKS), raw)
     return tuple(raw)
-
-
-def _missing():
-    from floatmoor.case.reader import MISSING
-
-    return MISSING
 
 
 def check_panel_size(floater: Floater, hydro: HydroSettings, error) -> None:
@@ -347,5 +355,5 @@ def check_panel_size(floater: Floater, hydro: HydroSettings, error) -> None:
         else "the hull's target panel edge"
     from floatmoor.case.reader import describe_value
 
-    error("panel_size", f"a panel size [m] ({what})", describe_value(_missing()))
+    error("panel_size", f"a panel size [m] ({what})", describe_value(MISSING))
 

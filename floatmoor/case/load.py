@@ -436,8 +436,7 @@ def _campaign(t: TableReader) -> dict[str, dict[str, list[Any]]]:
     for kind in ("grid", "zip"):
         table = t.table(kind, required=False)
         for key in list(table.data):
-            table._read.add(key)
-            values = table.data[key]
+            values = table.claim(key, "array", name="<key>")
             if not isinstance(values, list) or not values:
                 raise table.error(key, "a non-empty array of values to sweep", values)
         out[kind] = dict(table.data)

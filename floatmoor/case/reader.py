@@ -4,17 +4,25 @@
 checks its type and range, and raises :class:`~floatmoor.errors.CaseError` naming the file,
 the key path, what was expected and what was found. :meth:`TableReader.finish` rejects the
 keys nobody asked for, so a misspelt key is an error rather than a silently ignored value.
+
+The accessors are the schema of the input files: each states a key's type, unit, bounds,
+choices and default. Inside :func:`recording`, every accessor also reports them as a
+:class:`KeyRecord` (the case-file reference is generated from these records,
+:mod:`floatmoor.case.reference`); outside it the report costs one ``is None`` test.
 """
 
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 from floatmoor.errors import CaseError
 
-__all__ = ["Path", "ReadContext", "TableReader", "MISSING", "describe_value", "format_path"]
+__all__ = ["Path", "ReadContext", "TableReader", "MISSING", "describe_value", "format_path",
+           "KeyRecord", "recording", "generic_path"]
 
 Path = tuple[str | int, ...]
 
@@ -69,6 +77,48 @@ def _short(value: Any) -> str:
     return repr(value)
 
 
+@dataclass(frozen=True)
+class KeyRecord:
+    """What one accessor asked of one key: the schema of that key, as read.
+
+    ``path`` is the key's generic path: entries of an array of tables as ``[]``
+    (``lines[].name``), the tables of a table of named tables as ``<name>``
+    (``line_types.<name>.diameter``). ``default`` is :data:`MISSING` for a required key.
+    """
+
+    source: str  #: the file read
+    path: str  #: generic key path
+    kind: str  #: number, integer, string, boolean, vector, table, array, ...
+    unit: str = ""
+    bounds: str = ""  #: e.g. "> 0 and <= 1"
+    choices: tuple[str, ...] = ()
+    default: Any = MISSING
+    size: int | None = None  #: length of a vector
+    table: str = ""  #: concrete path of the table the key is in (``lines[2].dynamic``)
+
+
+#: The recorder of the current :func:`recording` block (None: not recording).
+_RECORDER: ContextVar[Callable[[KeyRecord], None] | None] = ContextVar("floatmoor_key_recorder",
+                                                                        default=None)
+
+
+@contextmanager
+def recording() -> Iterator[list[KeyRecord]]:
+    """Collect a :class:`KeyRecord` for every key every reader created inside the block asks
+    for (case and study loaders alike); yields the list they are appended to."""
+    records: list[KeyRecord] = []
+    token = _RECORDER.set(records.append)
+    try:
+        yield records
+    finally:
+        _RECORDER.reset(token)
+
+
+def generic_path(parent: str, key: str) -> str:
+    """``generic_path("lines[]", "dynamic")`` -> ``lines[].dynamic``."""
+    return f"{parent}.{key}" if parent else key
+
+
 @dataclass
 class ReadContext:
     """Where the values come from: the file, and the key paths set on the command line.
@@ -83,6 +133,9 @@ class ReadContext:
 
     source: str
     overrides: dict[Path, str] = field(default_factory=dict)
+    #: Receives a :class:`KeyRecord` per key asked for; set from :func:`recording`.
+    recorder: Callable[[KeyRecord], None] | None = field(
+        default_factory=_RECORDER.get, repr=False, compare=False)
 
     def origin(self, path: Path) -> str:
         """The source to name for an error at ``path``."""
@@ -128,13 +181,38 @@ class TableReader:
         Its key path in the case.
     context
         The :class:`ReadContext` for error messages.
+    generic
+        Its generic key path (:class:`KeyRecord`), kept only while recording.
     """
 
-    def __init__(self, data: dict[str, Any], path: Path, context: ReadContext) -> None:
+    def __init__(self, data: dict[str, Any], path: Path, context: ReadContext,
+                 generic: str = "") -> None:
         self.data = data
         self.path = path
         self.context = context
+        self.generic = generic
         self._read: set[str] = set()
+
+    def _record(self, key: str, kind: str, *, unit: str = "", bounds: str = "",
+                choices: tuple[str, ...] | None = None, default: Any = MISSING,
+                size: int | None = None, name: str | None = None) -> None:
+        """Report ``key`` to the context's recorder (``name``: its generic name, if not
+        itself)."""
+        self.context.recorder(KeyRecord(  # type: ignore[misc]
+            self.context.source, generic_path(self.generic, name or key), kind, unit, bounds,
+            tuple(choices or ()), default, size, format_path(self.path)))
+
+    def claim(self, key: str, kind: str, *, unit: str = "", bounds: str = "",
+              choices: tuple[str, ...] = (), default: Any = MISSING,
+              name: str | None = None) -> Any:
+        """Mark ``key`` read and return its raw value (``default`` when absent), for a key
+        the caller checks itself (an array of triples, of names, ...); ``kind`` and
+        ``name`` (its generic name, e.g. ``<coefficient>``) are for the record."""
+        if self.context.recorder is not None:
+            self._record(key, kind, unit=unit, bounds=bounds, choices=choices, default=default,
+                         name=name)
+        self._read.add(key)
+        return self.data.get(key, default)
 
     # -- generic -------------------------------------------------------------------------------
     def error(self, key: str | int | Path, expected: str, found: Any) -> CaseError:
@@ -159,6 +237,9 @@ class TableReader:
     def number(self, key: str, *, unit: str, gt: float | None = None, ge: float | None = None,
                lt: float | None = None, le: float | None = None, default: Any = MISSING) -> float:
         """A finite number (TOML integer or float) within the given bounds."""
+        if self.context.recorder is not None:
+            self._record(key, "number", unit=unit, bounds=_bound_text(gt, ge, lt, le),
+                         default=default)
         expected = _number_text("a finite number", unit, gt, ge, lt, le)
         value = self._get(key, default, expected)
         if value is default and default is not MISSING:
@@ -181,6 +262,9 @@ class TableReader:
                 default: Any = MISSING, auto: str | None = None) -> int:
         """A TOML integer within the given bounds; with ``auto`` (what it means, for the
         message) also the string "auto", read as None."""
+        if self.context.recorder is not None:
+            self._record(key, "integer", bounds=_bound_text(None, ge, None, le),
+                         choices=("auto",) if auto is not None else None, default=default)
         expected = _number_text("an integer", "", None, ge, None, le)
         if auto is not None:
             expected += f' or "auto" ({auto})'
@@ -198,6 +282,8 @@ class TableReader:
     def string(self, key: str, *, choices: tuple[str, ...] | None = None,
                default: Any = MISSING) -> str:
         """A string, optionally one of ``choices``."""
+        if self.context.recorder is not None:
+            self._record(key, "string", choices=choices, default=default)
         if choices:
             expected = "one of " + ", ".join(f'"{c}"' for c in choices)
         else:
@@ -213,6 +299,8 @@ class TableReader:
 
     def boolean(self, key: str, *, default: Any = MISSING) -> bool:
         """A TOML boolean (``true`` / ``false``)."""
+        if self.context.recorder is not None:
+            self._record(key, "boolean", default=default)
         expected = "a boolean (true or false)"
         value = self._get(key, default, expected)
         if not isinstance(value, bool):
@@ -222,6 +310,13 @@ class TableReader:
     def vector(self, key: str, *, size: int, unit: str, gt: float | None = None,
                ge: float | None = None, default: Any = MISSING) -> tuple[float, ...]:
         """An array of ``size`` finite numbers."""
+        if self.context.recorder is not None:
+            self._record(key, "vector", unit=unit, bounds=_bound_text(gt, ge, None, None),
+                         default=default, size=size)
+        return self._vector(key, size, unit, gt, ge, default)
+
+    def _vector(self, key: str, size: int, unit: str, gt: float | None, ge: float | None,
+                default: Any) -> tuple[float, ...]:
         bounds = _bound_text(gt, ge, None, None)
         expected = (f"an array of {size} finite numbers" + (f" {bounds}" if bounds else "")
                     + (f" [{unit}]" if unit else ""))
@@ -241,9 +336,12 @@ class TableReader:
     def number_or_vector(self, key: str, *, size: int, unit: str, gt: float | None = None,
                          ge: float | None = None, default: Any = MISSING) -> tuple[float, ...]:
         """One number (used for every component) or an array of ``size`` numbers."""
+        if self.context.recorder is not None:
+            self._record(key, "number_or_vector", unit=unit, bounds=_bound_text(gt, ge, None, None),
+                         default=default, size=size)
         value = self.data.get(key, MISSING)
         if isinstance(value, list):
-            return self.vector(key, size=size, unit=unit, gt=gt, ge=ge)
+            return self._vector(key, size, unit, gt, ge, MISSING)
         bounds = _bound_text(gt, ge, None, None)
         expected = (f"a finite number {bounds} or an array of {size} of them".replace("  ", " ")
                     + (f" [{unit}]" if unit else ""))
@@ -255,13 +353,26 @@ class TableReader:
     # -- tables --------------------------------------------------------------------------------
     def table(self, key: str, *, required: bool = True) -> "TableReader":
         """A sub-table; an absent optional one reads as empty."""
+        if self.context.recorder is not None:
+            self._record(key, "table", default=MISSING if required else {})
+        return self._table(key, required)
+
+    def _table(self, key: str, required: bool) -> "TableReader":
         value = self._get(key, MISSING if required else {}, "a table")
         if not isinstance(value, dict):
             raise self.error(key, "a table", value)
-        return TableReader(value, self.path + (key,), self.context)
+        return TableReader(value, self.path + (key,), self.context, self._child(key))
+
+    def _child(self, key: str, suffix: str = "") -> str:
+        """The generic path of a sub-table (empty when not recording)."""
+        if self.context.recorder is None:
+            return ""
+        return generic_path(self.generic, key) + suffix
 
     def tables(self, key: str, *, min_items: int = 1) -> Iterator["TableReader"]:
         """The entries of an array of tables (``[[key]]``)."""
+        if self.context.recorder is not None:
+            self._record(key, "tables", bounds=f">= {min_items} entries")
         expected = f"an array of tables ([[{key}]]) with at least {min_items} entry"
         value = self._get(key, MISSING, expected)
         if not isinstance(value, list) or len(value) < min_items:
@@ -269,18 +380,21 @@ class TableReader:
         for i, item in enumerate(value):
             if not isinstance(item, dict):
                 raise self.error((key, i), "a table", item)
-            yield TableReader(item, self.path + (key, i), self.context)
+            yield TableReader(item, self.path + (key, i), self.context, self._child(key, "[]"))
 
     def named_tables(self, key: str) -> Iterator[tuple[str, "TableReader"]]:
         """The sub-tables of a table of named tables (``[key.NAME]``)."""
-        parent = self.table(key)
+        if self.context.recorder is not None:
+            self._record(key, "named_tables")
+        parent = self._table(key, True)
         if not parent.data:
             raise self.error(key, f"at least one [{key}.NAME] table", "an empty table")
         for name, item in parent.data.items():
             parent._read.add(name)
             if not isinstance(item, dict):
                 raise parent.error(name, "a table", item)
-            yield name, TableReader(item, parent.path + (name,), self.context)
+            yield name, TableReader(item, parent.path + (name,), self.context,
+                                    parent._child("<name>"))
 
     def finish(self) -> None:
         """Reject keys that no accessor read."""

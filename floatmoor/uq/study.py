@@ -277,8 +277,7 @@ def _case(root: TableReader, folder: FilePath) -> tuple[str, Case, tuple[str, ..
 
 
 def _string_list(root: TableReader, key: str) -> list[str]:
-    value = root.data.get(key, [])
-    root._read.add(key)
+    value = root.claim(key, "array of strings", default=[])
     expected = "an array of strings"
     if not isinstance(value, list):
         raise root.error(key, expected, value)

@@ -1,0 +1,510 @@
+"""What each key of a case file and of a study file means, for the case-file reference.
+
+The type, unit, range and default of a key come from its reader (the accessors of
+:class:`~floatmoor.case.reader.TableReader`, recorded while files load); only what a reader
+cannot state is written here: what the key is, when it matters and where the model is
+explained. Keys are generic paths (``lines[].dynamic.cfl``, ``line_types.<name>.diameter``; a
+table's own entry, e.g. ``lines``, describes the table). ``defaults`` words a default that
+is computed from other values, ``allowed`` a range or a choice that depends on other values,
+``types`` an array whose length does.
+The tests fail on a key the readers ask for that has no description here, and on a
+description of a key no reader asks for.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping
+
+__all__ = ["KeyDocs", "CASE", "STUDY"]
+
+
+@dataclass(frozen=True)
+class KeyDocs:
+    """The descriptions of one kind of input file, by generic key path."""
+
+    descriptions: Mapping[str, str]
+    #: The required / default column of keys whose default is computed from other values.
+    defaults: Mapping[str, str] = field(default_factory=dict)
+    #: The allowed column of keys whose range or choices depend on other values.
+    allowed: Mapping[str, str] = field(default_factory=dict)
+    #: The type column of arrays whose length depends on other values.
+    types: Mapping[str, str] = field(default_factory=dict)
+
+
+# -- case files -------------------------------------------------------------------------------
+
+_DYNAMIC = {
+    "elements": "Number of discontinuous-Galerkin elements along the line. Left out (or "
+                '"auto"), it is chosen with `order` from `accuracy` and the fairlead motion\'s '
+                "frequency; `floatmoor check` prints the choice (theory/dynamic_line.md).",
+    "order": "Polynomial order of the elements. Left out (or \"auto\"), it is chosen with "
+             "`elements` from `accuracy`.",
+    "cfl": "Explicit time step as a fraction of the stability limit of the axial (snap) wave "
+           "for the SSP-RK3 scheme; the margin below 1 covers the nonlinear terms (snap loads, "
+           "drag, seabed contact).",
+    "max_time_step": "Cap on the line's time step [s]; with implicit integration the step "
+                     "starts from it (0.5 s when not given) and is halved where the estimated "
+                     "error of the fairlead force is too large.",
+    "slack_filter": "Modal velocity filter on elements in compression, which damps the "
+                    "spurious high-order modes of a slack chain.",
+    "seabed_contact": "Treatment of the seabed's normal spring-damper: \"implicit\" "
+                      "(backward-Euler, so the stiff seabed does not limit the step) or "
+                      '"explicit" (resolved by the step, much smaller).',
+    "settle": "Relax the line, fairlead held, to the static equilibrium of its own "
+              "discretisation before the run, so that its mismatch with the catenary "
+              "initial shape does not ring through the run.",
+    "internal_damping": "Treatment of the Kelvin-Voigt internal damping "
+                        "(`line_types.NAME.internal_damping_ratio`): \"implicit\" keeps the "
+                        "axial wave alone setting the step; \"explicit\" puts it in the "
+                        "right-hand side, at a step up to ten times smaller.",
+    "time_integration": '"explicit" (SSP-RK3 at `cfl` of the axial wave\'s limit), "implicit" '
+                        "(generalised-alpha, Chung & Hulbert 1993, steps bounded by accuracy) "
+                        'or "auto": implicit while its steps cost less than the explicit ones '
+                        "they replace, explicit from then on.",
+    "accuracy": "Accepted relative error of the fairlead tension; the element count, order "
+                "and implicit step are chosen for it when not given.",
+}
+
+_DOF_UNITS = {"surge": "m", "sway": "m", "heave": "m", "roll": "deg", "pitch": "deg",
+              "yaw": "deg"}
+
+
+def _body_dofs() -> dict[str, str]:
+    """The six ``[motion.DOF]`` tables of a harmonic body motion."""
+    out = {}
+    for dof, unit in _DOF_UNITS.items():
+        amplitude = "amplitude" if unit == "m" else "amplitude_deg"
+        out[f"motion.{dof}"] = (f"Harmonic {dof} of the body, "
+                                f"{'a translation' if unit == 'm' else 'a rotation about the reference point'}"
+                                " (`kind = \"body\"`); a DOF without its table does not move.")
+        out[f"motion.{dof}.{amplitude}"] = (
+            f"Amplitude of the {dof}" + (" [m]." if unit == "m" else
+                                         " [deg]; rotations are given in degrees as every "
+                                         "angle of a case file."))
+        out[f"motion.{dof}.period"] = f"Period of the {dof} [s]."
+        out[f"motion.{dof}.phase_deg"] = (f"Phase of the {dof}, x = a sin(2 pi t / T + "
+                                          "phase) [deg].")
+    return out
+
+
+_CASE = {
+    "": "The keys outside any table.",
+    "title": "Title of the run, written into its output. It may name values with "
+             "placeholders such as `T = {motion.period:.2f} s` (a key path and an optional "
+             "format), filled from the final values, so a run with `--set` shows its own.",
+    "description": "Free text about the case for its readers (the output keeps the whole "
+                   "case text in its attributes).",
+    # environment
+    "environment": "Water and gravity: still water at z = 0, a flat seabed at "
+                   "z = -water_depth (theory/environment.md).",
+    "environment.water_density": "Density of the water, for buoyancy, drag, added mass and the "
+                                 "hydrodynamic database.",
+    "environment.water_depth": "Depth of the flat seabed below the still water line.",
+    "environment.gravity": "Acceleration of gravity.",
+    "environment.current_velocity": "Steady, uniform current [x, y, z], in the drag of the "
+                                    "lines and of a floater's Morison members.",
+    # seabed
+    "seabed": "Seabed contact of the lines: a normal spring-damper and smoothed Coulomb "
+              "friction (theory/dynamic_line.md).",
+    "seabed.stiffness": "Normal stiffness of the seabed per unit contact area.",
+    "seabed.damping_ratio": "Damping ratio of the normal contact spring-damper.",
+    "seabed.friction_coefficient": "Coulomb friction coefficient along the seabed; also the "
+                                   "quasi-static catenary's friction on its resting length.",
+    "seabed.slip_speed": "Sliding speed at which the smoothed friction reaches its full "
+                         "value.",
+    # line types
+    "line_types": "The line materials, one table per name (`[line_types.chain]`); lines and "
+                  "sections name them with `type`.",
+    "line_types.<name>.mass_per_length": "Dry mass per unstretched length.",
+    "line_types.<name>.axial_stiffness": "Axial stiffness EA.",
+    "line_types.<name>.diameter": "Diameter the drag and added-mass coefficients refer to "
+                                  "(for chain, usually the volume-equivalent diameter).",
+    "line_types.<name>.material_density": "Density of the line's material; with the mass "
+                                          "it gives the displaced volume, hence the submerged "
+                                          "weight.",
+    "line_types.<name>.normal_drag_coefficient": "Morison drag coefficient normal to the line, "
+                                                 "on its diameter.",
+    "line_types.<name>.tangential_drag_coefficient": "Drag coefficient along the line.",
+    "line_types.<name>.added_mass_coefficient": "Added-mass coefficient normal to the line, "
+                                                "on the material area m / rho_material.",
+    "line_types.<name>.tangential_added_mass_coefficient": "Added-mass coefficient along the "
+                                                           "line.",
+    "line_types.<name>.internal_damping_ratio": "Kelvin-Voigt axial damping, as the damping "
+                                                "ratio of the line's first longitudinal mode "
+                                                "(dynamic model).",
+    "line_types.<name>.minimum_breaking_load": "Minimum breaking load (MBL), for the safety "
+                                               "factors of the run summary; without it "
+                                               "`floatmoor check` warns on large strains.",
+    # points
+    "points": "Named points of a mooring system: anchors (`fixed`), fairleads (`body`) and "
+              "joints, clump weights and buoys (`free`); lines connect them by name "
+              "(theory/mooring_systems.md).",
+    "points[].name": "Name of the point, used by `lines[].start`, `end` and "
+                     "`sections[].end`; no `.` (implicit points are named `LINE.anchor`, ...).",
+    "points[].kind": "`fixed` (held in space), `body` (carried by the prescribed motion or "
+                     "the floater) or `free` (in equilibrium of its lines and loads).",
+    "points[].position": "Position: a fixed point's, a body point's at rest, a free point's "
+                         "initial guess for the statics.",
+    "points[].mass": "Mass of a free point (a clump weight); free points only.",
+    "points[].volume": "Displaced volume of a free point (a buoy); free points only.",
+    "points[].drag_area": "Drag coefficient times area C_d A of a free point; free points "
+                          "only.",
+    "points[].added_mass_coefficient": "Added-mass coefficient of a free point, on its "
+                                       "displaced volume; free points only.",
+    # lines
+    "lines": "The mooring lines, each from a start point to an end point, one line type or a "
+             "series of sections.",
+    "lines[].name": "Name of the line, in outputs and in `--set lines.NAME.KEY=...`.",
+    "lines[].start": "Name of the `[[points]]` entry the line starts at (arc length 0); "
+                     "instead of `anchor`.",
+    "lines[].anchor": "Position of the line's start, an implicit fixed point `NAME.anchor`; "
+                      "instead of `start`.",
+    "lines[].end": "Name of the `[[points]]` entry the line ends at; instead of `fairlead`.",
+    "lines[].fairlead": "Position of the line's end, an implicit body point `NAME.fairlead` "
+                        "(its position at rest); instead of `end`.",
+    "lines[].model": "Line model: `quasi-static` (elastic catenary, theory/quasi_static.md), "
+                     "`quasi-dynamic` (catenary plus drag and inertia, one section between a "
+                     "fixed and a body point, theory/quasi_dynamic.md) or `dynamic` "
+                     "(discontinuous Galerkin cable, theory/dynamic_line.md).",
+    "lines[].type": "Line type of a one-section line (a `[line_types.NAME]` name); instead of "
+                    "`sections`.",
+    "lines[].length": "Unstretched length of a one-section line; instead of `sections`.",
+    "lines[].sections": "The line's sections from start to end, each of one line type; "
+                        "instead of `type` and `length`.",
+    "lines[].sections[].type": "Line type of the section (a `[line_types.NAME]` name).",
+    "lines[].sections[].length": "Unstretched length of the section.",
+    "lines[].sections[].end": "Name of the free point joining this section to the next; not "
+                              "on the last section. Without it the joint is an implicit "
+                              "massless point `LINE.jointN`.",
+    "lines[].sections[].dynamic": "The section's own dynamic-model numerics; each key "
+                                  "overrides the line's `[lines.dynamic]`.",
+    "lines[].quasi_static": "Numerics of the quasi-static catenary (also the static "
+                            "catenary of the other models).",
+    "lines[].quasi_static.tolerance": "Newton iterations stop when the end-point mismatch is "
+                                      "below this fraction of the line length.",
+    "lines[].quasi_static.max_iterations": "Most Newton iterations of one catenary solve.",
+    "lines[].quasi_static.seabed_friction": "Apply seabed friction on the resting length.",
+    "lines[].quasi_dynamic": "Numerics of the quasi-dynamic model.",
+    "lines[].quasi_dynamic.integration_points": "Odd number of composite-Simpson stations "
+                                                "over the suspended length at rest.",
+    "lines[].quasi_dynamic.max_time_step": "Cap on the step of the backward differences, "
+                                           "taken on the fairlead's interpolated path.",
+    "lines[].dynamic": "Numerics of the dynamic (discontinuous Galerkin) model; by default "
+                       "they are chosen from `accuracy` (theory/dynamic_line.md).",
+    **{f"lines[].dynamic.{key}": text for key, text in _DYNAMIC.items()},
+    **{f"lines[].sections[].dynamic.{key}": text for key, text in _DYNAMIC.items()},
+    # simulation
+    "simulation": "Time span and output sampling of the run.",
+    "simulation.duration": "Simulated time span, from t = 0.",
+    "simulation.output_interval": "Sampling interval of the output time series.",
+    "simulation.shape_output_interval": "Sampling interval of the line shapes, a multiple of "
+                                        "`output_interval`; no shapes are written without it.",
+    "simulation.time_step": "Time step of the floater in coupled runs, dividing "
+                            "`output_interval`; default the output interval. Only with a "
+                            "`[floater]` (lines take their own steps).",
+    # motion
+    "motion": "Prescribed motion of the body points (the fairleads); without it, and without "
+              "a `[floater]`, they stay at rest. Not with a `[floater]`.",
+    "motion.kind": "`circular` (on a circle in each line's vertical plane), `harmonic` "
+                   "(per global axis), `table` (displacements from a CSV file) or `body` "
+                   "(a six-DOF rigid-body motion, harmonic or from a CSV file).",
+    "motion.radius": "Radius of the circle (`circular`).",
+    "motion.period": "Period of the motion: one number (`circular`), or one number or one "
+                     "per axis (`harmonic`).",
+    "motion.sense": "Rotation sense of a circular motion, named by where the fairlead moves "
+                    "at the top of the circle (`circular`).",
+    "motion.phase_deg": "Phase of the motion: 0 puts a circular motion at the top of its "
+                        "circle at t = 0; for `harmonic`, one or per axis, x = a sin(2 pi t / T "
+                        "+ phase).",
+    "motion.amplitude": "Amplitudes [x, y, z] of a harmonic motion (`harmonic`); at least one "
+                        "non-zero.",
+    "motion.file": "CSV file, relative to the case file's folder and inside it: columns "
+                   "`time,x,y,z` of displacements (`table`) or `time,surge,sway,heave,roll_deg,"
+                   "pitch_deg,yaw_deg` (or `_rad` for all three rotations; `body`).",
+    "motion.reference_point": "Rotation centre of a body motion at rest (`body`); the origin "
+                              "by default, the point MoorDyn, OpenFAST and WEC-Sim motions "
+                              "refer to.",
+    "motion.ramp_duration": "Duration of the cosine ramp that brings the motion in from "
+                            "rest; shorter than the run.",
+    **_body_dofs(),
+    # campaign
+    "campaign": "A sweep of the case over several values of its keys, run by `floatmoor "
+                "sweep`: every combination of `[campaign.grid]`, element-wise with "
+                "`[campaign.zip]`.",
+    "campaign.grid": "Keys whose value arrays are combined, every value with every other "
+                     "(a full grid).",
+    "campaign.grid.<key>": "A quoted key path of the case (`\"motion.period\"`) and the "
+                           "array of values to sweep; checked when the runs are.",
+    "campaign.zip": "Keys whose value arrays, of one length, are taken element by element.",
+    "campaign.zip.<key>": "A quoted key path of the case and the array of values to sweep, "
+                          "as long as the other `[campaign.zip]` arrays.",
+    # floater
+    "floater": "A floating body coupled to its lines (theory/floater.md); a case with a "
+               "floater has no `[motion]`.",
+    "floater.name": "Name of the body, in outputs.",
+    "floater.mass": "Mass of the body.",
+    "floater.centre_of_mass": "Centre of mass, global coordinates at rest.",
+    "floater.inertia": "Inertia about the centre of mass: [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, "
+                       "Ixy, Ixz, Iyz]; positive definite.",
+    "floater.reference_point": "Rotation centre of the six DOFs, global coordinates at rest.",
+    "floater.radiation": "Radiation memory: `convolution` of the retardation kernel K(t) "
+                         "with the velocity history, or `state-space` (the realisation stored "
+                         "in the database by `floatmoor hydro fit-state-space`).",
+    "floater.geometry": "Hull of the body, meshed for the BEM database.",
+    "floater.geometry.kind": "`cylinder`, `semisubmersible` (columns and members) or `mesh` "
+                             "(a hull mesh file).",
+    "floater.geometry.diameter": "Diameter of a cylinder (`cylinder`).",
+    "floater.geometry.height": "Height of a cylinder, bottom to top (`cylinder`).",
+    "floater.geometry.draft": "Draft of a cylinder (`cylinder`); default the draft at which "
+                              "it floats freely, mass / (water_density pi R^2).",
+    "floater.geometry.file": "Hull mesh file, relative to the case file's folder and inside "
+                             "it (`mesh`); checked and hashed on loading, read when the "
+                             "database is built.",
+    "floater.geometry.format": "Format of the mesh file (`mesh`); default from its "
+                               "extension.",
+    "floater.geometry.length_unit": "Length unit of the mesh file's coordinates (`mesh`).",
+    "floater.geometry.position": "Offset added to the scaled mesh coordinates (`mesh`).",
+    "floater.geometry.symmetry": "Symmetry planes the mesh file is the positive half of: "
+                                 "`xz` (the file holds y >= 0), `yz` (x >= 0), or both "
+                                 "(`mesh`).",
+    "floater.geometry.columns": "Vertical columns of a semisubmersible; for a `mesh` hull, "
+                                "drag elements only (not meshed).",
+    "floater.geometry.columns[].x": "x of the column's axis.",
+    "floater.geometry.columns[].y": "y of the column's axis.",
+    "floater.geometry.columns[].diameter": "Diameter of the column.",
+    "floater.geometry.columns[].z_top": "Elevation of the column's top.",
+    "floater.geometry.columns[].z_bottom": "Elevation of the column's bottom.",
+    "floater.geometry.columns[].heave_plate_diameter": "Diameter of a heave plate at the "
+                                                       "column's bottom; with "
+                                                       "`heave_plate_height`.",
+    "floater.geometry.columns[].heave_plate_height": "Height of the heave plate above "
+                                                     "`z_bottom`; with "
+                                                     "`heave_plate_diameter`.",
+    "floater.geometry.members": "Pontoons and braces (cylinders between two points); for a "
+                                "`mesh` hull, drag elements only.",
+    "floater.geometry.members[].start": "Start of the member's axis.",
+    "floater.geometry.members[].end": "End of the member's axis, more than one diameter from "
+                                      "its start.",
+    "floater.geometry.members[].diameter": "Diameter of the member.",
+    "floater.drag": "Morison drag on the columns and members (theory/floater.md); needs "
+                    "columns or members.",
+    "floater.drag.preset": "Set of drag coefficients to start from: `none` or "
+                           "`deepcwind_oc4` (the OC4 DeepCwind semisubmersible's).",
+    "floater.drag.<coefficient>": "A drag coefficient overriding the preset's: "
+                                  "`column_transverse`, `column_axial` (bottom disc of a "
+                                  "plate-less column), `heave_plate_transverse`, "
+                                  "`heave_plate_axial`, `member_transverse` or `member_axial`.",
+    "floater.drag.strip_length": "Longest strip the members are cut into for the drag "
+                                 "integral.",
+    "floater.drag.min_strips": "Fewest strips per submerged part, so that small bodies are "
+                               "resolved.",
+    "floater.drag.heave_plate_area": "Area of a heave plate's axial drag: the full `disc` "
+                                     "(as OpenFAST HydroDyn) or the `annulus` outside the "
+                                     "column.",
+    "floater.drag.kinematics_interval": "Sampling interval of the wave velocity at the "
+                                        "strips, interpolated in between; \"auto\" picks it "
+                                        "from the highest wave frequency, 0 evaluates every "
+                                        "half step.",
+    # hydro
+    "hydro": "The hydrodynamic database of the floater (`hydrodb/NAME.nc`): how `floatmoor "
+             "hydro build` computes it with the BEM, or that it was imported "
+             "(theory/hydrodynamics.md).",
+    "hydro.database": "Name of the database file in `hydrodb/`.",
+    "hydro.source": "`bem` (built from the keys below) or `imported` (made by `floatmoor "
+                    "hydro import` from WAMIT or BEMIO files; then no build keys).",
+    "hydro.frequency_ranges": "BEM frequencies as [first, last, count] triples, evenly "
+                              "spaced; with or instead of `frequencies`.",
+    "hydro.frequencies": "BEM frequencies, listed; with or instead of `frequency_ranges`.",
+    "hydro.directions_deg": "Wave directions of the excitation, distinct and increasing.",
+    "hydro.panel_size": "Target panel edge of a parametric hull, or of a mesh hull's lid; "
+                        "not needed for a mesh hull without a lid.",
+    "hydro.lid": "Close the hull's water plane with a lid of panels just below the water line, "
+                 "against the BEM's irregular frequencies.",
+    "hydro.lid_depth": "Depth of the lid below the water line; default where wavenumber "
+                       "times depth is 0.15 at the highest frequency.",
+    "hydro.infinite_depth": "Solve the BEM in infinite depth instead of "
+                            "environment.water_depth.",
+    "hydro.symmetry": "Use the hull's symmetries in the BEM.",
+    "hydro.radial_panels": "Panels across the bottom of a cylinder, centre to rim.",
+    "hydro.accept_failed_checks": "Database checks whose failure a run of this case "
+                                  "accepts; a run refuses a database failing any other.",
+    # waves
+    "waves": "The sea of a coupled case (theory/environment.md).",
+    "waves.kind": "`still` water, `regular` (Airy) waves or a `jonswap` irregular sea.",
+    "waves.height": "Wave height, crest to trough (`regular`).",
+    "waves.period": "Wave period (`regular`).",
+    "waves.phase_deg": "Phase of the regular wave at the origin (`regular`).",
+    "waves.direction_deg": "Direction the waves travel in, from the x axis (`regular`, "
+                           "`jonswap`).",
+    "waves.hs": "Significant wave height, 4 sqrt(m0) (`jonswap`).",
+    "waves.tp": "Peak period (`jonswap`).",
+    "waves.seed": "Seed of the random phases, so a case always names its sea (`jonswap`).",
+    "waves.gamma": "Peak-enhancement factor, 1 to 10 (`jonswap`).",
+    "waves.spacing": "Frequencies `equal`ly spaced or one `random-in-bin` (`jonswap`).",
+    "waves.n_components": "Number of frequency bins (`jonswap`, `random-in-bin` only).",
+    "waves.frequency_step": "Frequency step of an `equal` spacing; default 2 pi / duration, "
+                            "a larger one is an error as the sea would repeat (`jonswap`).",
+    "waves.omega_min": "Lowest realised frequency; default half the peak frequency "
+                       "(`jonswap`).",
+    "waves.omega_max": "Highest realised frequency; default four times the peak frequency "
+                       "(`jonswap`).",
+    "waves.ramp_duration": "Duration of the cosine ramp of the wave excitation.",
+    # initial
+    "initial": "The floater's displacement from its static equilibrium at t = 0 (a free "
+               "decay); body and lines start at rest there.",
+    "initial.surge": "Initial surge offset.",
+    "initial.sway": "Initial sway offset.",
+    "initial.heave": "Initial heave offset.",
+    "initial.roll_deg": "Initial roll angle.",
+    "initial.pitch_deg": "Initial pitch angle.",
+    "initial.yaw_deg": "Initial yaw angle.",
+    # wind
+    "wind": "Rotor thrust of the NREL 5 MW turbine in a steady or turbulent wind "
+            "(theory/environment.md).",
+    "wind.mean_speed": "One-hour mean wind speed at `reference_height`.",
+    "wind.reference_height": "Height of `mean_speed` above the still water line.",
+    "wind.spectrum": "`npd` (turbulent, the NPD spectrum of DNV-RP-C205) or `steady` "
+                     "(constant wind).",
+    "wind.seed": "Seed of the turbulent wind's random phases.",
+    "wind.direction_deg": "Direction the wind blows towards, from +x towards +y.",
+    "wind.relative_velocity": "Thrust on the wind relative to the moving rotor "
+                              "(quasi-steady; gives the negative aerodynamic damping above "
+                              "rated speed).",
+    "wind.cutoff_hz": "Highest frequency of the turbulent wind; above 2 / duration.",
+    "wind.hub_height": "Height of the rotor hub.",
+}
+
+_CASE_DEFAULTS = {
+    **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`" for key in _DYNAMIC},
+    **{f"lines[].dynamic.{key}": "{default}" for key in _DYNAMIC},
+    "lines[].dynamic.elements": 'chosen from `accuracy` ("auto")',
+    "lines[].dynamic.order": 'chosen from `accuracy` ("auto")',
+    "lines[].dynamic.max_time_step": "none (implicit: 0.5 s)",
+    "lines[].quasi_dynamic.max_time_step": "one step per output sample",
+    "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
+    "motion.phase_deg": "default 0 (every axis)",
+    "waves.ramp_duration": "two (peak) periods",
+    "floater.drag.<coefficient>": "the preset's",
+    "floater.geometry.draft": "from the mass",
+    "floater.geometry.format": "from the file's extension",
+    "floater.geometry.symmetry": "none",
+    "floater.geometry.columns": "required for `semisubmersible`",
+    "floater.geometry.members": "optional",
+    "hydro.frequency_ranges": "one of the two (`bem`)",
+    "hydro.frequencies": "one of the two (`bem`)",
+    "hydro.directions_deg": "required (`bem`)",
+    "hydro.accept_failed_checks": "none",
+    "lines[].start": "one of `start`, `anchor`",
+    "lines[].anchor": "one of `start`, `anchor`",
+    "lines[].end": "one of `end`, `fairlead`",
+    "lines[].fairlead": "one of `end`, `fairlead`",
+    "lines[].type": "with `length`, or `sections`",
+    "lines[].length": "with `type`, or `sections`",
+    "lines[].sections": "or `type` and `length`",
+    "lines[].sections[].end": "an implicit joint",
+    "points": "optional",
+    "lines": "required (optional with a `[floater]`)",
+    "line_types": "required (optional with a `[floater]`)",
+    "motion.file": "required (`table`); or the DOF tables (`body`)",
+    **{f"motion.{dof}": "optional (`body`)" for dof in _DOF_UNITS},
+}
+
+_CASE_ALLOWED = {
+    "floater.geometry.columns[].z_bottom": "> -water_depth and < z_top",
+    "floater.geometry.columns[].heave_plate_diameter": "> the column's diameter",
+    "floater.geometry.columns[].heave_plate_height": "> 0 and < z_top - z_bottom",
+    "hydro.frequencies": "> 0; with the ranges, 2 to 2000 distinct",
+    "hydro.frequency_ranges": "0 < first < last, count >= 2",
+    "hydro.directions_deg": "within [-360, 360], distinct, increasing",
+    "floater.geometry.columns": ">= 1 entries (`semisubmersible`)",
+}
+
+_CASE_TYPES = {
+    "floater.inertia": "array of 3 or 6 numbers",
+    "hydro.frequencies": "array of numbers",
+    "hydro.directions_deg": "array of numbers",
+}
+
+#: The keys of a case file.
+CASE = KeyDocs(_CASE, _CASE_DEFAULTS, _CASE_ALLOWED, _CASE_TYPES)
+
+# -- study files ------------------------------------------------------------------------------
+
+_STUDY = {
+    "": "A study file (`floatmoor uq STUDY.toml -o DIR`) names what is run, which inputs are "
+        "uncertain, how the polynomial-chaos surrogate is built and for which quantities "
+        "(theory/uncertainty.md). It is checked whole before anything runs.",
+    "title": "Title of the study, in its report and output.",
+    "case": "Case file the runs are made of, relative to the study file; instead of "
+            "`model`.",
+    "model": "A built-in model instead of a case: `taut_string`, the released taut string of "
+             "cases/taut_string.md (a verification of the method).",
+    "base_overrides": "`--set` texts (`path.to.key=VALUE`) applied to every run of the case.",
+    "surrogate_samples": "Samples of the surrogate from which the output statistics and "
+                         "densities are estimated.",
+    "inputs": "The uncertain inputs, one table each; a distribution's parameters are in the "
+              "unit of its key.",
+    "inputs[].key": "What is uncertain: a `--set` key path of the case (e.g. "
+                    "`line_types.chain.normal_drag_coefficient`), or a parameter of the "
+                    "built-in model.",
+    "inputs[].distribution": "Probability distribution of the input; its parameters are the "
+                             "keys below that it needs.",
+    "inputs[].lower": "Lower bound (`uniform`, `truncated_normal`, `beta`, `triangular`).",
+    "inputs[].upper": "Upper bound (`uniform`, `truncated_normal`, `beta`, `triangular`).",
+    "inputs[].mean": "Mean (`normal`, `lognormal`: of the variable itself; "
+                     "`truncated_normal`: of the normal before truncation).",
+    "inputs[].std": "Standard deviation (`normal`, `lognormal`, `truncated_normal`, as for "
+                    "`mean`).",
+    "inputs[].alpha": "First shape parameter (`beta`).",
+    "inputs[].beta": "Second shape parameter (`beta`): density proportional to "
+                     "(x - lower)^(alpha - 1) (upper - x)^(beta - 1).",
+    "inputs[].mode": "Most likely value (`triangular`).",
+    "inputs[].shape": "Shape parameter k (`gamma`): density proportional to "
+                      "(x - location)^(k - 1) exp(-rate (x - location)).",
+    "inputs[].rate": "Rate parameter, in 1 / the unit of the key (`gamma`).",
+    "inputs[].location": "Lower bound of the support (`gamma`).",
+    "method": "How the surrogate's coefficients are computed.",
+    "method.kind": "`quadrature` (Gauss rule, (order + 1)^inputs runs) or `regression` "
+                   "(least squares on a sampled design).",
+    "method.order": "Total polynomial order of the surrogate.",
+    "method.q_norm": "Hyperbolic truncation of the polynomial basis, 1 for the full total "
+                     "order (`regression`).",
+    "method.samples": "Number of runs of the design (`regression`).",
+    "method.seed": "Seed of the sampled design (`regression`).",
+    "parameters": "The built-in model's parameters that are not uncertain (`model`); the "
+                  "model's own value where not given.",
+    "parameters.T": "String tension [N].",
+    "parameters.m": "Mass per unit length [kg/m].",
+    "parameters.x": "Position along the string [m].",
+    "parameters.t": "Time since release [s].",
+    "parameters.A": "Amplitude of the initial half sine [m].",
+    "parameters.L": "String length [m].",
+    "quantities": "The quantities of interest the surrogate is built for (with `case`).",
+    "quantities[].name": "Name of the quantity: letters, digits and _, starting with a "
+                         "letter.",
+    "quantities[].line": "A line of the case, whose fairlead tension is the quantity; "
+                         "instead of `dof`.",
+    "quantities[].dof": "A DOF of the case's floater, whose motion is the quantity; instead "
+                        "of `line`.",
+    "quantities[].statistic": "Statistic of the time series after the ramp (`max`, "
+                              "`mean_cycle_max` for a periodic motion, `std`, `mean`, `min`) "
+                              "or `history`, its samples over `window`.",
+    "quantities[].window": "Time window [start, end] of a `history`.",
+}
+
+_STUDY_DEFAULTS = {
+    "case": "one of `case`, `model`",
+    "model": "one of `case`, `model`",
+    "quantities": "required with `case`",
+    **{f"parameters.{name}": "the model's value" for name in "TmxtAL"},
+}
+
+_STUDY_ALLOWED = {
+    "quantities[].line": "the name of a line of the case",
+    "quantities[].dof": '"Surge", "Sway", "Heave", "Roll", "Pitch" or "Yaw" (with a floater)',
+    "quantities[].window": "0 <= start < end <= simulation.duration, two samples or more",
+}
+
+#: The keys of a study file.
+STUDY = KeyDocs(_STUDY, _STUDY_DEFAULTS, _STUDY_ALLOWED)

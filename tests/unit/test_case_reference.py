@@ -1,0 +1,281 @@
+"""The case-file reference is generated from the readers and cannot drift from them.
+
+Every key the loaders ask for, over every shipped case and study file and the reference
+fixtures (tests/data/case_reference), has a description; every description is of a key that
+is asked for; every key a loader can read at all (found by reading the loaders' source) is
+asked for in one of those files; the committed page is the generator's output; and recording
+changes nothing about what is loaded.
+"""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import re
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from floatmoor.body.morison import DragSettings, MorisonCoefficients
+from floatmoor.case import key_docs
+from floatmoor.case.load import load_case
+from floatmoor.case.reader import recording
+from floatmoor.case.reference import leaf_of, merge_records, table_of
+from floatmoor.case.schema import BODY_DOFS
+from floatmoor.uq.input_reference import PAGE, ROOT, input_files, record_inputs, reference_page
+from floatmoor.uq.inputs import DISTRIBUTIONS
+from floatmoor.uq.study import load_study
+from floatmoor.uq.taut_string import BUILTIN_MODELS
+
+#: The modules whose accessor calls make the schema of each kind of file.
+CASE_MODULES = sorted((ROOT / "floatmoor" / "case").glob("*.py"))
+STUDY_MODULES = [ROOT / "floatmoor" / "uq" / "study.py"]
+#: The accessors of TableReader that read a key (``claim``: a key checked by its caller).
+ACCESSORS = {"number", "integer", "string", "boolean", "vector", "number_or_vector", "table",
+             "tables", "named_tables", "claim"}
+#: Keyword arguments of an accessor whose value, when computed from other values, the
+#: reference cannot print as recorded: the KeyDocs mapping that must word it instead.
+COMPUTED = {"default": "defaults", "gt": "allowed", "ge": "allowed", "lt": "allowed",
+            "le": "allowed", "choices": "allowed", "size": "types"}
+
+#: Accessor calls whose key is not a literal, by (module, function), with the generic paths
+#: they read (each must be read in a shipped or fixture file) and why the key is computed.
+DRAG_KEYS = ("preset", "heave_plate_area", "strip_length", "min_strips", "kinematics_interval")
+DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
+    # the optional loads of a point, read in a loop over (key, unit)
+    ("load.py", "_points"): ("points[].mass", "points[].volume", "points[].drag_area",
+                             "points[].added_mass_coefficient"),
+    # the two forms of a line end, (start | anchor) and (end | fairlead)
+    ("load.py", "_end"): ("lines[].start", "lines[].anchor", "lines[].end", "lines[].fairlead"),
+    # a line type named by a line or a section
+    ("load.py", "_line_type_named"): ("lines[].type", "lines[].sections[].type"),
+    # the swept keys of a campaign: any key path of the case
+    ("load.py", "_campaign"): ("campaign.grid", "campaign.zip", "campaign.grid.<key>",
+                               "campaign.zip.<key>"),
+    # the six harmonic DOF tables of a body motion
+    ("motion_body.py", "_harmonic"): tuple(f"motion.{dof}" for dof in BODY_DOFS),
+    # DragSettings.from_settings reads the table; claimed key by key for the record
+    ("floater.py", "_drag"): tuple(f"floater.drag.{k}" for k in DRAG_KEYS)
+    + ("floater.drag.<coefficient>",),
+    # resolve_case_file(t, key, ...) only raises errors naming the key
+    # the parameters of each distribution
+    ("study.py", "_inputs"): tuple(f"inputs[].{p}" for ps in DISTRIBUTIONS.values() for p in ps),
+    # the parameters of the built-in models
+    ("study.py", "_model"): tuple(f"parameters.{p}" for model in BUILTIN_MODELS.values()
+                                  for p in model.parameters),
+    # base_overrides, an array of strings
+    ("study.py", "_string_list"): ("base_overrides",),
+}
+
+
+@lru_cache(maxsize=1)
+def _records():
+    return record_inputs(input_files())
+
+
+@lru_cache(maxsize=1)
+def _entries():
+    cases, studies = _records()
+    return merge_records(cases), merge_records(studies)
+
+
+def _calls(path: Path):
+    """(function name, accessor call) of every accessor call in ``path``."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for function in ast.walk(tree):
+        if isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            for node in ast.walk(function):
+                if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                        and node.func.attr in ACCESSORS and node.args):
+                    yield function.name, node
+
+
+def _literal_key(call: ast.Call) -> str | None:
+    key = call.args[0]
+    return key.value if isinstance(key, ast.Constant) and isinstance(key.value, str) else None
+
+
+def _static(node: ast.expr) -> bool:
+    """A literal, a module constant (UPPER_CASE), or a tuple/list/tuple() of them."""
+    if isinstance(node, ast.Constant):
+        return True
+    if isinstance(node, ast.Name):
+        return node.id.isupper() or node.id.lstrip("_").isupper()
+    if isinstance(node, ast.UnaryOp):
+        return _static(node.operand)
+    if isinstance(node, ast.Subscript):
+        return _static(node.value) and _static(node.slice)
+    if isinstance(node, (ast.Tuple, ast.List)):
+        return all(_static(e) for e in node.elts)
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "tuple":
+        return all(_static(a) for a in node.args)
+    return False
+
+
+def _docs_and_modules():
+    cases, studies = _entries()
+    return ((key_docs.CASE, cases, CASE_MODULES), (key_docs.STUDY, studies, STUDY_MODULES))
+
+
+# -- (a), (b): descriptions ------------------------------------------------------------------
+
+@pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
+def test_every_key_read_is_described(kind):
+    docs, entries, _ = _docs_and_modules()[kind]
+    missing = [path for path in entries if path not in docs.descriptions]
+    assert not missing, f"keys without a description in floatmoor/case/key_docs.py: {missing}"
+    empty = [path for path, text in docs.descriptions.items() if len(text.split()) < 3]
+    assert not empty, f"descriptions too short to say anything: {empty}"
+
+
+@pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
+def test_every_description_is_of_a_key_read(kind):
+    docs, entries, _ = _docs_and_modules()[kind]
+    stale = [path for mapping in (docs.descriptions, docs.defaults, docs.allowed, docs.types)
+             for path in mapping if path and path not in entries]
+    assert not stale, f"descriptions of keys no reader asks for: {stale}"
+
+
+# -- (c): keys no shipped file reads -------------------------------------------------------------
+
+@pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
+def test_every_key_a_loader_can_read_is_read(kind):
+    """Literal keys by their names (``AST``), computed keys by :data:`DYNAMIC_KEYS`."""
+    _, entries, modules = _docs_and_modules()[kind]
+    leaves = {leaf_of(path) for path in entries}
+    unread, unlisted = [], []
+    for module in modules:
+        for function, call in _calls(module):
+            key = _literal_key(call)
+            if key is None:
+                if (module.name, function) not in DYNAMIC_KEYS:
+                    unlisted.append(f"{module.name}:{call.lineno} in {function}")
+            elif key not in leaves:
+                unread.append(f"{key} ({module.name}:{call.lineno})")
+        for (name, _), paths in DYNAMIC_KEYS.items():
+            if name == module.name:
+                unread += [path for path in paths if path not in entries]
+    assert not unlisted, ("accessor calls with a computed key, to list in DYNAMIC_KEYS with "
+                          f"the key paths they read: {unlisted}")
+    assert not unread, ("keys no shipped case or study reads: add them to a file in "
+                        f"tests/data/case_reference: {unread}")
+
+
+def test_drag_keys_are_the_drag_settings():
+    """The drag keys claimed for the record are the ones DragSettings.from_settings takes."""
+    own = {f.name for f in dataclasses.fields(DragSettings)} - {"coefficients"}
+    assert own | {"preset"} == set(DRAG_KEYS)
+    named = set(re.findall(r"`(\w+)`", key_docs.CASE.descriptions["floater.drag.<coefficient>"]))
+    assert {f.name for f in dataclasses.fields(MorisonCoefficients)} == named
+
+
+@pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
+def test_computed_defaults_and_ranges_are_worded(kind):
+    """A default, bound, choice or size computed from other values is not printed as the one
+    value a file happened to give: key_docs words it."""
+    docs, entries, modules = _docs_and_modules()[kind]
+    unworded = []
+    for module in modules:
+        for _, call in _calls(module):
+            key = _literal_key(call)
+            for keyword in call.keywords:
+                if keyword.arg in COMPUTED and not _static(keyword.value):
+                    mapping = getattr(docs, COMPUTED[keyword.arg])
+                    unworded += [f"{path} ({keyword.arg}, {module.name}:{call.lineno})"
+                                 for path in entries
+                                 if leaf_of(path) == key and path not in mapping]
+    assert not unworded, f"computed values key_docs must word: {unworded}"
+
+
+def test_shipped_files_are_cases_studies_or_report_references():
+    """A TOML file under cases/ the reference leaves out is a report reference file (the
+    published values of ``floatmoor report --reference``), not a case without its keys."""
+    from floatmoor.report.reference import load_reference
+
+    files = input_files()
+    left_out = [p for p in sorted((ROOT / "cases").rglob("*.toml"))
+                if p not in files.cases and p not in files.studies]
+    assert left_out, "cases/deepcwind/published_*.toml are expected here"
+    for path in left_out:
+        load_reference(path)
+
+
+# -- (d): the page -----------------------------------------------------------------------------
+
+def test_page_is_the_generated_one():
+    text = (ROOT / PAGE).read_text(encoding="utf-8")
+    assert text == reference_page(), (f"{PAGE} is out of date: python -m "
+                                      f"floatmoor.uq.input_reference -o {PAGE}")
+
+
+def test_page_has_every_key_in_its_table():
+    text = (ROOT / PAGE).read_text(encoding="utf-8")
+    case_part, study_part = text.split("\n## Study files\n")
+    for part, entries in zip((case_part, study_part), _entries()):
+        sections = dict(re.findall(r"\n### (.+)\n((?:.|\n)*?)(?=\n### |\Z)", part))
+        for path, entry in entries.items():
+            table = table_of(path)
+            header = next(h for h in sections
+                          if (not table and h.startswith("Top level"))
+                          or h.strip("`[]") == table.replace("[]", "").replace("<name>",
+                                                                               "NAME"))
+            assert f"\n| `{leaf_of(path)}` |" in sections[header], (path, header)
+
+
+def test_renderer_words_requirement_and_range():
+    """The columns of a made-up table: required, default, optional, bounds, choices."""
+    from floatmoor.case.reader import ReadContext, TableReader
+    from floatmoor.case.reference import render_section
+
+    with recording() as records:
+        t = TableReader({"a": 1.0, "c": "x"}, (), ReadContext("made-up"))
+        t.number("a", unit="m", gt=0.0, le=2.0)
+        t.number("b", unit="s", default=3.0)
+        t.string("c", choices=("x", "y"))
+        t.integer("d", ge=1, default=None, auto="chosen")
+    docs = key_docs.KeyDocs({k: f"the key {k}" for k in "abcd"})
+    text = render_section("", merge_records(records), docs, title="T")
+    assert "| `a` | number | m | required | > 0 and <= 2 | the key a |" in text
+    assert "| `b` | number | s | default 3 |  | the key b |" in text
+    assert '| `c` | string |  | required | one of "x", "y" | the key c |' in text
+    assert '| `d` | integer |  | optional | >= 1; or "auto" | the key d |' in text
+
+
+# -- (e): recording changes nothing ---------------------------------------------------------------
+
+def _same(a, b) -> bool:
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return type(a) is type(b) and all(_same(getattr(a, f.name), getattr(b, f.name))
+                                          for f in dataclasses.fields(a))
+    if isinstance(a, np.ndarray):
+        return isinstance(b, np.ndarray) and np.array_equal(a, b, equal_nan=True)
+    if isinstance(a, (tuple, list)):
+        return type(a) is type(b) and len(a) == len(b) and all(map(_same, a, b))
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, float) and isinstance(b, float) and np.isnan(a):
+        return bool(np.isnan(b))
+    return a == b
+
+
+def test_recording_changes_nothing_loaded():
+    files = input_files()
+    for path in files.cases:
+        plain = load_case(path)
+        with recording() as records:
+            recorded = load_case(path)
+        assert records and _same(plain, recorded), path
+    for path in files.studies:
+        plain = load_study(path)
+        with recording() as records:
+            recorded = load_study(path)
+        assert records and _same(plain, recorded), path
+
+
+def test_recording_is_off_outside_the_block():
+    with recording() as records:
+        pass
+    load_case(input_files().cases[0])
+    assert records == []
