@@ -105,7 +105,10 @@ def _mirrored(surface: BodySurface, axis: int) -> BodySurface:
     (the mirror's faces reversed, so both keep their orientation)."""
     flip = surface.vertices.copy()
     flip[:, axis] *= -1.0
-    return _join([surface, BodySurface(flip, surface.faces[:, ::-1].copy())])
+    triangle = surface.faces[:, 3] == surface.faces[:, 2]
+    reversed_ = np.where(triangle[:, None], surface.faces[:, [2, 1, 0, 0]],
+                         surface.faces[:, ::-1])
+    return _join([surface, BodySurface(flip, reversed_)])
 
 
 def _mesh(geometry: MeshGeometry) -> BodySurface:
@@ -114,21 +117,21 @@ def _mesh(geometry: MeshGeometry) -> BodySurface:
     Raises
     ------
     BemFileError
-        When the file cannot be read or has changed since the run (SHA-256).
+        When the file cannot be read or has changed since the case was read (SHA-256; the
+        run file keeps no hash of it, so a change between the run and its views goes
+        unseen).
     """
     from floatmoor.file_hash import file_sha256
     from floatmoor.hydro.mesh_file import read_mesh_file
     from floatmoor.io.bem_data import BemFileError
 
-    path = geometry.path
-    if path is None:
-        raise BemFileError("", "file", "a mesh file", "a geometry without one")
+    path = str(geometry.path)
     try:
         digest = file_sha256(path)
     except OSError as err:
         raise BemFileError(path, "", "a readable mesh file", err.strerror or str(err)) from None
     if digest != geometry.sha256:
-        raise BemFileError(path, "", "the mesh file of the run (SHA-256 "
+        raise BemFileError(path, "", "the mesh file read with the case (SHA-256 "
                            f"{geometry.sha256[:12]}...)", f"a file changed since (SHA-256 "
                            f"{digest[:12]}...)")
     mesh, _ = read_mesh_file(path, geometry.format)

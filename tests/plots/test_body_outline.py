@@ -160,7 +160,6 @@ def test_every_animation_frame_shows_the_body(dataset, tmp_path):
         grey = changed & (np.ptp(drawn, axis=2) <= GREY_BAND) \
             & (np.abs(drawn[..., 0] - BODY_GREY) <= GREY_BAND)
         # the buoy's side patch is about 20 x 40 pixels, its plan patch about 20 x 20
-        print(k, int(changed.sum()), int(grey.sum()))
         assert grey.sum() > MIN_BODY_PIXELS, (k, int(changed.sum()), int(grey.sum()))
 
 
@@ -251,3 +250,34 @@ def test_a_run_whose_case_does_not_re_read_is_drawn_without_the_body(dataset, ca
     fig = draw_line_shapes(broken, [0, 20], context)
     assert not fig.axes[0].patches and not fig.axes[1].patches
     pyplot().close(fig)
+
+
+def test_mesh_hull_is_the_whole_file_mirrored_scaled_and_placed(tmp_path):
+    """A quarter hull in millimetres (GDF flags ISX = ISY = 1, declared symmetric), moved by
+    ``position``, is drawn as the whole hull: the full file's panels, moved."""
+    from floatmoor.io.bem_data import BemFileError
+    from tests.hydro.mesh_files import quarter, tiny_faces, write_case, write_gdf
+
+    faces = tiny_faces()
+    position = np.array([0.5, -0.2, 0.1])
+    write_gdf(tmp_path / "full.gdf", faces)
+    write_gdf(tmp_path / "quarter.gdf", quarter(faces) * 1000.0, isx=1, isy=1)
+    full = body_surface(load_case(write_case(
+        tmp_path, 'kind = "mesh"\nfile = "full.gdf"', name="full.toml")).floater)
+    case = load_case(write_case(
+        tmp_path, 'kind = "mesh"\nfile = "quarter.gdf"\nlength_unit = "mm"\n'
+        'symmetry = ["xz", "yz"]\nposition = [0.5, -0.2, 0.1]', name="quarter.toml"))
+    surface = body_surface(case.floater)
+    assert len(surface.faces) == len(full.faces)
+
+    def panel_set(s, shift):
+        return sorted(tuple(sorted(set(map(tuple, np.round(s.vertices[f] + shift, 9)))))
+                      for f in s.faces)
+
+    assert panel_set(surface, 0.0) == panel_set(full, position)
+    # mirrored triangles keep the convention: their third vertex repeated
+    assert np.sum(surface.faces[:, 3] == surface.faces[:, 2]) == \
+        np.sum(full.faces[:, 3] == full.faces[:, 2])
+    (tmp_path / "quarter.gdf").write_text("changed\n")
+    with pytest.raises(BemFileError, match="changed since"):
+        body_surface(case.floater)
