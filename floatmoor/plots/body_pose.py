@@ -111,7 +111,7 @@ def body_model(case: Case, dataset: xr.Dataset) -> BodyModel | None:
     Raises
     ------
     BemFileError
-        For a mesh hull whose file cannot be read or changed since the run.
+        For a mesh hull whose file cannot be read or changed since the case was read.
     """
     names, rest = _body_points(case)
     if case.floater is not None and "body_displacement" in dataset:
