@@ -83,17 +83,19 @@ def body_path(body: PlacedBody, view: str):
     return Path(vertices, codes)
 
 
-def body_patch(ax, body: PlacedBody, view: str, **style):
-    """Add the body's patch in ``view`` to ``ax`` and return it; ``style`` updates the
-    defaults (:data:`BODY_COLOUR`, :data:`BODY_ALPHA`, no edge for panels, a thin edge for a
-    polygon through points)."""
+def body_patch(ax, body: PlacedBody, view: str, *, colour: str = BODY_COLOUR,
+               label: str | None = None):
+    """Add the body's patch in ``view`` to ``ax`` and return it: filled in ``colour`` at
+    :data:`BODY_ALPHA`, without an edge for panels (their inner edges would show), with a
+    solid edge for a polygon through points (seen edge-on it is a segment)."""
+    from matplotlib.colors import to_rgba
     from matplotlib.patches import PathPatch
 
-    kw = {"facecolor": BODY_COLOUR, "alpha": BODY_ALPHA, "zorder": 1.5,
-          "edgecolor": "none" if body.faces is not None else BODY_COLOUR,
-          "linewidth": 0.0 if body.faces is not None else 1.0}
-    kw.update(style)
-    return ax.add_patch(PathPatch(body_path(body, view), **kw))
+    points = body.faces is None
+    patch = PathPatch(body_path(body, view), facecolor=to_rgba(colour, BODY_ALPHA),
+                      edgecolor=to_rgba(colour, 1.0) if points else "none",
+                      linewidth=1.5 if points else 0.0, zorder=1.5, label=label)
+    return ax.add_patch(patch)
 
 
 def update_body_patch(patch, body: PlacedBody, view: str) -> None:

@@ -147,9 +147,9 @@ def draw_line_shapes(dataset: xr.Dataset, samples: Sequence[int],
                 side.plot(td[0], td[2], "x", color="k", ms=6, label=tlabel)
                 plan.plot(td[0], td[1], "x", color="k", ms=6)
         if fr.outline is not None:
-            body_patch(side, fr.outline, "side", facecolor=colour,
+            body_patch(side, fr.outline, "side", colour=colour,
                        label="body (colour of its time)" if i == 0 else None)
-            body_patch(plan, fr.outline, "plan", facecolor=colour)
+            body_patch(plan, fr.outline, "plan", colour=colour)
         if fr.body is not None:
             side.plot(fr.body[0], fr.body[2], "o", color=colour, ms=5, mfc="none")
             plan.plot(fr.body[0], fr.body[1], "o", color=colour, ms=5, mfc="none")
