@@ -83,11 +83,12 @@ def equilibrium_offset(dataset: xr.Dataset, names: tuple[str, ...],
                        ) -> NDArray[np.float64]:
     """x_eq (6,) of a floater run (module docstring): the pose at the first output time, fitted
     to the recorded positions of the body points ``names`` at rest ``rest`` (n, 3), minus the
-    recorded displacement then. Zero without body points."""
+    recorded displacement then. Zero when the run file records no positions of them."""
     from scipy.optimize import least_squares
 
     d0 = np.asarray(dataset["body_displacement"].isel(time=0).values, dtype=float)
-    if not names or "point_position" not in dataset:
+    if not names or "point_position" not in dataset \
+            or not set(names) <= set(map(str, dataset["point"].values)):
         return np.zeros(6)
     seen = np.asarray(dataset["point_position"].sel(point=list(names)).isel(time=0)
                       .transpose("point", "component").values, dtype=float)
