@@ -5,9 +5,10 @@ Each ``.vtu`` (written by meshio) holds every line as a chain of two-node ``line
 through its nodes, anchor to fairlead, with the point data ``tension`` (effective tension
 [N]) and ``arc_length`` (unstretched, from the anchor [m]) and the cell data ``line_index``
 (the line's position in the result's ``line`` coordinate, whose names the ``.pvd`` lists in a
-comment). With a body (a floater's panels placed at each time, given by the caller), each
-shape sample also gets a ``body_NNNNNN.vtu`` of its triangle and quad panels, listed in the
-``.pvd`` as part 1 of the same time step (ParaView shows both parts together). The ``.pvd`` is
+comment). With a body (a floater's panels placed at each time, or the polygon through a
+forced body's points, given by the caller), each shape sample also gets a
+``body_NNNNNN.vtu`` of its triangle and quad panels or its polygon, listed in the ``.pvd`` as
+part 1 of the same time step (ParaView shows both parts together). The ``.pvd`` is
 written last, so a folder without it holds no finished series.
 """
 
@@ -32,7 +33,7 @@ PVD_NAME = "lines.pvd"
 
 
 #: The body at a time [s]: its vertices (n, 3) [m] and panels (m, 4) (vertex indices; a
-#: triangle repeats its third vertex).
+#: triangle repeats its third vertex), or one polygon (1, k) through k points.
 BodyAtTime = Callable[[float], tuple[NDArray[np.float64], NDArray[np.int64]]]
 
 
@@ -47,8 +48,13 @@ def body_file_name(sample: int) -> str:
 
 
 def _body_mesh(vertices: NDArray[np.float64], faces: NDArray[np.int64]):
+    """Panels (m, 4) as triangles and quads; rows of another width k as one cell type (a
+    line for 2, a triangle for 3, a polygon above 4)."""
     import meshio
 
+    if faces.shape[1] != 4:
+        kind = {2: "line", 3: "triangle"}.get(faces.shape[1], "polygon")
+        return meshio.Mesh(vertices, [(kind, faces)])
     triangle = faces[:, 3] == faces[:, 2]
     cells = [(kind, block) for kind, block in (("triangle", faces[triangle, :3]),
                                                ("quad", faces[~triangle])) if len(block)]

@@ -23,7 +23,7 @@ from floatmoor.case.schema import Case
 from floatmoor.plots.body_surface import BodySurface, body_surface
 
 __all__ = ["BodyModel", "PlacedBody", "body_model", "placed_body", "equilibrium_offset",
-           "OFFSET_TOLERANCE"]
+           "polygon_through", "OFFSET_TOLERANCE"]
 
 #: Convergence of the x_eq fit: positions are recorded to float64 (about 1e-16 relative), so
 #: the fit stops at 1e-12 of the body's size [m].
@@ -138,3 +138,13 @@ def placed_body(model: BodyModel, dataset: xr.Dataset, time: float) -> PlacedBod
                    dtype=float)
     x = model.offset + d
     return PlacedBody(model.surface.placed(x, model.centre), model.surface.faces, x)
+
+
+def polygon_through(points: NDArray[np.float64]) -> NDArray[np.int64]:
+    """The indices (1, n) of ``points`` (n, 3) in turn around their centroid, seen along the
+    normal of their best-fit plane (the smallest principal direction): the polygon through a
+    forced body's points, for the VTK series."""
+    arms = points - points.mean(axis=0)
+    _, _, axes = np.linalg.svd(arms)
+    angle = np.arctan2(arms @ axes[1], arms @ axes[0])
+    return np.argsort(angle, kind="stable")[None, :].astype(np.int64)

@@ -199,18 +199,18 @@ def vtk_command(args: argparse.Namespace) -> int:
 
 def write_vtk(dataset, folder: Path, samples, *, quiet: bool) -> Path:
     """:func:`floatmoor.io.vtk.write_vtk_series` with progress reports (also for ``run
-    --vtk``), with the floater's panels placed at each time (a forced-motion run's points
-    have no panels: none written)."""
+    --vtk``), with the run's body at each time: the floater's panels, or the polygon through
+    a forced body's points."""
     from floatmoor.io.vtk import write_vtk_series
-    from floatmoor.plots.body_pose import placed_body
+    from floatmoor.plots.body_pose import placed_body, polygon_through
     from floatmoor.plots.context import run_context
 
     model = run_context(dataset).body
 
     def body(time: float):
         placed = placed_body(model, dataset, time)
-        return placed.vertices, placed.faces
+        faces = placed.faces if placed.faces is not None else polygon_through(placed.vertices)
+        return placed.vertices, faces
 
-    with_body = model is not None and model.surface is not None
     return write_vtk_series(dataset, folder, samples, progress=_progress(quiet, "VTK file"),
-                            body=body if with_body else None)
+                            body=body if model is not None else None)

@@ -281,3 +281,28 @@ def test_mesh_hull_is_the_whole_file_mirrored_scaled_and_placed(tmp_path):
     (tmp_path / "quarter.gdf").write_text("changed\n")
     with pytest.raises(BemFileError, match="changed since"):
         body_surface(case.floater)
+
+
+def test_vtk_polygon_through_a_forced_bodys_points(dataset, tmp_path):
+    """The forced body's VTK part: one polygon through its points in turn, whatever order
+    the case lists them in (here five corners of a tilted pentagon, shuffled)."""
+    import meshio
+
+    from floatmoor.io.vtk import write_vtk_series
+    from floatmoor.plots.body_pose import polygon_through
+
+    phi = 2.0 * np.pi * np.arange(5) / 5
+    ring = np.column_stack([10 * np.cos(phi), 10 * np.sin(phi), np.zeros(5)])
+    R = Rotation.from_euler("ZYX", [0.3, 0.4, 0.5]).as_matrix()
+    shuffle = [3, 0, 4, 1, 2]
+    points = ring[shuffle] @ R.T + [1.0, 2.0, -5.0]
+    order = polygon_through(points)[0]
+    around = np.array(shuffle)[order]  # the ring's own indices, in the polygon's turn
+    steps = np.diff(np.concatenate([around, around[:1]])) % 5
+    assert set(steps) in ({1}, {4})  # each corner next to its neighbour on the ring
+    pvd = write_vtk_series(dataset, tmp_path, [0],
+                           body=lambda t: (points, polygon_through(points)))
+    assert 'part="1" file="body_000000.vtu"' in pvd.read_text()
+    mesh = meshio.read(tmp_path / "body_000000.vtu")
+    np.testing.assert_array_equal(mesh.points, points)
+    np.testing.assert_array_equal(mesh.cells_dict["polygon"], polygon_through(points))
