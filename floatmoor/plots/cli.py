@@ -2,11 +2,12 @@
 
 Both read a finished (or partial) run file and write its line shapes and body: ``animate
 RUN.nc -o run.gif|mp4`` an animation of the side and plan views, ``vtk RUN.nc -o DIR`` a VTK
-time series for ParaView (the floater's panels beside the lines). Wired into :mod:`floatmoor.cli` with ``add_view_parsers(sub)``; handlers return
-the exit status: 0 done; 2 bad input (a missing or unreadable run file, one without line
-shapes, a bad option, an .mp4 without ffmpeg) with one message on standard error, no
-traceback and nothing written; 1 a write that failed; 130 interrupted (an animation is
-written whole or not at all; a VTK folder holds its finished frames, without the .pvd).
+time series for ParaView (the body's panels beside the lines). Wired into
+:mod:`floatmoor.cli` with ``add_view_parsers(sub)``; handlers return the exit status: 0 done;
+2 bad input (a missing or unreadable run file, one without line shapes, a bad option, an .mp4
+without ffmpeg) with one message on standard error, no traceback and nothing written; 1 a
+write that failed; 130 interrupted (an animation is written whole or not at all; a VTK folder
+holds its finished frames, without the .pvd).
 """
 
 from __future__ import annotations

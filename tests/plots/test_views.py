@@ -5,7 +5,6 @@ the VTK series read back through meshio, and bad arguments refused with status 2
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
