@@ -61,10 +61,16 @@ def test_outline_patch_in_side_and_plan_views(dataset):
             assert vertices.size > 0 and np.all(np.isfinite(vertices))
             # in the colour of its time's lines
             assert patch.get_facecolor()[:3] == pytest.approx(to_rgb(f"C{k + 1}"))
-    (lo, hi) = (side.patches[1].get_path().vertices.min(axis=0),
-                side.patches[1].get_path().vertices.max(axis=0))
-    # the cylinder seen from the side: 0.515 m wide, 0.401 m high (pitch ~1e-5 rad here)
-    assert hi - lo == pytest.approx([2 * BUOY_RADIUS, BUOY_HEIGHT], abs=1e-4)
+    vertices = side.patches[1].get_path().vertices
+    # the cylinder seen from the side, pitched by theta (roll and yaw are nil in head
+    # waves): 2 R cos + H |sin| wide, H cos + 2 R |sin| high (the 36-gon has the extreme
+    # points of the circle among its corners)
+    theta = float(context.body.offset[4] + dataset["body_displacement"].sel(
+        time=1.0, method="nearest").sel(dof="Pitch"))
+    c, s = np.cos(theta), abs(np.sin(theta))
+    assert np.ptp(vertices, axis=0) == pytest.approx(
+        [2 * BUOY_RADIUS * c + BUOY_HEIGHT * s, BUOY_HEIGHT * c + 2 * BUOY_RADIUS * s],
+        abs=POSITION_TOL)
     pyplot().close(fig)
 
 
