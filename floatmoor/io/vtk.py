@@ -5,7 +5,11 @@ Each ``.vtu`` (written by meshio) holds every line as a chain of two-node ``line
 through its nodes, anchor to fairlead, with the point data ``tension`` (effective tension
 [N]) and ``arc_length`` (unstretched, from the anchor [m]) and the cell data ``line_index``
 (the line's position in the result's ``line`` coordinate, whose names the ``.pvd`` lists in a
-comment). The ``.pvd`` is written last, so a folder without it holds no finished series.
+comment). With a body (a floater's panels placed at each time, or the polygon through a
+forced body's points, given by the caller), each shape sample also gets a
+``body_NNNNNN.vtu`` of its triangle and quad panels or its polygon, listed in the ``.pvd`` as
+part 1 of the same time step (ParaView shows both parts together). The ``.pvd`` is
+written last, so a folder without it holds no finished series.
 """
 
 from __future__ import annotations
@@ -17,19 +21,44 @@ from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 import xarray as xr
+from numpy.typing import NDArray
 
 from floatmoor.io.output_files import atomic_target
 from floatmoor.io.shape_samples import line_shape
 
-__all__ = ["write_vtk_series", "vtk_file_name", "PVD_NAME"]
+__all__ = ["write_vtk_series", "vtk_file_name", "body_file_name", "PVD_NAME", "BodyAtTime"]
 
 #: Name of the collection file in the output folder.
 PVD_NAME = "lines.pvd"
 
 
+#: The body at a time [s]: its vertices (n, 3) [m] and panels (m, 4) (vertex indices; a
+#: triangle repeats its third vertex), or one polygon (1, k) through k points.
+BodyAtTime = Callable[[float], tuple[NDArray[np.float64], NDArray[np.int64]]]
+
+
 def vtk_file_name(sample: int) -> str:
     """The ``.vtu`` file of shape sample ``sample``."""
     return f"lines_{sample:06d}.vtu"
+
+
+def body_file_name(sample: int) -> str:
+    """The body's ``.vtu`` file of shape sample ``sample``."""
+    return f"body_{sample:06d}.vtu"
+
+
+def _body_mesh(vertices: NDArray[np.float64], faces: NDArray[np.int64]):
+    """Panels (m, 4) as triangles and quads; rows of another width k as one cell type (a
+    line for 2, a triangle for 3, a polygon above 4)."""
+    import meshio
+
+    if faces.shape[1] != 4:
+        kind = {2: "line", 3: "triangle"}.get(faces.shape[1], "polygon")
+        return meshio.Mesh(vertices, [(kind, faces)])
+    triangle = faces[:, 3] == faces[:, 2]
+    cells = [(kind, block) for kind, block in (("triangle", faces[triangle, :3]),
+                                               ("quad", faces[~triangle])) if len(block)]
+    return meshio.Mesh(vertices, cells)
 
 
 def _mesh(dataset: xr.Dataset, sample: int):
@@ -55,9 +84,11 @@ def _mesh(dataset: xr.Dataset, sample: int):
 
 def write_vtk_series(dataset: xr.Dataset, folder: str | os.PathLike[str],
                      samples: Sequence[int],
-                     progress: Callable[[int, int], None] | None = None) -> Path:
+                     progress: Callable[[int, int], None] | None = None,
+                     body: BodyAtTime | None = None) -> Path:
     """Write the shape samples ``samples`` of ``dataset`` into ``folder`` (created if its
-    parent exists); returns the ``.pvd`` file.
+    parent exists), with the body's panels at each when ``body`` is given; returns the
+    ``.pvd`` file.
 
     Raises
     ------
@@ -76,6 +107,12 @@ def write_vtk_series(dataset: xr.Dataset, folder: str | os.PathLike[str],
             _mesh(dataset, int(k)).write(tmp, file_format="vtu")
         entries.append(f'    <DataSet timestep="{float(times[k])!r}" group="" part="0" '
                        f'file={quoteattr(name)}/>')
+        if body is not None:
+            name = body_file_name(int(k))
+            with atomic_target(folder / name, suffix=".vtu") as tmp:
+                _body_mesh(*body(float(times[k]))).write(tmp, file_format="vtu")
+            entries.append(f'    <DataSet timestep="{float(times[k])!r}" group="" part="1" '
+                           f'file={quoteattr(name)}/>')
         if progress is not None:
             progress(i + 1, len(samples))
     names = ", ".join(f"{j}: {n}" for j, n in enumerate(dataset["line"].values))

@@ -2,8 +2,10 @@
 per chosen shape sample, written by matplotlib's animation writers (GIF through Pillow, MP4
 through ffmpeg when it is installed).
 
-The floater is drawn as its reference point displaced by surge, sway and heave, joined by
-thin spokes to the line fairleads (body-fixed points, so the spokes turn with the body).
+The floater is drawn as its outline (:mod:`floatmoor.plots.body_outline`, placed by its 6-DOF
+motion at each frame) and its reference point displaced by surge, sway and heave, joined by
+thin spokes to the line fairleads (body-fixed points, so the spokes turn with the body); the
+body of a ``[motion] kind = "body"`` run as the polygon through its body-carried points.
 """
 
 from __future__ import annotations
@@ -16,7 +18,8 @@ import xarray as xr
 
 from floatmoor.errors import FloatmoorError
 from floatmoor.io.output_files import atomic_target
-from floatmoor.plots.context import run_context
+from floatmoor.plots.body_outline import body_patch, update_body_patch
+from floatmoor.plots.context import RunContext, run_context
 from floatmoor.plots.shapes import draw_references, frame, scene_limits
 from floatmoor.plots.style import figure_title, pyplot
 
@@ -57,9 +60,10 @@ def animation_writer(path: str | Path, fps: float):
 
 def animate_run(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *,
                 fps: float = 10.0,
-                progress: Callable[[int, int], None] | None = None) -> int:
+                progress: Callable[[int, int], None] | None = None,
+                context: RunContext | None = None) -> int:
     """Write the animation of the shape samples ``samples`` to ``path``; returns the number
-    of frames written.
+    of frames written. ``context`` defaults to :func:`run_context` of ``dataset``.
 
     Raises
     ------
@@ -73,7 +77,7 @@ def animate_run(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *
     writer = animation_writer(path, fps)
     from matplotlib.animation import FuncAnimation
 
-    context = run_context(dataset)
+    context = run_context(dataset) if context is None else context
     frames = [frame(dataset, k, context) for k in samples]
     xlim, _, zlim = scene_limits(frames, context)
     fairleads = None
@@ -101,6 +105,10 @@ def animate_run(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *
         side_body = side.plot([], [], "o-", color="0.3", ms=6, mfc="none", lw=0.6,
                               label="floater: reference point, fairleads")[0]
         plan_body = plan.plot([], [], "o-", color="0.3", ms=6, mfc="none", lw=0.6)[0]
+    side_patch = plan_patch = None
+    if frames[0].outline is not None:
+        side_patch = body_patch(side, frames[0].outline, "side", label="body")
+        plan_patch = body_patch(plan, frames[0].outline, "plan")
     side.legend(loc="lower left", fontsize=7, ncol=2)
     clock = fig.suptitle("", fontsize=10)
     title = figure_title(dataset.attrs.get("title"))
@@ -118,6 +126,9 @@ def animate_run(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *
             spokes = np.concatenate([[fr.body, p] for p in fl]).reshape(-1, 3)
             side_body.set_data(spokes[:, 0], spokes[:, 2])
             plan_body.set_data(spokes[:, 0], spokes[:, 1])
+        if side_patch is not None and plan_patch is not None and fr.outline is not None:
+            update_body_patch(side_patch, fr.outline, "side")
+            update_body_patch(plan_patch, fr.outline, "plan")
         clock.set_text(f"{title}\nt = {fr.time:.3f} s")
         return side_lines + plan_lines
 

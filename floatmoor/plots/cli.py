@@ -1,12 +1,13 @@
 """Command-line parsers and handlers of ``floatmoor animate`` and ``floatmoor vtk``.
 
-Both read a finished (or partial) run file and write its line shapes: ``animate RUN.nc -o
-run.gif|mp4`` an animation of the side and plan views, ``vtk RUN.nc -o DIR`` a VTK time series
-for ParaView. Wired into :mod:`floatmoor.cli` with ``add_view_parsers(sub)``; handlers return
-the exit status: 0 done; 2 bad input (a missing or unreadable run file, one without line
-shapes, a bad option, an .mp4 without ffmpeg) with one message on standard error, no
-traceback and nothing written; 1 a write that failed; 130 interrupted (an animation is
-written whole or not at all; a VTK folder holds its finished frames, without the .pvd).
+Both read a finished (or partial) run file and write its line shapes and body: ``animate
+RUN.nc -o run.gif|mp4`` an animation of the side and plan views, ``vtk RUN.nc -o DIR`` a VTK
+time series for ParaView (the body's panels beside the lines). Wired into
+:mod:`floatmoor.cli` with ``add_view_parsers(sub)``; handlers return the exit status: 0 done;
+2 bad input (a missing or unreadable run file, one without line shapes, a bad option, an .mp4
+without ffmpeg) with one message on standard error, no traceback and nothing written; 1 a
+write that failed; 130 interrupted (an animation is written whole or not at all; a VTK folder
+holds its finished frames, without the .pvd).
 """
 
 from __future__ import annotations
@@ -199,7 +200,18 @@ def vtk_command(args: argparse.Namespace) -> int:
 
 def write_vtk(dataset, folder: Path, samples, *, quiet: bool) -> Path:
     """:func:`floatmoor.io.vtk.write_vtk_series` with progress reports (also for ``run
-    --vtk``)."""
+    --vtk``), with the run's body at each time: the floater's panels, or the polygon through
+    a forced body's points."""
     from floatmoor.io.vtk import write_vtk_series
+    from floatmoor.plots.body_pose import placed_body, polygon_through
+    from floatmoor.plots.context import run_context
 
-    return write_vtk_series(dataset, folder, samples, progress=_progress(quiet, "VTK file"))
+    model = run_context(dataset).body
+
+    def body(time: float):
+        placed = placed_body(model, dataset, time)
+        faces = placed.faces if placed.faces is not None else polygon_through(placed.vertices)
+        return placed.vertices, faces
+
+    return write_vtk_series(dataset, folder, samples, progress=_progress(quiet, "VTK file"),
+                            body=body if model is not None else None)

@@ -12,7 +12,7 @@ import xarray as xr
 
 from floatmoor.io.shape_samples import complete_shape_samples, has_shapes, \
     nearest_shape_samples
-from floatmoor.plots.context import run_context
+from floatmoor.plots.context import RunContext, run_context
 from floatmoor.plots.motions import draw_body_motions
 from floatmoor.plots.shapes import draw_line_shapes
 from floatmoor.plots.style import save_figure
@@ -92,12 +92,13 @@ def plot_run(dataset: xr.Dataset, path: str | Path,
         save_figure(draw_body_motions(dataset, ramp_duration=context.ramp), paths["motions"])
     if "shapes" in paths:
         plot_shape_views(dataset, paths["shapes"], paths["line_tension"], start=context.ramp,
-                         times=times)
+                         times=times, context=context)
     return paths
 
 
 def plot_shape_views(dataset: xr.Dataset, shapes_path: str | Path, tension_path: str | Path,
-                     *, start: float, times: Sequence[float] | None = None) -> None:
+                     *, start: float, times: Sequence[float] | None = None,
+                     context: RunContext | None = None) -> None:
     """The line shapes and the tension along the lines of a run with shapes.
 
     Parameters
@@ -107,13 +108,15 @@ def plot_shape_views(dataset: xr.Dataset, shapes_path: str | Path, tension_path:
         there (:func:`envelope_start`).
     times
         Times of the shapes drawn [s]; None: :func:`default_shape_samples` after ``start``.
+    context
+        The run's :func:`run_context` (re-read from ``dataset`` when None).
 
     Raises
     ------
     ShapeDataError, FigureDataError, OutputWriteError
         As :func:`plot_run`.
     """
-    context = run_context(dataset)
+    context = run_context(dataset) if context is None else context
     samples = (default_shape_samples(dataset, start) if times is None
                else nearest_shape_samples(dataset, times, "--plot-times"))
     save_figure(draw_line_shapes(dataset, samples, context), shapes_path)

@@ -1,5 +1,6 @@
 """Line shapes of one run at chosen times: side view (x-z) and plan view (x-y), with the
-seabed, the still water line z = 0, the anchors and the touchdown points.
+seabed, the still water line z = 0, the anchors, the touchdown points and the body's outline
+(:mod:`floatmoor.plots.body_outline`) at each time.
 
 The scene helpers (:func:`frame`, :func:`scene_limits`, :func:`draw_references`) are shared
 with :mod:`floatmoor.plots.animation`.
@@ -15,6 +16,8 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.io.shape_samples import LineShape, line_shape
+from floatmoor.plots.body_outline import body_patch
+from floatmoor.plots.body_pose import PlacedBody, placed_body
 from floatmoor.plots.context import RunContext
 from floatmoor.plots.series import check_series
 from floatmoor.plots.style import figure_title, plain_axes, pyplot
@@ -44,12 +47,15 @@ class Frame:
         The touchdown point of each line [m], or None.
     body
         The floater's reference point displaced [m] (None without a floater).
+    outline
+        The body placed at ``time`` (None when the run's body is not drawn).
     """
 
     time: float
     shapes: list[LineShape]
     touchdowns: list[NDArray[np.float64] | None]
     body: NDArray[np.float64] | None
+    outline: PlacedBody | None = None
 
 
 def frame(dataset: xr.Dataset, sample: int, context: RunContext) -> Frame:
@@ -66,18 +72,25 @@ def frame(dataset: xr.Dataset, sample: int, context: RunContext) -> Frame:
         check_series(shape.position, f"shape of line {name} at t = {shape.time:g} s")
         shapes.append(shape)
     t = shapes[0].time
-    body = None
-    if "body_displacement" in dataset:
+    body = outline = None
+    if context.body is not None:
+        outline = placed_body(context.body, dataset, t)
+        check_series(outline.vertices, f"body at t = {t:g} s")
+    if outline is not None and outline.displacement is not None:
+        body = np.asarray(context.reference_point) + outline.displacement[:3]
+    elif "body_displacement" in dataset:
         disp = dataset["body_displacement"].sel(time=t, method="nearest")
         body = np.asarray(context.reference_point) + np.array(
             [float(disp.sel(dof=d)) for d in ("Surge", "Sway", "Heave")])
-    return Frame(t, shapes, [touchdown_point(dataset, s) for s in shapes], body)
+    return Frame(t, shapes, [touchdown_point(dataset, s) for s in shapes], body, outline)
 
 
 def scene_limits(frames: Sequence[Frame], context: RunContext
                  ) -> tuple[tuple[float, float], tuple[float, float], tuple[float, float]]:
-    """(x, y, z) axis limits [m] holding every line of ``frames``, the seabed and z = 0."""
-    points = np.concatenate([s.position for f in frames for s in f.shapes])
+    """(x, y, z) axis limits [m] holding every line and body of ``frames``, the seabed and
+    z = 0."""
+    points = np.concatenate([s.position for f in frames for s in f.shapes]
+                            + [f.outline.vertices for f in frames if f.outline is not None])
     lo, hi = points.min(axis=0), points.max(axis=0)
     hi[2] = max(hi[2], 0.0)
     if context.water_depth is not None:
@@ -106,7 +119,8 @@ def draw_references(side, plan, context: RunContext, xlim: tuple[float, float]) 
 def draw_line_shapes(dataset: xr.Dataset, samples: Sequence[int],
                      context: RunContext) -> Figure:
     """Side (x-z) and plan (x-y) views of every line at the shape samples ``samples`` (one
-    colour per time), with anchors, touchdown points, the seabed and z = 0.
+    colour per time), with anchors, touchdown points, the seabed, z = 0 and the body's
+    outline at each time (``context.body``).
 
     Raises
     ------
@@ -132,6 +146,10 @@ def draw_line_shapes(dataset: xr.Dataset, samples: Sequence[int],
                 tlabel = "touchdown point" if i == 0 and j == 0 else None
                 side.plot(td[0], td[2], "x", color="k", ms=6, label=tlabel)
                 plan.plot(td[0], td[1], "x", color="k", ms=6)
+        if fr.outline is not None:
+            body_patch(side, fr.outline, "side", colour=colour,
+                       label="body (colour of its time)" if i == 0 else None)
+            body_patch(plan, fr.outline, "plan", colour=colour)
         if fr.body is not None:
             side.plot(fr.body[0], fr.body[2], "o", color=colour, ms=5, mfc="none")
             plan.plot(fr.body[0], fr.body[1], "o", color=colour, ms=5, mfc="none")

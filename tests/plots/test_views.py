@@ -5,13 +5,11 @@ the VTK series read back through meshio, and bad arguments refused with status 2
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from floatmoor.cli import main
-from floatmoor.io.netcdf import read_dataset
 from floatmoor.io.shape_samples import ShapeDataError, line_shape, node_count, \
     window_samples
 from floatmoor.plots.context import run_context
@@ -21,13 +19,8 @@ from floatmoor.plots.shapes import draw_line_shapes
 from floatmoor.plots.style import tension_unit
 from floatmoor.plots.tensions import draw_tension_along_line, draw_tensions
 from floatmoor.post.line_shapes import touchdown_point
-from tests.conftest import CASES
+from tests.plots.conftest import BUOY, RUN, SHAPES
 
-BUOY = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
-#: 2 s of the buoy on quasi-static lines, shapes every 0.1 s: 21 shape samples.
-RUN = ["--set", "simulation.duration=2", "--set", "simulation.shape_output_interval=0.1",
-       "--set", 'lines.*.model="quasi-static"', "--quiet"]
-SHAPES = 21
 #: An axis label names its unit in brackets: "tension [N]", "pitch [deg]".
 UNIT = re.compile(r"\[[^\]]+\]$")
 #: The touchdown point is interpolated linearly between the last node on the seabed and the
@@ -36,21 +29,6 @@ UNIT = re.compile(r"\[[^\]]+\]$")
 #: = 1.238 N/m (the buoy's chain), T >= 1.9 N at touchdown (its tension there), node spacing
 #: ds = 6.95 / 50 = 0.139 m: 6.3e-3 m [m].
 SEABED_TOL = 1.238 / (2.0 * 1.9) * 0.139**2
-
-
-@pytest.fixture(scope="module")
-def buoy_run(tmp_path_factory) -> dict[str, Path]:
-    """One short buoy run through ``floatmoor run --plot --vtk`` (module-wide)."""
-    folder = tmp_path_factory.mktemp("views")
-    out, png, vtk = folder / "buoy.nc", folder / "buoy.png", folder / "vtk"
-    assert main(["run", str(BUOY), *RUN, "-o", str(out), "--plot", str(png),
-                 "--vtk", str(vtk)]) == 0
-    return {"nc": out, "png": png, "vtk": vtk, "folder": folder}
-
-
-@pytest.fixture(scope="module")
-def dataset(buoy_run):
-    return read_dataset(buoy_run["nc"])
 
 
 def _check_figure(fig) -> int:
@@ -188,8 +166,8 @@ def test_vtk_round_trip_through_meshio(buoy_run, dataset):
     import meshio
 
     pvd = (buoy_run["vtk"] / "lines.pvd").read_text()
-    files = re.findall(r'file="([^"]+)"', pvd)
-    times = [float(t) for t in re.findall(r'timestep="([^"]+)"', pvd)]
+    files = re.findall(r'part="0" file="([^"]+)"', pvd)
+    times = [float(t) for t in re.findall(r'timestep="([^"]+)" group="" part="0"', pvd)]
     assert len(files) == SHAPES
     np.testing.assert_allclose(times, dataset["shape_time"].values, rtol=0, atol=0)
     for k in (0, 13):
@@ -208,9 +186,10 @@ def test_vtk_round_trip_through_meshio(buoy_run, dataset):
 def test_vtk_command_writes_the_chosen_window(buoy_run, tmp_path):
     assert main(["vtk", str(buoy_run["nc"]), "-o", str(tmp_path / "v"), "--start", "1",
                  "--every", "2", "--quiet"]) == 0
-    assert sorted(p.name for p in (tmp_path / "v").iterdir()) == [
-        "lines.pvd", "lines_000010.vtu", "lines_000012.vtu", "lines_000014.vtu",
-        "lines_000016.vtu", "lines_000018.vtu", "lines_000020.vtu"]
+    samples = [10, 12, 14, 16, 18, 20]
+    assert sorted(p.name for p in (tmp_path / "v").iterdir()) == sorted(
+        ["lines.pvd"] + [f"lines_{k:06d}.vtu" for k in samples]
+        + [f"body_{k:06d}.vtu" for k in samples])
 
 
 def test_node_count_cuts_the_padding():
