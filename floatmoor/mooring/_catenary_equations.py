@@ -7,8 +7,8 @@ Coulomb friction, and the elastic stretch of the resting length. The solvers tha
 
 The equations are the classic elastic catenary (Irvine 1981, *Cable Structures*) with the
 resting length and Coulomb seabed friction of the FAST v7 catenary (Jonkman 2007,
-NREL/TP-500-41958), exactly as written in ``style.md`` 5.1 item 1, which this module quotes
-below.
+NREL/TP-500-41958), exactly as written in ``docs/theory/quasi_static.md``, which this module
+quotes below.
 
 Symbols (SI units)
 ------------------
@@ -28,13 +28,13 @@ s       unstretched arc length from the anchor                                  
 
 Equations (anchor at the origin, V(s) = VA + W s the vertical tension along a free span):
 
-* fully suspended, VA = VF - W L (style.md 5.1 item 1, first pair)::
+* fully suspended, VA = VF - W L (docs/theory/quasi_static.md, fully suspended line)::
 
       X = (H/W) [asinh(VF/H) - asinh(VA/H)] + H L / EA
       Z = (H/W) [sqrt(1 + (VF/H)^2) - sqrt(1 + (VA/H)^2)] + (VF L - W L^2 / 2) / EA
 
-* touchdown (seabed at the anchor, VF < W L), LB = L - VF/W (style.md 5.1 item 1, second
-  pair and friction term)::
+* touchdown (seabed at the anchor, VF < W L), LB = L - VF/W (docs/theory/quasi_static.md,
+  line resting on the seabed, with its friction term)::
 
       X = LB + (H/W) asinh(VF/H) + H L / EA
           + (CB W / 2EA) [-LB^2 + (LB - H/(CB W)) max(LB - H/(CB W), 0)]
@@ -103,7 +103,9 @@ def _eval_suspended(H, V, L, EA, W):
 
 @jit(error_model="numpy")
 def _seabed_stretch(H, LB, EA, W, CB):
-    """Elastic stretch of the resting length and its partials (the friction term of style.md 5.1).
+    """Elastic stretch of the resting length and its partials.
+
+    The friction term of the resting line in docs/theory/quasi_static.md.
 
     Tension along the resting part drops from H at touchdown by CB W per unit length towards
     the anchor, floored at zero: T(s) = max(H - CB W (LB - s), 0).

@@ -1,13 +1,13 @@
 """The quasi-static elastic catenary with seabed contact and friction: the Python API.
 
 A mooring line of unstretched length L hangs between an anchor and a fairlead under its own
-submerged weight. Its shape and end forces follow the elastic catenary of Irvine (1981) with
-the resting length and seabed friction of Jonkman (2007), as written in ``style.md`` 5.1 item 1
+submerged weight. Its shape and end forces follow the elastic catenary of Irvine (1981) with the
+resting length and seabed friction of Jonkman (2007), as written in ``docs/theory/quasi_static.md``
 (see :mod:`floatmoor.mooring._catenary_equations` for the equations and
-:mod:`floatmoor.mooring._catenary_kernels` for the solver). This module
-wraps the compiled kernels for use from Python: it validates shapes, raises
-:class:`~floatmoor.errors.SolverError` with the reason on failure, and returns a
-:class:`CatenarySolution`. Time loops should call the kernels directly.
+:mod:`floatmoor.mooring._catenary_kernels` for the solver). This module wraps the compiled kernels
+for use from Python: it validates shapes, raises :class:`~floatmoor.errors.SolverError` with the
+reason on failure, and returns a :class:`CatenarySolution`. Time loops should call the kernels
+directly.
 
 Symbols
 -------
@@ -51,7 +51,8 @@ __all__ = [
 
 #: Convergence tolerance: |X - XF| + |Z - ZF| <= DEFAULT_TOL * L. Roundoff in the (cancellation
 #: free) equations is a few 1e-16 L, so 1e-12 L is reached reliably and leaves the equations
-#: holding far below the 1e-9 L of ``style.md`` 5.1.
+#: holding far below the 1e-9 L of verification case 5.1.1
+#: (``docs/development.md#case-511-elastic-catenary``).
 DEFAULT_TOL = 1e-12
 #: Newton iterations allowed per attempt (warm starts need 2 to 4, cold starts up to ~30).
 DEFAULT_MAX_ITER = 100

@@ -1,6 +1,6 @@
 """Plain NumPy/SciPy reference for the elastic catenary, independent of the numba kernels.
 
-The equations are the closed forms of ``style.md`` 5.1 item 1 (Irvine 1981; Jonkman 2007),
+The equations are the closed forms of ``docs/theory/quasi_static.md`` (Irvine 1981; Jonkman 2007),
 written literally (no reformulation against cancellation, so keep test lines away from the
 extreme taut limit where that costs digits). The solver nests two :func:`scipy.optimize.brentq`
 root finds: VF such that Z(H, VF) = ZF for fixed H, inside a root find on ln H for
@@ -42,7 +42,7 @@ def end_point(line: Line, H: complex, VF: complex) -> tuple[complex, complex]:
     """(X, Z) of the fairlead for tensions (H, VF); complex-step safe."""
     L, EA, W, CB = line.L, line.EA, line.W, line.CB
     if not touches_down(line, VF):
-        # fully suspended (style.md 5.1 item 1, first pair)
+        # fully suspended (docs/theory/quasi_static.md)
         X = (H / W) * (np.arcsinh(VF / H) - np.arcsinh((VF - W * L) / H)) + H * L / EA
         Z = ((H / W) * (np.sqrt(1 + (VF / H) ** 2) - np.sqrt(1 + ((VF - W * L) / H) ** 2))
              + (VF * L - W * L**2 / 2) / EA)

@@ -1,5 +1,6 @@
 """The catenary kernel against MoorPy's ``Catenary.catenary`` (NREL, a port of FAST v7's
-catenary; Jonkman 2007), a cross-code check of the same closed-form model (style.md 4.7).
+catenary; Jonkman 2007), a cross-code check of the same closed-form model
+(docs/development.md#4-kinds-of-tests).
 
 MoorPy's conventions: it returns (HA, VA, -HF, -VF, info) for end A at the origin and end B
 at (XF, ZF); a negative ``CB`` means "no seabed contact, end A is -CB above the seabed"; its

@@ -1,5 +1,5 @@
 """The chain-experiment paper's scaling (Bergdahl, Palm, Eskilsson & Lindahl 2016, section 3,
-Tables 1-3, 5 and 6; /work references: papers/dynamically_scaled_chain_experiment.txt),
+Tables 1-3, 5 and 6; J. Mar. Sci. Eng. 4(1):5, doi:10.3390/jmse4010005),
 reproduced from the model data and the scale laws of floatmoor.similitude.laws.
 
 A printed value counts as reproduced when it agrees within PAPER_TOLERANCE or, for values

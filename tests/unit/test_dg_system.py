@@ -18,8 +18,8 @@ from floatmoor.mooring.dg.system import DynamicSystem, SystemSection
 from tests.conftest import CASES
 from tests.oracles import dg_numpy as oracle
 
-#: style.md 5.4: kernels match their NumPy oracle to 1e-12 relative (to the field's largest
-#: value); observed <= 1e-15.
+#: docs/development.md#54-kernel-oracle-tolerance: kernels match their NumPy oracle to 1e-12
+#: relative (to the field's largest value); observed <= 1e-15.
 ORACLE_RTOL = 1e-12
 
 

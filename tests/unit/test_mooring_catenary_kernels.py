@@ -1,8 +1,8 @@
 """The numba catenary kernels against the plain NumPy/SciPy oracle (tests/oracles).
 
-Two implementations of one method (style.md 4.7): the kernels reformulate the closed forms
-against cancellation and solve by Newton; the oracle evaluates them literally and solves by
-nested bracketing, with a complex-step Jacobian.
+Two implementations of one method (docs/development.md#4-kinds-of-tests): the kernels
+reformulate the closed forms against cancellation and solve by Newton; the oracle evaluates
+them literally and solves by nested bracketing, with a complex-step Jacobian.
 """
 
 from __future__ import annotations
@@ -18,9 +18,10 @@ from tests.oracles import catenary_numpy as oracle
 
 #: Both codes solve the same equations, the kernel to TOL and the oracle to machine precision
 #: (checked with 50-digit mpmath while writing this test: oracle residuals <= 1e-15 L). The
-#: conditioning of the nearly taut lines sampled here turns 1e-15 L into ~1e-12 of the
-#: tension (observed 1.8e-12); 1e-10 relative to the fairlead tension, the style.md 5.4 oracle
-#: bar for a kernel that reformulates the equations, leaves a 50x margin.
+#: conditioning of the nearly taut lines sampled here turns 1e-15 L into ~1e-12 of the tension
+#: (observed 1.8e-12); 1e-10 relative to the fairlead tension, the oracle bar of
+#: docs/development.md#54-kernel-oracle-tolerance for a kernel that reformulates the equations,
+#: leaves a 50x margin.
 TENSION_RTOL = 1e-10
 #: Laid length, relative to L: same origin as TENSION_RTOL.
 LAID_LENGTH_RTOL = 1e-10

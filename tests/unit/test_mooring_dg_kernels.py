@@ -1,10 +1,11 @@
 """The numba DG cable kernels and the reference-element operators against the NumPy oracle.
 
-Two implementations of one method (style.md 4.7 and 5.4): :mod:`tests.oracles.dg_numpy` writes
-the semi-discretisation of docs/theory/cable.md and docs/theory/dynamic_line.md vectorised in NumPy, with reference-element
-operators built from the barycentric Lagrange basis instead of the Legendre Vandermonde
-matrix. The states are random: taut and slack, in air and in water, above, on and below the
-seabed, moving faster and slower than the friction slip speed, with current, drag, added mass,
+Two implementations of one method (docs/development.md#4-kinds-of-tests and
+docs/development.md#54-kernel-oracle-tolerance): :mod:`tests.oracles.dg_numpy` writes the
+semi-discretisation of docs/theory/cable.md and docs/theory/dynamic_line.md vectorised in NumPy,
+with reference-element operators built from the barycentric Lagrange basis instead of the Legendre
+Vandermonde matrix. The states are random: taut and slack, in air and in water, above, on and below
+the seabed, moving faster and slower than the friction slip speed, with current, drag, added mass,
 internal damping (including its clipping at zero tension) and explicit seabed contact.
 """
 
@@ -22,10 +23,10 @@ from floatmoor.mooring.dg.line import CableProperties
 from floatmoor.mooring.dg.reference import lgl_nodes, reference_element
 from tests.oracles import dg_numpy as oracle
 
-#: style.md 5.4: every numba kernel matches its NumPy oracle to 1e-12 relative. The error is
-#: measured relative to the largest value of the compared field (the accelerations, tensions
-#: and fluxes of a random state are all of one magnitude by construction). Observed <= 7e-16
-#: with identical operators.
+#: docs/development.md#54-kernel-oracle-tolerance: every numba kernel matches its NumPy oracle to
+#: 1e-12 relative. The error is measured relative to the largest value of the compared field (the
+#: accelerations, tensions and fluxes of a random state are all of one magnitude by construction).
+#: Observed <= 7e-16 with identical operators.
 ORACLE_RTOL = 1e-12
 #: The reference element's operators (Vandermonde route) against the oracle's (barycentric
 #: Lagrange route): both exact in exact arithmetic, so roundoff times the operator norm

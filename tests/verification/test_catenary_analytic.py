@@ -1,4 +1,5 @@
-"""Quasi-static elastic catenary against analytic solutions (style.md 5.1 items 1, 2, 10).
+"""Quasi-static elastic catenary against analytic solutions (verification cases 5.1.1,
+5.1.2 and 5.1.10 of ``docs/development.md``).
 
 References: Irvine (1981) and Jonkman (2007) for the elastic catenary with seabed contact and
 friction; the inelastic catenary in its cosh form for an independent closed form; the
@@ -20,20 +21,23 @@ from floatmoor.mooring.catenary import (
 )
 from tests.oracles import catenary_numpy as oracle
 
-#: The inelastic closed form (EA -> inf) against the solver with EA = 1e16 W L: the elastic
-#: terms are O(T/EA) ~ 1e-15 and the solver reaches 1e-14 L; the style.md 4.7 closed-form bar.
+#: The inelastic closed form (EA -> inf) against the solver with EA = 1e16 W L: the elastic terms
+#: are O(T/EA) ~ 1e-15 and the solver reaches 1e-14 L; the closed-form bar of
+#: docs/development.md#4-kinds-of-tests.
 INELASTIC_RTOL = 1e-10
-#: style.md 5.1 item 1: the solution substituted back into the equations holds to 1e-9 L.
+#: docs/development.md#case-511-elastic-catenary: the solution substituted back into the equations
+#: holds to 1e-9 L.
 EQUATIONS_ATOL_REL = 1e-9
-#: style.md 5.1 item 2: hanging bar stretch w L^2 / (2 EA), quasi-static bar 1e-8.
+#: docs/development.md#case-512-hanging-bar: stretch w L^2 / (2 EA), quasi-static bar 1e-8.
 HANGING_RTOL = 1e-8
-#: style.md 5.1 item 1: analytic stiffness against central finite differences, rtol 1e-5
-#: (relative to the largest entry of the matrix). Steps of 1e-7 L on solves converged to
-#: 1e-14 L: truncation ~ (1e-7)^2, noise ~ 1e-14 / 1e-7 = 1e-7.
+#: docs/development.md#case-511-elastic-catenary: analytic stiffness against central finite
+#: differences, rtol 1e-5 (relative to the largest entry of the matrix). Steps of 1e-7 L on solves
+#: converged to 1e-14 L: truncation ~ (1e-7)^2, noise ~ 1e-14 / 1e-7 = 1e-7.
 STIFFNESS_FD_RTOL = 1e-5
 FD_STEP_REL = 1e-7
 FD_TOL = 1e-14
-#: style.md 5.1 item 10: swapped ends, rotation and translation change nothing, 1e-10 (QS).
+#: docs/development.md#case-5110-invariances: swapped ends, rotation and translation change
+#: nothing, 1e-10 (QS).
 INVARIANCE_RTOL = 1e-10
 #: Warm start from the solution at a fairlead position 1e-3 L away: Newton converges
 #: quadratically, 1e-3 -> 1e-6 -> 1e-12 -> below 1e-14, so 4 iterations must do.
@@ -107,7 +111,7 @@ def test_inelastic_touchdown_catenary(CB):
     err = max(abs(out[k.I_HF] - H), abs(out[k.I_VF] - VF)) / math.hypot(H, VF)
     assert err <= INELASTIC_RTOL
     assert out[k.I_LB] == pytest.approx(LB, rel=INELASTIC_RTOL)
-    # friction reduces the anchor tension by CB W LB, floored at zero (style.md 5.1 item 1)
+    # friction reduces the anchor tension by CB W LB, floored at zero (docs/theory/quasi_static.md)
     assert out[k.I_HA] == pytest.approx(max(H - CB * W * LB, 0.0), rel=INELASTIC_RTOL,
                                         abs=INELASTIC_RTOL * H)
     assert out[k.I_VA] == 0.0
@@ -172,7 +176,8 @@ def _random_case(rng, kind):
 
 
 def _equation_error(line, out):
-    """|X - XF| + |Z - ZF| of the solution in the style.md 5.1 equations or their H = 0 limits."""
+    """|X - XF| + |Z - ZF| of the solution in the equations of docs/theory/quasi_static.md or
+    their H = 0 limits."""
     H, VF, L, W, EA = out[k.I_HF], out[k.I_VF], line.L, line.W, line.EA
     if H > 0.0:
         rX, rZ = oracle.residual(line, H, VF)

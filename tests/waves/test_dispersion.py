@@ -11,7 +11,8 @@ from floatmoor.waves.dispersion import (angular_frequency, group_velocity, wavel
                                         wavenumber)
 
 G = 9.81
-#: Residual of the dispersion relation; style.md 5.3.1 asks 1e-10 (WEC-Sim bemioTest), the
+#: Residual of the dispersion relation; docs/development.md#case-531-dispersion-relation
+#: asks 1e-10 (WEC-Sim bemioTest), the
 #: Newton iteration stops at a few ulps so 1e-13 is the honest bound.
 RESIDUAL_RTOL = 1e-13
 #: x tanh x = 1 has the root 1.19967864025773383391636984864 (published to 30 digits, e.g. as

@@ -12,7 +12,8 @@ from floatmoor.waves.spectra import jonswap, jonswap_moment
 
 G = 9.81
 #: Exact identities (Parseval on one repeat period, periodicity) hold to rounding; 1e-10
-#: relative leaves room for the ~1e4 rad of accumulated phase (style.md 5.3.3 asks 1e-10).
+#: relative leaves room for the ~1e4 rad of accumulated phase (verification case 5.3.3,
+#: docs/development.md#case-533-realisation-round-trip, asks 1e-10).
 EXACT_RTOL = 1e-10
 
 
