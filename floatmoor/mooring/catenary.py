@@ -49,9 +49,9 @@ __all__ = [
     "solve_catenary", "catenary_profile", "describe_failure",
 ]
 
-#: Convergence tolerance: |X - XF| + |Z - ZF| <= DEFAULT_TOL * L. Roundoff in the (cancellation
-#: free) equations is a few 1e-16 L, so 1e-12 L is reached reliably and leaves the equations
-#: holding far below the 1e-9 L of ``style.md`` 5.1.
+#: Convergence tolerance: ``|X - XF| + |Z - ZF| <= DEFAULT_TOL * L``. Roundoff in the
+#: (cancellation free) equations is a few 1e-16 L, so 1e-12 L is reached reliably and leaves
+#: the equations holding far below the 1e-9 L of ``style.md`` 5.1.
 DEFAULT_TOL = 1e-12
 #: Newton iterations allowed per attempt (warm starts need 2 to 4, cold starts up to ~30).
 DEFAULT_MAX_ITER = 100
@@ -109,7 +109,7 @@ class CatenarySolution:
         ``"slack"`` (zero horizontal tension, part lying slack on the seabed) or
         ``"vertical"``.
     residual
-        Final |X - XF| + |Z - ZF| relative to L [-].
+        Final ``|X - XF| + |Z - ZF|`` relative to L [-].
     warm_start
         (HF, VF) of the upper end, the kernel's unknowns: pass the solution as
         ``initial_guess`` of the next solve [N].
@@ -188,7 +188,7 @@ def solve_catenary(
         A previous solution of the same line (or its ``warm_start`` pair (HF, VF) [N]) to
         warm-start Newton; ``None`` for a cold start.
     tol
-        Converged when |X - XF| + |Z - ZF| <= tol * L [-].
+        Converged when ``|X - XF| + |Z - ZF| <= tol * L`` [-].
     max_iter
         Newton iterations per attempt.
 
