@@ -12,6 +12,7 @@ averaged and aligned, with the measured mean fairlead force and its cycle-to-cyc
 # published records of Bergdahl, Palm, Eskilsson & Lindahl (2016, J. Mar. Sci. Eng. 4(1):5,
 # doi:10.3390/jmse4010005), in ``tests/data/lindahl``. Three cycles after the two-period ramp
 # keep the run short; ``floatmoor run`` runs the case's ten.
+import sys
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -19,7 +20,8 @@ import matplotlib.pyplot as plt
 import floatmoor as fm
 from floatmoor.post.comparison import align_cycles, phase_average, read_measured_cycle
 
-REPO = Path(__file__).resolve().parents[1]
+# The repository, from this script's path (sphinx-gallery runs it without __file__).
+REPO = Path(sys.argv[0]).resolve().parents[1]
 PERIOD = 1.25    # s, the motion period of the case
 CYCLES = 3       # cycles averaged after the ramp
 

@@ -13,13 +13,15 @@ both ends of each line, drawn with the same views as ``floatmoor run --plot``.
 # catenaries instead of the case's dynamic lines (whose explicit steps, set by the axial wave
 # speed of the stiff chain, make a run take minutes), the wave ramp is cut to 2 s and the run
 # to 8 s: the response is still settling, as the first periods of a run do.
+import sys
 from pathlib import Path
 
 import floatmoor as fm
 from floatmoor.plots.motions import draw_body_motions
 from floatmoor.plots.tensions import draw_tensions
 
-REPO = Path(__file__).resolve().parents[1]
+# The repository, from this script's path (sphinx-gallery runs it without __file__).
+REPO = Path(sys.argv[0]).resolve().parents[1]
 RAMP = 2.0  # s, cosine ramp of the wave excitation
 
 case = fm.load_case(REPO / "cases" / "cylinder_buoy" / "buoy_regular_T1.00.toml",

@@ -13,6 +13,7 @@ touchdown points.
 # and 160 mm polyester rope). Every line is quasi-static: at each instant the clump weights
 # and buoys take the positions where the catenary sections between them balance their weight
 # and buoyancy. The run stops after the 12 s ramp and the first 12 s cycle.
+import sys
 from pathlib import Path
 
 import floatmoor as fm
@@ -20,7 +21,8 @@ from floatmoor.io.shape_samples import nearest_shape_samples
 from floatmoor.plots.context import run_context
 from floatmoor.plots.shapes import draw_line_shapes
 
-REPO = Path(__file__).resolve().parents[1]
+# The repository, from this script's path (sphinx-gallery runs it without __file__).
+REPO = Path(sys.argv[0]).resolve().parents[1]
 
 case = fm.load_case(REPO / "cases" / "systems" / "three_line_clump_buoy.toml",
                     ["simulation.duration=24.0"])

@@ -14,6 +14,7 @@ coincide when the scaled case keeps every group of the cable equation.
 # every group alpha_1 to alpha_5 is kept (with sea water, alpha_3 would change by 0.35 %).
 # Both runs start the line from its catenary (``settle = false``), so that they start from
 # similar states too, and stop after the ramp and two cycles.
+import sys
 import tempfile
 from pathlib import Path
 
@@ -24,7 +25,8 @@ import floatmoor as fm
 from floatmoor.similitude import ScaleLaw, cable_groups
 from floatmoor.similitude.case_scaling import scale_case_file
 
-REPO = Path(__file__).resolve().parents[1]
+# The repository, from this script's path (sphinx-gallery runs it without __file__).
+REPO = Path(sys.argv[0]).resolve().parents[1]
 MODEL = REPO / "cases" / "lindahl" / "lindahl_r0.20_T1.25.toml"
 law = ScaleLaw(length=37.6, diameter=76.0 / 2.2, volume_coefficient=1.29578)
 
