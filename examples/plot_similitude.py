@@ -42,8 +42,9 @@ with tempfile.TemporaryDirectory() as folder:
     prototype = fm.load_case(path, short + [
         f"simulation.duration={(ramp + 2 * period) * law.time}"])
 print(f"groups kept exactly: {', '.join(scaled.kept)}")
-for group, (low, high) in scaled.changed.items():
-    print(f"not kept: {group}, new / old = {low:.4g} to {high:.4g}")
+for group, (low, high) in scaled.changed.items():  # new / old over the line's sections
+    ratio = f"{low:.4g}" if low == high else f"{low:.4g} to {high:.4g}"
+    print(f"not kept: {group}, new / old = {ratio}")
 
 # %%
 # The groups of both cases, one row per line section.
