@@ -67,3 +67,14 @@ sphinx_gallery_conf = {
     "image_scrapers": ("matplotlib",),
     "matplotlib_animations": False,
 }
+
+
+def _drop_tuple_field_aliases(app, what, name, obj, options, lines):
+    """Drop Python's "Alias for field number N", the docstring of a NamedTuple field without a
+    ``#:`` comment: its class docstring describes the field."""
+    if len(lines) <= 2 and lines and lines[0].startswith("Alias for field number"):
+        lines.clear()
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _drop_tuple_field_aliases)
