@@ -10,6 +10,7 @@ cache of unchanged scripts. sphinx-gallery writes its generated pages into ``doc
 
 from __future__ import annotations
 
+import ast
 import os
 import subprocess
 import sys
@@ -66,12 +67,15 @@ def test_gallery_example_ran_and_drew(site: Path, example: Path) -> None:
     assert figure.name in page.read_text(encoding="utf-8")
 
 
-def test_gallery_has_examples() -> None:
+def test_gallery_examples_have_a_title_and_say_what_they_show() -> None:
     assert len(EXAMPLES) >= 4
     for example in EXAMPLES:
         text = example.read_text(encoding="utf-8")
-        assert text.startswith('"""\n'), f"{example.name}: no docstring title"
-        assert "savefig" not in text, f"{example.name} writes a figure itself"
+        doc = ast.get_docstring(ast.parse(text), clean=True) or ""
+        title, underline, *rest = doc.splitlines() + ["", ""]
+        assert title and underline == "=" * len(title), f"{example.name}: no title"
+        assert " ".join(rest).strip().endswith("."), f"{example.name}: no sentence after the title"
+        assert "savefig" not in text, f"{example.name} writes a figure file itself"
 
 
 def test_test_extra_installs_the_docs_packages() -> None:
