@@ -49,9 +49,9 @@ __all__ = [
     "solve_catenary", "catenary_profile", "describe_failure",
 ]
 
-#: Convergence tolerance: ``|X - XF| + |Z - ZF| <= DEFAULT_TOL * L``. Roundoff in the
-#: (cancellation free) equations is a few 1e-16 L, so 1e-12 L is reached reliably and leaves
-#: the equations holding far below the 1e-9 L of ``style.md`` 5.1.
+#: Convergence tolerance: |X - XF| + |Z - ZF| <= DEFAULT_TOL * L. Roundoff in the (cancellation
+#: free) equations is a few 1e-16 L, so 1e-12 L is reached reliably and leaves the equations
+#: holding far below the 1e-9 L of ``style.md`` 5.1.
 DEFAULT_TOL = 1e-12
 #: Newton iterations allowed per attempt (warm starts need 2 to 4, cold starts up to ~30).
 DEFAULT_MAX_ITER = 100
