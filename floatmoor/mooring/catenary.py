@@ -110,7 +110,7 @@ class CatenarySolution:
         ``"slack"`` (zero horizontal tension, part lying slack on the seabed) or
         ``"vertical"``.
     residual
-        Final |X - XF| + |Z - ZF| relative to L [-].
+        Final ``|X - XF| + |Z - ZF|`` relative to L [-].
     warm_start
         (HF, VF) of the upper end, the kernel's unknowns: pass the solution as
         ``initial_guess`` of the next solve [N].
@@ -189,7 +189,7 @@ def solve_catenary(
         A previous solution of the same line (or its ``warm_start`` pair (HF, VF) [N]) to
         warm-start Newton; ``None`` for a cold start.
     tol
-        Converged when |X - XF| + |Z - ZF| <= tol * L [-].
+        Converged when ``|X - XF| + |Z - ZF| <= tol * L`` [-].
     max_iter
         Newton iterations per attempt.
 

@@ -34,7 +34,7 @@ class RainflowCycles(NamedTuple):
     Attributes
     ----------
     ranges
-        Cycle ranges |P_a - P_b|, in the unit of the counted signal.
+        Cycle ranges ``|P_a - P_b|``, in the unit of the counted signal.
     means
         Cycle means (P_a + P_b) / 2.
     counts

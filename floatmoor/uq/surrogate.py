@@ -29,9 +29,9 @@ from floatmoor.uq.regression import lar_fit
 
 __all__ = ["Surrogate", "ZERO_STD"]
 
-#: A standard deviation below ZERO_STD |mean| is round-off of an output that does not vary
-#: (sums of squared coefficients of a constant, each ~1e-16 of it, over a few hundred terms):
-#: its Sobol' indices are NaN.
+#: A standard deviation below ``ZERO_STD * |mean|`` is round-off of an output that does not
+#: vary (sums of squared coefficients of a constant, each ~1e-16 of it, over a few hundred
+#: terms): its Sobol' indices are NaN.
 ZERO_STD = 1e-12
 
 
@@ -68,7 +68,7 @@ class Surrogate:
         Output statistics (m,).
     sobol_first, sobol_total
         First-order and total Sobol' indices (d, m); NaN for an output whose std is below
-        :data:`ZERO_STD` |mean| (no variance to share).
+        :data:`ZERO_STD` times ``|mean|`` (no variance to share).
     validation_error
         (m,) relative error estimate. Regression: corrected leave-one-out error
         (:mod:`floatmoor.uq.regression`). Quadrature: the share of the variance held by the

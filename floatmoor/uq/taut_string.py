@@ -57,7 +57,7 @@ class ModelParameter:
 
 @dataclass(frozen=True)
 class BuiltinModel:
-    """A model a study can name instead of a case: function(**parameters) -> output."""
+    """A model a study can name instead of a case: ``function(**parameters) -> output``."""
 
     function: Callable[..., NDArray[np.float64]]
     parameters: dict[str, ModelParameter]
