@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from floatmoor.body.morison import DEFAULT_STRIP_LENGTH
 from floatmoor.case.files import read_input_text
 from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import parse_case
@@ -98,7 +99,8 @@ KEY_KINDS: dict[str, str] = {
        "the new scale and name it in the scaled case" for k in (
            "file", "format", "length_unit", "position", "symmetry")},
     # Morison drag: the coefficients are dimensionless and the floater's force scale is
-    # Froude's (rho lambda^3, checked), so they are kept; the areas follow the geometry
+    # Froude's (rho lambda^3, checked), so they are kept; the areas follow the geometry; the
+    # strips are lengths (the default strip_length is written, scaled, when not given)
     **{f"floater.drag.{k}": "same" for k in (
         "preset", "column_transverse", "heave_plate_transverse", "heave_plate_axial",
         "member_transverse", "member_axial", "column_axial", "min_strips",
@@ -341,6 +343,9 @@ def scale_case_text(text: str, source: str, law: ScaleLaw, *, output: str | Path
     scaled = _scale_node(raw, (), law, {"database": hydro_database, "output": output,
                                         "keep_coefficients": keep_coefficients,
                                         "motion_file": motion_file, "tables": tables}, source)
+    drag = scaled.get("floater", {}).get("drag")
+    if drag is not None and "strip_length" not in drag:  # the default is a length: write it
+        drag["strip_length"] = rounded(DEFAULT_STRIP_LENGTH * law.length)
     scaled["description"] = (f"Scaled from {source} by floatmoor scale (see the header).\n"
                              + raw.get("description", "").strip()).strip() + "\n"
     body: list[str] = []

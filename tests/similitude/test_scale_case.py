@@ -21,6 +21,10 @@ ROOT = HERE.parents[1]
 AIR_LINE = HERE / "air_line.toml"
 LINDAHL = ROOT / "cases" / "lindahl" / "lindahl_r0.20_T1.25.toml"
 BUOY = ROOT / "cases" / "cylinder_buoy" / "buoy_regular_T1.00.toml"
+#: DeepCwind cases with Morison drag on the floater ([floater.drag]) and a BEM database.
+DEEPCWIND = [ROOT / "cases" / "deepcwind" / f"deepcwind_{n}.toml" for n in ("lc34", "free_decay")]
+#: A wave-tank scale for them: 1:50, Froude (beta = lambda, phi = 1).
+TANK = ScaleLaw(0.02, 0.02, 1.0)
 
 #: Exact similitude (issue 20): the dimensionless tension histories of a line and its scaled
 #: copy agree to 1e-6. Every term of the discretised equations scales exactly (the explicit
@@ -83,19 +87,42 @@ def _values(path: Path) -> dict:
     return raw
 
 
-@pytest.mark.parametrize("case", [LINDAHL, BUOY], ids=["lindahl", "buoy"])
+@pytest.mark.parametrize("case", [LINDAHL, BUOY, *DEEPCWIND],
+                         ids=["lindahl", "buoy", "deepcwind_lc34", "deepcwind_free_decay"])
 def test_scaling_there_and_back_gives_the_original_values_exactly(tmp_path: Path,
                                                                     case: Path) -> None:
     there = tmp_path / "there.toml"
     back = tmp_path / "back.toml"
-    law = ScaleLaw(37.6, 34.5, 1.2971) if case == LINDAHL else ScaleLaw(37.6, 37.6, 1.0)
-    extra = {"hydro_database": "scaled"} if case == BUOY else {}
-    there.write_text(scale_case_file(case, law, output=there, **extra).text)
-    undo = {"hydro_database": "cylinder_buoy"} if case == BUOY else {}
-    back.write_text(scale_case_file(there, law.inverse(), output=back, **undo).text)
+    law = {LINDAHL: ScaleLaw(37.6, 34.5, 1.2971), BUOY: ScaleLaw(37.6, 37.6, 1.0)}.get(case, TANK)
     original = tomllib.loads(case.read_text())
     original.pop("description", None)
+    extra = {"hydro_database": "scaled"} if "hydro" in original else {}
+    there.write_text(scale_case_file(case, law, output=there, **extra).text)
+    undo = {"hydro_database": original["hydro"]["database"]} if "hydro" in original else {}
+    back.write_text(scale_case_file(there, law.inverse(), output=back, **undo).text)
+    if "floater" in original and "drag" in original["floater"]:
+        # the default strip length, a length, is written out (scaled) by the first scaling
+        assert "strip_length" not in original["floater"]["drag"]
+        assert tomllib.loads(there.read_text())["floater"]["drag"]["strip_length"] == 0.04
+        original["floater"]["drag"]["strip_length"] = 2.0
     assert _values(back) == original
+
+
+@pytest.mark.parametrize("case", DEEPCWIND, ids=["lc34", "free_decay"])
+def test_a_floater_with_morison_drag_scales_and_checks(tmp_path: Path, case: Path,
+                                                        capsys) -> None:
+    out = tmp_path / "tank.toml"
+    scaled = scale_case_file(case, TANK, output=out, hydro_database="deepcwind_1to50")
+    old = load_case(case)
+    drag_old, drag_new = old.floater.drag, scaled.case.floater.drag
+    assert drag_new.coefficients == drag_old.coefficients  # dimensionless, Froude force scale
+    assert drag_new.strip_length == pytest.approx(0.02 * drag_old.strip_length, rel=1e-12)
+    column_old, column_new = old.floater.geometry.columns[1], scaled.case.floater.geometry.columns[1]
+    assert column_new.diameter == pytest.approx(0.02 * column_old.diameter, rel=1e-12)
+    assert any("floatmoor hydro build tank.toml" in n for n in scaled.notes)  # rebuild it
+    out.write_text(scaled.text)
+    assert main(["check", str(out)]) == 0
+    assert "valid case" in capsys.readouterr().out
 
 
 def test_a_floater_scales_by_froude(tmp_path: Path) -> None:
