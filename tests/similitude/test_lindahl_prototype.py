@@ -92,7 +92,8 @@ def test_full_runs_differ_only_through_the_groups_not_kept(tmp_path: Path, sourc
                                          ("model_coefficients", PROTOTYPE, True),
                                          ("sea_water", sea, False)])
     with capsys.disabled():
-        print(f"\n{source.name}, settle = {settle}: T/(wL) over the last cycle, prototype - model, relative to "
+        print(f"\n{source.name}, settle = {settle}: T/(wL) over the last cycle, prototype - "
+              "model, relative to "
               "the model's peak: " + ", ".join(f"{k} {v:.3g}" for k, v in diff.items()))
     assert diff["prototype"] <= EXACT_SIMILITUDE
     assert diff["model_coefficients"] > GROUP_EFFECT

@@ -117,7 +117,8 @@ def test_a_floater_with_morison_drag_scales_and_checks(tmp_path: Path, case: Pat
     drag_old, drag_new = old.floater.drag, scaled.case.floater.drag
     assert drag_new.coefficients == drag_old.coefficients  # dimensionless, Froude force scale
     assert drag_new.strip_length == pytest.approx(0.02 * drag_old.strip_length, rel=1e-12)
-    column_old, column_new = old.floater.geometry.columns[1], scaled.case.floater.geometry.columns[1]
+    column_old = old.floater.geometry.columns[1]
+    column_new = scaled.case.floater.geometry.columns[1]
     assert column_new.diameter == pytest.approx(0.02 * column_old.diameter, rel=1e-12)
     assert any("floatmoor hydro build tank.toml" in n for n in scaled.notes)  # rebuild it
     out.write_text(scaled.text)

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from floatmoor.case.load import load_case
 from floatmoor.case.motion_body import BODY_TABLE_HEADERS
 from floatmoor.case.motion_table import HEADER
 from floatmoor.cli import main
@@ -28,13 +29,13 @@ EXACT_SIMILITUDE = 1e-6
 #: The circle the table traces (the Lindahl case's): radius [m], period [s].
 RADIUS, PERIOD = 0.2, 1.25
 #: Rows of the table [s]: no row but the first falls on an output sample (every 0.0025 s)
-#: within the runs (the next at 2.5075 s). The fairlead velocity at a sample on a row is the slope of the segment after
-#: it (floatmoor.motion), so there the round-off of a scaled row time may pick the segment
-#: before instead: on this snapping chain a 2.4e-3 jump in T / (w L) at the first such
-#: sample (10 ms rows), 6.6 % of the peak 2.5 s later (measured).
+#: within the runs (the next at 2.5075 s). The fairlead velocity at a sample on a row is the
+#: slope of the segment after it (floatmoor.motion), so there the round-off of a scaled row
+#: time may pick the segment before instead: on this snapping chain a 2.4e-3 jump in
+#: T / (w L) at the first such sample (10 ms rows), 6.6 % of the peak 2.5 s later (measured).
+ROW_INTERVAL = 0.01003
 #: The runs last 2.5 s of the model's time (two cycles).
 RUN_DURATION = 2.5
-ROW_INTERVAL = 0.01003
 #: Scaled table values against the exact products: the snapping to short decimals
 #: (floatmoor.similitude.decimals.SNAP_ULPS = 64 ulp, 1.4e-14 relative).
 SNAPPED = 2e-14
@@ -85,8 +86,6 @@ def test_a_motion_table_scales_and_back_to_the_original_numbers(tmp_path: Path) 
 def test_a_forced_run_on_the_scaled_table_is_similar(tmp_path: Path) -> None:
     case = _table_case(tmp_path, duration=RUN_DURATION)
     scaled = scale_case_file(case, PROTOTYPE, output=tmp_path / "proto.toml")
-    from floatmoor.case.load import load_case
-
     histories = []
     for c, factor in ((load_case(case), 1.0), (scaled.case, math.sqrt(PROTOTYPE.length))):
         data = run_case(c).dataset
