@@ -35,11 +35,12 @@ __all__ = ["CableProperties", "DynamicLine", "DynamicLineState", "SettleReport",
 #: damping rate = SETTLE_RATE_TAU / tau, chunk = SETTLE_CHUNK_TAU tau, at most
 #: SETTLE_MAX_TIME_TAU tau. Modes above rate / 2 (the longitudinal and most transverse ones)
 #: decay as exp(-rate t / 2). Measured settling times (simulated) with the values here, against
-#: the former fixed 20 1/s and 0.1 s chunks: Lindahl chain (tau = 1.83 s: 12.0 1/s, 0.092 s
-#: chunks) 0.92 s (2.91 s), the stiff quasi-dynamic verification chain s3_d1 (tau = 1.16 s)
-#: 1.44 s (1.40 s), a cylinder-buoy line (tau = 0.84 s) 1.31 s (1.10 s); rate tau = 12, 18,
-#: 24 and 36 settled these three in 2.4, 1.7, 1.4 and 2.8 s at worst.
-SETTLE_RATE_TAU = 22.0
+#: the former fixed 20 1/s and 0.1 s chunks: Lindahl chain (tau = 1.83 s: 9.8 1/s, 0.092 s
+#: chunks) 1.19 s (2.91 s), the stiff quasi-dynamic verification chain s3_d1 (tau = 1.16 s)
+#: 1.73 s (1.40 s), a cylinder-buoy line (tau = 0.84 s, 9.4 us steps: the dearest settle of
+#: the shipped cases) 1.01 s (1.10 s); rate tau = 12, 16, 22 and 36 settled these three in
+#: 2.4, 2.0, 1.4 and 2.8 s at worst, the buoy line in 1.18, 0.88, 1.31 and 1.81 s.
+SETTLE_RATE_TAU = 18.0
 SETTLE_CHUNK_TAU = 0.05
 SETTLE_MAX_TIME_TAU = 11.0
 #: Relative change of the end tensions over one chunk below which the line counts as settled.
