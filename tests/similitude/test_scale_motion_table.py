@@ -24,7 +24,7 @@ LINDAHL = ROOT / "cases" / "lindahl" / "lindahl_r0.20_T1.25.toml"
 PROTOTYPE = ScaleLaw(length=37.6, diameter=76.0 / 2.2,
                      volume_coefficient=(126.5 / 0.076 ** 2) / (0.0818 / 0.0022 ** 2))
 #: Exact similitude as in test_scale_case.EXACT_SIMILITUDE: the table is interpolated
-#: linearly, which scales exactly, so what is left is round-off (measured 1.5e-10).
+#: linearly, which scales exactly, so what is left is round-off (measured 3.2e-10).
 EXACT_SIMILITUDE = 1e-6
 #: The circle the table traces (the Lindahl case's): radius [m], period [s].
 RADIUS, PERIOD = 0.2, 1.25
