@@ -2,12 +2,13 @@
 
 Every key a case file may hold has a quantity kind (:data:`KEY_KINDS`), scaled by the law's
 factor of that kind (:mod:`floatmoor.similitude.laws`); keys the scaling cannot follow (a
-motion table, a mesh hull, Morison presets, wind) are refused with a message saying what to
-do. The original case is validated first, the scaled one afterwards, through the same loader
-as any case, and the groups of both are compared to say which the new case keeps exactly.
-Scaled values are written exactly, except those within round-off of a short decimal
-(:data:`SIGNIFICANT_DIGITS`), so that scaling by lambda and then 1 / lambda gives back the
-original values exactly.
+mesh hull, an imported hydrodynamic database, wind, a campaign) are refused with a message
+saying what to do. A motion table is rewritten at the new scale beside the new case
+(:mod:`floatmoor.similitude.motion_tables`). The original case is validated first, the scaled
+one afterwards, through the same loader as any case, and the groups of both are compared to
+say which the new case keeps exactly. Scaled values are written exactly, except those within
+round-off of a short decimal (:mod:`floatmoor.similitude.decimals`), so that scaling by lambda
+and then 1 / lambda gives back the original values exactly.
 """
 
 from __future__ import annotations
@@ -15,34 +16,29 @@ from __future__ import annotations
 import json
 import math
 import re
+import tempfile
 import textwrap
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from floatmoor.body.morison import DEFAULT_STRIP_LENGTH
 from floatmoor.case.files import read_input_text
 from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import parse_case
 from floatmoor.case.reader import format_path
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError
+from floatmoor.similitude.decimals import SIGNIFICANT_DIGITS, rounded, scaled_value
 from floatmoor.similitude.groups import cable_groups
 from floatmoor.similitude.laws import SAME_FACTOR, ScaleLaw
+from floatmoor.similitude.motion_tables import ScaledTable, scale_motion_table, scaled_table_name
 
 __all__ = ["ScaledCase", "KEY_KINDS", "SIGNIFICANT_DIGITS", "scale_case_text",
            "scale_case_file", "GROUP_TOLERANCE"]
 
-#: A scaled value within :data:`SNAP_ULPS` units in the last place of a decimal of at most
-#: this many significant digits is written as that decimal, any other value exactly (repr):
-#: scaling by lambda and then by 1 / lambda lands within a few ulps of the original value
-#: (each factor is a product of a few rounded operations), so the round trip gives back
-#: every input of up to 12 digits exactly, while a generic scaled value is left untouched.
-SIGNIFICANT_DIGITS = 12
-#: Round-off tolerance of that snapping [ulp]: 64 ulp ~ 1.4e-14 relative, above the few ulps
-#: of a round trip, far below any physical significance.
-SNAP_ULPS = 64
 #: A group counts as kept when new / old is 1 within this: round-off of the few factors of
 #: a group (~1e-15), with a wide margin, far below any physical difference.
 GROUP_TOLERANCE = 1e-9
@@ -86,9 +82,7 @@ KEY_KINDS: dict[str, str] = {
        (("amplitude", "length"), ("period", "time"), ("phase_deg", "same"))},
     **{f"motion.{d}.{k}": v for d in ("roll", "pitch", "yaw") for k, v in
        (("amplitude_deg", "same"), ("period", "time"), ("phase_deg", "same"))},
-    "motion.file": _REFUSE + ": a motion table is not rewritten; write a copy with its times "
-    "scaled by sqrt(lambda) and its displacements by lambda (angles unchanged), name it in "
-    "motion.file and scale that case",
+    "motion.file": "motion_table",
     "simulation.duration": "time", "simulation.output_interval": "time",
     "simulation.shape_output_interval": "time", "simulation.time_step": "time",
     "campaign.*": _REFUSE + ": the swept values are not rewritten; scale the case without "
@@ -104,8 +98,14 @@ KEY_KINDS: dict[str, str] = {
     **{f"floater.geometry.{k}": _REFUSE + ": a mesh hull is not rescaled; write the mesh at "
        "the new scale and name it in the scaled case" for k in (
            "file", "format", "length_unit", "position", "symmetry")},
-    "floater.drag": _REFUSE + ": Morison drag settings (presets, coefficients by name, "
-    "areas) are not rescaled; remove [floater.drag], scale, and set it for the new scale",
+    # Morison drag: the coefficients are dimensionless and the floater's force scale is
+    # Froude's (rho lambda^3, checked), so they are kept; the areas follow the geometry; the
+    # strips are lengths (the default strip_length is written, scaled, when not given)
+    **{f"floater.drag.{k}": "same" for k in (
+        "preset", "column_transverse", "heave_plate_transverse", "heave_plate_axial",
+        "member_transverse", "member_axial", "column_axial", "min_strips",
+        "heave_plate_area")},
+    "floater.drag.strip_length": "length", "floater.drag.kinematics_interval": "time",
     "hydro.database": "database", "hydro.frequency_ranges": "frequency_ranges",
     "hydro.frequencies": "frequency", "hydro.directions_deg": "same",
     "hydro.panel_size": "length", "hydro.lid_depth": "length",
@@ -138,6 +138,8 @@ class ScaledCase:
     kept: list[str]  #: groups equal in every section (within :data:`GROUP_TOLERANCE`)
     changed: dict[str, tuple[float, float]]  #: group -> (min, max) new / old over sections
     notes: list[str]
+    #: motion tables to write beside the case (the case names them)
+    tables: tuple[ScaledTable, ...] = ()
 
 
 def _kind(path: tuple[str | int, ...]) -> tuple[str, str] | None:
@@ -152,23 +154,6 @@ def _kind(path: tuple[str | int, ...]) -> tuple[str, str] | None:
     return None
 
 
-def _rounded(value: float) -> float:
-    """``value``, or the shortest decimal within round-off of it (:data:`SNAP_ULPS`)."""
-    for digits in range(1, SIGNIFICANT_DIGITS + 1):
-        short = float(f"{value:.{digits}g}")
-        if abs(short - value) <= SNAP_ULPS * math.ulp(value):
-            return short
-    return value
-
-
-def _scaled_value(value: Any, factor: float) -> Any:
-    if isinstance(value, list):
-        return [_scaled_value(v, factor) for v in value]
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return value
-    return _rounded(value * factor)
-
-
 def _scale_node(node: Any, path: tuple[str | int, ...], law: ScaleLaw, options: dict[str, Any],
                 source: str) -> Any:
     if isinstance(node, dict):
@@ -181,6 +166,14 @@ def _scale_node(node: Any, path: tuple[str | int, ...], law: ScaleLaw, options: 
         raise CaseError(source, key, "a key floatmoor scale knows how to scale",
                         "a key with no scaling rule")
     kind, _ = found
+    if kind == "motion_table":
+        original = Path(options["motion_file"])
+        new = Path(options["output"]).parent / scaled_table_name(options["output"], node)
+        note = (f"Scaled by floatmoor scale from {original.name}: times x {law.time:.12g}, "
+                f"positions x {law.length:.12g}, angles unchanged.")
+        options["tables"].append(ScaledTable(new, original, scale_motion_table(
+            original.read_text(encoding="utf-8"), law, note)))
+        return new.name
     if kind.startswith(_REFUSE):
         raise CaseError(source, key, "a case floatmoor scale can rewrite ("
                         + kind[len(_REFUSE) + 2:] + ")", "this key")
@@ -203,13 +196,13 @@ def _scale_node(node: Any, path: tuple[str | int, ...], law: ScaleLaw, options: 
                             f'"{node}"')
         return node
     if kind == "frequency_ranges":
-        return [[_rounded(lo * law.frequency), _rounded(hi * law.frequency), n]
+        return [[rounded(lo * law.frequency), rounded(hi * law.frequency), n]
                 for lo, hi, n in node]
     if kind == "diameter":
-        return _scaled_value(node, law.diameter)
+        return scaled_value(node, law.diameter)
     if kind in ("drag_coefficient", "added_mass_coefficient") and options["keep_coefficients"]:
         return node
-    return _scaled_value(node, law.factor(kind))
+    return scaled_value(node, law.factor(kind))
 
 
 # -- TOML text ---------------------------------------------------------------------------------
@@ -258,13 +251,17 @@ def _toml_table(table: dict[str, Any], path: tuple[str, ...], out: list[str]) ->
 
 # -- the scaled case ---------------------------------------------------------------------------
 
-def _group_ratios(old: Case, new: Case) -> tuple[list[str], dict[str, tuple[float, float]]]:
+def _group_ratios(old: Case, new: Case
+                  ) -> tuple[list[str], dict[str, tuple[float, float]], list[str]]:
+    """Groups kept, groups changed (min, max new / old), groups not evaluated (NaN: they
+    need a period and the case declares none)."""
     a, b = cable_groups(old), cable_groups(new)
-    kept, changed = [], {}
+    kept, changed, missing = [], {}, []
     for name in ("alpha_1", "alpha_2", "alpha_3", "alpha_4", "alpha_5", "reynolds_number",
                  "keulegan_carpenter_number"):
         old_v, new_v = a[name].values, b[name].values
         if np.all(np.isnan(old_v)):
+            missing.append(name)
             continue
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = np.where(old_v == new_v, 1.0, new_v / old_v)
@@ -272,7 +269,7 @@ def _group_ratios(old: Case, new: Case) -> tuple[list[str], dict[str, tuple[floa
             kept.append(name)
         else:
             changed[name] = (float(np.nanmin(ratio)), float(np.nanmax(ratio)))
-    return kept, changed
+    return kept, changed, missing
 
 
 def _header(source: str, law: ScaleLaw, keep_coefficients: bool, floater: bool,
@@ -341,8 +338,14 @@ def scale_case_text(text: str, source: str, law: ScaleLaw, *, output: str | Path
         raise CaseError(source, "floater", "line forces scaling like the floater's (rho "
                         f"lambda^3 = {law.mass:.6g}): --match froude, or beta = lambda and phi "
                         "= 1", f"phi lambda beta^2 = {law.force:.6g}")
-    scaled = _scale_node(raw, (), law, {"database": hydro_database,
-                                        "keep_coefficients": keep_coefficients}, source)
+    tables: list[ScaledTable] = []
+    motion_file = getattr(original.motion, "file", None)
+    scaled = _scale_node(raw, (), law, {"database": hydro_database, "output": output,
+                                        "keep_coefficients": keep_coefficients,
+                                        "motion_file": motion_file, "tables": tables}, source)
+    drag = scaled.get("floater", {}).get("drag")
+    if drag is not None and "strip_length" not in drag:  # the default is a length: write it
+        drag["strip_length"] = rounded(DEFAULT_STRIP_LENGTH * law.length)
     scaled["description"] = (f"Scaled from {source} by floatmoor scale (see the header).\n"
                              + raw.get("description", "").strip()).strip() + "\n"
     body: list[str] = []
@@ -353,20 +356,39 @@ def scale_case_text(text: str, source: str, law: ScaleLaw, *, output: str | Path
                      f"floatmoor hydro build {Path(output).name} (the frequencies, panel size "
                      "and lengths are scaled; linear potential flow is Froude-exact, but the "
                      "database is not rescaled here).")
+    for table in tables:
+        notes.append(f"Motion table {table.path.name}, written beside this case, is "
+                     f"{table.source.name} scaled: times x {law.time:.12g}, positions x "
+                     f"{law.length:.12g}, angles unchanged.")
     draft = "\n".join(body) + "\n"
     try:
-        case = parse_case(parse_toml(draft, str(output)), source=str(output), text=draft,
-                          base_dir=Path(output).parent)
+        case = _parse_scaled(draft, Path(output), tables)
     except CaseError as err:
         raise CaseError(source, "", "a case whose scaled version is valid",
                         f"a scaled case that is not: {err}") from None
-    kept, changed = _group_ratios(original, case)
+    kept, changed, missing = _group_ratios(original, case)
+    if missing:
+        notes.append("Groups not evaluated (they need a period, and the motion and waves "
+                     "declare none): " + ", ".join(missing) + ".")
     header = _header(source, law, keep_coefficients, original.floater is not None, kept,
                      changed, notes)
     full = "\n".join(header) + "\n\n" + draft
-    case = parse_case(parse_toml(full, str(output)), source=str(output), text=full,
-                      base_dir=Path(output).parent)
-    return ScaledCase(full, case, kept, changed, notes)
+    case = _parse_scaled(full, Path(output), tables)
+    return ScaledCase(full, case, kept, changed, notes, tuple(tables))
+
+
+def _parse_scaled(text: str, output: Path, tables: list[ScaledTable]) -> Case:
+    """The scaled case through the loader. Its motion table, not written yet, is read from
+    a temporary folder; the case then names the table's final path."""
+    if not tables:
+        return parse_case(parse_toml(text, str(output)), source=str(output), text=text,
+                          base_dir=output.parent)
+    with tempfile.TemporaryDirectory() as folder:
+        for table in tables:
+            (Path(folder) / table.path.name).write_text(table.text, encoding="utf-8")
+        case = parse_case(parse_toml(text, str(output)), source=str(output), text=text,
+                          base_dir=Path(folder))
+    return replace(case, motion=replace(case.motion, file=str(tables[0].path)))
 
 
 def scale_case_file(path: str | Path, law: ScaleLaw, *, output: str | Path,

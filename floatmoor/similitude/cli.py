@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 
 from floatmoor.case.load import load_case
@@ -68,12 +69,22 @@ def scale_command(args: argparse.Namespace) -> int:
     scaled = scale_case_file(args.case, law, output=output.path,
                              keep_coefficients=args.keep_coefficients,
                              hydro_database=args.hydro_database)
+    for table in scaled.tables:
+        if os.path.lexists(table.path):
+            raise CaseError(args.case, "motion.file", f"a free file name for the scaled "
+                            f"motion table {table.path} (floatmoor scale does not overwrite "
+                            "one: move it away or choose another -o name)", "an existing file")
     if output.replaces:
         print(f"floatmoor: replacing the existing {output.path}", file=sys.stderr)
+    for table in scaled.tables:  # first, so that the case never names a missing table
+        with atomic_target(table.path) as tmp:
+            tmp.write_text(table.text, encoding="utf-8")
     with atomic_target(output.path) as tmp:
         tmp.write_text(scaled.text, encoding="utf-8")
     print(f"wrote {output.path} from {args.case}: lambda = {law.length:.6g}, beta = "
           f"{law.diameter:.6g}, phi = {law.volume_coefficient:.6g} ({law.name})")
+    for table in scaled.tables:
+        print(f"wrote {table.path} from {table.source} (the motion table, scaled)")
     print("groups kept exactly: " + (", ".join(scaled.kept) or "none"))
     for name, (lo, hi) in scaled.changed.items():
         span = f"{lo:.4g}" if math.isclose(lo, hi) else f"{lo:.4g} to {hi:.4g}"

@@ -27,17 +27,24 @@ from floatmoor.mooring.dg.reference import ReferenceElement, reference_element
 from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["CableProperties", "DynamicLine", "DynamicLineState", "SettleReport",
-           "SETTLE_RATE", "SETTLE_TOLERANCE"]
+           "SETTLE_RATE_TAU", "SETTLE_CHUNK_TAU", "SETTLE_MAX_TIME_TAU", "SETTLE_TOLERANCE"]
 
-#: Damping rate of the initial relaxation [1/s]: modes above 10 rad/s (the longitudinal and
-#: most transverse ones of the lines here) decay as exp(-10 t); on case B's C31 line the
-#: fairlead tension settles to 1e-6 within ~1.5 s of simulated time.
-SETTLE_RATE = 20.0
+#: The initial relaxation runs on the line's own time scale tau = sqrt(L / g) (L unstretched,
+#: :meth:`DynamicLine.settle_time_scale`), so that a line scaled by dynamic similitude
+#: (floatmoor.similitude: times x sqrt(lambda)) settles through the same dimensionless history:
+#: damping rate = SETTLE_RATE_TAU / tau, chunk = SETTLE_CHUNK_TAU tau, at most
+#: SETTLE_MAX_TIME_TAU tau. Modes above rate / 2 (the longitudinal and most transverse ones)
+#: decay as exp(-rate t / 2). Measured settling times (simulated) with the values here, against
+#: the former fixed 20 1/s and 0.1 s chunks: Lindahl chain (tau = 1.83 s: 9.8 1/s, 0.092 s
+#: chunks) 1.19 s (2.91 s), the stiff quasi-dynamic verification chain s3_d1 (tau = 1.16 s)
+#: 1.73 s (1.40 s), a cylinder-buoy line (tau = 0.84 s, 9.4 us steps: the dearest settle of
+#: the shipped cases) 1.01 s (1.10 s); rate tau = 12, 16, 22 and 36 settled these three in
+#: 2.4, 2.0, 1.4 and 2.8 s at worst, the buoy line in 1.18, 0.88, 1.31 and 1.81 s.
+SETTLE_RATE_TAU = 18.0
+SETTLE_CHUNK_TAU = 0.05
+SETTLE_MAX_TIME_TAU = 11.0
 #: Relative change of the end tensions over one chunk below which the line counts as settled.
 SETTLE_TOLERANCE = 1e-6
-#: Simulated time of one settling chunk [s], and the most the relaxation may take [s].
-SETTLE_CHUNK = 0.1
-SETTLE_MAX_TIME = 20.0
 #: Settled lines remembered per process (oldest dropped first).
 _SETTLED_SIZE = 64
 _SETTLED: dict = {}
@@ -204,21 +211,33 @@ class DynamicLine(PathStepper):
                               "m/s; the axial stiffness or mass per length is out of range")
         return dt
 
-    def settle(self, rate: float = SETTLE_RATE, tolerance: float = SETTLE_TOLERANCE,
-               max_time: float = SETTLE_MAX_TIME) -> SettleReport:
+    def settle_time_scale(self) -> float:
+        """The line's own time scale tau [s] the relaxation runs on: sqrt(L / g), the
+        pendulum time of the hanging line (L / c, the axial wave's travel time, without
+        gravity). It scales sqrt(lambda) like every time under dynamic similitude."""
+        pr = self.properties
+        if pr.gravity > 0.0:
+            return math.sqrt(pr.length / pr.gravity)
+        return pr.length / pr.wave_speed
+
+    def settle(self, rate: float | None = None, tolerance: float = SETTLE_TOLERANCE,
+               max_time: float | None = None, chunk: float | None = None) -> SettleReport:
         """Relax the line to the static equilibrium of its own discretisation, ends held.
 
         The interpolated catenary a line starts from is not exactly in equilibrium in the DG
         discretisation (the touchdown kink and the stretch of a stiff line are represented to
         the discretisation error). Left alone, the mismatch rings on as longitudinal and
         transverse waves that nothing damps in an undamped line: on the stiff chains of
-        docs/cases/qd_verification.md (c ~ 2000 m/s), fairlead-tension ripple from 0.03 to 13.5 N about a
-        static 1.95 N. Like MoorDyn's initialisation (dynamic relaxation), the line is first
-        run with its fairlead still and a linear damping dv/dt -= ``rate`` v on every node
-        (kernel parameter ``P_RELAX``; it leaves the stability limit unchanged), in chunks of
-        ``SETTLE_CHUNK``, until the fairlead and anchor tensions change by less than
-        ``tolerance`` (relative) over a chunk; then velocities are zeroed and the line's time
-        restored. Underdamped modes (omega > rate / 2) decay as exp(-rate t / 2).
+        the quasi-dynamic verification lines (docs/cases/qd_verification.md; c ~ 2000 m/s),
+        fairlead-tension ripple from 0.03 to 13.5 N about a static 1.95 N. Like MoorDyn's
+        initialisation (dynamic relaxation),
+        the line is first run with its fairlead still and a linear damping dv/dt -= ``rate`` v
+        on every node (kernel parameter ``P_RELAX``; it leaves the stability limit unchanged),
+        in chunks of simulated time ``chunk``, until the fairlead and anchor tensions change
+        by less than ``tolerance`` (relative) over a chunk; then velocities are zeroed and the
+        line's time restored. Underdamped modes (omega > rate / 2) decay as
+        exp(-rate t / 2). ``rate``, ``chunk`` and ``max_time`` default to the
+        ``SETTLE_*_TAU`` multiples of :meth:`settle_time_scale`.
 
         Returns
         -------
@@ -226,20 +245,24 @@ class DynamicLine(PathStepper):
             Simulated settling time, whether the tolerance was met, the last relative change
             and the largest node speed before the velocities were zeroed.
         """
-        if not (rate > 0.0 and tolerance > 0.0 and max_time > 0.0):
-            raise ValueError("settle needs a positive rate, tolerance and max_time")
+        tau = self.settle_time_scale()
+        rate = SETTLE_RATE_TAU / tau if rate is None else rate
+        max_time = SETTLE_MAX_TIME_TAU * tau if max_time is None else max_time
+        chunk = SETTLE_CHUNK_TAU * tau if chunk is None else chunk
+        if not (rate > 0.0 and tolerance > 0.0 and max_time > 0.0 and chunk > 0.0):
+            raise ValueError("settle needs a positive rate, tolerance, max_time and chunk")
         start = self.time
         self._settling = True  # ("auto" settles with the explicit steps: _stepping_implicit)
         integ = self.implicit if self._stepping_implicit() else None
         if integ is None:
             dt = self._explicit_step()
-            chunk = max(int(math.ceil(SETTLE_CHUNK / dt)), 2) * dt
+            chunk = max(int(math.ceil(chunk / dt)), 2) * dt
             prm = self.prm
         else:  # one step a chunk (the relaxation is inside the implicit solve, so any step
             # is stable), no error control: only the end state counts
-            chunk, prm, saved = SETTLE_CHUNK, self._implicit_prm, integ.ip.copy()
+            prm, saved = self._implicit_prm, integ.ip.copy()
             integ.ip[_ik.IP_FORCE_TOL] = np.inf
-            integ.ip[_ik.IP_DT_MAX] = SETTLE_CHUNK
+            integ.ip[_ik.IP_DT_MAX] = chunk
             integ.invalidate()
         still = np.repeat(self.fairlead[None, :], 2, axis=0)
         zero = np.zeros_like(still)

@@ -22,8 +22,7 @@ from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
-from floatmoor.mooring.dg.line import (SETTLE_CHUNK, SETTLE_MAX_TIME, SETTLE_RATE,
-                                       SETTLE_TOLERANCE, DynamicLine, SettleReport)
+from floatmoor.mooring.dg.line import SETTLE_TOLERANCE, DynamicLine, SettleReport
 from floatmoor.mooring.dg.system_parts import (
     PointLike, SystemSection, catenary_positions, point_contact, resolved_sections,
     section_properties, static_start,
@@ -36,6 +35,12 @@ _STATUS_TEXT = {
     _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
     _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
 }
+#: Relaxation of a system without free points [1/s], chunk and longest relaxation [s]: fixed
+#: times, not the lines' own (DynamicLine.settle), so a scaled system does not settle through
+#: the same dimensionless history.
+SETTLE_RATE = 20.0
+SETTLE_CHUNK = 0.1
+SETTLE_MAX_TIME = 20.0
 #: Viscous relaxation rate of a system with free points [1/s], with the kinetic damping: low
 #: enough that the slow modes of the free points (~1 rad/s) are not overdamped (they decay
 #: in a few periods under the kinetic damping), high enough to take the lines' higher modes
@@ -208,7 +213,7 @@ class DynamicSystem:
 
         Dynamic relaxation with two dampers: a viscous one, dv/dt -= ``rate`` v on every node
         and free point (default :data:`SYSTEM_SETTLE_RATE` with free points, else
-        :meth:`DynamicLine.settle`'s ``SETTLE_RATE``), and, with free points, kinetic damping
+        ``SETTLE_RATE``), and, with free points, kinetic damping
         (every velocity zeroed when the kinetic energy has passed a peak, checked every
         :data:`KINETIC_CHUNK`): the free points and the line masses they carry make slow
         modes (~1 rad/s) that a viscous rate high enough for the lines' axial and
