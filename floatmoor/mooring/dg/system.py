@@ -43,10 +43,11 @@ _STATUS_TEXT = {
 #: :meth:`DynamicSystem.settle_time_scale`). The slow motions the relaxation has to outlast
 #: are the free points swinging with the lines that carry them and the lines' own pendulum
 #: and transverse modes, all set by the lines' lengths under gravity (the axial modes are
-#: damped out far sooner); the longest line is the slowest, and a system without free points
-#: then settles on the schedule of a :class:`DynamicLine` of that length (same tau, the
-#: line's ``SETTLE_*_TAU``). Scaled by floatmoor.similitude, tau goes x sqrt(lambda) like
-#: every time, so a scaled system settles through the same dimensionless history.
+#: damped out far sooner); the longest line is the slowest, and a one-section system without
+#: free points then settles bit for bit as the :class:`DynamicLine` of that section (same
+#: tau, the line's ``SETTLE_*_TAU``; checked on a 140 m rope: equal times and nodes). Scaled
+#: by floatmoor.similitude, tau goes x sqrt(lambda) like every time, so a scaled system
+#: settles through the same dimensionless history.
 #: With free points (viscous rate plus kinetic damping, :meth:`DynamicSystem.settle`) the
 #: multiples give the former fixed values (2.0 1/s, 0.1 s chunks, kinetic checks every 0.02 s)
 #: on the 412 m chain-rope-chain lines with a clump and a buoy (tau = 6.48 s); at most 6 tau
@@ -61,7 +62,9 @@ _STATUS_TEXT = {
 #: 2.70 -> 2.63 s, clump_buoy_seabed suspended (tests/unit/test_dg_system_start.py) p = 3
 #: 2.90 -> 2.11 s, p = 5 1.60 -> 0.80 s, resting on the seabed 4.40 -> 3.83 s,
 #: chain_rope_chain_clump 4.10 -> 3.43 s, lazy_wave_buoy not settled in 20 s (change 7.8e-6)
-#: -> 14.5 s; cases/systems/three_line_clump_buoy (dynamic) 2.70 -> 2.63 s.
+#: -> 14.5 s; cases/systems/three_line_clump_buoy (dynamic) 2.70 -> 2.63 s. A rate of 10 tau
+#: settled these in 2.7, 3.1, 2.0, 5.0, 4.0, 18.1 and 2.1 s; 16 tau in 2.4, 3.2, 1.6, 4.9,
+#: 1.7, 20.4 and 1.9 s (13: the slowest, the lazy wave, settles soonest).
 SYSTEM_SETTLE_RATE_TAU = 13.0
 SYSTEM_SETTLE_CHUNK_TAU = 0.015
 SYSTEM_SETTLE_MAX_TIME_TAU = 6.0
