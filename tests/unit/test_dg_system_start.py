@@ -53,7 +53,7 @@ def test_settled_clump_and_buoy_line_matches_the_statics_and_converges_with_p() 
     assert system.settle_report.time < 5.0
 
 
-#: The settle of the clump resting on the seabed: measured 4.4 s of simulated time from the
+#: The settle of the clump resting on the seabed: measured 3.8 s of simulated time from the
 #: statics' resting start (before: not within 40 s, change 2.2e-4 -- from the case's positions
 #: the buoy's ~30 s mode overdamped, and at any start the kinetic damping knocking the
 #: contact nodes off their steady state: 1.1e-4 after 40 s from the resting start).

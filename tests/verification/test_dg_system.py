@@ -37,8 +37,9 @@ JOINT_CONVERGENCE = 0.5
 DAMPED_JOINT = {3e4: (2e-3, 0.2), 3e5: (2e-4, 0.2)}
 #: The joint's forces balance to this fraction of the largest end force (measured 2e-15).
 JOINT_BALANCE = 1e-9
-#: The settled start of the joint system: p = 2 creeps at 1.6e-5 relative per chunk after 20 s
-#: (the single line likewise), 2.3e-4 with c_int = 3e4.
+#: The settled start of the joint system: p = 2 creeps at 2.4e-5 relative per chunk after the
+#: longest relaxation, 6 sqrt(L / g) = 22.7 s (the single line likewise), 1.8e-5 with
+#: c_int = 3e4 (with the former fixed 20 s: 7.8e-5 and 2.3e-4).
 SETTLE_CHANGE = 5e-4
 #: Frequency of the mass on the bar: measured -6.2e-5 relative (zero crossings of 3 s of
 #: 1 ms samples; the initial stretch also excites the bar's own modes, 30x higher).

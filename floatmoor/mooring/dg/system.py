@@ -22,7 +22,10 @@ from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
-from floatmoor.mooring.dg.line import SETTLE_TOLERANCE, DynamicLine, SettleReport
+from floatmoor.mooring.dg.line import (
+    SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, SETTLE_TOLERANCE, DynamicLine,
+    SettleReport,
+)
 from floatmoor.mooring.dg.system_parts import (
     PointLike, SystemSection, catenary_positions, point_contact, resolved_sections,
     section_properties, static_start,
@@ -35,22 +38,37 @@ _STATUS_TEXT = {
     _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
     _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
 }
-#: Relaxation of a system without free points [1/s], chunk and longest relaxation [s]: fixed
-#: times, not the lines' own (DynamicLine.settle), so a scaled system does not settle through
-#: the same dimensionless history.
-SETTLE_RATE = 20.0
-SETTLE_CHUNK = 0.1
-SETTLE_MAX_TIME = 20.0
-#: Viscous relaxation rate of a system with free points [1/s], with the kinetic damping: low
-#: enough that the slow modes of the free points (~1 rad/s) are not overdamped (they decay
-#: in a few periods under the kinetic damping), high enough to take the lines' higher modes
-#: out: the chain-rope-chain test line (tests/unit/test_dg_system_start.py) settles from the
-#: statics in 1.6 s of simulated time (p = 5); at the lines' rate of 20 alone it crept for 18 s
-#: (p = 4); the clump resting on the seabed settles from its resting start in 4.4 s (p = 3).
-SYSTEM_SETTLE_RATE = 2.0
-#: Simulated time between the kinetic-energy checks of the kinetic damping [s]: well below a
-#: quarter period of the modes it is for (~1.5 s at 1 rad/s).
-KINETIC_CHUNK = 0.02
+#: The relaxation runs on the system's time scale tau = sqrt(L / g), L the unstretched length
+#: of its longest line (all sections of a case line, through its joints, clumps and buoys;
+#: :meth:`DynamicSystem.settle_time_scale`). The slow motions the relaxation has to outlast
+#: are the free points swinging with the lines that carry them and the lines' own pendulum
+#: and transverse modes, all set by the lines' lengths under gravity (the axial modes are
+#: damped out far sooner); the longest line is the slowest, and a one-section system without
+#: free points then settles bit for bit as the :class:`DynamicLine` of that section (same
+#: tau, the line's ``SETTLE_*_TAU``; checked on a 140 m rope: equal times and nodes). Scaled
+#: by floatmoor.similitude, tau goes x sqrt(lambda) like every time, so a scaled system
+#: settles through the same dimensionless history.
+#: With free points (viscous rate plus kinetic damping, :meth:`DynamicSystem.settle`) the
+#: multiples give the former fixed values (2.0 1/s, 0.1 s chunks, kinetic checks every 0.02 s)
+#: on the 412 m chain-rope-chain lines with a clump and a buoy (tau = 6.48 s); at most 6 tau
+#: (39 s there), as the shortest systems need: the 140 m two-section line of
+#: tests/verification/test_dg_system.py (tau = 3.78 s, p = 2) creeps at 1.0e-3 per chunk after
+#: 3 tau, 2.4e-5 after 6 tau (7.8e-5 after the former 20 s).
+#: The rate is low enough that the free points' slow modes (~1 rad/s there) are not
+#: overdamped (they decay in a few periods under the kinetic damping), high enough to take
+#: the lines' higher modes out (at 20 1/s alone the chain-rope-chain test line crept for 18 s,
+#: p = 4); the kinetic check stays well below a quarter period of those modes (~1.5 s).
+#: Measured settle times (simulated; fixed times -> these): tests/data/systems clump_buoy
+#: 2.70 -> 2.63 s, clump_buoy_seabed suspended (tests/unit/test_dg_system_start.py) p = 3
+#: 2.90 -> 2.11 s, p = 5 1.60 -> 0.80 s, resting on the seabed 4.40 -> 3.83 s,
+#: chain_rope_chain_clump 4.10 -> 3.43 s, lazy_wave_buoy not settled in 20 s (change 7.8e-6)
+#: -> 14.5 s; cases/systems/three_line_clump_buoy (dynamic) 2.70 -> 2.63 s. A rate of 10 tau
+#: settled these in 2.7, 3.1, 2.0, 5.0, 4.0, 18.1 and 2.1 s; 16 tau in 2.4, 3.2, 1.6, 4.9,
+#: 1.7, 20.4 and 1.9 s (13: the slowest, the lazy wave, settles soonest).
+SYSTEM_SETTLE_RATE_TAU = 13.0
+SYSTEM_SETTLE_CHUNK_TAU = 0.015
+SYSTEM_SETTLE_MAX_TIME_TAU = 6.0
+KINETIC_CHUNK_TAU = 0.003
 _KINDS = {"fixed": _s.FIXED, "free": _s.FREE, "body": _s.BODY}
 
 
@@ -207,29 +225,50 @@ class DynamicSystem:
         return self.x[list(self.body_points)]
 
     # -- set-up --------------------------------------------------------------------------------
+    def settle_time_scale(self) -> float:
+        """The system's time scale tau [s] the relaxation runs on: sqrt(L / g) with L the
+        unstretched length of its longest line (its sections summed), L / c (c the slowest
+        axial wave speed) without gravity. It scales sqrt(lambda) like every time under
+        dynamic similitude, so a scaled system settles through the same dimensionless
+        history."""
+        lengths: dict[str, float] = {}
+        for sec in self.sections:
+            lengths[sec.line] = lengths.get(sec.line, 0.0) + sec.properties.length
+        L = max(lengths.values())
+        g = self.sections[0].properties.gravity
+        if g > 0.0:
+            return math.sqrt(L / g)
+        return L / min(sec.properties.wave_speed for sec in self.sections)
+
     def settle(self, rate: float | None = None, tolerance: float = SETTLE_TOLERANCE,
-               max_time: float = SETTLE_MAX_TIME) -> SettleReport:
+               max_time: float | None = None) -> SettleReport:
         """Relax the system to the static equilibrium of its discretisation, body points held.
 
         Dynamic relaxation with two dampers: a viscous one, dv/dt -= ``rate`` v on every node
-        and free point (default :data:`SYSTEM_SETTLE_RATE` with free points, else
-        ``SETTLE_RATE``), and, with free points, kinetic damping
-        (every velocity zeroed when the kinetic energy has passed a peak, checked every
-        :data:`KINETIC_CHUNK`): the free points and the line masses they carry make slow
-        modes (~1 rad/s) that a viscous rate high enough for the lines' axial and
-        transverse modes overdamps into a creep of tens of seconds. Runs in chunks of
-        ``SETTLE_CHUNK`` until every section's end tensions change by less than
-        ``tolerance`` (relative) and every free point moves by less than ``tolerance`` times
-        its longest section over a chunk."""
+        and free point, and, with free points, kinetic damping (every velocity zeroed when
+        the kinetic energy has passed a peak, checked every ``KINETIC_CHUNK_TAU`` tau): the
+        free points and the line masses they carry make slow modes that a viscous rate high
+        enough for the lines' axial and transverse modes overdamps into a long creep. Runs in
+        chunks until every section's end tensions change by less than ``tolerance``
+        (relative) and every free point moves by less than ``tolerance`` times its longest
+        section over a chunk. Rate, chunk and ``max_time`` default to multiples of
+        :meth:`settle_time_scale` tau: ``SYSTEM_SETTLE_*_TAU`` with free points, the
+        :class:`DynamicLine`'s ``SETTLE_*_TAU`` without."""
         free = self.kind == _s.FREE
         kinetic = bool(free.any())
-        if rate is None:
-            rate = SYSTEM_SETTLE_RATE if kinetic else SETTLE_RATE
+        tau = self.settle_time_scale()
+        if kinetic:
+            rate_tau, chunk_tau, max_tau = (SYSTEM_SETTLE_RATE_TAU, SYSTEM_SETTLE_CHUNK_TAU,
+                                            SYSTEM_SETTLE_MAX_TIME_TAU)
+        else:
+            rate_tau, chunk_tau, max_tau = SETTLE_RATE_TAU, SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU
+        rate = rate_tau / tau if rate is None else rate
+        max_time = max_tau * tau if max_time is None else max_time
         if not (rate >= 0.0 and tolerance > 0.0 and max_time > 0.0):
             raise ValueError("settle needs a rate >= 0 and a positive tolerance and max_time")
         start = self.time
-        n = max(int(math.ceil(SETTLE_CHUNK / self.time_step)), 2)
-        sub = max(int(round(KINETIC_CHUNK / self.time_step)), 1) if kinetic else n
+        n = max(int(math.ceil(chunk_tau * tau / self.time_step)), 2)
+        sub = max(int(round(KINETIC_CHUNK_TAU * tau / self.time_step)), 1) if kinetic else n
         sub = min(sub, n)
         S, P = len(self.sections), len(self.points)
         still = np.repeat(self.body_positions[None], 2, axis=0)
