@@ -34,12 +34,8 @@ __all__ = ["CableProperties", "DynamicLine", "DynamicLineState", "SettleReport",
 #: (floatmoor.similitude: times x sqrt(lambda)) settles through the same dimensionless history:
 #: damping rate = SETTLE_RATE_TAU / tau, chunk = SETTLE_CHUNK_TAU tau, at most
 #: SETTLE_MAX_TIME_TAU tau. Modes above rate / 2 (the longitudinal and most transverse ones)
-#: decay as exp(-rate t / 2). Measured settling times (simulated) with the values here, against
-#: the former fixed 20 1/s and 0.1 s chunks: Lindahl chain (tau = 1.83 s: 9.8 1/s, 0.092 s
-#: chunks) 1.19 s (2.91 s), the stiff quasi-dynamic verification chain s3_d1 (tau = 1.16 s)
-#: 1.73 s (1.40 s), a cylinder-buoy line (tau = 0.84 s, 9.4 us steps: the dearest settle of
-#: the shipped cases) 1.01 s (1.10 s); rate tau = 12, 16, 22 and 36 settled these three in
-#: 2.4, 2.0, 1.4 and 2.8 s at worst, the buoy line in 1.18, 0.88, 1.31 and 1.81 s.
+#: decay as exp(-rate t / 2). The settle times measured with these values and others:
+#: docs/validation/notes.md, "Settling on the line's time scale".
 SETTLE_RATE_TAU = 18.0
 SETTLE_CHUNK_TAU = 0.05
 SETTLE_MAX_TIME_TAU = 11.0

@@ -38,33 +38,11 @@ _STATUS_TEXT = {
     _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
     _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
 }
-#: The relaxation runs on the system's time scale tau = sqrt(L / g), L the unstretched length
-#: of its longest line (all sections of a case line, through its joints, clumps and buoys;
-#: :meth:`DynamicSystem.settle_time_scale`). The slow motions the relaxation has to outlast
-#: are the free points swinging with the lines that carry them and the lines' own pendulum
-#: and transverse modes, all set by the lines' lengths under gravity (the axial modes are
-#: damped out far sooner); the longest line is the slowest, and a one-section system without
-#: free points then settles bit for bit as the :class:`DynamicLine` of that section (same
-#: tau, the line's ``SETTLE_*_TAU``; checked on a 140 m rope: equal times and nodes). Scaled
-#: by floatmoor.similitude, tau goes x sqrt(lambda) like every time, so a scaled system
-#: settles through the same dimensionless history.
-#: With free points (viscous rate plus kinetic damping, :meth:`DynamicSystem.settle`) the
-#: multiples give the former fixed values (2.0 1/s, 0.1 s chunks, kinetic checks every 0.02 s)
-#: on the 412 m chain-rope-chain lines with a clump and a buoy (tau = 6.48 s); at most 6 tau
-#: (39 s there), as the shortest systems need: the 140 m two-section line of
-#: tests/verification/test_dg_system.py (tau = 3.78 s, p = 2) creeps at 1.0e-3 per chunk after
-#: 3 tau, 2.4e-5 after 6 tau (7.8e-5 after the former 20 s).
-#: The rate is low enough that the free points' slow modes (~1 rad/s there) are not
-#: overdamped (they decay in a few periods under the kinetic damping), high enough to take
-#: the lines' higher modes out (at 20 1/s alone the chain-rope-chain test line crept for 18 s,
-#: p = 4); the kinetic check stays well below a quarter period of those modes (~1.5 s).
-#: Measured settle times (simulated; fixed times -> these): tests/data/systems clump_buoy
-#: 2.70 -> 2.63 s, clump_buoy_seabed suspended (tests/unit/test_dg_system_start.py) p = 3
-#: 2.90 -> 2.11 s, p = 5 1.60 -> 0.80 s, resting on the seabed 4.40 -> 3.83 s,
-#: chain_rope_chain_clump 4.10 -> 3.43 s, lazy_wave_buoy not settled in 20 s (change 7.8e-6)
-#: -> 14.5 s; cases/systems/three_line_clump_buoy (dynamic) 2.70 -> 2.63 s. A rate of 10 tau
-#: settled these in 2.7, 3.1, 2.0, 5.0, 4.0, 18.1 and 2.1 s; 16 tau in 2.4, 3.2, 1.6, 4.9,
-#: 1.7, 20.4 and 1.9 s (13: the slowest, the lazy wave, settles soonest).
+#: Settling runs on the system's time scale tau = sqrt(L / g), L its longest line (through
+#: its joints, clumps and buoys: the slowest to settle), which scales x sqrt(lambda) under
+#: floatmoor.similitude; without free points the line's ``SETTLE_*_TAU`` apply. Why these
+#: multiples, and the settle times measured: docs/validation/notes.md, "Settling on the line's
+#: time scale".
 SYSTEM_SETTLE_RATE_TAU = 13.0
 SYSTEM_SETTLE_CHUNK_TAU = 0.015
 SYSTEM_SETTLE_MAX_TIME_TAU = 6.0
