@@ -22,14 +22,10 @@ from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
-from floatmoor.mooring.dg.line import (
-    SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, SETTLE_TOLERANCE, DynamicLine,
-    SettleReport,
-)
-from floatmoor.mooring.dg.system_parts import (
-    PointLike, SystemSection, catenary_positions, point_contact, resolved_sections,
-    section_properties, static_start,
-)
+from floatmoor.mooring.dg.line import SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, \
+    SETTLE_TOLERANCE, DynamicLine, SettleReport
+from floatmoor.mooring.dg.system_parts import PointLike, SystemSection, catenary_positions, \
+    point_contact, resolved_sections, section_properties, static_start
 
 __all__ = ["DynamicSystem", "SystemSection", "free_point_groups"]
 
