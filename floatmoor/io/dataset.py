@@ -53,6 +53,7 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
                          shapes: Mapping[str, NDArray[np.floating]] | None = None,
                          body: Mapping[str, NDArray[np.floating]] | None = None,
                          system: Mapping[str, NDArray[np.floating]] | None = None,
+                         body_equilibrium: NDArray[np.floating] | None = None,
                          extra_attrs: Mapping[str, str | float | int] | None = None) -> xr.Dataset:
     """Label the arrays of a run.
 
@@ -76,9 +77,14 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
     system
         Optional point and section series: ``point_position``, ``point_force`` (point, time,
         component), ``section_start_tension``, ``section_end_tension`` (section, time).
+    body_equilibrium
+        With ``body``: the floater's static equilibrium (dof,) that ``body_displacement`` is
+        measured from, relative to the case's position [m, rad].
     extra_attrs
         More dataset attributes (e.g. wall time).
     """
+    if body_equilibrium is not None and body is None:
+        raise ValueError("body_equilibrium is the origin of a floater's body series: give them")
     coords = {
         "time": ("time", np.asarray(time, dtype=float), attributes("time")),
         "line": ("line", np.array(case.line_names, dtype=str), attributes("line")),
@@ -132,6 +138,9 @@ def build_result_dataset(case: Case, time: NDArray[np.float64],
             values = np.asarray(array, dtype=float)
             data_vars[name] = (("time", "dof") if values.ndim == 2 else ("time",), values,
                                attributes(name))
+        if body_equilibrium is not None:
+            data_vars["body_equilibrium"] = (("dof",), np.asarray(body_equilibrium, dtype=float)
+                                             .reshape(len(DOFS)), attributes("body_equilibrium"))
     attrs: dict[str, str | float | int] = {
         "title": case.title,
         "case_file": case.source,

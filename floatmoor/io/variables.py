@@ -44,8 +44,15 @@ VARIABLE_ATTRIBUTES: dict[str, dict[str, str]] = {
     # floating body (coupled runs)
     "dof": {"long_name": "rigid-body degree of freedom about the reference point (capytaine's "
             "names; rotations about axes parallel to x, y, z)", "units": "1"},
-    "body_displacement": {"long_name": "floater displacement from its rest position: Surge, "
-                          "Sway, Heave [m], Roll, Pitch, Yaw [rad]", "units": "m or rad"},
+    "body_displacement": {"long_name": "floater displacement from its static equilibrium "
+                          "(body_equilibrium): Surge, Sway, Heave [m], Roll, Pitch, Yaw [rad]",
+                          "units": "m or rad"},
+    "body_equilibrium": {"long_name": "static equilibrium of the moored floater relative to "
+                         "the case's position, under its weight, buoyancy (linear hydrostatic "
+                         "stiffness), the quasi-static catenaries of its lines in still water "
+                         "and the mean rotor thrust of the mean wind if any (no current, wave "
+                         "drift or Morison drag): Surge, Sway, Heave [m], Roll, Pitch, Yaw "
+                         "[rad]", "units": "m or rad"},
     "body_velocity": {"long_name": "floater velocity: Surge, Sway, Heave [m/s], Roll, Pitch, "
                       "Yaw [rad/s]", "units": "m/s or rad/s"},
     # prescribed body motion (forced runs with [motion] kind = "body")

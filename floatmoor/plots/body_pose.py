@@ -1,13 +1,14 @@
 """Where the body is at a time of a run, for the views: the floater's panels placed by its
 recorded 6-DOF motion, or, for a forced-motion run, the body-carried points the motion moves.
 
-A floater run records ``body_displacement`` from the static equilibrium x_eq on the lines
-(the simulation's rest position), not from the case's rest pose, and x_eq is not stored. It is
-recovered here from the body points' recorded positions at the first output time, with the
-kinematics of :func:`floatmoor.body.kinematics.points_state`,
-p = c0 + x[:3] + R(x[3:]) (p0 - c0), x = x_eq + d: a least-squares fit of the six numbers
-(exact for three or more body points not on one line; with fewer, the rotation about their
-line is left as the record has it).
+A floater run records ``body_displacement`` d from the static equilibrium x_eq on the lines
+(the simulation's rest position), not from the case's rest pose; the pose drawn is
+x = x_eq + d, with the kinematics of :func:`floatmoor.body.kinematics.points_state`,
+p = c0 + x[:3] + R(x[3:]) (p0 - c0). Run files hold x_eq as ``body_equilibrium``. Files
+written before they did are drawn with x_eq recovered from the body points' recorded
+positions at the first output time: a least-squares fit of the six numbers (exact for three
+or more body points not on one line; with fewer, the rotation about their line is left as the
+record has it).
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from floatmoor.plots.body_surface import BodySurface, body_surface
 __all__ = ["BodyModel", "PlacedBody", "body_model", "placed_body", "equilibrium_offset",
            "polygon_through", "OFFSET_TOLERANCE"]
 
-#: Convergence of the x_eq fit: positions are recorded to float64 (about 1e-16 relative), so
+#: Convergence of the x_eq fit (files without ``body_equilibrium``): positions are recorded to float64 (about 1e-16 relative), so
 #: the fit stops at 1e-12 of the body's size [m].
 OFFSET_TOLERANCE = 1e-12
 
@@ -41,7 +42,8 @@ class BodyModel:
     centre
         The rotation centre at rest c0 [m].
     offset
-        x_eq (6,): the equilibrium the recorded displacement is measured from.
+        x_eq (6,): the equilibrium the recorded displacement is measured from (the file's
+        ``body_equilibrium``, or fitted for a file without it).
     points
         Names of the body-carried points (the result's ``point`` coordinate).
     """
@@ -81,9 +83,20 @@ def _body_points(case: Case) -> tuple[tuple[str, ...], NDArray[np.float64]]:
 def equilibrium_offset(dataset: xr.Dataset, names: tuple[str, ...],
                        rest: NDArray[np.float64], centre: NDArray[np.float64]
                        ) -> NDArray[np.float64]:
-    """x_eq (6,) of a floater run (module docstring): the pose at the first output time, fitted
-    to the recorded positions of the body points ``names`` at rest ``rest`` (n, 3), minus the
-    recorded displacement then. Zero when the run file records no positions of them."""
+    """x_eq (6,) of a floater run: its ``body_equilibrium``, or for a file written before runs
+    stored it, the pose at the first output time fitted to the recorded positions of the body
+    points ``names`` at rest ``rest`` (n, 3), minus the recorded displacement then (module
+    docstring); zero when such a file records no positions of them."""
+    if "body_equilibrium" in dataset:
+        return np.asarray(dataset["body_equilibrium"].sel(dof=dataset["body_displacement"]
+                                                          ["dof"]).values, dtype=float)
+    return _fitted_offset(dataset, names, rest, centre)
+
+
+def _fitted_offset(dataset: xr.Dataset, names: tuple[str, ...], rest: NDArray[np.float64],
+                   centre: NDArray[np.float64]) -> NDArray[np.float64]:
+    """x_eq fitted to the body points' positions at the first output time (files without
+    ``body_equilibrium``)."""
     from scipy.optimize import least_squares
 
     d0 = np.asarray(dataset["body_displacement"].isel(time=0).values, dtype=float)

@@ -219,7 +219,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     n_lines = len(case.lines)
     ckpt_every = flush_interval if checkpoint_interval is None else checkpoint_interval
     stride_shapes = shape_stride(case)
-    recorder = Recorder(case, times, output, flush_interval, body=True,
+    recorder = Recorder(case, times, output, flush_interval, body=True, equilibrium=x_eq,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
                         shape_stride=stride_shapes, chunk=CHUNK_STEPS // stride + 1)
     series, bseries = recorder.series, recorder.body

@@ -165,6 +165,9 @@ class Recorder:
         (0: no shapes).
     body, prescribed
         Whether to record a floater's series, or a prescribed body motion's.
+    equilibrium
+        With ``body``: the floater's static equilibrium (6,) [m, rad] its displacement is
+        recorded from, written to the file (``body_equilibrium``) with its first samples.
     chunk
         Most samples the run writes between two :meth:`reserve` calls: the window holds at
         least this many.
@@ -174,7 +177,10 @@ class Recorder:
                  flush_interval: float = FLUSH_INTERVAL_S, *,
                  shape_nodes: list[NDArray[np.float64]] | None = None,
                  shape_stride: int = 0, body: bool = False, prescribed: bool = False,
-                 chunk: int = 1) -> None:
+                 equilibrium: NDArray[np.float64] | None = None, chunk: int = 1) -> None:
+        if body != (equilibrium is not None):
+            raise ValueError("a floater's series are recorded with its equilibrium, and only "
+                             "they")
         self.case = case
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
@@ -193,6 +199,8 @@ class Recorder:
         }
         #: floater series (coupled runs): displacement, velocity (time, 6), wave elevation
         self.body: dict[str, NDArray[np.float64]] | None = None
+        #: the floater's static equilibrium (6,), the origin of its recorded displacement
+        self.equilibrium = None if equilibrium is None else np.array(equilibrium, dtype=float)
         if body:
             self.body = {"body_displacement": np.zeros((n_time, 6)),
                          "body_velocity": np.zeros((n_time, 6)),
@@ -418,6 +426,7 @@ class Recorder:
             body = {**(body or {}), **{k: v[a:b] for k, v in self.prescribed.items()}}
         return build_result_dataset(self.case, self.time[first:stop], variables, status=status,
                                     shapes=shape_data, body=body, system=system,
+                                    body_equilibrium=self.equilibrium,
                                     extra_attrs={"wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
 
