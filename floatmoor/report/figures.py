@@ -279,7 +279,7 @@ def plot_motion_timeseries(runs: Sequence[RunData], path: str | Path,
         ax.grid(alpha=0.3)
         _legend(ax)
     axes[-1].set_xlabel("time [s]")
-    return _save(plt, fig, Path(path), "Floater motions from the rest position")
+    return _save(plt, fig, Path(path), "Floater motions from the static equilibrium")
 
 
 # -- spectra ----------------------------------------------------------------------------------

@@ -290,7 +290,7 @@ def motion_table(runs: Sequence[RunData], analyses: Sequence[RunAnalysis]) -> Ta
         for stat in ("mean", "std", "min", "max"):
             rows.append([dof, stat, unit, *[format_number(a.motion[dof][stat])
                                             for _, a in body]])
-    return Table("Floater displacement from the rest position",
+    return Table("Floater displacement from the static equilibrium",
                  ["DOF", "statistic", "unit", *[r.label for r, _ in body]], rows,
                  [f"DOFs whose mean and std stay below {MOTION_ACTIVE_STD:g} in every run are "
                   "left out."])

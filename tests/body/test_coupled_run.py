@@ -58,6 +58,9 @@ def test_free_decay_starts_from_the_offset_at_rest() -> None:
     ds = run_coupled(case).dataset
     x0 = ds["body_displacement"].isel(time=0).values
     assert abs(x0[0] - 0.03) < 1e-12 and abs(x0[4] - np.radians(2.0)) < 1e-12
+    # a run without a file holds its equilibrium too: the body starts at it plus the offset
+    assert ds["body_equilibrium"].attrs["units"] == "m or rad"
+    assert ds["body_equilibrium"].values[2] < -3e-3  # the chains sink the buoy 3.6 mm
     assert np.all(ds["body_velocity"].isel(time=0).values == 0.0)
     assert np.all(ds["wave_elevation"].values == 0.0)
 
@@ -80,10 +83,11 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
     partial = read_dataset(out)
     assert partial.attrs["status"].startswith("interrupted")
     assert cr.checkpoint_path(out).is_file()
+    assert np.array_equal(partial["body_equilibrium"].values, whole["body_equilibrium"].values)
     resumed = run_coupled(case, output=out, resume=True).dataset
     assert not cr.checkpoint_path(out).exists()
-    for name in ("body_displacement", "fairlead_tension", "wave_elevation", "laid_length",
-                 "shape_position", "shape_tension"):
+    for name in ("body_equilibrium", "body_displacement", "fairlead_tension", "wave_elevation",
+                 "laid_length", "shape_position", "shape_tension"):
         assert np.array_equal(resumed[name].values, whole[name].values), name
 
 
@@ -194,6 +198,10 @@ def test_wind_thrust_offsets_the_equilibrium_and_pushes_downwind() -> None:
     # horizontal line forces balance the 605.9 kN thrust at equilibrium
     fx = ds["fairlead_force"].isel(time=0).sel(component="x").values.sum()
     assert abs(fx + 605.9e3) < 0.01 * 605.9e3
+    # the stored equilibrium is the thrust's: metres downwind of the calm one
+    shift = ds["body_equilibrium"].values - calm["body_equilibrium"].values
+    print(f"equilibrium shift by the thrust: surge {shift[0]:.3f} m, pitch {shift[4]:.4f} rad")
+    assert shift[0] > 1.0
 
 
 def test_member_drag_of_the_case_damps_heave() -> None:
