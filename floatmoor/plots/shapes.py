@@ -78,8 +78,10 @@ def frame(dataset: xr.Dataset, sample: int, context: RunContext) -> Frame:
         check_series(outline.vertices, f"body at t = {t:g} s")
     if outline is not None and outline.displacement is not None:
         body = np.asarray(context.reference_point) + outline.displacement[:3]
-    elif "body_displacement" in dataset:
+    elif "body_displacement" in dataset:  # no body model: the centre x_eq + d (d: older files)
         disp = dataset["body_displacement"].sel(time=t, method="nearest")
+        if "body_equilibrium" in dataset:
+            disp = disp + dataset["body_equilibrium"]
         body = np.asarray(context.reference_point) + np.array(
             [float(disp.sel(dof=d)) for d in ("Surge", "Sway", "Heave")])
     return Frame(t, shapes, [touchdown_point(dataset, s) for s in shapes], body, outline)

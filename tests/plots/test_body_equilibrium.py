@@ -17,6 +17,8 @@ from floatmoor.hydro.radiation import hydrostatic_stiffness_total
 from floatmoor.io.dataset import DOFS
 from floatmoor.plots import body_pose
 from floatmoor.plots.body_pose import body_model
+from floatmoor.plots.context import run_context
+from floatmoor.plots.shapes import frame
 from floatmoor.simulation.coupled import EQUILIBRIUM_RTOL, line_force_quasi_static
 from tests.plots.conftest import BUOY, RUN
 
@@ -121,3 +123,21 @@ def test_file_without_the_equilibrium_is_drawn_with_the_fitted_one(dataset):
     print(f"fit - stored: {np.abs(model.offset - dataset['body_equilibrium'].values).max():.2e}")
     np.testing.assert_allclose(model.offset, dataset["body_equilibrium"].values, rtol=0.0,
                                atol=FIT_ATOL)
+
+
+def test_without_a_body_model_the_marked_centre_is_at_the_equilibrium_plus_the_motion(
+        dataset):
+    """A run whose case does not re-read has no body model; the body's centre marked in the
+    shape views is still the reference point moved by x_eq + d (d alone for older files)."""
+    broken = dataset.copy()
+    broken.attrs = dict(dataset.attrs, case_toml="[not a case")
+    context = run_context(broken)
+    assert context.body is None
+    x = (dataset["body_equilibrium"] + dataset["body_displacement"].sel(
+        time=float(dataset["shape_time"][5]), method="nearest")).values
+    centre = frame(broken, 5, context).body
+    np.testing.assert_allclose(centre, np.asarray(context.reference_point) + x[:3], rtol=0.0,
+                               atol=POSITION_TOL)
+    older = frame(broken.drop_vars("body_equilibrium"), 5, context).body
+    np.testing.assert_allclose(older, centre - dataset["body_equilibrium"].values[:3],
+                               rtol=0.0, atol=POSITION_TOL)
