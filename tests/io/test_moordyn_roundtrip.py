@@ -92,8 +92,15 @@ def test_moordyn_initialises_the_export_of_a_shipped_case(relative, tmp_path):
         assert fx * (ax - p.position[0]) + fy * (ay - p.position[1]) > 0.0
 
 
-@pytest.mark.parametrize("name", INDEPENDENT)
-@pytest.mark.parametrize("model", ["quasi-static", "quasi-dynamic", "dynamic"])
+#: The dynamic runs of the two floating-platform decks cost 12-27 s each (stiff lines, small
+#: explicit steps): slow; the shallow chain's dynamic run stays in the default run.
+_DEAR_DYNAMIC = {"oc3_hywind_lines.txt", "mhk_rm1_floating.dat"}
+
+
+@pytest.mark.parametrize("name, model", [
+    pytest.param(name, model, marks=pytest.mark.slow) if model == "dynamic" and
+    name in _DEAR_DYNAMIC else (name, model)
+    for name in INDEPENDENT for model in ("quasi-static", "quasi-dynamic", "dynamic")])
 def test_imported_independent_lines_run_with_every_model(name, model, tmp_path, capsys):
     case_path = import_file(name, tmp_path)
     out = tmp_path / "run.nc"
