@@ -91,9 +91,20 @@ def characteristic_motion(case: Case) -> tuple[float, float, str]:
 
 def _section_groups(case: Case, section: Section, length: float, period: float,
                     amplitude: float) -> dict[str, float]:
+    # In float64 with IEEE semantics: extreme but valid inputs (a period of 1e308 s, a diameter
+    # of 1e-300 m) give an infinite or zero group, which `floatmoor check` prints, rather than
+    # an OverflowError or ZeroDivisionError.
+    with np.errstate(all="ignore"):
+        return _groups(case, section, np.float64(length), np.float64(period),
+                       np.float64(amplitude))
+
+
+def _groups(case: Case, section: Section, length: np.float64, period: np.float64,
+            amplitude: np.float64) -> dict[str, float]:
     lt, env = section.line_type, case.environment
-    m, rho_w, rho_c = lt.mass_per_length, env.water_density, lt.material_density
-    drag = 0.5 * rho_w * lt.diameter * length / m  # alpha_4,5 / C_d (eq. 29d-e)
+    m, rho_w = np.float64(lt.mass_per_length), np.float64(env.water_density)
+    rho_c, diameter = np.float64(lt.material_density), np.float64(lt.diameter)
+    drag = 0.5 * rho_w * diameter * length / m  # alpha_4,5 / C_d (eq. 29d-e)
     speed = 2.0 * math.pi * amplitude / period
     return {
         "alpha_1": lt.added_mass_coefficient * rho_w / rho_c,
@@ -101,9 +112,9 @@ def _section_groups(case: Case, section: Section, length: float, period: float,
         "alpha_3": (1.0 - rho_w / rho_c) * env.gravity * period ** 2 / length,
         "alpha_4": lt.tangential_drag_coefficient * drag,
         "alpha_5": lt.normal_drag_coefficient * drag,
-        "reynolds_number": speed * lt.diameter / WATER_KINEMATIC_VISCOSITY,
-        "keulegan_carpenter_number": speed * period / lt.diameter,
-        "volume_coefficient": m / (rho_c * math.pi * lt.diameter ** 2 / 4.0),
+        "reynolds_number": speed * diameter / WATER_KINEMATIC_VISCOSITY,
+        "keulegan_carpenter_number": speed * period / diameter,
+        "volume_coefficient": m / (rho_c * math.pi * diameter ** 2 / 4.0),
         "line_length": length,
         "period": period,
         "amplitude": amplitude,

@@ -68,3 +68,16 @@ def test_check_prints_the_groups(capsys) -> None:
     assert "dimensionless groups" in out
     row = next(line for line in out.splitlines() if line.strip().startswith("chain[0]"))
     assert row.split()[1:] == ["0.4872", "175.4", "0.4049", "221.9", "1109", "2212", "571.2"]
+
+
+@pytest.mark.parametrize("override, group, expected", [
+    ("line_types.chain.diameter=1e-300", "volume_coefficient", math.inf),
+    ("motion.period=1e308", "alpha_2", math.inf),
+])
+def test_extreme_valid_inputs_give_infinite_groups_not_an_exception(override, group,
+                                                                    expected) -> None:
+    """A diameter whose square underflows or a period whose square overflows is valid input
+    (the loader asks only > 0): the groups come out infinite, as `floatmoor check` prints
+    them, instead of a ZeroDivisionError or OverflowError (found by the mutation corpus)."""
+    groups = cable_groups(load_case(LINDAHL, [override]))
+    assert float(groups[group].values[0]) == expected
