@@ -36,7 +36,7 @@ def settings(K: int, p: int, **kw) -> DynamicSettings:
     return DynamicSettings(**d)
 
 
-@pytest.mark.parametrize("damping", ["implicit", "explicit"])
+@pytest.mark.parametrize("damping", ["implicit", pytest.param("explicit", marks=pytest.mark.slow)])
 def test_one_section_system_is_the_dynamic_line_bit_for_bit(damping: str) -> None:
     case = load_case(CASES / "lindahl" / "lindahl_r0.20_T1.25.toml",
                      ["lines.chain.dynamic.elements=12", "lines.chain.dynamic.order=5",
