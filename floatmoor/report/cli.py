@@ -73,17 +73,13 @@ def parse_start(value: Any) -> float | None:
     ReportInputError
         When not a finite number >= 0.
     """
+    from floatmoor.plots.cli import parse_time
     from floatmoor.report.runs import ReportInputError
 
-    if value is None:
-        return None
     try:
-        start = float(value)
-    except (TypeError, ValueError):
-        start = math.nan
-    if not (math.isfinite(start) and start >= 0.0):
-        raise ReportInputError("--start", "a time >= 0 [s]", f"'{value}'")
-    return start
+        return parse_time(value, "--start")
+    except CaseError:  # the same rule, reported as the report's input error
+        raise ReportInputError("--start", "a time >= 0 [s]", f"'{value}'") from None
 
 
 def parse_nominal_diameters(items: list[str] | None) -> dict[str, float]:

@@ -13,16 +13,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from floatmoor.case.motion_body import BODY_TABLE_HEADERS
+from floatmoor.case.motion_table import HEADER
 from floatmoor.similitude.decimals import rounded
 from floatmoor.similitude.laws import ScaleLaw
 
 __all__ = ["ScaledTable", "COLUMN_KINDS", "scaled_table_name", "scale_motion_table"]
 
-#: Quantity kind (:meth:`ScaleLaw.factor`) of every column a motion table may have.
+#: Quantity kind (:meth:`ScaleLaw.factor`) of every column a motion table may have, from the
+#: headers the case loader accepts: time, rotations (``*_deg``, ``*_rad``) unscaled, the rest
+#: displacements.
 COLUMN_KINDS: dict[str, str] = {
-    **{name: "length" for name in ("x", "y", "z", "surge", "sway", "heave")},
-    **{f"{dof}_{unit}": "same" for dof in ("roll", "pitch", "yaw") for unit in ("deg", "rad")},
-    "time": "time",
+    c: "time" if c == "time" else "same" if c.endswith(("_deg", "_rad")) else "length"
+    for header in (HEADER, *BODY_TABLE_HEADERS) for c in header
 }
 
 
