@@ -26,8 +26,8 @@ from floatmoor.plots.body_surface import BodySurface, body_surface
 __all__ = ["BodyModel", "PlacedBody", "body_model", "placed_body", "equilibrium_offset",
            "polygon_through", "OFFSET_TOLERANCE"]
 
-#: Convergence of the x_eq fit (files without ``body_equilibrium``): positions are recorded to float64 (about 1e-16 relative), so
-#: the fit stops at 1e-12 of the body's size [m].
+#: Convergence of the x_eq fit (files without ``body_equilibrium``): positions are recorded
+#: to float64 (about 1e-16 relative), so the fit stops at 1e-12 of the body's size [m].
 OFFSET_TOLERANCE = 1e-12
 
 
