@@ -61,6 +61,9 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         "lines": lines,
         "sections": sections,
     }
+    checked = str(dataset.attrs.get("line_accuracy", ""))
+    if checked:  # the a-posteriori check of lines whose numerics the accuracy chose
+        out["line_accuracy"] = checked.split("\n")
     if "body_displacement" in dataset:
         keep = time >= start
         if not keep.any():  # a run shorter than the ramp: the whole record, as for the lines
@@ -128,6 +131,10 @@ def format_summary(summary: dict[str, Any]) -> str:
         rows.append("no mooring lines")
     if summary.get("sections"):
         rows.extend(_section_rows(summary["sections"]))
+    if summary.get("line_accuracy"):
+        rows.append("dynamic lines' numerics checked against their accuracy (a probe at twice "
+                    "the elements):")
+        rows.extend(f"  {text}" for text in summary["line_accuracy"])
     if summary.get("body_displacement"):
         rows.append("floater displacement from equilibrium [m, rad]:")
         rows.append(f"  {'dof':<10}{'mean':>11}{'std':>11}{'min':>11}{'max':>11}")

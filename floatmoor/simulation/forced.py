@@ -8,7 +8,7 @@ refused, not run without them: :func:`check_forced_case`.
 from __future__ import annotations
 
 import time as _time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -16,15 +16,17 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from floatmoor.case.schema import Case, Simulation
+from floatmoor.case.schema import Case, Line, Simulation
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.body_motion import body_motion_state, is_body_motion, prescribed_fairlead_state
+from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.assembly import LineModel, assemble
+from floatmoor.simulation.line_accuracy import LineAccuracy, checked_line, describe
 from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_line
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 
-__all__ = ["RunResult", "run_forced_motion", "check_forced_case", "output_times",
+__all__ = ["RunResult", "run_forced_motion", "check_forced_case", "check_line_accuracy", "output_times",
            "body_points_state"]
 
 #: Output samples solved per chunk between progress reports and checks: large enough to make
@@ -39,6 +41,8 @@ class RunResult:
     status: str  #: "complete", or why it stopped
     wall_time_s: float  #: [s]
     simulated_time_s: float  #: time of the last recorded sample [s]
+    #: the a-posteriori check of each dynamic line whose numerics the accuracy chose
+    line_accuracy: tuple[LineAccuracy, ...] = ()
 
 
 def output_times(simulation: Simulation) -> NDArray[np.float64]:
@@ -109,14 +113,16 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     """
     check_forced_case(case)
     times = output_times(case.simulation)
+    start_wall = _time.perf_counter()
     system = assemble(case)
     models, groups = system.line_models, system.groups
+    accuracy = check_line_accuracy(case, models)
     stride = shape_stride(case)
+    attrs = {"line_accuracy": "\n".join(describe(a) for a in accuracy)} if accuracy else None
     recorder = Recorder(case, times, output, flush_interval,
                         shape_nodes=_shape_nodes(models, groups) if stride else None,
                         shape_stride=stride, prescribed=is_body_motion(case.motion),
-                        chunk=CHUNK_SAMPLES)
-    start_wall = _time.perf_counter()
+                        chunk=CHUNK_SAMPLES, attrs=attrs)
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
             stop = min(start + CHUNK_SAMPLES, times.size)
@@ -126,7 +132,39 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     dataset = recorder.result(status="complete")
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,
-                     simulated_time_s=recorder.simulated_time)
+                     simulated_time_s=recorder.simulated_time, line_accuracy=accuracy)
+
+
+def check_line_accuracy(case: Case, models: list[LineModel | None]) -> tuple[LineAccuracy, ...]:
+    """Check every independent dynamic line whose element count the accuracy chose
+    (:mod:`floatmoor.simulation.line_accuracy`) along its prescribed path, replacing in
+    ``models`` those the check refined; lines under a still fairlead are not checked.
+
+    Raises
+    ------
+    LineAccuracyError
+        For a line whose numerics cannot be brought within its accuracy.
+    """
+    motion = case.motion
+    if motion is None:
+        return ()
+    results = []
+    for i, (line, model) in enumerate(zip(case.lines, models)):
+        if not isinstance(model, DynamicLine) or line.dynamic.elements is not None \
+                or not model.settings.motion_frequency > 0.0:
+            continue
+        resolved = replace(line, dynamic=model.settings)
+
+        def path_state(t: NDArray[np.float64], line: Line = line
+                       ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+            return prescribed_fairlead_state(motion, line, t)
+
+        checked, result = checked_line(resolved, case.environment, case.seabed, path_state,
+                                       motion.ramp_duration)
+        if checked.dynamic != model.settings:
+            models[i] = DynamicLine.from_case(checked, case.environment, case.seabed)
+        results.append(result)
+    return tuple(results)
 
 
 def _shape_nodes(models: list[LineModel | None], groups: list[SystemGroup]

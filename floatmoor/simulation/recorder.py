@@ -171,17 +171,23 @@ class Recorder:
     chunk
         Most samples the run writes between two :meth:`reserve` calls: the window holds at
         least this many.
+    attrs
+        Further attributes of the result (known before the run, e.g. the lines' checked
+        accuracy).
     """
 
     def __init__(self, case: Case, time: NDArray[np.float64], path: str | Path | None = None,
                  flush_interval: float = FLUSH_INTERVAL_S, *,
                  shape_nodes: list[NDArray[np.float64]] | None = None,
                  shape_stride: int = 0, body: bool = False, prescribed: bool = False,
-                 equilibrium: NDArray[np.float64] | None = None, chunk: int = 1) -> None:
+                 equilibrium: NDArray[np.float64] | None = None, chunk: int = 1,
+                 attrs: dict[str, str | float | int] | None = None) -> None:
         if body != (equilibrium is not None):
             raise ValueError("a floater's series are recorded with its equilibrium, and only "
                              "they")
         self.case = case
+        #: attributes the run adds to the file's (known before its first sample)
+        self.attrs = dict(attrs or {})
         self.time = np.asarray(time, dtype=float)
         self.path = Path(path) if path is not None else None
         self.flush_interval = flush_interval
@@ -427,7 +433,7 @@ class Recorder:
         return build_result_dataset(self.case, self.time[first:stop], variables, status=status,
                                     shapes=shape_data, body=body, system=system,
                                     body_equilibrium=self.equilibrium,
-                                    extra_attrs={"wall_time_s": wall,
+                                    extra_attrs={**self.attrs, "wall_time_s": wall,
                                                  "simulated_time_s": self.simulated_time})
 
     def _template(self, first: int, stop: int, status: str) -> bytes:

@@ -1,0 +1,204 @@
+"""The a-posteriori check of a dynamic line whose numerics were chosen from its accuracy.
+
+The rule of :mod:`floatmoor.mooring.dg.resolution` chooses a line's elements before the run
+from its static shape and transverse wavelength, calibrated on three lines; on lines unlike
+them it can miss ``accuracy`` (docs/theory/dynamic_line.md#a-posteriori-error-check). Before a
+forced-motion run, every independent dynamic line whose element count the rule chose is run
+over a probe window (the motion's ramp, then :data:`PROBE_CYCLES` cycles) twice, along the
+fairlead path the run will take: at the chosen numerics and with :data:`REFINEMENT` times the
+elements. Over the last :data:`JUDGED_CYCLES` cycles the fairlead tension's standard deviation
+and mean per-cycle maximum of the two are compared; with a DG error falling as h^(p+1), the
+chosen numerics' error is the difference over 1 - REFINEMENT^-(p+1) (Richardson). When the
+larger of the two exceeds ``accuracy``, the elements are raised by (error / accuracy)^(1/(p+1))
+with :data:`MARGIN` and the check repeats; a line still over it after
+:data:`MAX_REFINEMENTS` raises, or at :data:`~floatmoor.mooring.dg.resolution.MAX_AUTO_ELEMENTS`,
+stops the run with a :class:`LineAccuracyError` naming the line and its estimate.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.case.schema import Environment, Line, Seabed
+from floatmoor.errors import SolverError
+from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.mooring.dg.resolution import MAX_AUTO_ELEMENTS
+
+__all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line",
+           "describe", "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS"]
+
+#: Cycles of the motion run after its ramp in a probe: the first lets the start from rest
+#: pass through the line (its axial and transverse waves cross a chain in well under a
+#: cycle), the others are judged.
+PROBE_CYCLES = 3
+#: Cycles at the end of the probe over which the statistics are compared.
+JUDGED_CYCLES = 2
+#: Samples per cycle at which the probe records the fairlead tension: the per-cycle maximum
+#: of a snap load is caught to within (pi / 256)^2 / 2 ~ 1e-4 of a sinusoid's peak.
+SAMPLES_PER_CYCLE = 256
+#: Elements of the comparison line over the checked line's (same order): the estimate is the
+#: difference over 1 - 2^-(p+1), 1.07 at p = 3.
+REFINEMENT = 2
+#: Raises of the element count before the check gives up.
+MAX_REFINEMENTS = 3
+#: Extra elements over what (error / accuracy)^(1/(p+1)) asks, so a raise lands under the
+#: accuracy rather than on it.
+MARGIN = 1.2
+#: Smallest STD against which an STD error is judged, as a share of the mean tension: a line
+#: whose tension varies by less than this has no STD worth a relative error.
+STD_FLOOR = 0.01
+
+
+class LineAccuracyError(SolverError):
+    """A dynamic line's numerics miss its accuracy and the check cannot refine them further.
+
+    A :class:`~floatmoor.errors.SolverError`: the run stops before its first sample and the
+    command exits with status 1 naming the line."""
+
+
+@dataclass(frozen=True)
+class LineAccuracy:
+    """The outcome of the check of one line.
+
+    Attributes
+    ----------
+    line
+        The line's name.
+    elements, order
+        The numerics the run uses.
+    std_error, maxima_error
+        Estimated relative errors of the fairlead tension's STD and mean per-cycle maximum
+        at those numerics [-].
+    accuracy
+        The line's ``accuracy`` [-].
+    refinements
+        How many times the check raised the element count.
+    wall_time_s
+        Wall time the check took [s].
+    """
+
+    line: str
+    elements: int
+    order: int
+    std_error: float
+    maxima_error: float
+    accuracy: float
+    refinements: int
+    wall_time_s: float
+
+    @property
+    def estimated_error(self) -> float:
+        """The larger of the two estimates [-]."""
+        return max(self.std_error, self.maxima_error)
+
+
+PathState = Callable[[NDArray[np.float64]], tuple[NDArray[np.float64], NDArray[np.float64]]]
+
+
+def _probe_tension(line: Line, environment: Environment, seabed: Seabed,
+                   time: NDArray[np.float64], path: NDArray[np.float64],
+                   velocity: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Fairlead tension [N] of ``line`` (numerics resolved) along the path, from rest."""
+    model = DynamicLine.from_case(line, environment, seabed)
+    n = time.size
+    ff, af = np.zeros((n, 3)), np.zeros((n, 3))
+    laid, steps = np.zeros(n), np.zeros(n)
+    model.solve_path(time, path, velocity, ff, af, laid, steps)
+    return np.linalg.norm(ff, axis=1)
+
+
+def _statistics(tension: NDArray[np.float64], cycles: int) -> tuple[float, float, float]:
+    """Mean, STD and mean per-cycle maximum over the last ``cycles`` cycles of a probe."""
+    judged = tension[-cycles * SAMPLES_PER_CYCLE - 1:-1].reshape(cycles, SAMPLES_PER_CYCLE)
+    return float(judged.mean()), float(judged.std()), float(judged.max(axis=1).mean())
+
+
+def estimate_error(line: Line, environment: Environment, seabed: Seabed,
+                   path_state: PathState, ramp: float) -> tuple[float, float]:
+    """Estimated relative errors (STD, mean per-cycle maximum) of the fairlead tension of
+    ``line`` at its resolved numerics, from a probe against :data:`REFINEMENT` times its
+    elements (module docstring).
+
+    Parameters
+    ----------
+    line
+        A line of one section, its ``dynamic`` settings resolved (elements and order set) and
+        ``motion_frequency`` > 0.
+    environment, seabed
+        The case's.
+    path_state
+        The fairlead's positions and velocities (n, 3) at times (n,) [m, m/s].
+    ramp
+        Duration of the motion's ramp [s].
+    """
+    settings = line.dynamic
+    period = 2.0 * math.pi / settings.motion_frequency
+    n = int(math.ceil(ramp / period * SAMPLES_PER_CYCLE)) + PROBE_CYCLES * SAMPLES_PER_CYCLE
+    time = np.arange(n + 1) * (period / SAMPLES_PER_CYCLE)
+    path, velocity = path_state(time)
+    fine = replace(line, dynamic=replace(settings, elements=settings.elements * REFINEMENT))
+    coarse_stats = _statistics(_probe_tension(line, environment, seabed, time, path, velocity),
+                               JUDGED_CYCLES)
+    fine_stats = _statistics(_probe_tension(fine, environment, seabed, time, path, velocity),
+                             JUDGED_CYCLES)
+    richardson = 1.0 - REFINEMENT ** -(settings.order + 1.0)
+    mean, std, maxima = fine_stats
+    std_error = abs(coarse_stats[1] - std) / max(std, STD_FLOOR * abs(mean), 1e-300)
+    maxima_error = abs(coarse_stats[2] - maxima) / max(abs(maxima), 1e-300)
+    return std_error / richardson, maxima_error / richardson
+
+
+def checked_line(line: Line, environment: Environment, seabed: Seabed,
+                 path_state: PathState, ramp: float) -> tuple[Line, LineAccuracy]:
+    """``line`` with numerics that meet its accuracy by the probe, and the check's outcome.
+
+    ``line.dynamic`` must be resolved, with ``motion_frequency`` > 0; its element count is
+    raised as the module docstring says.
+
+    Raises
+    ------
+    LineAccuracyError
+        When the estimate stays over the accuracy after :data:`MAX_REFINEMENTS` raises or at
+        ``MAX_AUTO_ELEMENTS`` elements.
+    """
+    start = _time.perf_counter()
+    settings = line.dynamic
+    accuracy, order = settings.accuracy, settings.order
+    refinements = 0
+    while True:
+        std_error, maxima_error = estimate_error(line, environment, seabed, path_state, ramp)
+        error = max(std_error, maxima_error)
+        elements = line.dynamic.elements
+        if error <= accuracy:
+            break
+        if refinements == MAX_REFINEMENTS or elements >= MAX_AUTO_ELEMENTS:
+            raise LineAccuracyError(
+                f"line '{line.name}' (dynamic): the fairlead tension's estimated error at "
+                f"{elements} elements of order {order} is {100 * error:.3g} % (STD "
+                f"{100 * std_error:.3g} %, mean cycle maximum {100 * maxima_error:.3g} %), "
+                f"over its accuracy of {100 * accuracy:.3g} %, after {refinements} refinements "
+                f"of the rule's choice; set lines.{line.name}.dynamic.elements and order (e.g. "
+                f"{min(2 * elements, 4 * MAX_AUTO_ELEMENTS)} x p{order + 1}) or a larger "
+                "accuracy")
+        factor = MARGIN * (error / accuracy) ** (1.0 / (order + 1))
+        raised = min(max(math.ceil(elements * factor), elements + 1), MAX_AUTO_ELEMENTS)
+        line = replace(line, dynamic=replace(line.dynamic, elements=raised))
+        refinements += 1
+    return line, LineAccuracy(line.name, elements, order, std_error, maxima_error, accuracy,
+                              refinements, _time.perf_counter() - start)
+
+
+def describe(result: LineAccuracy) -> str:
+    """One line of text: the line's numerics and its estimated errors."""
+    raised = (f", raised {result.refinements} time{'s' if result.refinements > 1 else ''} "
+              "from the rule's choice") if result.refinements else ""
+    return (f"{result.line}: {result.elements} x p{result.order}{raised}; estimated error "
+            f"{100 * result.estimated_error:.2g} % (STD {100 * result.std_error:.2g} %, mean "
+            f"cycle maximum {100 * result.maxima_error:.2g} %) against {100 * result.accuracy:g} "
+            f"% asked; checked in {result.wall_time_s:.2g} s")
