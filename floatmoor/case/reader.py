@@ -13,6 +13,7 @@ choices and default. Inside :func:`recording`, every accessor also reports them 
 
 from __future__ import annotations
 
+import difflib
 import math
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -33,6 +34,12 @@ class _Missing:
 
 
 MISSING: Any = _Missing()
+
+
+#: How alike a missing key and an unknown one must be for the error to name the unknown one as
+#: its likely misspelling (difflib's ratio: 'mass_per_lenght' against 'mass_per_length' is 0.93,
+#: 'length' against 'diameter' 0.29).
+SPELLING_CUTOFF = 0.75
 
 
 def format_path(path: Path) -> str:
@@ -230,8 +237,18 @@ class TableReader:
         if key in self.data:
             return self.data[key]
         if default is MISSING:
-            raise self.error(key, expected, MISSING)
+            raise self.error(key, expected, self._missing(key))
         return default
+
+    def _missing(self, key: str) -> "_Found | object":
+        """What a missing ``key`` found: nothing, and the unread key of this table that looks
+        like a misspelling of it, if one does."""
+        unread = [k for k in self.data if k not in self._read and isinstance(k, str)]
+        close = difflib.get_close_matches(key, unread, n=1, cutoff=SPELLING_CUTOFF)
+        if not close:
+            return MISSING
+        return _Found(f"{describe_value(MISSING)}; the unknown key '{close[0]}' of the same "
+                      "table looks like it")
 
     # -- scalars -------------------------------------------------------------------------------
     def number(self, key: str, *, unit: str, gt: float | None = None, ge: float | None = None,
