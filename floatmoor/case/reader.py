@@ -418,8 +418,21 @@ class TableReader:
         for key in self.data:
             if key not in self._read:
                 known = ", ".join(sorted(self._read)) or "none"
-                raise self.error(key, f"one of the known keys ({known})",
+                raise self.error(key, f"one of the known keys ({known}){self._replace_hint()}",
                                  _Found(f"the unknown key '{key}'"))
+
+    def _replace_hint(self) -> str:
+        """Where an override set a key of this table (``--set waves.kind="still"``), the keys
+        the file gave for the old choice stay and may be unknown to the new one: the rule to
+        replace the whole table instead."""
+        set_here = [text for path, text in self.context.overrides.items()
+                    if len(path) == len(self.path) + 1 and path[:-1] == self.path]
+        if not set_here or not self.path:
+            return ""
+        table = format_path(self.path)
+        return (f"; --set {set_here[0]} changed one key of [{table}] and kept the file's "
+                f"others: to replace the whole table give it as an inline table, e.g. --set "
+                f"'{table}={{kind = \"...\", ...}}'")
 
 
 class _Found(str):

@@ -106,3 +106,14 @@ def test_console_command_bad_input_exits_2_without_traceback(args, tmp_path):
     assert proc.stderr.startswith("floatmoor: error: ")
     assert proc.stdout == ""
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_override_of_a_tables_kind_says_how_to_replace_the_table(capsys):
+    buoy = LINDAHL_CASE.parents[1] / "cylinder_buoy" / "buoy_regular_T1.20.toml"
+    with pytest.raises(CaseError) as info:
+        load_case(buoy, ['waves.kind="still"'])
+    assert info.value.key == "waves.height"
+    assert "--set waves.kind=\"still\" changed one key of [waves]" in info.value.expected
+    assert "--set 'waves={kind = \"...\", ...}'" in info.value.expected
+    # and the rule it gives works
+    assert load_case(buoy, ['waves={kind = "still"}']).waves is not None
