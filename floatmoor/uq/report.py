@@ -68,6 +68,12 @@ def _axis_label(q: Quantity) -> str:
     return f"{q.name} [{q.units}]" if q.units else q.name
 
 
+def density_label(q: Quantity) -> str:
+    """The label of a probability density of ``q``: per unit of ``q`` ([-] when ``q`` has
+    none)."""
+    return f"probability density [1/{q.units}]" if q.units else "probability density [-]"
+
+
 def _plot_pdf(q: Quantity, s: Surrogate, runs: NDArray[np.float64], samples: int,
               path: Path) -> Path:
     draws = check_series(s.sample(samples, BAND_SEED)[:, 0], f"surrogate samples of {q.name}")
@@ -88,7 +94,7 @@ def _plot_pdf(q: Quantity, s: Surrogate, runs: NDArray[np.float64], samples: int
             label="design runs")
     ax.axvline(float(s.mean[0]), color="C3", lw=1, label="mean")
     ax.set_xlabel(_axis_label(q))
-    ax.set_ylabel("probability density")
+    ax.set_ylabel(density_label(q))
     ax.legend(fontsize=7)
     return _save(fig, path, f"{q.describe()}: probability density")
 
@@ -166,8 +172,7 @@ def _plot_density_map(q: Quantity, s: Surrogate, time: NDArray[np.float64], samp
     mesh = ax.pcolormesh(time, 0.5 * (edges[1:] + edges[:-1]), density, shading="nearest",
                          cmap="viridis")
     ax.plot(time, s.mean, color="w", lw=1.0, label="mean")
-    fig.colorbar(mesh, ax=ax, label=f"probability density [1/{q.units}]" if q.units else
-                 "probability density")
+    fig.colorbar(mesh, ax=ax, label=density_label(q))
     ax.set_xlabel("time [s]")
     ax.set_ylabel(_axis_label(q))
     ax.legend(fontsize=7, loc="upper right")

@@ -69,3 +69,20 @@ def test_case_e_converges_with_order(tmp_path):
     variance = float(np.ravel(result.surrogates["displacement"].variance)[0])
     assert mean == pytest.approx(EXACT_MEAN, rel=P8_TOLERANCE)
     assert variance == pytest.approx(EXACT_VARIANCE, rel=P8_TOLERANCE)
+
+
+def test_every_density_axis_of_the_report_has_a_unit(tmp_path, monkeypatch):
+    from floatmoor.uq import report
+
+    labels = []
+    save = report._save
+
+    def recording(fig, path, title):
+        for ax in fig.axes:
+            labels.extend(text for text in (ax.get_xlabel(), ax.get_ylabel()) if text)
+        return save(fig, path, title)
+
+    monkeypatch.setattr(report, "_save", recording)
+    assert main(["uq", str(STUDY), "-o", str(tmp_path / "e"), "--quiet"]) == 0
+    density = [text for text in labels if "density" in text]
+    assert density and all(text.endswith("[1/m]") for text in density), density
