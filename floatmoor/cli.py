@@ -414,6 +414,7 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "
                     f"{case.simulation.output_interval:g} s")
+        rows.extend(_start_pose_rows(case))
     rows.extend(_describe_groups(case))
     return "\n".join(rows)
 
@@ -515,6 +516,23 @@ def _plot_times(args: argparse.Namespace, case: Case, shapes: bool) -> list[floa
                             "s (the run's duration)", f"'{text.strip()}'")
         times.append(value)
     return times
+
+
+def _start_pose_rows(case: Case) -> list[str]:
+    """A note when the motion does not start at rest (a table without a ramp whose first row
+    is not the rest pose): the lines start in that pose, and the statistics include it."""
+    import numpy as np
+
+    from floatmoor.body_motion import prescribed_fairlead_state
+
+    offsets = [float(np.linalg.norm(prescribed_fairlead_state(case.motion, line, np.zeros(1))[0][0]
+                                    - np.asarray(line.fairlead, dtype=float)))
+               for line in case.lines if case.point(line.end).kind == "body"]
+    if not offsets or max(offsets) == 0.0:
+        return []
+    return [f"  (the motion starts away from rest: the lines start, settled, at its pose at "
+            f"t = 0, fairleads up to {max(offsets):.4g} m from rest; without a ramp the "
+            "statistics include the record from t = 0)"]
 
 
 def _run(args: argparse.Namespace) -> int:
