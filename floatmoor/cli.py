@@ -336,6 +336,7 @@ def _describe_system(case: Case) -> list[str]:
 def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     """Derived quantities: weights, wave speeds, static tensions at the mean position against
     the minimum breaking loads, and the discretisation and time step of dynamic lines."""
+    from floatmoor.body_motion import start_line
     from floatmoor.mooring.dg.line import DynamicLine
     from floatmoor.mooring.strength import strain_warnings
 
@@ -359,7 +360,9 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
                     f"{line.line_type.weight_in_water(case.environment):>10.4g}"
                     f"{line.line_type.axial_wave_speed:>10.4g}{static}")
         if line.model == "dynamic":
-            dg = DynamicLine.from_case(line, case.environment, case.seabed)
+            # as the run builds it: in the motion's pose at t = 0
+            dg = DynamicLine.from_case(start_line(case.motion, line), case.environment,
+                                       case.seabed)
             st, given = dg.settings, line.dynamic
             implicit = (f"implicit steps of at most {dg.time_step:.3g} s (accuracy "
                         f"{100 * st.accuracy:g} % of the fairlead tension)")

@@ -38,7 +38,8 @@ def _spline_coefficients(time: NDArray[np.float64], values: NDArray[np.float64]
     spline of each column, highest power first, in the time since the segment's first row."""
     key = (id(time), id(values))
     hit = _SPLINES.get(key)
-    # the cache holds the arrays themselves, so their ids cannot be reused while they are in it
+    # the cache holds the arrays themselves, so their ids cannot be reused while they are in
+    # it; a case's arrays are never changed in place (a changed table is a new motion)
     if hit is not None and hit[0] is time and hit[1] is values:
         return hit[2]
     # one column at a time, so that a column's numbers do not depend on the others (a body
@@ -47,7 +48,7 @@ def _spline_coefficients(time: NDArray[np.float64], values: NDArray[np.float64]
     for j in range(values.shape[1]):
         coefficients[:, :, j] = CubicSpline(time, values[:, j], bc_type="not-a-knot").c
     if len(_SPLINES) >= _SPLINE_CACHE_SIZE:
-        _SPLINES.pop(next(iter(_SPLINES)))
+        _SPLINES.clear()  # (one step, safe should threads share the cache)
     _SPLINES[key] = (time, values, coefficients)
     return coefficients
 
