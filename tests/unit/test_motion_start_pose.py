@@ -12,6 +12,7 @@ import pytest
 from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
+from floatmoor.io.run_case import default_start
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.post.summary import format_summary, run_summary
 from floatmoor.simulation.assembly import assemble, start_positions
@@ -103,6 +104,7 @@ def test_the_summary_and_check_say_where_the_statistics_start(tmp_path, capsys):
     summary = run_summary(case, run_forced_motion(case).dataset)
     assert "no motion ramp" in summary["window_start_reason"]
     assert "from t = 0 s (no motion ramp: the whole record" in format_summary(summary)
+    assert default_start(case) == (0.0, "record start (no motion ramp)")  # report, plots
     assert main(["check", str(path)]) == 0
     out = capsys.readouterr().out
     assert "the lines start, settled, at its pose at t = 0, fairleads up to 1.082 m" in out
