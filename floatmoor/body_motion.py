@@ -19,11 +19,15 @@ point p0 keeps its distance to the reference point exactly. The velocity is exac
 omega the angular velocity in global axes from the Euler-angle rates (omega x = R' R^T),
 not the small-angle identification omega = (roll', pitch', yaw') of the floater's linear
 hydrodynamics. The displacement is ramped DOF by DOF as every prescribed motion is
-(:func:`floatmoor.motion.ramp`); a table is interpolated linearly in each DOF, rotations in
-the Euler angles, with the interpolant's slopes as rates.
+(:func:`floatmoor.motion.ramp`); a table is interpolated in each DOF by the not-a-knot cubic
+spline of a translational table (:func:`floatmoor.motion.table_state`), rotations in the Euler
+angles, with the spline's exact derivatives as rates.
 
 A motion without rotations moves every point exactly as the translational motions of
 :mod:`floatmoor.motion` do: the same numbers, bit for bit.
+
+A run starts its lines at the motion's pose at t = 0 (:func:`start_line`): a table whose first
+row is not the rest pose, run without a ramp, starts there and not with a jump from rest.
 
 Other programs. MoorDyn-F (OpenFAST) builds the same matrix for its bodies (the transpose of
 OpenFAST's EulerConstruct, Rz Ry Rx). MoorDyn-C v2 builds its body quaternion as
@@ -39,14 +43,16 @@ for vessels yaw (heading) first, then pitch, then roll: the convention used here
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import BodyHarmonicMotion, BodyMotion, BodyTableMotion, Line, Motion
-from floatmoor.motion import fairlead_state, ramp, ramp_rate
+from floatmoor.motion import fairlead_state, ramp, ramp_rate, table_state
 
 __all__ = ["rotation_matrices", "angular_velocity", "body_motion_state", "body_points_state",
-           "prescribed_fairlead_state", "is_body_motion"]
+           "prescribed_fairlead_state", "is_body_motion", "start_line"]
 
 
 def is_body_motion(motion: Motion | None) -> bool:
@@ -110,11 +116,7 @@ def body_motion_state(motion: BodyMotion, t: NDArray[np.float64]
             d[:, axis] = motion.amplitude[axis] * np.sin(phase)
             dd[:, axis] = motion.amplitude[axis] * omega * np.cos(phase)
     elif isinstance(motion, BodyTableMotion):
-        slopes = np.diff(motion.displacement, axis=0) / np.diff(motion.time)[:, None]
-        index = np.clip(np.searchsorted(motion.time, t, side="right") - 1, 0, len(slopes) - 1)
-        for axis in range(6):
-            d[:, axis] = np.interp(t, motion.time, motion.displacement[:, axis])
-            dd[:, axis] = slopes[index, axis]
+        d, dd = table_state(motion.time, motion.displacement, t)
     else:  # pragma: no cover - the loader admits no other kind
         raise TypeError(f"not a body motion: {motion!r}")
     r = ramp(t, motion.ramp_duration)[:, None]
@@ -166,3 +168,21 @@ def prescribed_fairlead_state(motion: Motion | None, line: Line, t: NDArray[np.f
         positions, velocities = body_points_state(motion, np.asarray([line.fairlead]), t)
         return positions[:, 0], velocities[:, 0]
     return fairlead_state(motion, line, t)
+
+
+def start_line(motion: Motion | None, line: Line) -> Line:
+    """``line`` as a run starts it: its fairlead where the prescribed motion puts it at t = 0.
+
+    That is the rest position for every motion with a ramp (the ramp starts from zero
+    displacement) and for a table whose first row is zero, and the table's first pose for one
+    run without a ramp, so that the line is built (its catenary, its settled dynamic state) in
+    the pose the run starts from and not at rest with the fairlead jumping away at t = 0.
+    Returns ``line`` itself when its fairlead does not move at t = 0, else a copy with the
+    fairlead moved (docs/theory/mooring_systems.md#prescribed-motion-of-the-body-points).
+    """
+    if motion is None:
+        return line
+    start = prescribed_fairlead_state(motion, line, np.zeros(1))[0][0]
+    if np.array_equal(start, np.asarray(line.fairlead, dtype=float)):
+        return line
+    return replace(line, fairlead=(float(start[0]), float(start[1]), float(start[2])))

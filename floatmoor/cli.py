@@ -336,6 +336,7 @@ def _describe_system(case: Case) -> list[str]:
 def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     """Derived quantities: weights, wave speeds, static tensions at the mean position against
     the minimum breaking loads, and the discretisation and time step of dynamic lines."""
+    from floatmoor.body_motion import start_line
     from floatmoor.mooring.dg.line import DynamicLine
     from floatmoor.mooring.strength import strain_warnings
 
@@ -359,7 +360,9 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
                     f"{line.line_type.weight_in_water(case.environment):>10.4g}"
                     f"{line.line_type.axial_wave_speed:>10.4g}{static}")
         if line.model == "dynamic":
-            dg = DynamicLine.from_case(line, case.environment, case.seabed)
+            # as the run builds it: in the motion's pose at t = 0
+            dg = DynamicLine.from_case(start_line(case.motion, line), case.environment,
+                                       case.seabed)
             st, given = dg.settings, line.dynamic
             implicit = (f"implicit steps of at most {dg.time_step:.3g} s (accuracy "
                         f"{100 * st.accuracy:g} % of the fairlead tension)")
@@ -414,6 +417,7 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "
                     f"{case.simulation.output_interval:g} s")
+        rows.extend(_start_pose_rows(case))
     rows.extend(_describe_groups(case))
     return "\n".join(rows)
 
@@ -515,6 +519,23 @@ def _plot_times(args: argparse.Namespace, case: Case, shapes: bool) -> list[floa
                             "s (the run's duration)", f"'{text.strip()}'")
         times.append(value)
     return times
+
+
+def _start_pose_rows(case: Case) -> list[str]:
+    """A note when the motion does not start at rest (a table without a ramp whose first row
+    is not the rest pose): the lines start in that pose, and the statistics include it."""
+    import numpy as np
+
+    from floatmoor.body_motion import prescribed_fairlead_state
+
+    offsets = [float(np.linalg.norm(prescribed_fairlead_state(case.motion, line, np.zeros(1))[0][0]
+                                    - np.asarray(line.fairlead, dtype=float)))
+               for line in case.lines if case.point(line.end).kind == "body"]
+    if not offsets or max(offsets) == 0.0:
+        return []
+    return [f"  (the motion starts away from rest: the lines start, settled, at its pose at "
+            f"t = 0, fairleads up to {max(offsets):.4g} m from rest; without a ramp the "
+            "statistics include the record from t = 0)"]
 
 
 def _run(args: argparse.Namespace) -> int:

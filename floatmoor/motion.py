@@ -4,17 +4,85 @@ The fairlead position is the mean position given in the case plus a displacement
 ``R(t) d(t)``, where ``d`` is the motion (circular, harmonic or tabulated) and ``R`` the ramp
 ``R(t) = (1 - cos(pi t / t_r)) / 2`` for ``t < t_r``, 1 after. The ramp has zero slope at both
 ends, so the velocity is continuous when the motion starts and when it reaches full amplitude.
+
+A table is interpolated by the not-a-knot cubic spline through its rows, column by column
+(:func:`table_state`), and the velocity is the spline's exact derivative: position, velocity
+and acceleration are continuous at the rows, so a line model that differentiates the fairlead
+path (the quasi-dynamic line's backward differences, the dynamic line's boundary velocity) sees
+no jump there. Why this spline and not a linear or a monotone (PCHIP) interpolant:
+docs/theory/mooring_systems.md#prescribed-motion-of-the-body-points.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.interpolate import CubicSpline
 
 from floatmoor.case.schema import CircularMotion, HarmonicMotion, Line, Motion, TableMotion
 
 __all__ = ["ramp", "ramp_rate", "horizontal_direction", "motion_state", "displacement",
-           "fairlead_path", "fairlead_state"]
+           "fairlead_path", "fairlead_state", "table_state"]
+
+#: Tables whose spline coefficients are kept (:func:`table_state`): a run evaluates its table
+#: once per chunk of samples and line, and building the spline of a long record (0.24 s for
+#: 1e5 rows of 6 columns) must not repeat per chunk.
+_SPLINE_CACHE_SIZE = 8
+_SPLINES: dict[tuple[int, int], tuple[NDArray[np.float64], NDArray[np.float64],
+                                      NDArray[np.float64]]] = {}
+
+
+def _spline_coefficients(time: NDArray[np.float64], values: NDArray[np.float64]
+                         ) -> NDArray[np.float64]:
+    """Per-segment polynomial coefficients (4, rows - 1, columns) of the not-a-knot cubic
+    spline of each column, highest power first, in the time since the segment's first row."""
+    key = (id(time), id(values))
+    hit = _SPLINES.get(key)
+    # the cache holds the arrays themselves, so their ids cannot be reused while they are in
+    # it; a case's arrays are never changed in place (a changed table is a new motion)
+    if hit is not None and hit[0] is time and hit[1] is values:
+        return hit[2]
+    # one column at a time, so that a column's numbers do not depend on the others (a body
+    # table without rotations gives a line table's path bit for bit)
+    coefficients = np.empty((4, time.size - 1, values.shape[1]))
+    for j in range(values.shape[1]):
+        coefficients[:, :, j] = CubicSpline(time, values[:, j], bc_type="not-a-knot").c
+    if len(_SPLINES) >= _SPLINE_CACHE_SIZE:
+        _SPLINES.clear()  # (one step, safe should threads share the cache)
+    _SPLINES[key] = (time, values, coefficients)
+    return coefficients
+
+
+def table_state(time: NDArray[np.float64], values: NDArray[np.float64],
+                t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The not-a-knot cubic spline through the rows of a table, and its exact derivative.
+
+    Parameters
+    ----------
+    time
+        The table's times [s], (rows,), strictly increasing.
+    values
+        Its columns, (rows, columns).
+    t
+        Times [s], (n,). Outside the table the end rows hold, at rest.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Values and their time derivatives [1/s], (n, columns) each. At the rows the values
+        are the table's own; two rows give the straight line, three the parabola.
+    """
+    t = np.asarray(t, dtype=float)
+    c = _spline_coefficients(time, values)
+    inside = (t >= time[0]) & (t <= time[-1])
+    tc = np.clip(t, time[0], time[-1])
+    index = np.clip(np.searchsorted(time, tc, side="right") - 1, 0, time.size - 2)
+    s = (tc - time[index])[:, None]
+    a, b, g, d = c[0, index], c[1, index], c[2, index], c[3, index]
+    value = ((a * s + b) * s + g) * s + d
+    rate = (3.0 * a * s + 2.0 * b) * s + g
+    rate[~inside] = 0.0
+    return value, rate
 
 
 def ramp(t: NDArray[np.float64], duration: float) -> NDArray[np.float64]:
@@ -82,11 +150,7 @@ def motion_state(motion: Motion, t: NDArray[np.float64], direction: NDArray[np.f
             d[:, axis] = motion.amplitude[axis] * np.sin(phase)
             dd[:, axis] = motion.amplitude[axis] * omega * np.cos(phase)
     elif isinstance(motion, TableMotion):
-        slopes = np.diff(motion.displacement, axis=0) / np.diff(motion.time)[:, None]
-        index = np.clip(np.searchsorted(motion.time, t, side="right") - 1, 0, len(slopes) - 1)
-        for axis in range(3):
-            d[:, axis] = np.interp(t, motion.time, motion.displacement[:, axis])
-            dd[:, axis] = slopes[index, axis]
+        d, dd = table_state(motion.time, motion.displacement, t)
     else:  # pragma: no cover - the loader admits no other kind
         raise TypeError(f"unknown motion {motion!r}")
     r = ramp(t, motion.ramp_duration)[:, None]

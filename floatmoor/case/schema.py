@@ -290,8 +290,8 @@ class HarmonicMotion:
 
 @dataclass(frozen=True)
 class TableMotion:
-    """Displacement time history from a CSV file (columns ``time, x, y, z``), linearly
-    interpolated."""
+    """Displacement time history from a CSV file (columns ``time, x, y, z``), interpolated
+    by a cubic spline (:func:`floatmoor.motion.table_state`)."""
 
     file: str  #: resolved path of the CSV file
     time: NDArray[np.float64] = field(repr=False)  #: [s]
@@ -332,7 +332,8 @@ class BodyHarmonicMotion:
 @dataclass(frozen=True)
 class BodyTableMotion:
     """Rigid-body motion of the body points from a CSV file (columns time, the six DOFs of
-    :data:`BODY_DOFS`), linearly interpolated in each DOF (rotations in the Euler angles)."""
+    :data:`BODY_DOFS`), interpolated in each DOF by a cubic spline (rotations in the Euler
+    angles; :func:`floatmoor.motion.table_state`)."""
 
     reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
     file: str  #: resolved path of the CSV file

@@ -37,12 +37,18 @@ def case_from_dataset(dataset: xr.Dataset) -> Case | None:
 
 
 def default_start(case: Case | None) -> tuple[float, str]:
-    """The end of a case's transient: its motion ramp or wave ramp, else 0 [s]."""
+    """The end of a case's transient: its motion ramp or wave ramp, else 0 [s], and what it is
+    (a motion without a ramp starts the lines at rest in its pose at t = 0, and its window is
+    the whole record: docs/guide/running.md#what-a-run-writes-and-prints)."""
     if case is None:
         return 0.0, "record start (the case could not be re-read from the dataset)"
     if case.motion is not None:
+        if case.motion.ramp_duration <= 0.0:
+            return 0.0, "record start (no motion ramp)"
         return float(case.motion.ramp_duration), "motion ramp"
     if case.waves is not None:
+        if case.waves.ramp_duration <= 0.0:
+            return 0.0, "record start (no wave ramp)"
         return float(case.waves.ramp_duration), "wave ramp"
     return 0.0, "record start (no ramp)"
 

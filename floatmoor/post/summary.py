@@ -19,14 +19,18 @@ __all__ = ["run_summary", "format_summary"]
 def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     """Statistics of the fairlead tension of every line after the ramp.
 
-    The window starts at the end of the motion ramp (t = 0 without motion). For periodic
-    motion the maxima of the complete cycles after the ramp are averaged (``mean_cycle_max``).
+    The window starts at the end of the motion ramp (t = 0 without motion), and
+    ``window_start_reason`` says why it starts there: without a ramp the record from t = 0 is
+    in it, the lines starting at rest in the motion's pose at t = 0
+    (docs/guide/running.md#what-a-run-writes-and-prints). For periodic motion the maxima of
+    the complete cycles after the ramp are averaged (``mean_cycle_max``).
     Per line, ``strength`` holds the largest tension at either end, after the ramp and over the
     whole run, over the MBL of its type and the safety factor MBL / T_max
     (:func:`floatmoor.post.strength.line_strength`; None without an MBL). Tensions are in N.
     """
     motion = case.motion
     start = motion.ramp_duration if motion is not None else 0.0
+    reason = _window_reason(case)
     waves = getattr(case, "waves", None)
     if waves is not None:
         start = waves.ramp_duration
@@ -58,6 +62,7 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         "overrides": list(case.overrides),
         "status": str(dataset.attrs.get("status", "")),
         "motion_period_s": period,
+        "window_start_reason": reason,
         "lines": lines,
         "sections": sections,
     }
@@ -77,10 +82,26 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     return out
 
 
-def _line_rows(lines: dict[str, Any]) -> list[str]:
+def _window_reason(case: Case) -> str:
+    """Why the statistics start where they do (``window_start_reason`` of
+    :func:`run_summary`)."""
+    waves = getattr(case, "waves", None)
+    if waves is not None:
+        return "end of the wave ramp" if waves.ramp_duration > 0.0 else \
+            "no wave ramp: the start-up from the equilibrium included"
+    if case.motion is None:
+        return "no motion: the whole record"
+    if case.motion.ramp_duration > 0.0:
+        return "end of the motion ramp"
+    return ("no motion ramp: the whole record, the lines starting at rest in the motion's "
+            "pose at t = 0")
+
+
+def _line_rows(lines: dict[str, Any], reason: str | None = None) -> list[str]:
     """Tension statistics and strength rows of the lines of a summary."""
-    rows = ["fairlead tension [N] from t = {:.6g} s:".format(
-                next(iter(lines.values()))["fairlead_tension_N"]["window_start"]),
+    rows = ["fairlead tension [N] from t = {:.6g} s{}:".format(
+                next(iter(lines.values()))["fairlead_tension_N"]["window_start"],
+                f" ({reason})" if reason else ""),
             f"  {'line':<16}{'model':<15}{'mean':>10}{'std':>10}{'min':>10}{'max':>10}"
             f"{'cycle max':>11}{'cycles':>8}"]
     for name, entry in lines.items():
@@ -126,7 +147,7 @@ def format_summary(summary: dict[str, Any]) -> str:
     """A plain-text table of :func:`run_summary`."""
     rows = [f"{summary['title']}"]
     if summary["lines"]:
-        rows.extend(_line_rows(summary["lines"]))
+        rows.extend(_line_rows(summary["lines"], summary.get("window_start_reason")))
     else:
         rows.append("no mooring lines")
     if summary.get("sections"):

@@ -153,7 +153,8 @@ def _content(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],
     blocks: list[Block] = [Heading(title, 1), Paragraph(
         f"floatmoor {__version__} report of {len(runs)} run(s). Tensions in N, displacements "
         "in m and rad (in degrees in the motion histories), times in s. Statistics, spectra, extremes and fatigue are taken over "
-        "each run's analysis window, which excludes the start-up transient.")]
+        "each run's analysis window, which starts after its ramp (the table of runs says "
+        "where and why; without a ramp the whole record).")]
     blocks.append(runs_table(runs, analyses))
     if reference is not None:
         blocks.append(Paragraph(f"Reference values: **{reference.title}** ({reference.source};"

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import generalised_force, points_state
+from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case, Point
@@ -31,7 +32,7 @@ from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.system_statics import case_statics
 from floatmoor.simulation.coupled import MooredBody, equilibrium
-from floatmoor.simulation.groups import SystemGroup, system_groups
+from floatmoor.simulation.groups import SystemGroup, body_point_line, system_groups
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.settings import build
@@ -43,7 +44,7 @@ if TYPE_CHECKING:
     from floatmoor.simulation.coupled_run import CoupledSettings
 
 __all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "LineModel",
-           "key_origin"]
+           "key_origin", "start_positions"]
 
 LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
 _MODELS = {"quasi-static": QuasiStaticLine.from_case,
@@ -52,9 +53,29 @@ _MODELS = {"quasi-static": QuasiStaticLine.from_case,
 
 def build_line_models(case: Case) -> list[LineModel | None]:
     """One model object per independent line (one section from a fixed to a body point), as
-    the case chooses; None for the lines of a system group (:mod:`.groups`)."""
-    return [_MODELS[line.model](line, case.environment, case.seabed)
+    the case chooses; None for the lines of a system group (:mod:`.groups`). Each starts with
+    its fairlead where the case's motion puts it at t = 0 (:func:`~floatmoor.body_motion.
+    start_line`)."""
+    return [_MODELS[line.model](start_line(case.motion, line), case.environment, case.seabed)
             if case.is_independent(line) else None for line in case.lines]
+
+
+def start_positions(case: Case) -> dict[str, NDArray[np.float64]] | None:
+    """The body points of the lines solved as systems that the case's motion moves at t = 0,
+    name -> position there [m] (None when it moves none: the groups start at rest)."""
+    if case.motion is None:
+        return None
+    used = {n for line in case.lines if not case.is_independent(line)
+            for s in line.sections for n in (s.start, s.end)}
+    moved = {}
+    for point in case.points:
+        if point.kind != "body" or point.name not in used:
+            continue
+        position = prescribed_fairlead_state(case.motion, body_point_line(case, point.name),
+                                             np.zeros(1))[0][0]
+        if not np.array_equal(position, np.asarray(point.position, dtype=float)):
+            moved[point.name] = position
+    return moved or None
 
 
 def key_origin(case: Case, key: str) -> str:
@@ -214,7 +235,7 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     """
     if case.floater is None:
         return MooredSystem(case=case, points=case.points, line_models=build_line_models(case),
-                            groups=system_groups(case))
+                            groups=system_groups(case, start_positions(case)))
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
     env = case.environment

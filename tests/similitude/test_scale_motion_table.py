@@ -23,17 +23,21 @@ LINDAHL = ROOT / "cases" / "lindahl" / "lindahl_r0.20_T1.25.toml"
 #: The Lindahl prototype law (as in test_lindahl_prototype.PROTOTYPE): every factor different.
 PROTOTYPE = ScaleLaw(length=37.6, diameter=76.0 / 2.2,
                      volume_coefficient=(126.5 / 0.076 ** 2) / (0.0818 / 0.0022 ** 2))
-#: Exact similitude as in test_scale_case.EXACT_SIMILITUDE: the table is interpolated
-#: linearly, which scales exactly, so what is left is round-off (measured 3.2e-10).
+#: Exact similitude as in test_scale_case.EXACT_SIMILITUDE: the table's cubic spline scales
+#: exactly (times x sqrt(lambda), values x lambda), so what is left is round-off.
 EXACT_SIMILITUDE = 1e-6
 #: The circle the table traces (the Lindahl case's): radius [m], period [s].
 RADIUS, PERIOD = 0.2, 1.25
 #: Rows of the table [s]: no row but the first falls on an output sample (every 0.0025 s)
-#: within the runs (the next at 2.5075 s). The fairlead velocity at a sample on a row is the
-#: slope of the segment after it (floatmoor.motion), so there the round-off of a scaled row
-#: time may pick the segment before instead: on this snapping chain a 2.4e-3 jump in
-#: T / (w L) at the first such sample (10 ms rows), 6.6 % of the peak 2.5 s later (measured).
+#: within the runs (the next at 2.5075 s): the round trip of the scaled decimals.
 ROW_INTERVAL = 0.01003
+#: Rows of the forced runs' table [s]: every fourth output sample falls on a row. With linear
+#: interpolation the fairlead velocity jumped at the rows, and at a sample on a row the
+#: round-off of a scaled row time could pick the other segment's slope: on this snapping chain
+#: a 2.4e-3 jump in T / (w L) at the first such sample, 6.6 % of the peak 2.5 s later
+#: (measured; the test then kept rows off the samples). The spline's velocity is continuous at
+#: the rows: measured 2.4e-10 of the peak (linear interpolation: 2.4e-2 within these 2.5 s).
+ROWS_ON_SAMPLES = 0.01
 #: The runs last 2.5 s of the model's time (two cycles).
 RUN_DURATION = 2.5
 #: Scaled table values against the exact products: the snapping to short decimals
@@ -41,9 +45,9 @@ RUN_DURATION = 2.5
 SNAPPED = 2e-14
 
 
-def _table_case(folder: Path, duration: float = 4.0) -> Path:
-    """The Lindahl case driven by a table of its circle (6 decimals)."""
-    t = np.arange(0.0, duration + 1.0, ROW_INTERVAL)
+def _table_case(folder: Path, duration: float = 4.0, every: float = ROW_INTERVAL) -> Path:
+    """The Lindahl case driven by a table of its circle (6 decimals), a row every ``every`` [s]."""
+    t = np.arange(0.0, duration + 1.0, every)
     w = 2.0 * math.pi / PERIOD
     rows = ["# the Lindahl circle about the fairlead", "time,x,y,z"] + [
         f"{a:.5f},{RADIUS * math.sin(w * a):.6f},0,{RADIUS * math.cos(w * a):.6f}" for a in t]
@@ -84,7 +88,7 @@ def test_a_motion_table_scales_and_back_to_the_original_numbers(tmp_path: Path) 
 
 
 def test_a_forced_run_on_the_scaled_table_is_similar(tmp_path: Path) -> None:
-    case = _table_case(tmp_path, duration=RUN_DURATION)
+    case = _table_case(tmp_path, duration=RUN_DURATION, every=ROWS_ON_SAMPLES)
     scaled = scale_case_file(case, PROTOTYPE, output=tmp_path / "proto.toml")
     histories = []
     for c, factor in ((load_case(case), 1.0), (scaled.case, math.sqrt(PROTOTYPE.length))):
