@@ -18,7 +18,8 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Line, Simulation
 from floatmoor.errors import CaseError, SolverError
-from floatmoor.body_motion import body_motion_state, is_body_motion, prescribed_fairlead_state
+from floatmoor.body_motion import (body_motion_state, is_body_motion, prescribed_fairlead_state,
+                                   start_line)
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.assembly import LineModel, assemble
@@ -153,7 +154,8 @@ def check_line_accuracy(case: Case, models: list[LineModel | None]) -> tuple[Lin
         if not isinstance(model, DynamicLine) or line.dynamic.elements is not None \
                 or not model.settings.motion_frequency > 0.0:
             continue
-        resolved = replace(line, dynamic=model.settings)
+        # built as the run builds it: its fairlead where the motion starts
+        resolved = replace(start_line(motion, line), dynamic=model.settings)
 
         def path_state(t: NDArray[np.float64], line: Line = line
                        ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
