@@ -37,6 +37,7 @@ import argparse
 import json
 import shlex
 import sys
+import time
 from contextlib import nullcontext
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Sequence
@@ -564,10 +565,21 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
         raise CaseError("--resume", "", "a case with a [floater] (forced-motion runs are not "
                         "checkpointed)", "--resume")
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
+    compile_time = [0.0]  # [s] of the run's wall time spent compiling kernels
+
+    def compiling() -> None:
+        if progress is not None:
+            progress.compiling()
+
+    def compiled(seconds: float) -> None:
+        compile_time[0] += seconds
+        if progress is not None:
+            progress.compiled(seconds)
+
     before = file_state(output)
+    started = time.perf_counter()
     try:
-        with (nullcontext() if progress is None
-              else watch_compilation(progress.compiling, progress.compiled)):
+        with watch_compilation(compiling, compiled):
             if case.floater is not None:
                 from floatmoor.simulation.coupled_run import run_coupled
 
@@ -593,7 +605,8 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
         return exit_status(stop)
     _close(progress)
     try:
-        return _report_run(args, case, result, output)
+        return _report_run(args, case, result, output, compile_time[0],
+                           time.perf_counter() - started)
     except KeyboardInterrupt as stop:
         print(f"floatmoor: {signal_name(stop)} after the run; its complete results are in "
               f"{output}" + (f", the plot {args.plot} may be missing" if args.plot else ""),
@@ -601,14 +614,19 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
         return exit_status(stop)
 
 
-def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path) -> int:
-    """Print the summary of a completed run (and draw its plot)."""
+def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path,
+                compile_time: float = 0.0, wall_time: float | None = None) -> int:
+    """Print the summary of a completed run (and draw its plot). ``wall_time``: the run's
+    whole wall time, set-up included [s] (default: the time loop's); ``compile_time``: the
+    part of it spent compiling kernels [s]."""
+    wall_time = result.wall_time_s if wall_time is None else wall_time
     from floatmoor.io.output_files import OutputWriteError
     from floatmoor.post.summary import format_summary, run_summary
 
     summary = run_summary(case, result.dataset)
     summary.update(output=str(output), wall_time_s=result.wall_time_s,
-                   simulated_time_s=result.simulated_time_s)
+                   simulated_time_s=result.simulated_time_s, compile_time_s=compile_time,
+                   run_wall_time_s=wall_time)
     if args.plot is not None:
         from floatmoor.plots.run_figures import plot_run
         from floatmoor.plots.series import FigureDataError
@@ -636,8 +654,10 @@ def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output:
         print(json.dumps(summary, indent=2))
     else:
         print(format_summary(summary))
-        print(f"simulated {result.simulated_time_s:.6g} s in {result.wall_time_s:.3g} s of wall "
-              f"time; results in {output}"
+        compiling = (f" ({compile_time:.3g} s of it compiling the numerical kernels, which "
+                     "later runs load from their cache)") if compile_time > 0.0 else ""
+        print(f"simulated {result.simulated_time_s:.6g} s in {wall_time:.3g} s of wall "
+              f"time{compiling}; results in {output}"
               + (f", plots in {', '.join(summary['figures'])}" if args.plot else "")
               + (f", VTK series {summary['vtk']}" if args.vtk else ""))
     return EXIT_OK

@@ -191,3 +191,30 @@ def test_first_run_says_it_compiles_and_a_cached_run_does_not(tmp_path):
     assert first.stderr.count(COMPILING_MESSAGE) == 1
     assert "left" not in first.stderr  # no estimate from the chunk that compiled
     assert COMPILING_MESSAGE not in again.stderr
+
+
+@pytest.mark.parametrize("quiet", [True, False])
+def test_the_final_line_says_how_much_of_the_wall_time_compiled_kernels(tmp_path, capsys,
+                                                                        monkeypatch, quiet):
+    # the first run after an install compiles its kernels: its wall time says so (a fake
+    # compilation of 12.5 s, since the test's kernels are cached)
+    from contextlib import contextmanager
+
+    import floatmoor._numba
+
+    @contextmanager
+    def one_compilation(on_start, on_end):
+        on_start()
+        on_end(12.5)
+        yield
+
+    monkeypatch.setattr(floatmoor._numba, "watch_compilation", one_compilation)
+    out = tmp_path / "run.nc"
+    argv = ["run", str(LINDAHL_CASE), "-o", str(out), "--set", 'lines.*.model="quasi-static"',
+            "--set", "simulation.duration=3.0"]
+    assert main(argv + (["--quiet"] if quiet else [])) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert "s of wall time (12.5 s of it compiling the numerical kernels, which later runs " \
+           "load from their cache)" in last
+    assert main(argv + ["--quiet", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["compile_time_s"] == 12.5
