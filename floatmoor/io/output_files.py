@@ -34,7 +34,7 @@ from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError, FloatmoorError
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
-           "output_lock",
+           "output_lock", "open_lock_file",
            "atomic_target", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
 
 #: Free space asked for beyond the estimated output: the estimate leaves out the file format's
@@ -75,7 +75,7 @@ class OutputFile:
 
 
 def check_output_file(text: str | os.PathLike[str], option: str, *,
-                      kind: tuple[str, tuple[bytes, ...]] = NETCDF,
+                      kind: tuple = NETCDF,
                       protected: Mapping[str, str | os.PathLike[str]] | None = None,
                       expected_bytes: int = 0) -> OutputFile:
     """Check an output path before a command does any work.
@@ -87,8 +87,10 @@ def check_output_file(text: str | os.PathLike[str], option: str, *,
     option
         The option that gave it, for the message (``"-o/--output"``, ``"--plot"``).
     kind
-        What may be replaced: (name, accepted leading bytes), :data:`NETCDF` or :data:`IMAGE`.
-        An empty file may always be replaced.
+        What may be replaced: (name, accepted leading bytes), :data:`NETCDF` or :data:`IMAGE`,
+        or (name, leading bytes, check) where ``check(path)`` gives None for a file of this
+        kind and otherwise what the file is (:mod:`floatmoor.io.output_kinds`: a run result,
+        a hydrodynamic database, a case file). An empty file may always be replaced.
     protected
         Files the output must not be: {what it is (``"case file"``): path}; the same file
         reached through another name (a symbolic or hard link) counts.
@@ -145,7 +147,7 @@ def check_output_folder(text: str | os.PathLike[str], option: str) -> Path:
     return path
 
 
-def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]]) -> int | None:
+def _existing_size(path: Path, option: str, kind: tuple) -> int | None:
     """Size of the regular file of ``kind`` at ``path``, None when nothing is there."""
     try:
         info = os.lstat(path)
@@ -162,16 +164,21 @@ def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]])
         raise CaseError(option, "", "a new or regular file to replace", f"'{path}', {what}")
     if info.st_size == 0:
         return 0
-    name, magics = kind
+    name, magics, *content = kind
     try:
         with open(path, "rb") as fh:
             head = fh.read(max(len(m) for m in magics)).lstrip()
+        if not head.startswith(magics):
+            raise CaseError(option, "", f"a new file or a {name} file to replace (floatmoor "
+                            "does not overwrite other files)",
+                            f"'{path}', which is not a {name} file")
+        found = content[0](path) if content else None
     except OSError as err:
         raise CaseError(option, "", "a file that can be read",
                         f"'{path}': {err.strerror}") from None
-    if not head.startswith(magics):
-        raise CaseError(option, "", f"a new file or a {name} file to replace (floatmoor does "
-                        f"not overwrite other files)", f"'{path}', which is not a {name} file")
+    if found is not None:
+        raise CaseError(option, "", f"a new file or a {name} to replace (a command replaces "
+                        "only files of its own kind)", f"'{path}', {found}")
     return info.st_size
 
 
@@ -304,11 +311,7 @@ def output_lock(path: str | os.PathLike[str], option: str = "-o/--output") -> It
     """
     lock = lock_path(path)
     while True:
-        try:
-            fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
-        except OSError as err:
-            raise CaseError(option, "", "a file in a folder floatmoor can write to",
-                            f"'{lock}': {err.strerror}") from None
+        fd = open_lock_file(lock, option)
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError as err:
@@ -339,6 +342,37 @@ def output_lock(path: str | os.PathLike[str], option: str = "-o/--output") -> It
         except OSError:
             pass
         os.close(fd)
+
+
+def open_lock_file(lock: Path, option: str) -> int:
+    """Open (or create) the lock file ``lock`` for reading and writing without following a
+    symbolic link and without truncating it, and check it is a regular file of one name: a
+    link or FIFO planted at the lock's name cannot make floatmoor write (or truncate) another
+    file.
+
+    Raises
+    ------
+    CaseError
+        When it cannot be opened, or is not a regular file (nothing is written to it).
+    """
+    try:
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC | os.O_NOFOLLOW
+                     | os.O_NONBLOCK, 0o644)
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            raise CaseError(option, "", "a lock file that is a regular file (floatmoor does "
+                            "not follow links to lock)", f"'{lock}', a symbolic link") from None
+        raise CaseError(option, "", "a file in a folder floatmoor can write to",
+                        f"'{lock}': {err.strerror}") from None
+    info = os.fstat(fd)
+    if not stat.S_ISREG(info.st_mode) or info.st_nlink != 1:
+        os.close(fd)
+        what = file_kind(info.st_mode) if not stat.S_ISREG(info.st_mode) else \
+            f"a file with {info.st_nlink} names (hard links)"
+        raise CaseError(option, "", "a lock file that is a regular file of one name",
+                        f"'{lock}', {what}")
+    os.set_blocking(fd, True)
+    return fd
 
 
 def _read_holder(fd: int) -> str:
