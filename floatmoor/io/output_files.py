@@ -35,7 +35,7 @@ from floatmoor.errors import CaseError, FloatmoorError
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
            "output_lock", "open_lock_file",
-           "atomic_target", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
+           "atomic_target", "write_errors", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
 
 #: Free space asked for beyond the estimated output: the estimate leaves out the file format's
 #: headers and attributes (the case text, a few kB), and a nearly full disk fails for other
@@ -54,7 +54,12 @@ CAMPAIGN = ("campaign", (b"",))
 
 class OutputWriteError(FloatmoorError, OSError):
     """An output file could not be written while a command ran (disk full, folder made
-    read-only): the message names the file and the system's reason."""
+    read-only): the message names the file and the system's reason; ``target`` is the file
+    (None when not known)."""
+
+    def __init__(self, message: str, target: str | os.PathLike[str] | None = None) -> None:
+        super().__init__(message)
+        self.target = None if target is None else Path(target)
 
 
 @dataclass(frozen=True)
@@ -250,13 +255,26 @@ def atomic_target(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterato
     except OSError as err:
         if isinstance(err, OutputWriteError):
             raise
-        raise OutputWriteError(f"cannot write {target}: {err.strerror or err}") from err
+        raise OutputWriteError(f"cannot write {target}: {err.strerror or err}",
+                               target) from err
     finally:
         if tmp is not None:
             try:
                 os.unlink(tmp)
             except OSError:
                 pass
+
+
+@contextmanager
+def write_errors(path: str | os.PathLike[str]) -> Iterator[None]:
+    """Turn an OSError of the block, which writes ``path`` (a figure library's, a text
+    write's: disk full), into an :class:`OutputWriteError` naming the file."""
+    try:
+        yield
+    except OutputWriteError:
+        raise
+    except OSError as err:
+        raise OutputWriteError(f"cannot write {path}: {err.strerror or err}", path) from err
 
 
 def file_mode_for(path: str | os.PathLike[str]) -> int:

@@ -119,8 +119,10 @@ class OwnedFolder:
     lists already and those written in the block; when the block raises an exception
     other than one of ``keep_on`` (KeyboardInterrupt is always one: a re-run resumes), the
     files created in the block are removed, except those named in ``keep`` (relative paths,
-    e.g. a study's resumable runs), and the folder too when the block created it and it is
-    left empty.
+    e.g. a study's resumable runs, or folders), and the folders the block made and left
+    empty, the output folder too. A file that was there before under another name (moved
+    aside) is not removed; nor is a file it replaced (writes are atomic: it holds the new
+    content, whole).
     """
 
     def __init__(self, folder: str | os.PathLike[str], command: str, *,
@@ -154,7 +156,9 @@ class OwnedFolder:
             return
         written = {f for f, state in now.items() if self._before.get(f) != state}
         if exc is not None and not isinstance(exc, self.keep_on):
-            for rel in sorted(written - set(self._before)):
+            inodes = {state[0] for state in self._before.values()}
+            created = {f for f in written if f not in self._before and now[f][0] not in inodes}
+            for rel in sorted(created):  # a file moved aside (runs.nc.bak-1) is not new
                 if not any(rel == k or rel.startswith(k.rstrip("/") + "/") for k in self.keep):
                     (self.folder / rel).unlink(missing_ok=True)
                     written.discard(rel)

@@ -185,13 +185,17 @@ def animate_command(args: argparse.Namespace) -> int:
 
 def vtk_command(args: argparse.Namespace) -> int:
     """``floatmoor vtk RUN.nc -o DIR``; returns the exit status."""
-    from floatmoor.io.output_files import check_output_folder, output_lock
+    from floatmoor.io.output_files import OutputWriteError, output_lock
+    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
 
     def work() -> str:
-        folder = check_output_folder(args.output, "-o/--output")
+        folder = check_owned_folder(args.output, "-o/--output", "vtk")
         dataset, samples = _window(args)
-        with output_lock(folder.resolve()):
-            pvd = write_vtk(dataset, folder, samples, quiet=args.quiet)
+        try:
+            with output_lock(folder.resolve()), OwnedFolder(folder, "vtk"):
+                pvd = write_vtk(dataset, folder, samples, quiet=args.quiet)
+        except OutputWriteError as err:
+            raise OutputWriteError(f"{err}; the files it wrote were removed") from err
         return f"{len(samples)} line-shape samples in {folder}; open {pvd} in ParaView"
 
     return _guarded("vtk", f"the files written so far are in {args.output}, without the "
