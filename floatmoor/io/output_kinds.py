@@ -16,7 +16,7 @@ from pathlib import Path
 
 __all__ = ["netcdf_content", "case_file_content", "RUN_RESULT", "HYDRO_DATABASE",
            "RUN_RESULT_FILE", "HYDRO_DATABASE_FILE", "CASE_FILE", "CASE_TABLES",
-           "CASE_REQUIRED"]
+           "CASE_REQUIRED", "MOORDYN_DECK", "moordyn_deck_content"]
 
 #: What :func:`netcdf_content` calls a run's results and a hydrodynamic database.
 RUN_RESULT = "a floatmoor run result"
@@ -110,7 +110,30 @@ def case_file_content(path: str | os.PathLike[str]) -> str | None:
     return None
 
 
+#: Largest MoorDyn input file examined: decks are text of a few kB (a hundred lines).
+_MAX_DECK_BYTES = 10_000_000
+
+
+def moordyn_deck_content(path: str | os.PathLike[str]) -> str | None:
+    """None when ``path`` holds a MoorDyn input file (text with a ``---`` heading of line
+    types: ``LINE TYPES`` of version 2, ``LINE DICTIONARY`` of version 1), else what it is."""
+    import re
+
+    with open(path, "rb") as fh:
+        data = fh.read(_MAX_DECK_BYTES + 1)
+    if len(data) > _MAX_DECK_BYTES:
+        return "which is larger than any MoorDyn input file"
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return "which is not a text file"
+    if not re.search(r"^\s*-{3,}.*\b(LINE TYPES|LINE DICTIONARY)\b", text, re.M | re.I):
+        return "a file that is not a MoorDyn input file"
+    return None
+
+
 #: ``kind`` of :func:`~floatmoor.io.output_files.check_output_file` for each output.
 RUN_RESULT_FILE = ("run result", _NETCDF_MAGICS, _is(RUN_RESULT))
 HYDRO_DATABASE_FILE = ("hydrodynamic database", _NETCDF_MAGICS, _is(HYDRO_DATABASE))
 CASE_FILE = ("case file", (b"",), case_file_content)
+MOORDYN_DECK = ("MoorDyn input file", (b"",), moordyn_deck_content)
