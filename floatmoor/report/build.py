@@ -152,7 +152,10 @@ def write_report(runs: Sequence[RunData], output: str | Path, *,
     except OSError as err:  # disk full, folder made read-only: one line naming the file
         failed = getattr(err, "target", None) or getattr(err, "filename", None)
         where = output / Path(failed).name if failed else output / name
-        raise OutputWriteError(f"cannot write {where}: {err.strerror or err}") from err
+        cause = err.__cause__ if isinstance(err, OutputWriteError) and \
+            isinstance(err.__cause__, OSError) else err
+        raise OutputWriteError(f"cannot write {where}: {cause.strerror or cause}",
+                               where) from err
     return ReportFiles(folder=output, summary=output / SUMMARY_NAME,
                        figures=[output / p.name for p in made],
                        html=output / "summary.html" if html else None, analyses=analyses)
