@@ -4,8 +4,10 @@ Before a run, every output path of a command is checked (:func:`check_output_fil
 name a file (not a folder, ``-o newdir/``) in an existing, writable folder with room for the
 estimated output; it must not be one of the command's inputs (the case file) or another of its
 outputs (``-o x --plot x``); and anything already there must be a regular file (not a symbolic
-link, device, FIFO or folder) of the kind the command writes (netCDF, or an image for a
-plot), which is then replaced (the caller announces it). While the command runs,
+link, device, FIFO or folder) of the kind the command writes (a run result, a database, a case
+file: :mod:`floatmoor.io.output_kinds`; an image for a plot), which is then replaced (the
+caller announces it). Output folders are checked by :mod:`floatmoor.io.output_folders`
+(docs/guide/safeguards.md#output-files). While the command runs,
 :func:`output_lock` holds an advisory lock beside the output, so a second floatmoor process
 writing the same file stops with a clear message before doing any work; the lock is released
 when the process ends, however it ends, so a killed run leaves no stale lock.

@@ -307,3 +307,19 @@ def test_moordyn_outputs_get_the_common_checks(tmp_path, tmpfs, capsys):  # noqa
             assert main(command) == 2, command
             _refused(capsys, "-o/--output: expected", found)
         assert os.listdir(folder) == []
+
+
+def test_sweep_runs_dir_replaces_only_run_results(case, tmp_path, capsys, monkeypatch):
+    import floatmoor.campaign.runner as runner
+
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    mine = runs / "motion.period=1.5.nc"
+    mine.write_bytes(b"CDF\x02 a user's file of the same name")
+    monkeypatch.setattr(runner, "run_one", lambda *a: pytest.fail("ran"))
+    assert main(["sweep", str(case), *SHORT, "--grid", "motion.period=1.25,1.5", "-o",
+                 str(tmp_path / "c.nc"), "--runs-dir", str(runs), "--quiet"]) == 2
+    _refused(capsys, "--runs-dir: expected a new file or a run result to replace",
+             "a netCDF file floatmoor cannot read")
+    assert mine.read_bytes() == b"CDF\x02 a user's file of the same name"
+    assert not (tmp_path / "c.nc").exists()
