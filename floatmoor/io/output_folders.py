@@ -96,12 +96,16 @@ def check_owned_folder(text: str | os.PathLike[str], option: str, command: str) 
     if not path.is_dir():
         return path
     try:
-        files, other = _entries(path)
+        if not os.path.lexists(path / MANIFEST_NAME):  # must be empty: its top level tells
+            owned: set[str] | None = set()
+            foreign = sorted(e.name for e in os.scandir(path) if not _transient(e.name))
+        else:
+            owned = owned_files(path, command)
+            files, other = _entries(path)
+            foreign = sorted(other + [f for f in files if owned is None or f not in owned])
     except OSError as err:
         raise CaseError(option, "", "a folder that can be listed",
                         f"'{path}': {err.strerror}") from None
-    owned = owned_files(path, command) if (path / MANIFEST_NAME).exists() else set()
-    foreign = sorted(other + [f for f in files if owned is None or f not in owned])
     if owned is None or foreign:
         example = f" (e.g. '{foreign[0]}')" if foreign else ""
         raise CaseError(option, "", f"a new or empty folder, or one that floatmoor {command} "
