@@ -450,7 +450,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
     """The run's checked output file (and its plot's, when asked for); a file there that the
     run will replace is announced on standard error once every check has passed."""
     from floatmoor.io.output_files import IMAGE, check_output_file
-    from floatmoor.io.output_kinds import RUN_RESULT_FILE
+    from floatmoor.io.output_kinds import CHECKPOINT, RUN_RESULT_FILE
     from floatmoor.plots.style import SUPPORTED_FORMATS
     from floatmoor.simulation.recorder import estimated_output_bytes
 
@@ -462,6 +462,11 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
     text = args.output if args.output else _default_stem(case) + ".nc"
     output = check_output_file(text, "-o/--output", protected=protected, kind=RUN_RESULT_FILE,
                                expected_bytes=int(min(estimated_output_bytes(case), 2**62)))
+    if case.floater is not None:  # its checkpoint replaces only a checkpoint (a numpy zip)
+        from floatmoor.simulation.coupled_run import checkpoint_path
+
+        check_output_file(checkpoint_path(output.path), "-o/--output", kind=CHECKPOINT,
+                          protected=protected)
     plot = []
     shapes = case.simulation.shape_output_interval is not None
     if args.plot is not None:

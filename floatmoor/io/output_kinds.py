@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import os
 import tomllib
+from collections.abc import Callable
 from pathlib import Path
 
 __all__ = ["netcdf_content", "case_file_content", "RUN_RESULT", "HYDRO_DATABASE",
            "RUN_RESULT_FILE", "HYDRO_DATABASE_FILE", "CASE_FILE", "CASE_TABLES",
-           "CASE_REQUIRED", "MOORDYN_DECK", "moordyn_deck_content"]
+           "CASE_REQUIRED", "MOORDYN_DECK", "moordyn_deck_content", "CHECKPOINT"]
 
 #: What :func:`netcdf_content` calls a run's results and a hydrodynamic database.
 RUN_RESULT = "a floatmoor run result"
@@ -74,7 +75,8 @@ def netcdf_content(path: str | os.PathLike[str]) -> str:
     return "a floatmoor file of another kind"
 
 
-def _is(content: str):
+def _is(content: str) -> Callable[[Path], str | None]:
+    """The check of a netCDF output kind: None for a file holding ``content``."""
     def check(path: Path) -> str | None:
         found = netcdf_content(path)
         return None if found == content else found
@@ -137,3 +139,5 @@ RUN_RESULT_FILE = ("run result", _NETCDF_MAGICS, _is(RUN_RESULT))
 HYDRO_DATABASE_FILE = ("hydrodynamic database", _NETCDF_MAGICS, _is(HYDRO_DATABASE))
 CASE_FILE = ("case file", (b"",), case_file_content)
 MOORDYN_DECK = ("MoorDyn input file", (b"",), moordyn_deck_content)
+#: A run's checkpoint (``OUT.nc.checkpoint``): a numpy ``.npz``, which is a zip.
+CHECKPOINT = ("checkpoint", (b"PK\x03\x04",))

@@ -296,6 +296,22 @@ def test_checkpoint_write_does_not_follow_a_link_beside_it(tmp_path):
     assert victim.read_text() == "precious\n" and path.is_file()
 
 
+def test_a_floater_run_replaces_only_a_checkpoint_beside_its_output(tmp_path, capsys):
+    buoy = REPO / "cases" / "cylinder_buoy" / "buoy_regular_T1.00.toml"
+    victim = tmp_path / "victim.txt"
+    victim.write_text("precious\n")
+    out = tmp_path / "r.nc"
+    ckpt = tmp_path / "r.nc.checkpoint"
+    ckpt.symlink_to(victim)
+    assert main(["run", str(buoy), "-o", str(out), "--quiet"]) == 2
+    _refused(capsys, f"'{ckpt}', a symbolic link")
+    ckpt.unlink()
+    shutil.copy(victim, ckpt)
+    assert main(["run", str(buoy), "-o", str(out), "--quiet"]) == 2
+    _refused(capsys, "which is not a checkpoint file")
+    assert victim.read_text() == "precious\n" and not out.exists()
+
+
 # -- item 16: import / export moordyn make the common output checks --------------------------
 def test_moordyn_outputs_get_the_common_checks(tmp_path, tmpfs, capsys):  # noqa: F811
     deck = REPO / "tests" / "data" / "moordyn" / "wd0050_chain.txt"
