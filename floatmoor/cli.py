@@ -130,7 +130,8 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("name", choices=["qd-verification"],
                        help="qd-verification: quasi-dynamic verification, docs/cases/qd_verification.md")
     study.add_argument("-o", "--output", metavar="DIR", required=True,
-                       help="output folder (created if its parent exists)")
+                       help="output folder: new (created if its parent exists), empty, or one "
+                       "the same study wrote")
     study.add_argument("--workers", type=int, default=1, help="local worker processes")
     study.add_argument("--quick", action="store_true",
                        help="reduced subset (one amplitude, two accelerations per configuration)")
@@ -139,8 +140,9 @@ def _parser() -> argparse.ArgumentParser:
                         "of quantities of interest)")
     uq.add_argument("study", help="TOML study file (cases/uq/*.toml)")
     uq.add_argument("-o", "--output", metavar="DIR", required=True,
-                    help="output folder (created if its parent exists): runs.nc, uq.nc, "
-                    "surrogates/, report/; re-running into it resumes the runs")
+                    help="output folder, new (created if its parent exists), empty or one uq "
+                    "wrote: runs.nc, uq.nc, surrogates/, report/; re-running into it resumes "
+                    "the runs")
     uq.add_argument("--workers", type=int, default=1, help="local worker processes")
     uq.add_argument("--scheduler", metavar="ADDRESS",
                     help="run on this Dask distributed scheduler (tcp://host:8786)")
@@ -462,7 +464,8 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
     text = args.output if args.output else _default_stem(case) + ".nc"
     output = check_output_file(text, "-o/--output", protected=protected, kind=RUN_RESULT_FILE,
                                expected_bytes=int(min(estimated_output_bytes(case), 2**62)))
-    if case.floater is not None:  # its checkpoint replaces only a checkpoint (a numpy zip)
+    if case.floater is not None and not args.resume:  # the checkpoint it writes replaces
+        # only a checkpoint (a numpy zip); with --resume it is an input, checked when read
         from floatmoor.simulation.coupled_run import checkpoint_path
 
         check_output_file(checkpoint_path(output.path), "-o/--output", kind=CHECKPOINT,

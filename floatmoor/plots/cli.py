@@ -60,7 +60,8 @@ def add_view_parsers(subparsers: Any) -> None:
                                 "for ParaView (.vtu per time, lines.pvd)")
     _add_window(vtk)
     vtk.add_argument("-o", "--output", required=True, metavar="DIR",
-                     help="output folder (created if its parent exists)")
+                     help="output folder: new (created if its parent exists), empty, or one "
+                     "vtk wrote")
     vtk.set_defaults(view_handler=vtk_command)
 
 

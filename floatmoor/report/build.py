@@ -97,7 +97,8 @@ def write_report(runs: Sequence[RunData], output: str | Path, *,
     runs
         The runs, in column order (:func:`floatmoor.report.runs.load_run`).
     output
-        Output folder, created if its parent exists; files of an earlier report are replaced.
+        Output folder, created if its parent exists; files of an earlier report are replaced
+        (the command checks first that the folder is its own: :mod:`floatmoor.io.output_folders`).
     reference
         Optional reference values, printed in their own, labelled columns.
     nominal_diameters

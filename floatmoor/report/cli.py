@@ -31,7 +31,8 @@ EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 def _add_common(p: argparse.ArgumentParser) -> None:
     p.add_argument("-o", "--output", metavar="DIR", required=True,
-                   help="report folder (created if its parent exists)")
+                   help="report folder: new (created if its parent exists), empty, or one "
+                   "the same command wrote")
     p.add_argument("--start", metavar="SECONDS", default=None,
                    help="start of the analysis window [s] (default: each case's ramp: the "
                         "motion ramp of forced-motion runs, the wave ramp of coupled runs)")
