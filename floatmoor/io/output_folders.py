@@ -171,7 +171,7 @@ class OwnedFolder:
                 self.folder.rmdir()
                 return
         owned = sorted((self._owned | written) & set(now))
-        if not owned and not self._existed:
+        if not owned and not os.path.lexists(self.folder / MANIFEST_NAME):  # nothing to list
             return
         try:
             _write_manifest(self.folder, self.command, owned)

@@ -261,6 +261,13 @@ def test_owned_folder_keeps_files_it_did_not_write(tmp_path):
             raise OutputWriteError("disk full")
     assert sorted(os.listdir(folder)) == [MANIFEST_NAME, "a.png", "moved.bak-1"]
     assert (folder / "moved.bak-1").stat().st_ino == inode
+    empty = tmp_path / "empty"  # a user's empty folder stays empty after a failure
+    empty.mkdir()
+    with pytest.raises(OutputWriteError):
+        with OwnedFolder(empty, "vtk"):
+            (empty / "x.vtu").write_text("x")
+            raise OutputWriteError("disk full")
+    assert os.listdir(empty) == []
 
 
 # -- item 6: lock files and checkpoint temporaries are not followed --------------------------
