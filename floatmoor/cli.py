@@ -131,7 +131,8 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("name", choices=["qd-verification"],
                        help="qd-verification: quasi-dynamic verification, docs/cases/qd_verification.md")
     study.add_argument("-o", "--output", metavar="DIR", required=True,
-                       help="output folder (created if its parent exists)")
+                       help="output folder: new (created if its parent exists), empty, or one "
+                       "the same study wrote")
     study.add_argument("--workers", type=int, default=1, help="local worker processes")
     study.add_argument("--quick", action="store_true",
                        help="reduced subset (one amplitude, two accelerations per configuration)")
@@ -140,8 +141,9 @@ def _parser() -> argparse.ArgumentParser:
                         "of quantities of interest)")
     uq.add_argument("study", help="TOML study file (cases/uq/*.toml)")
     uq.add_argument("-o", "--output", metavar="DIR", required=True,
-                    help="output folder (created if its parent exists): runs.nc, uq.nc, "
-                    "surrogates/, report/; re-running into it resumes the runs")
+                    help="output folder, new (created if its parent exists), empty or one uq "
+                    "wrote: runs.nc, uq.nc, surrogates/, report/; re-running into it resumes "
+                    "the runs")
     uq.add_argument("--workers", type=int, default=1, help="local worker processes")
     uq.add_argument("--scheduler", metavar="ADDRESS",
                     help="run on this Dask distributed scheduler (tcp://host:8786)")
@@ -455,6 +457,7 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
     """The run's checked output file (and its plot's, when asked for); a file there that the
     run will replace is announced on standard error once every check has passed."""
     from floatmoor.io.output_files import IMAGE, check_output_file
+    from floatmoor.io.output_kinds import CHECKPOINT, RUN_RESULT_FILE
     from floatmoor.plots.style import SUPPORTED_FORMATS
     from floatmoor.simulation.recorder import estimated_output_bytes
 
@@ -464,8 +467,14 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
 
         protected["hydrodynamic database"] = str(database_path(case))
     text = args.output if args.output else _default_stem(case) + ".nc"
-    output = check_output_file(text, "-o/--output", protected=protected,
+    output = check_output_file(text, "-o/--output", protected=protected, kind=RUN_RESULT_FILE,
                                expected_bytes=int(min(estimated_output_bytes(case), 2**62)))
+    if case.floater is not None and not args.resume:  # the checkpoint it writes replaces
+        # only a checkpoint (a numpy zip); with --resume it is an input, checked when read
+        from floatmoor.simulation.coupled_run import checkpoint_path
+
+        check_output_file(checkpoint_path(output.path), "-o/--output", kind=CHECKPOINT,
+                          protected=protected)
     plot = []
     shapes = case.simulation.shape_output_interval is not None
     if args.plot is not None:
@@ -482,12 +491,12 @@ def _output_path(args: argparse.Namespace, case: Case) -> Path:
             taken[f"--plot {view} image"] = path
     args.plot_times_s = _plot_times(args, case, shapes)
     if args.vtk is not None:
-        from floatmoor.io.output_files import check_output_folder
+        from floatmoor.io.output_folders import check_owned_folder
 
         if not shapes:
             raise CaseError("--vtk", "", "a case that records line shapes (set "
                             "simulation.shape_output_interval)", "no line shapes")
-        check_output_folder(args.vtk, "--vtk")
+        check_owned_folder(args.vtk, "--vtk", "vtk")
     for checked in (output, *plot):
         if checked is not None and checked.replaces and not (checked is output and args.resume):
             print(f"floatmoor: replacing the existing {checked.path}", file=sys.stderr)
@@ -640,15 +649,18 @@ def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output:
         summary["plot"] = str(args.plot)
         summary["figures"] = [str(p) for p in figures.values()]
     if args.vtk is not None:
+        from floatmoor.io.output_folders import OwnedFolder
         from floatmoor.io.shape_samples import window_samples
         from floatmoor.plots.cli import write_vtk
 
         try:
-            summary["vtk"] = str(write_vtk(result.dataset, Path(args.vtk),
-                                           window_samples(result.dataset), quiet=args.quiet))
+            with OwnedFolder(args.vtk, "vtk"):
+                summary["vtk"] = str(write_vtk(result.dataset, Path(args.vtk),
+                                               window_samples(result.dataset),
+                                               quiet=args.quiet))
         except OutputWriteError as err:
-            print(f"floatmoor: the VTK output failed: {err}\n  the run completed; results in "
-                  f"{output}", file=sys.stderr)
+            print(f"floatmoor: the VTK output failed: {err} (the VTK files it wrote were "
+                  f"removed)\n  the run completed; results in {output}", file=sys.stderr)
             return EXIT_FAILED
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -806,9 +818,10 @@ def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) ->
 def _study(args: argparse.Namespace) -> int:
     from floatmoor.studies import qd_verification
 
-    from floatmoor.io.output_files import check_output_folder, output_lock
+    from floatmoor.io.output_files import OutputWriteError, output_lock
+    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
 
-    output = check_output_folder(args.output, "-o/--output")
+    output = check_owned_folder(args.output, "-o/--output", "study qd-verification")
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
 
@@ -817,13 +830,17 @@ def _study(args: argparse.Namespace) -> int:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
     try:
-        with output_lock(output.resolve()):
+        with output_lock(output.resolve()), OwnedFolder(output, "study qd-verification"):
             ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
                                            progress=progress)
     except KeyboardInterrupt as stop:
         print(f"floatmoor: {signal_name(stop)}; nothing written (the study writes its results "
               "at the end)", file=sys.stderr)
         return exit_status(stop)
+    except OutputWriteError as err:
+        print(f"floatmoor: study failed: {err}; the files it wrote were removed",
+              file=sys.stderr)
+        return EXIT_FAILED
     print(qd_verification.summary(ds))
     print(f"results in {output}")
     failed = qd_verification.failed_runs(ds)
@@ -834,7 +851,8 @@ def _study(args: argparse.Namespace) -> int:
 
 
 def _uq(args: argparse.Namespace) -> int:
-    from floatmoor.io.output_files import check_output_folder, output_lock
+    from floatmoor.io.output_files import output_lock
+    from floatmoor.io.output_folders import check_owned_folder
     from floatmoor.uq.study import load_study
 
     study = load_study(args.study)
@@ -844,7 +862,7 @@ def _uq(args: argparse.Namespace) -> int:
         from floatmoor.campaign.scheduler import check_address
 
         check_address(args.scheduler)
-    folder = check_output_folder(args.output, "-o/--output")
+    folder = check_owned_folder(args.output, "-o/--output", "uq")
     with output_lock(folder.resolve()):
         return _uq_locked(args, study, folder)
 
@@ -853,13 +871,15 @@ def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
     """Run a checked study into its checked and locked output folder."""
     from floatmoor._numba import watch_compilation
     from floatmoor.io.output_files import OutputWriteError
+    from floatmoor.io.output_folders import OwnedFolder
     from floatmoor.uq.output import study_summary
     from floatmoor.uq.run import RUNS_NAME, StudyRunsFailed, run_study
 
     progress, compiling = _campaign_reporters(args.quiet)
     runs = folder / RUNS_NAME
-    try:
-        with watch_compilation(compiling, lambda seconds: None):
+    try:  # the runs are kept whatever happens: a re-run resumes them
+        with watch_compilation(compiling, lambda seconds: None), \
+                OwnedFolder(folder, "uq", keep=(RUNS_NAME,), keep_on=(StudyRunsFailed,)):
             result = run_study(study, folder, workers=args.workers, scheduler=args.scheduler,
                                progress=progress, restart=args.restart,
                                moved_aside=_say_moved_aside)
@@ -874,7 +894,10 @@ def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
         report_failures("uq", err.failed, err.total)
         return EXIT_FAILED
     except OutputWriteError as err:
-        print(f"floatmoor: uq failed: {err}", file=sys.stderr)
+        held = f"; the finished runs are in {runs} (re-run the same command to resume)" \
+            if runs.is_file() else ""
+        print(f"floatmoor: uq failed: {err}; the other files it wrote were removed{held}",
+              file=sys.stderr)
         return EXIT_FAILED
     summary = study_summary(result)
     if args.json:

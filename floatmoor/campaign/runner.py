@@ -292,7 +292,14 @@ def _run_files(design: CampaignDesign, runs_dir: str | Path | None,
     if len(names) != design.size or len(set(names)) != len(names):
         raise CaseError("--runs-dir", "", f"{design.size} distinct run names",
                         f"{len(set(names))} distinct of {len(names)}")
-    return [str(folder / f"{name}.nc") for name in names]
+    paths = [folder / f"{name}.nc" for name in names]
+    from floatmoor.io.output_files import check_output_file
+    from floatmoor.io.output_kinds import RUN_RESULT_FILE
+
+    for path in paths:  # a run (re)written there replaces only a run result
+        if os.path.lexists(path):
+            check_output_file(path, "--runs-dir", kind=RUN_RESULT_FILE)
+    return [str(path) for path in paths]
 
 
 def _absolute(run_file: str | None) -> str | None:

@@ -118,6 +118,7 @@ def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
     """The checked database file of ``hydro build``: ``-o``, else the case's database (its
     folder is created when missing)."""
     from floatmoor.io.output_files import check_output_file
+    from floatmoor.io.output_kinds import HYDRO_DATABASE_FILE
 
     if args.output is None and not default.parent.is_dir():
         try:
@@ -125,7 +126,7 @@ def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
         except OSError as err:
             raise CaseError(case.source, "hydro.database", "a database folder floatmoor can "
                             "create", f"'{default.parent}': {err.strerror}") from None
-    return check_output_file(args.output or default, "-o/--output",
+    return check_output_file(args.output or default, "-o/--output", kind=HYDRO_DATABASE_FILE,
                              protected={"case file": case.source}).path
 
 
@@ -212,13 +213,14 @@ def _import(args: argparse.Namespace) -> int:
     from floatmoor.hydro.database import write_database
     from floatmoor.hydro.importing import file_format, import_database
     from floatmoor.io.output_files import check_output_file, output_lock
+    from floatmoor.io.output_kinds import HYDRO_DATABASE_FILE
 
     options = _import_options(args)
     file_format(args.files)
     if not args.output.endswith(".nc"):
         raise CaseError("-o/--output", "", "a database file PATH.nc", f"'{args.output}'")
-    output = check_output_file(args.output, "-o/--output", protected={
-        f"source file {f}": f for f in args.files}).path
+    output = check_output_file(args.output, "-o/--output", kind=HYDRO_DATABASE_FILE,
+                               protected={f"source file {f}": f for f in args.files}).path
     with output_lock(output):
         if output.exists() and not args.force:
             raise CaseError("-o/--output", "", "a new file (--force overwrites)",
@@ -470,8 +472,9 @@ def _fit_target(args: argparse.Namespace, source: Path, ds) -> Path:
         raise CaseError("-o/--output", "", "a new file (--force overwrites)",
                         f"the existing file '{target}'")
     from floatmoor.io.output_files import check_output_file
+    from floatmoor.io.output_kinds import HYDRO_DATABASE_FILE
 
-    return check_output_file(args.output, "-o/--output",
+    return check_output_file(args.output, "-o/--output", kind=HYDRO_DATABASE_FILE,
                              protected={"database fitted": source}).path
 
 

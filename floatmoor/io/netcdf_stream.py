@@ -200,7 +200,7 @@ class NetCDF3Stream:
         """
         path = Path(path)
         try:
-            fd = os.open(path, os.O_RDWR | os.O_CLOEXEC)
+            fd = os.open(path, os.O_RDWR | os.O_CLOEXEC | os.O_NOFOLLOW)
         except OSError as err:
             raise OutputWriteError(f"cannot open {path}: {err.strerror or err}") from None
         try:
@@ -220,7 +220,7 @@ class NetCDF3Stream:
     @classmethod
     def _open_fd(cls, path: Path, header: Header) -> "NetCDF3Stream":
         try:
-            fd = os.open(path, os.O_RDWR | os.O_CLOEXEC)
+            fd = os.open(path, os.O_RDWR | os.O_CLOEXEC | os.O_NOFOLLOW)
         except OSError as err:
             raise OutputWriteError(f"cannot write {path}: {err.strerror or err}") from None
         return cls(path, fd, header)

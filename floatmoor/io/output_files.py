@@ -4,8 +4,10 @@ Before a run, every output path of a command is checked (:func:`check_output_fil
 name a file (not a folder, ``-o newdir/``) in an existing, writable folder with room for the
 estimated output; it must not be one of the command's inputs (the case file) or another of its
 outputs (``-o x --plot x``); and anything already there must be a regular file (not a symbolic
-link, device, FIFO or folder) of the kind the command writes (netCDF, or an image for a
-plot), which is then replaced (the caller announces it). While the command runs,
+link, device, FIFO or folder) of the kind the command writes (a run result, a database, a case
+file: :mod:`floatmoor.io.output_kinds`; an image for a plot), which is then replaced (the
+caller announces it). Output folders are checked by :mod:`floatmoor.io.output_folders`
+(docs/guide/safeguards.md#output-files). While the command runs,
 :func:`output_lock` holds an advisory lock beside the output, so a second floatmoor process
 writing the same file stops with a clear message before doing any work; the lock is released
 when the process ends, however it ends, so a killed run leaves no stale lock.
@@ -34,8 +36,8 @@ from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError, FloatmoorError
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
-           "output_lock",
-           "atomic_target", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
+           "output_lock", "open_lock_file",
+           "atomic_target", "write_errors", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
 
 #: Free space asked for beyond the estimated output: the estimate leaves out the file format's
 #: headers and attributes (the case text, a few kB), and a nearly full disk fails for other
@@ -54,7 +56,12 @@ CAMPAIGN = ("campaign", (b"",))
 
 class OutputWriteError(FloatmoorError, OSError):
     """An output file could not be written while a command ran (disk full, folder made
-    read-only): the message names the file and the system's reason."""
+    read-only): the message names the file and the system's reason; ``target`` is the file
+    (None when not known)."""
+
+    def __init__(self, message: str, target: str | os.PathLike[str] | None = None) -> None:
+        super().__init__(message)
+        self.target = None if target is None else Path(target)
 
 
 @dataclass(frozen=True)
@@ -75,7 +82,7 @@ class OutputFile:
 
 
 def check_output_file(text: str | os.PathLike[str], option: str, *,
-                      kind: tuple[str, tuple[bytes, ...]] = NETCDF,
+                      kind: tuple = NETCDF,
                       protected: Mapping[str, str | os.PathLike[str]] | None = None,
                       expected_bytes: int = 0) -> OutputFile:
     """Check an output path before a command does any work.
@@ -87,8 +94,10 @@ def check_output_file(text: str | os.PathLike[str], option: str, *,
     option
         The option that gave it, for the message (``"-o/--output"``, ``"--plot"``).
     kind
-        What may be replaced: (name, accepted leading bytes), :data:`NETCDF` or :data:`IMAGE`.
-        An empty file may always be replaced.
+        What may be replaced: (name, accepted leading bytes), :data:`NETCDF` or :data:`IMAGE`,
+        or (name, leading bytes, check) where ``check(path)`` gives None for a file of this
+        kind and otherwise what the file is (:mod:`floatmoor.io.output_kinds`: a run result,
+        a hydrodynamic database, a case file). An empty file may always be replaced.
     protected
         Files the output must not be: {what it is (``"case file"``): path}; the same file
         reached through another name (a symbolic or hard link) counts.
@@ -145,7 +154,7 @@ def check_output_folder(text: str | os.PathLike[str], option: str) -> Path:
     return path
 
 
-def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]]) -> int | None:
+def _existing_size(path: Path, option: str, kind: tuple) -> int | None:
     """Size of the regular file of ``kind`` at ``path``, None when nothing is there."""
     try:
         info = os.lstat(path)
@@ -162,16 +171,21 @@ def _existing_size(path: Path, option: str, kind: tuple[str, tuple[bytes, ...]])
         raise CaseError(option, "", "a new or regular file to replace", f"'{path}', {what}")
     if info.st_size == 0:
         return 0
-    name, magics = kind
+    name, magics, *content = kind
     try:
         with open(path, "rb") as fh:
             head = fh.read(max(len(m) for m in magics)).lstrip()
+        if not head.startswith(magics):
+            raise CaseError(option, "", f"a new file or a {name} file to replace (floatmoor "
+                            "does not overwrite other files)",
+                            f"'{path}', which is not a {name} file")
+        found = content[0](path) if content else None
     except OSError as err:
         raise CaseError(option, "", "a file that can be read",
                         f"'{path}': {err.strerror}") from None
-    if not head.startswith(magics):
-        raise CaseError(option, "", f"a new file or a {name} file to replace (floatmoor does "
-                        f"not overwrite other files)", f"'{path}', which is not a {name} file")
+    if found is not None:
+        raise CaseError(option, "", f"a new file or a {name} to replace (a command replaces "
+                        "only files of its own kind)", f"'{path}', {found}")
     return info.st_size
 
 
@@ -243,13 +257,26 @@ def atomic_target(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterato
     except OSError as err:
         if isinstance(err, OutputWriteError):
             raise
-        raise OutputWriteError(f"cannot write {target}: {err.strerror or err}") from err
+        raise OutputWriteError(f"cannot write {target}: {err.strerror or err}",
+                               target) from err
     finally:
         if tmp is not None:
             try:
                 os.unlink(tmp)
             except OSError:
                 pass
+
+
+@contextmanager
+def write_errors(path: str | os.PathLike[str]) -> Iterator[None]:
+    """Turn an OSError of the block, which writes ``path`` (a figure library's, a text
+    write's: disk full), into an :class:`OutputWriteError` naming the file."""
+    try:
+        yield
+    except OutputWriteError:
+        raise
+    except OSError as err:
+        raise OutputWriteError(f"cannot write {path}: {err.strerror or err}", path) from err
 
 
 def file_mode_for(path: str | os.PathLike[str]) -> int:
@@ -304,11 +331,7 @@ def output_lock(path: str | os.PathLike[str], option: str = "-o/--output") -> It
     """
     lock = lock_path(path)
     while True:
-        try:
-            fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o644)
-        except OSError as err:
-            raise CaseError(option, "", "a file in a folder floatmoor can write to",
-                            f"'{lock}': {err.strerror}") from None
+        fd = open_lock_file(lock, option)
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError as err:
@@ -339,6 +362,37 @@ def output_lock(path: str | os.PathLike[str], option: str = "-o/--output") -> It
         except OSError:
             pass
         os.close(fd)
+
+
+def open_lock_file(lock: Path, option: str) -> int:
+    """Open (or create) the lock file ``lock`` for reading and writing without following a
+    symbolic link and without truncating it, and check it is a regular file of one name: a
+    link or FIFO planted at the lock's name cannot make floatmoor write (or truncate) another
+    file.
+
+    Raises
+    ------
+    CaseError
+        When it cannot be opened, or is not a regular file (nothing is written to it).
+    """
+    try:
+        fd = os.open(lock, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC | os.O_NOFOLLOW
+                     | os.O_NONBLOCK, 0o644)
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            raise CaseError(option, "", "a lock file that is a regular file (floatmoor does "
+                            "not follow links to lock)", f"'{lock}', a symbolic link") from None
+        raise CaseError(option, "", "a file in a folder floatmoor can write to",
+                        f"'{lock}': {err.strerror}") from None
+    info = os.fstat(fd)
+    if not stat.S_ISREG(info.st_mode) or info.st_nlink != 1:
+        os.close(fd)
+        what = file_kind(info.st_mode) if not stat.S_ISREG(info.st_mode) else \
+            f"a file with {info.st_nlink} names (hard links)"
+        raise CaseError(option, "", "a lock file that is a regular file of one name",
+                        f"'{lock}', {what}")
+    os.set_blocking(fd, True)
+    return fd
 
 
 def _read_holder(fd: int) -> str:

@@ -60,7 +60,8 @@ def add_view_parsers(subparsers: Any) -> None:
                                 "for ParaView (.vtu per time, lines.pvd)")
     _add_window(vtk)
     vtk.add_argument("-o", "--output", required=True, metavar="DIR",
-                     help="output folder (created if its parent exists)")
+                     help="output folder: new (created if its parent exists), empty, or one "
+                     "vtk wrote")
     vtk.set_defaults(view_handler=vtk_command)
 
 
@@ -185,13 +186,17 @@ def animate_command(args: argparse.Namespace) -> int:
 
 def vtk_command(args: argparse.Namespace) -> int:
     """``floatmoor vtk RUN.nc -o DIR``; returns the exit status."""
-    from floatmoor.io.output_files import check_output_folder, output_lock
+    from floatmoor.io.output_files import OutputWriteError, output_lock
+    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
 
     def work() -> str:
-        folder = check_output_folder(args.output, "-o/--output")
+        folder = check_owned_folder(args.output, "-o/--output", "vtk")
         dataset, samples = _window(args)
-        with output_lock(folder.resolve()):
-            pvd = write_vtk(dataset, folder, samples, quiet=args.quiet)
+        try:
+            with output_lock(folder.resolve()), OwnedFolder(folder, "vtk"):
+                pvd = write_vtk(dataset, folder, samples, quiet=args.quiet)
+        except OutputWriteError as err:
+            raise OutputWriteError(f"{err}; the files it wrote were removed") from err
         return f"{len(samples)} line-shape samples in {folder}; open {pvd} in ParaView"
 
     return _guarded("vtk", f"the files written so far are in {args.output}, without the "

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Mapping, Sequence
 
 from floatmoor._version import __version__
+from floatmoor.io.output_files import OutputWriteError
 from floatmoor.io.shape_samples import has_complete_shapes
 from floatmoor.plots.run_figures import plot_shape_views
 from floatmoor.report import figures as fig
@@ -96,7 +97,8 @@ def write_report(runs: Sequence[RunData], output: str | Path, *,
     runs
         The runs, in column order (:func:`floatmoor.report.runs.load_run`).
     output
-        Output folder, created if its parent exists; files of an earlier report are replaced.
+        Output folder, created if its parent exists; files of an earlier report are replaced
+        (the command checks first that the folder is its own: :mod:`floatmoor.io.output_folders`).
     reference
         Optional reference values, printed in their own, labelled columns.
     nominal_diameters
@@ -117,6 +119,10 @@ def write_report(runs: Sequence[RunData], output: str | Path, *,
         For unusable inputs (nothing is written).
     FigureDataError
         When a series to plot is empty or not finite (nothing is written).
+    OutputWriteError
+        When a file cannot be written (disk full): naming it; the files written into
+        ``output`` by this call may remain (the command removes them,
+        :class:`floatmoor.io.output_folders.OwnedFolder`).
     """
     if not runs:
         raise ReportInputError("RUN.nc", "one or more run files", "none")
@@ -130,17 +136,27 @@ def write_report(runs: Sequence[RunData], output: str | Path, *,
     title = title or report_title(runs)
 
     parent = output.resolve().parent
-    with tempfile.TemporaryDirectory(prefix=".floatmoor-report-", dir=parent) as tmp:
-        work = Path(tmp)
-        blocks, made = _content(runs, analyses, reference, work, title)
-        (work / SUMMARY_NAME).write_text(render_markdown(blocks), encoding="utf-8")
-        names = [p.name for p in made] + [SUMMARY_NAME]
-        if html:
-            (work / "summary.html").write_text(render_html(blocks, title), encoding="utf-8")
-            names.append("summary.html")
-        output.mkdir(exist_ok=True)
-        for name in names:
-            shutil.move(str(work / name), str(output / name))
+    name = SUMMARY_NAME
+    try:
+        with tempfile.TemporaryDirectory(prefix=".floatmoor-report-", dir=parent) as tmp:
+            work = Path(tmp)
+            blocks, made = _content(runs, analyses, reference, work, title)
+            (work / SUMMARY_NAME).write_text(render_markdown(blocks), encoding="utf-8")
+            names = [p.name for p in made] + [SUMMARY_NAME]
+            if html:
+                name = "summary.html"
+                (work / name).write_text(render_html(blocks, title), encoding="utf-8")
+                names.append(name)
+            output.mkdir(exist_ok=True)
+            for name in names:
+                shutil.move(str(work / name), str(output / name))
+    except OSError as err:  # disk full, folder made read-only: one line naming the file
+        failed = getattr(err, "target", None) or getattr(err, "filename", None)
+        where = output / Path(failed).name if failed else output / name
+        cause = err.__cause__ if isinstance(err, OutputWriteError) and \
+            isinstance(err.__cause__, OSError) else err
+        raise OutputWriteError(f"cannot write {where}: {cause.strerror or cause}",
+                               where) from err
     return ReportFiles(folder=output, summary=output / SUMMARY_NAME,
                        figures=[output / p.name for p in made],
                        html=output / "summary.html" if html else None, analyses=analyses)

@@ -5,8 +5,11 @@ Wire into :mod:`floatmoor.cli` with ``add_report_parsers(sub)`` in its parser an
 return the exit status: 0 done; 2 bad input (a missing or unreadable file, an unknown model, a
 bad ``--start``, ``--nominal-diameter`` or reference file, a series that cannot be plotted),
 with one message on standard error, no traceback and nothing written; 1 a run of ``compare``
-that failed (the message names the model; the other models still run, no report is written);
-130 an interrupted ``compare`` (the finished runs are kept; a re-run resumes).
+that failed (the message names the model; the other models still run, no report is written)
+or a file that could not be written (disk full: the files this invocation wrote are
+removed); 130 an interrupted ``compare`` (the finished runs are kept; a re-run resumes). The
+output folder must be new, empty or one the same command wrote
+(:mod:`floatmoor.io.output_folders`).
 """
 
 from __future__ import annotations
@@ -28,7 +31,8 @@ EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 def _add_common(p: argparse.ArgumentParser) -> None:
     p.add_argument("-o", "--output", metavar="DIR", required=True,
-                   help="report folder (created if its parent exists)")
+                   help="report folder: new (created if its parent exists), empty, or one "
+                   "the same command wrote")
     p.add_argument("--start", metavar="SECONDS", default=None,
                    help="start of the analysis window [s] (default: each case's ramp: the "
                         "motion ramp of forced-motion runs, the wave ramp of coupled runs)")
@@ -121,7 +125,8 @@ def _reference(args: argparse.Namespace):
 
 def report_command(args: argparse.Namespace) -> int:
     """``floatmoor report RUN.nc [RUN2.nc ...] -o DIR``; returns the exit status."""
-    from floatmoor.io.output_files import output_lock
+    from floatmoor.io.output_files import OutputWriteError, output_lock
+    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
     from floatmoor.report.build import check_output_folder, write_report
     from floatmoor.report.figures import FigureDataError
     from floatmoor.report.runs import ReportInputError, load_run, run_labels
@@ -130,15 +135,19 @@ def report_command(args: argparse.Namespace) -> int:
         start = parse_start(getattr(args, "start", None))
         diameters = parse_nominal_diameters(getattr(args, "nominal_diameter", []))
         check_output_folder(args.output)
+        check_owned_folder(args.output, "-o/--output", "report")
         reference = _reference(args)
         runs = [load_run(path, start=start) for path in args.runs]
         for run, label in zip(runs, run_labels(runs)):
             run.label = label
-        with output_lock(Path(args.output).resolve()):
+        with output_lock(Path(args.output).resolve()), OwnedFolder(args.output, "report"):
             files = write_report(runs, args.output, reference=reference,
                                  nominal_diameters=diameters, html=getattr(args, "html", False))
     except (ReportInputError, FigureDataError, CaseError) as err:
         return _bad_input(err)
+    except OutputWriteError as err:
+        print(f"floatmoor: report failed: {err}; nothing written", file=sys.stderr)
+        return EXIT_FAILED
     print(f"report of {len(runs)} run(s) in {files.folder}: {files.summary.name}, "
           f"{len(files.figures)} figures")
     return EXIT_OK
@@ -147,7 +156,8 @@ def report_command(args: argparse.Namespace) -> int:
 def compare_command(args: argparse.Namespace) -> int:
     """``floatmoor compare CASE --models ... -o DIR``; returns the exit status."""
     from floatmoor.hydro.database import HydroDatabaseError
-    from floatmoor.io.output_files import output_lock
+    from floatmoor.io.output_files import OutputWriteError, output_lock
+    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
     from floatmoor.report.build import check_output_folder
     from floatmoor.report.compare import compare_models, parse_models
     from floatmoor.report.figures import FigureDataError
@@ -170,7 +180,9 @@ def compare_command(args: argparse.Namespace) -> int:
         diameters = parse_nominal_diameters(getattr(args, "nominal_diameter", []))
         reference = _reference(args)
         check_output_folder(args.output)
-        with output_lock(Path(args.output).resolve()):
+        check_owned_folder(args.output, "-o/--output", "compare")
+        with output_lock(Path(args.output).resolve()), \
+                OwnedFolder(args.output, "compare", keep_on=(SolverError,)):
             files = compare_models(args.case, models, args.output,
                                    overrides=getattr(args, "overrides", []), start=start,
                                    reference=reference, nominal_diameters=diameters,
@@ -181,6 +193,10 @@ def compare_command(args: argparse.Namespace) -> int:
         return _bad_input(err)
     except SolverError as err:
         print(f"floatmoor: run failed: {err}", file=sys.stderr)
+        return EXIT_FAILED
+    except OutputWriteError as err:
+        print(f"floatmoor: compare failed: {err}; the files it wrote were removed",
+              file=sys.stderr)
         return EXIT_FAILED
     except KeyboardInterrupt:
         print(f"floatmoor: interrupted; finished model runs are in {args.output} (re-run to "

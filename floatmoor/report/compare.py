@@ -17,14 +17,16 @@ from typing import Callable, Mapping, Sequence
 from floatmoor.campaign.design import Axis, CampaignDesign
 from floatmoor.campaign.runner import run_campaign, validate_campaign
 from floatmoor.case.load import load_case
-from floatmoor.case.schema import AVAILABLE_LINE_MODELS
+from floatmoor.case.schema import AVAILABLE_LINE_MODELS, Case
 from floatmoor.errors import SolverError
+from floatmoor.io.run_case import default_start
 from floatmoor.report.build import ReportFiles, check_output_folder, write_report
 from floatmoor.report.reference import ReferenceValues
 from floatmoor.report.runs import ReportInputError, load_run
 
 __all__ = ["parse_models", "model_overrides", "model_design", "compare_models",
-           "RUNS_FOLDER", "CAMPAIGN_FILE", "MODEL_KEY"]
+           "check_report_window", "excitation_period", "RUNS_FOLDER", "CAMPAIGN_FILE",
+           "MODEL_KEY", "REPORT_MIN_PERIODS"]
 
 #: Subfolder of the output holding the result file of each model.
 RUNS_FOLDER = "runs"
@@ -60,6 +62,44 @@ MODEL_KEY = "lines.*.model"
 def model_overrides(model: str) -> list[str]:
     """The override giving every line ``model``: ``lines.*.model="MODEL"``."""
     return [f'{MODEL_KEY}="{model}"']
+
+
+#: Excitation periods the analysis window of a compared run must span: the report plots the
+#: exceedance of the local tension maxima and minima, and a window of two periods holds a
+#: whole cycle, so at least one of each, of a response periodic with the excitation.
+REPORT_MIN_PERIODS = 2.0
+
+
+def excitation_period(case: Case) -> float | None:
+    """The period of a case's excitation [s]: its motion's cycle, its regular waves' period or
+    its sea state's peak period; None without one (a table, free decay, still water)."""
+    if case.motion is not None:
+        return case.motion.cycle_period
+    settings = getattr(case.waves, "settings", None)
+    period = getattr(settings, "period", None) or getattr(settings, "tp", None)
+    return float(period) if period else None
+
+
+def check_report_window(case: Case, start: float | None) -> None:
+    """Check, before any run, that the runs of ``case`` will be long enough for their report:
+    two output samples after the window start (as :func:`floatmoor.report.runs.prepare_run`
+    asks) and :data:`REPORT_MIN_PERIODS` excitation periods.
+
+    Raises
+    ------
+    ReportInputError
+        Naming the duration needed and the one the case gives.
+    """
+    sim = case.simulation
+    begin, source = (start, "--start") if start is not None else default_start(case)
+    period = excitation_period(case)
+    need = max(begin + sim.output_interval,
+               begin + REPORT_MIN_PERIODS * period if period else 0.0)
+    if sim.duration < need:
+        why = (f"{REPORT_MIN_PERIODS:g} periods of {period:g} s" if period else
+               "two output samples") + f" after the window start {begin:g} s ({source})"
+        raise ReportInputError(f"{case.source}: simulation.duration", f"runs of at least "
+                               f"{need:g} s for the report ({why})", f"{sim.duration:g} s")
 
 
 def model_design(models: Sequence[str]) -> CampaignDesign:
@@ -107,7 +147,8 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
         For a floater case whose database is missing, damaged, stale or failing a check
         (nothing run or written).
     ReportInputError
-        For bad models, workers or output folder (nothing run or written).
+        For bad models, workers or output folder, or runs too short for the report
+        (:func:`check_report_window`; nothing run or written).
     SolverError
         When a run fails, naming the model and the failure (the other models still run;
         the partial result is in ``output/runs``; no report is written).
@@ -121,6 +162,7 @@ def compare_models(case_path: str | Path, models: Sequence[str], output: str | P
     if start is not None and start >= base.simulation.duration:
         raise ReportInputError("--start", f"a time before the end of the runs "
                                f"({base.simulation.duration:g} s)", f"{start:g} s")
+    check_report_window(base, start)
     design = model_design(models)
     # every run's case (and a floater's database) is valid before anything is written
     validate_campaign(case_path, design, overrides)

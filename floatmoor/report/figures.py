@@ -25,6 +25,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from floatmoor.io.output_files import write_errors
 from floatmoor.io.dataset import DOFS
 from floatmoor.post.extremes import exceedance_probability
 from floatmoor.post.rainflow import rainflow_cycles
@@ -170,8 +171,11 @@ def _panels(n: int, *, height: float = 2.4, width: float = 9.0):
 def _save(plt, fig, path: Path, title: str) -> Path:
     fig.suptitle(title, fontsize=11)
     _fit_legends(fig)
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
+    try:
+        with write_errors(path):  # disk full: the image library's error, one line
+            fig.savefig(path, dpi=DPI)
+    finally:
+        plt.close(fig)
     return path
 
 

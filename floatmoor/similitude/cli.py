@@ -1,7 +1,8 @@
 """``floatmoor scale CASE --length-scale LAMBDA ... -o NEW.toml``: the scaled case file.
 
 Bad arguments and cases the scaling cannot rewrite are CaseErrors (one message, status 2,
-nothing written).
+nothing written). ``-o`` replaces only a case file
+(:data:`floatmoor.io.output_kinds.CASE_FILE`; docs/guide/safeguards.md#output-files).
 """
 
 from __future__ import annotations
@@ -14,13 +15,11 @@ import sys
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
 from floatmoor.io.output_files import atomic_target, check_output_file
+from floatmoor.io.output_kinds import CASE_FILE
 from floatmoor.similitude.case_scaling import scale_case_file
 from floatmoor.similitude.laws import SAME_FACTOR, ScaleLaw, froude_volume_coefficient_ratio
 
 __all__ = ["scale_command", "law_from_arguments"]
-
-#: What ``-o`` may replace: a text file (any content; the replacement is announced).
-_TEXT_FILE = ("case file", (b"",))
 
 
 def _positive(text: str | None, option: str, unit: str = "-") -> float | None:
@@ -64,7 +63,7 @@ def scale_command(args: argparse.Namespace) -> int:
     """Run ``floatmoor scale``; CaseError propagates (status 2)."""
     case = load_case(args.case)
     law = law_from_arguments(args, case.environment.water_density)
-    output = check_output_file(args.output, "-o/--output", kind=_TEXT_FILE,
+    output = check_output_file(args.output, "-o/--output", kind=CASE_FILE,
                                protected={"case file": args.case})
     scaled = scale_case_file(args.case, law, output=output.path,
                              keep_coefficients=args.keep_coefficients,

@@ -122,20 +122,24 @@ def _meta(identity: RunIdentity) -> dict[str, NDArray]:
 def write_checkpoint(path: str | os.PathLike[str], arrays: Mapping[str, NDArray],
                      identity: RunIdentity) -> None:
     """Write ``arrays`` (numeric, no objects) with the metadata of ``identity`` to ``path``
-    atomically: through ``PATH.tmp`` beside it, removed if the write fails."""
+    atomically (:func:`floatmoor.io.output_files.atomic_target`: a new temporary file of a
+    name no one else chose, so a link planted beside the output is never followed; removed
+    if the write fails).
+
+    Raises
+    ------
+    OutputWriteError
+        When the write fails or ``path`` is not a regular file (a symbolic link).
+    """
+    from floatmoor.io.output_files import atomic_target
+
     path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
     members = {**_meta(identity), **{k: np.asarray(v) for k, v in arrays.items()}}
     objects = [k for k, v in members.items() if v.dtype.hasobject]
     if objects:  # numpy.savez would pickle them (its allow_pickle needs numpy >= 2.1)
         raise ValueError(f"checkpoint arrays must be numeric or text, not objects: {objects}")
-    try:
-        with open(tmp, "wb") as fh:
-            np.savez(fh, **members)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    with atomic_target(path) as tmp, open(tmp, "wb") as fh:
+        np.savez(fh, **members)
 
 
 def _open_zip(path: Path) -> zipfile.ZipFile:

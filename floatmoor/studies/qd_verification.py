@@ -36,7 +36,7 @@ import numpy as np
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import FloatmoorError
-from floatmoor.io.output_files import atomic_target
+from floatmoor.io.output_files import atomic_target, write_errors
 from floatmoor.simulation.forced import run_forced_motion
 
 #: Folder of the six case files (s1_d1.toml ... s3_d2.toml).
@@ -296,10 +296,14 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
         with atomic_target(out / "qd_verification.nc") as tmp:
             ds.to_netcdf(tmp)
         text = summary(ds)
-        (out / "summary.txt").write_text(text + "\n")
-        plot_cycles(ds, out / "fig6_cycles_A4.png")
-        plot_errors(ds, out / "fig7_rmse.png", ("rmse_qd", "rmse_s"))
-        plot_errors(ds, out / "fig8_peaks.png", ("e_tmin", "e_tmax"))
+        with write_errors(out / "summary.txt"):
+            (out / "summary.txt").write_text(text + "\n")
+        figures = {"fig6_cycles_A4.png": lambda p: plot_cycles(ds, p),
+                   "fig7_rmse.png": lambda p: plot_errors(ds, p, ("rmse_qd", "rmse_s")),
+                   "fig8_peaks.png": lambda p: plot_errors(ds, p, ("e_tmin", "e_tmax"))}
+        for name, plot in figures.items():
+            with write_errors(out / name):  # disk full: one line naming the file
+                plot(out / name)
     return ds
 
 

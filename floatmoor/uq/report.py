@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor._version import __version__
+from floatmoor.io.output_files import write_errors
 from floatmoor.report.figures import DPI, check_series
 from floatmoor.report.markdown import Block, Figure, Heading, Paragraph, render_html, \
     render_markdown
@@ -59,8 +60,11 @@ def _save(fig, path: Path, title: str) -> Path:
 
     plt = _pyplot()
     fig.suptitle("\n".join(textwrap.wrap(title, TITLE_WIDTH)), fontsize=10)
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
+    try:
+        with write_errors(path):
+            fig.savefig(path, dpi=DPI)
+    finally:
+        plt.close(fig)
     return path
 
 
@@ -278,6 +282,8 @@ def write_study_report(result: StudyResult, folder: str | Path) -> Path:
             q, keys, weighted_sobol(s.sobol_first, variance),
             weighted_sobol(s.sobol_total, variance), folder / f"{q.name}_sobol.png",
             "variance-weighted Sobol indices over the window"))
-    (folder / SUMMARY_NAME).write_text(render_markdown(blocks), encoding="utf-8")
-    (folder / "summary.html").write_text(render_html(blocks, study.title), encoding="utf-8")
+    with write_errors(folder / SUMMARY_NAME):
+        (folder / SUMMARY_NAME).write_text(render_markdown(blocks), encoding="utf-8")
+    with write_errors(folder / "summary.html"):
+        (folder / "summary.html").write_text(render_html(blocks, study.title), encoding="utf-8")
     return folder / SUMMARY_NAME

@@ -4,6 +4,7 @@ written)."""
 
 from __future__ import annotations
 
+import shutil
 import tomllib
 from pathlib import Path
 
@@ -11,6 +12,7 @@ import pytest
 
 from floatmoor.cli import main
 from floatmoor.io.moordyn.parser import read_deck
+from tests.conftest import LINDAHL_CASE
 
 DECKS = Path(__file__).parents[1] / "data" / "moordyn"
 
@@ -33,6 +35,11 @@ def test_import_refuses_an_existing_output_without_force(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--force replaces an existing one" in err
     assert out.read_text() == "keep me\n"
+    # --force replaces only a case file, never another file
+    assert main([*args, "--force"]) == 2
+    assert "which is not a TOML file" in capsys.readouterr().err
+    assert out.read_text() == "keep me\n"
+    out.write_text(LINDAHL_CASE.read_text())
     assert main([*args, "--force"]) == 0
     assert "[[lines]]" in out.read_text()
 
@@ -79,6 +86,11 @@ def test_export_refuses_an_existing_output_without_force(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--force replaces an existing one" in err
     assert out.read_text() == "keep me\n"
+    # --force replaces only a MoorDyn input file, never another file
+    assert main([*args, "--force"]) == 2
+    assert "not a MoorDyn input file" in capsys.readouterr().err
+    assert out.read_text() == "keep me\n"
+    shutil.copy(DECKS / "wd0050_chain.txt", out)
     assert main([*args, "--force"]) == 0
     assert "MoorDyn Input File" in out.read_text()
 

@@ -93,7 +93,7 @@ def test_links_devices_fifos_folders_and_other_files_are_not_replaced(case, tmp_
     notes = tmp_path / "notes.txt"
     notes.write_text("my notes\n")
     cases = {link: "a symbolic link", fifo: "a FIFO", device: "a character device",
-             notes: "which is not a netCDF file", tmp_path: "a file name (not a folder)"}
+             notes: "which is not a run result file", tmp_path: "a file name (not a folder)"}
     for target, found in cases.items():
         assert main(["run", str(case), *SHORT, "-o", str(target), "--quiet"]) == 2, target
         err = capsys.readouterr().err

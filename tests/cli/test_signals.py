@@ -138,12 +138,13 @@ def test_interrupt_before_recording_says_nothing_written(tmp_path, capsys, monke
 
     monkeypatch.setattr(assembly, "build_line_models", interrupted_build)
     out = tmp_path / "none.nc"
-    if existing:  # an earlier result (floatmoor replaces netCDF files only)
+    if existing:  # an earlier result (run -o replaces run results only)
         import xarray as xr
 
         from floatmoor.io.netcdf import write_dataset
 
-        write_dataset(xr.Dataset({"x": ("a", [1.0])}), out)
+        write_dataset(xr.Dataset({"x": ("a", [1.0])}, attrs={
+            "floatmoor_version": "0", "case_toml": "", "status": "complete"}), out)
         earlier = out.read_bytes()
     assert main(["run", str(LINDAHL_CASE), "-o", str(out), *QS, "--quiet"]) == 143
     err = capsys.readouterr().err

@@ -210,8 +210,10 @@ def test_vtk_command_writes_the_chosen_window(buoy_run, tmp_path):
     assert main(["vtk", str(buoy_run["nc"]), "-o", str(tmp_path / "v"), "--start", "1",
                  "--every", "2", "--quiet"]) == 0
     samples = [10, 12, 14, 16, 18, 20]
+    from floatmoor.io.output_folders import MANIFEST_NAME
+
     assert sorted(p.name for p in (tmp_path / "v").iterdir()) == sorted(
-        ["lines.pvd"] + [f"lines_{k:06d}.vtu" for k in samples]
+        ["lines.pvd", MANIFEST_NAME] + [f"lines_{k:06d}.vtu" for k in samples]
         + [f"body_{k:06d}.vtu" for k in samples])
 
 

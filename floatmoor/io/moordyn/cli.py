@@ -2,22 +2,27 @@
 DECK.dat`` (called from :mod:`floatmoor.cli`).
 
 Both print what they could not map or represent and write it into the file's comments. An
-existing output file is refused unless ``--force`` is given; bad input (a malformed deck or
-case, a bad output path) is a CaseError: one message, status 2, nothing written.
+existing output file is refused unless ``--force`` is given, and even then only a file of
+the kind written is replaced (a case file, a MoorDyn input file); the output goes through the
+checks of every command (docs/guide/safeguards.md#output-files). Bad input (a malformed deck
+or case, a bad output path, a read-only folder) is a CaseError: one message, status 2,
+nothing written; a write that fails (disk full) is status 1.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
 from floatmoor.errors import CaseError
-from floatmoor.io.output_files import atomic_target
+from floatmoor.io.output_files import atomic_target, check_output_file, output_lock
+from floatmoor.io.output_kinds import CASE_FILE, MOORDYN_DECK
 
 __all__ = ["add_moordyn_parsers", "moordyn_command"]
 
-EXIT_OK = 0
+EXIT_OK, EXIT_FAILED = 0, 1
 
 
 def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -45,32 +50,41 @@ def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignor
         p.set_defaults(moordyn_handler=moordyn_command)
 
 
-def _check_output(text: str, force: bool, source: str) -> Path:
+def _check_output(text: str, force: bool, source: str, kind: tuple) -> Path:
+    """The checked output: the checks of every command's output (writable folder with room,
+    not the input file, not a link or device, only a file of its own kind replaced:
+    :func:`floatmoor.io.output_files.check_output_file`), and a new file unless ``--force``."""
     path = Path(text)
-    if not text or text.endswith("/") or path.is_dir():
-        raise CaseError("-o/--output", "", "a file name (not a folder)", f"'{text}'")
-    if not path.parent.is_dir():
-        raise CaseError("-o/--output", "", "a file in an existing folder", f"'{text}'")
-    if path.exists() and path.resolve() == Path(source).resolve():
-        raise CaseError("-o/--output", "", "a file other than the input file", f"'{text}'")
-    if (path.exists() or path.is_symlink()) and not force:
+    if os.path.lexists(path) and not path.is_dir() and not force:
         raise CaseError("-o/--output", "", "a new file (--force replaces an existing one)",
                         f"'{text}', which exists")
-    return path
+    return check_output_file(text, "-o/--output", kind=kind,
+                             protected={"input file": source}).path
 
 
 def _write(path: Path, text: str) -> None:
-    with atomic_target(path) as tmp:
+    with output_lock(path), atomic_target(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
 
 
 def moordyn_command(args: argparse.Namespace) -> int:
     """Run ``import moordyn`` or ``export moordyn``; CaseError propagates (status 2)."""
+    from floatmoor.io.output_files import OutputWriteError
+
+    try:
+        return _convert(args)
+    except OutputWriteError as err:
+        print(f"floatmoor: {args.command} moordyn failed: {err}; nothing written",
+              file=sys.stderr)
+        return EXIT_FAILED
+
+
+def _convert(args: argparse.Namespace) -> int:
     if args.command == "import":
         from floatmoor.io.moordyn.importer import import_deck
         from floatmoor.io.moordyn.parser import read_deck
 
-        output = _check_output(args.output, args.force, args.deck)
+        output = _check_output(args.output, args.force, args.deck, CASE_FILE)
         if args.water_depth is not None and not args.water_depth > 0.0:
             raise CaseError("--water-depth", "", "a number > 0 [m]", repr(args.water_depth))
         result = import_deck(read_deck(args.deck), water_depth=args.water_depth)
@@ -82,7 +96,7 @@ def moordyn_command(args: argparse.Namespace) -> int:
     from floatmoor.io.moordyn.exporter import export_case
     from floatmoor.io.moordyn.writer import deck_text
 
-    output = _check_output(args.output, args.force, args.case)
+    output = _check_output(args.output, args.force, args.case, MOORDYN_DECK)
     case = load_case(args.case, args.overrides)
     result = export_case(case)
     _write(output, deck_text(result.deck, result.notes))
