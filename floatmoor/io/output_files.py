@@ -35,7 +35,8 @@ from floatmoor.errors import CaseError, FloatmoorError
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
            "output_lock",
-           "atomic_target", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
+           "atomic_target", "sync_folder", "file_mode_for", "file_state", "written_since",
+           "SPACE_MARGIN", "NETCDF", "IMAGE"]
 
 #: Free space asked for beyond the estimated output: the estimate leaves out the file format's
 #: headers and attributes (the case text, a few kB), and a nearly full disk fails for other
@@ -250,6 +251,28 @@ def atomic_target(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterato
                 os.unlink(tmp)
             except OSError:
                 pass
+
+
+def sync_folder(folder: str | os.PathLike[str]) -> None:
+    """Flush ``folder``'s entries to disk (``fsync`` of the folder), so that a file created or
+    renamed in it survives a power cut; a no-op where folders cannot be opened (Windows).
+
+    Raises
+    ------
+    OSError
+        When the folder cannot be flushed.
+    """
+    flags = os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        fd = os.open(folder, flags)
+    except PermissionError:
+        if os.name == "nt":
+            return
+        raise
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
 
 
 def file_mode_for(path: str | os.PathLike[str]) -> int:
