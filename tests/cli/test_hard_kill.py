@@ -246,3 +246,12 @@ def test_stale_temporaries_of_dead_processes_are_removed(tmp_path) -> None:
         p.write_bytes(b"partial")
     assert ck.remove_stale_temporaries(path) == [stale]
     assert not stale.exists() and live.exists() and other.exists()
+
+
+def test_the_help_gives_the_default_interval(capsys) -> None:
+    """``run --help`` states the interval the run uses when none is given (the CLI does not
+    import the simulation to say it)."""
+    with pytest.raises(SystemExit):
+        main(["run", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert f"default {cr.CHECKPOINT_INTERVAL_S:g}, 0: every chunk" in help_text
