@@ -253,24 +253,35 @@ def atomic_target(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterato
                 pass
 
 
+#: Errors of opening or flushing a folder that mean it cannot be flushed here (a folder
+#: that cannot be opened for reading, Windows, file systems without a folder fsync), not that
+#: a write failed: the flush is then skipped.
+_NO_FOLDER_SYNC = {errno.EACCES, errno.EPERM, errno.EINVAL, errno.EBADF, errno.EISDIR,
+                   errno.ENOTSUP, getattr(errno, "EOPNOTSUPP", errno.ENOTSUP)}
+
+
 def sync_folder(folder: str | os.PathLike[str]) -> None:
     """Flush ``folder``'s entries to disk (``fsync`` of the folder), so that a file created or
-    renamed in it survives a power cut; a no-op where folders cannot be opened (Windows).
+    renamed in it survives a power cut; skipped where the folder cannot be flushed (not
+    readable, Windows, a file system without it).
 
     Raises
     ------
     OSError
-        When the folder cannot be flushed.
+        When the flush fails (an I/O error).
     """
     flags = os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
         fd = os.open(folder, flags)
-    except PermissionError:
-        if os.name == "nt":
+    except OSError as err:
+        if err.errno in _NO_FOLDER_SYNC:
             return
         raise
     try:
         os.fsync(fd)
+    except OSError as err:
+        if err.errno not in _NO_FOLDER_SYNC:
+            raise
     finally:
         os.close(fd)
 

@@ -182,7 +182,8 @@ def remove_stale_temporaries(path: str | os.PathLike[str]) -> list[Path]:
 
 
 def _running(pid: int) -> bool:
-    """Whether process ``pid`` exists (this one, or another, whoever owns it)."""
+    """Whether process ``pid`` may be writing a checkpoint: another process that exists,
+    whoever owns it (this one writes none while it cleans up)."""
     if pid == os.getpid():
         return False  # this process has no write in progress when it cleans up
     try:

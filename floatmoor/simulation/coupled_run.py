@@ -181,9 +181,10 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     With ``output``, a checkpoint (``OUTPUT.checkpoint``, the whole state of body and lines
     at the end of a chunk of steps) is written at the start, then at the end of the first
     chunk that ends ``checkpoint_interval`` seconds of wall time after the last one (default
-    :data:`CHECKPOINT_INTERVAL_S`; 0: every chunk), each after the samples it covers are in the output file and on disk, so that a
-    hard kill (SIGKILL, out of memory, power cut) loses at most that interval and a chunk;
-    an interrupted run writes one of the end of its last complete chunk. ``resume=True``
+    :data:`CHECKPOINT_INTERVAL_S`; 0: every chunk), each after the samples it covers are in
+    the output file and on disk, so that a hard kill (SIGKILL, out of memory, power cut)
+    loses at most that interval and a chunk; an interrupted run writes one of the end of its
+    last complete chunk. ``resume=True``
     continues from the checkpoint and gives the same results as an uninterrupted run (the
     checkpoint holds plain arrays, checked against this run before use:
     :mod:`floatmoor.simulation.checkpoint`), appending to the same output file (which must
@@ -203,6 +204,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     HydroDatabaseError
         When the case's database is missing, damaged, stale or fails a check the case does
         not accept (:func:`floatmoor.hydro.database.load_for_case`).
+    ValueError
+        For a ``checkpoint_interval`` that is not a number >= 0 s; nothing is run.
     CheckpointError
         With ``resume``: no checkpoint, or one that is damaged, truncated, foreign or of
         another run (the message names what differs), or an output file that is missing,

@@ -255,3 +255,24 @@ def test_the_help_gives_the_default_interval(capsys) -> None:
         main(["run", "--help"])
     help_text = " ".join(capsys.readouterr().out.split())
     assert f"default {cr.CHECKPOINT_INTERVAL_S:g}, 0: every chunk" in help_text
+
+
+def test_a_folder_that_cannot_be_flushed_is_skipped_but_an_io_error_is_not(tmp_path,
+                                                                            monkeypatch
+                                                                            ) -> None:
+    """File systems without a folder fsync (EINVAL) still run; a failing disk (EIO) is an
+    error, as for the files themselves."""
+    import errno
+
+    from floatmoor.io.output_files import sync_folder
+
+    code = {"n": errno.EINVAL}
+
+    def fsync(fd: int) -> None:
+        raise OSError(code["n"], os.strerror(code["n"]))
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    sync_folder(tmp_path)
+    code["n"] = errno.EIO
+    with pytest.raises(OSError):
+        sync_folder(tmp_path)
