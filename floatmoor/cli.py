@@ -21,7 +21,9 @@ exits with status 2, without a traceback and without writing output. A run that 
 valid line state) or is interrupted writes its partial results and exits with 1 or 130. A
 sweep or study with any failed run writes its results, prints a one-line summary naming the
 failed runs (and the first messages) and exits with 1; 0 only when every run completed. An
-interrupted floater run also leaves a checkpoint and says the command that resumes it. SIGTERM
+interrupted floater run also leaves a checkpoint and says the command that resumes it (a
+floater run checkpoints every ``--checkpoint-every`` seconds too, so a killed one resumes:
+docs/guide/running.md#checkpoints). SIGTERM
 is handled as Ctrl-C but exits with 143; a second Ctrl-C (or SIGTERM) lets the partial writes
 finish, a third stops at once (:mod:`floatmoor.signals`); the message says what was written.
 The first run after an install says that it is compiling the numerical kernels.
@@ -101,6 +103,10 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--quiet", action="store_true", help="no progress reports")
     run.add_argument("--resume", action="store_true",
                      help="floater cases: continue an interrupted run from OUT.nc.checkpoint")
+    run.add_argument("--checkpoint-every", metavar="SECONDS", default=None,
+                     help="floater cases: seconds of wall time between checkpoints "
+                     "(OUT.nc.checkpoint, written at the end of a chunk of steps; default 10, "
+                     "0: every chunk); a killed run resumes from the last one")
     sweep = sub.add_parser("sweep", help="run a case over a grid (or zip) of key values")
     add_case(sweep)
     sweep.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...",
@@ -573,6 +579,7 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     if args.resume and case.floater is None:
         raise CaseError("--resume", "", "a case with a [floater] (forced-motion runs are not "
                         "checkpointed)", "--resume")
+    every = _checkpoint_every(args, case)
     progress = None if args.quiet else ProgressReporter(case.simulation.duration)
     compile_time = [0.0]  # [s] of the run's wall time spent compiling kernels
 
@@ -593,7 +600,7 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
                 from floatmoor.simulation.coupled_run import run_coupled
 
                 result = run_coupled(case, output=output, progress=progress,
-                                     resume=args.resume)
+                                     resume=args.resume, checkpoint_interval=every)
             else:
                 result = run_forced_motion(case, output=output, progress=progress)
     except SolverError as err:
@@ -621,6 +628,31 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
               f"{output}" + (f", the plot {args.plot} may be missing" if args.plot else ""),
               file=sys.stderr)
         return exit_status(stop)
+
+
+def _checkpoint_every(args: argparse.Namespace, case: Case) -> float | None:
+    """``--checkpoint-every`` in seconds (None when not given).
+
+    Raises
+    ------
+    CaseError
+        For a case without a floater (not checkpointed) or a value that is not a finite
+        number >= 0.
+    """
+    text = args.checkpoint_every
+    if text is None:
+        return None
+    if case.floater is None:
+        raise CaseError("--checkpoint-every", "", "a case with a [floater] (forced-motion runs "
+                        "are not checkpointed)", f"'{text}'")
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not 0.0 <= value < float("inf"):
+        raise CaseError("--checkpoint-every", "", "seconds of wall time, a number >= 0",
+                        f"'{text}'")
+    return value
 
 
 def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path,
@@ -688,7 +720,7 @@ def _resume_hint(args: argparse.Namespace, case: Case, output: Path) -> str:
     command = ["floatmoor", "run", args.case, "-o", str(output), "--resume"]
     for text in args.overrides:
         command += ["--set", text]
-    for option in ("plot", "plot_times", "vtk"):
+    for option in ("plot", "plot_times", "vtk", "checkpoint_every"):
         if getattr(args, option) is not None:
             command += [f"--{option.replace('_', '-')}", getattr(args, option)]
     return f"\n  checkpoint written to {ckpt}; continue with: {shlex.join(command)}"

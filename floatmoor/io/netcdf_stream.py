@@ -47,7 +47,7 @@ from floatmoor.io.netcdf3_format import (
     DTYPES, NC_CHAR, NUMRECS_OFFSET, Attribute, Header, NetCDF3Error, Variable, parse_header,
     read_header,
 )
-from floatmoor.io.output_files import OutputWriteError, atomic_target
+from floatmoor.io.output_files import OutputWriteError, atomic_target, sync_folder
 
 __all__ = ["NetCDF3Stream", "NetCDF3Error", "COPY_BLOCK_BYTES"]
 
@@ -272,6 +272,22 @@ class NetCDF3Stream:
         except OSError as err:
             raise self._fail(err) from err
         header.numrecs = numrecs
+
+    def sync(self) -> None:
+        """Flush the file (its records, count and attributes) and its folder's entry to
+        disk: after it, a power cut leaves the file as it is now (what a checkpoint that
+        counts its records needs: ``floatmoor.simulation.checkpoint``).
+
+        Raises
+        ------
+        OutputWriteError
+            When the flush fails.
+        """
+        try:
+            os.fsync(self._fd)
+            sync_folder(self.path.parent)
+        except OSError as err:
+            raise self._fail(err) from err
 
     def write_along(self, name: str, dim: str, start: int, values: np.ndarray) -> None:
         """Overwrite fixed-size variable ``name`` at indices ``start ...`` of its dimension

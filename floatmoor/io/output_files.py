@@ -36,8 +36,8 @@ from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError, FloatmoorError
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
-           "output_lock", "open_lock_file",
-           "atomic_target", "write_errors", "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
+           "output_lock", "open_lock_file", "atomic_target", "write_errors", "sync_folder",
+           "file_mode_for", "file_state", "written_since", "SPACE_MARGIN", "NETCDF", "IMAGE"]
 
 #: Free space asked for beyond the estimated output: the estimate leaves out the file format's
 #: headers and attributes (the case text, a few kB), and a nearly full disk fails for other
@@ -277,6 +277,39 @@ def write_errors(path: str | os.PathLike[str]) -> Iterator[None]:
         raise
     except OSError as err:
         raise OutputWriteError(f"cannot write {path}: {err.strerror or err}", path) from err
+
+
+#: Errors of opening or flushing a folder that mean it cannot be flushed here (a folder
+#: that cannot be opened for reading, Windows, file systems without a folder fsync), not that
+#: a write failed: the flush is then skipped.
+_NO_FOLDER_SYNC = {errno.EACCES, errno.EPERM, errno.EINVAL, errno.EBADF, errno.EISDIR,
+                   errno.ENOTSUP, getattr(errno, "EOPNOTSUPP", errno.ENOTSUP)}
+
+
+def sync_folder(folder: str | os.PathLike[str]) -> None:
+    """Flush ``folder``'s entries to disk (``fsync`` of the folder), so that a file created or
+    renamed in it survives a power cut; skipped where the folder cannot be flushed (not
+    readable, Windows, a file system without it).
+
+    Raises
+    ------
+    OSError
+        When the flush fails (an I/O error).
+    """
+    flags = os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        fd = os.open(folder, flags)
+    except OSError as err:
+        if err.errno in _NO_FOLDER_SYNC:
+            return
+        raise
+    try:
+        os.fsync(fd)
+    except OSError as err:
+        if err.errno not in _NO_FOLDER_SYNC:
+            raise
+    finally:
+        os.close(fd)
 
 
 def file_mode_for(path: str | os.PathLike[str]) -> int:

@@ -21,6 +21,7 @@ crafted header cannot make it allocate), and the finiteness of every float.
 
 from __future__ import annotations
 
+import glob
 import hashlib
 import os
 import stat
@@ -35,9 +36,11 @@ from numpy.typing import NDArray
 from floatmoor._version import __version__
 from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError
+from floatmoor.io.output_files import sync_folder
 
 __all__ = ["CheckpointError", "RunIdentity", "write_checkpoint", "check_checkpoint",
-           "read_checkpoint", "FORMAT", "VERSION"]
+           "read_checkpoint", "temporary_path", "remove_stale_temporaries", "FORMAT",
+           "VERSION"]
 
 #: The format name stored in every checkpoint (``meta/format``).
 FORMAT = "floatmoor coupled-run checkpoint"
@@ -122,24 +125,74 @@ def _meta(identity: RunIdentity) -> dict[str, NDArray]:
 def write_checkpoint(path: str | os.PathLike[str], arrays: Mapping[str, NDArray],
                      identity: RunIdentity) -> None:
     """Write ``arrays`` (numeric, no objects) with the metadata of ``identity`` to ``path``
-    atomically (:func:`floatmoor.io.output_files.atomic_target`: a new temporary file of a
-    name no one else chose, so a link planted beside the output is never followed; removed
-    if the write fails).
-
-    Raises
-    ------
-    OutputWriteError
-        When the write fails or ``path`` is not a regular file (a symbolic link).
-    """
-    from floatmoor.io.output_files import atomic_target
-
+    atomically and durably: into a new temporary file beside it (``.NAME.PID.tmp``, created
+    with ``O_EXCL | O_NOFOLLOW``, so a file or link already there is never written through),
+    flushed to disk, renamed over ``path``, then the folder flushed, so that a process killed
+    or a machine losing power at any moment leaves the previous checkpoint or this one whole.
+    The temporary file is removed if the write fails."""
     path = Path(path)
     members = {**_meta(identity), **{k: np.asarray(v) for k, v in arrays.items()}}
     objects = [k for k, v in members.items() if v.dtype.hasobject]
     if objects:  # numpy.savez would pickle them (its allow_pickle needs numpy >= 2.1)
         raise ValueError(f"checkpoint arrays must be numeric or text, not objects: {objects}")
-    with atomic_target(path) as tmp, open(tmp, "wb") as fh:
-        np.savez(fh, **members)
+    tmp = temporary_path(path)
+    tmp.unlink(missing_ok=True)  # left by a killed process of this id (which is gone)
+    fd = os.open(tmp, _CREATE_FLAGS, 0o666)
+    try:
+        with open(fd, "wb") as fh:
+            np.savez(fh, **members)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    sync_folder(path.parent)
+
+
+#: Flags of a checkpoint's temporary file: a new file (never one already there, nor the
+#: target of a symbolic link at its name).
+_CREATE_FLAGS = (os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+                 | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0))
+
+
+def temporary_path(path: str | os.PathLike[str], pid: int | None = None) -> Path:
+    """The temporary file process ``pid`` (default: this one) writes the checkpoint ``path``
+    through: hidden, beside it."""
+    path = Path(path)
+    return path.with_name(f".{path.name}.{os.getpid() if pid is None else pid}.tmp")
+
+
+def remove_stale_temporaries(path: str | os.PathLike[str]) -> list[Path]:
+    """Remove the temporary files of checkpoint ``path`` left by processes that no longer
+    run (killed while writing it); returns those removed."""
+    path = Path(path)
+    removed = []
+    for tmp in path.parent.glob(f".{glob.escape(path.name)}.*.tmp"):
+        pid = tmp.name[len(path.name) + 2:-len(".tmp")]
+        if not pid.isdigit() or _running(int(pid)):
+            continue
+        try:
+            if stat.S_ISREG(os.lstat(tmp).st_mode):
+                tmp.unlink()
+                removed.append(tmp)
+        except OSError:
+            pass
+    return removed
+
+
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` may be writing a checkpoint: another process that exists,
+    whoever owns it (this one writes none while it cleans up)."""
+    if pid == os.getpid():
+        return False  # this process has no write in progress when it cleans up
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError, OverflowError):
+        return True
+    return True
 
 
 def _open_zip(path: Path) -> zipfile.ZipFile:

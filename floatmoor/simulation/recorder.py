@@ -494,6 +494,12 @@ class Recorder:
                                      "simulated_time_s": self.simulated_time})
         self.written = stop
 
+    def sync(self) -> None:
+        """Flush the output file, as written so far, to disk (see
+        :meth:`floatmoor.io.netcdf_stream.NetCDF3Stream.sync`); nothing before it exists."""
+        if self._stream is not None:
+            self._stream.sync()
+
     def close(self) -> None:
         """Close the output file (it stays valid; a later :meth:`write` reopens it)."""
         if self._stream is not None:
