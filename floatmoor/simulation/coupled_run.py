@@ -26,6 +26,7 @@ from floatmoor.simulation.checkpoint import (
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled import MooredBody
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
+from floatmoor.simulation.line_accuracy import NOT_YET_ESTIMATED, RunProbe, describe
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.signals import deferred_interrupts
 from floatmoor.waves.synthesis import harmonic_sum
@@ -241,9 +242,14 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     sea, centre = system.sea, moored.centre
     n_lines = len(case.lines)
     stride_shapes = shape_stride(case)
+    # the lines whose elements the accuracy chose are checked as the run goes (not resumed:
+    # a resumed run keeps what its file says of them)
+    probe = None if resume else RunProbe.for_run(case.lines, moored.models, case.environment,
+                                                 case.seabed, settings.ramp_duration)
     recorder = Recorder(case, times, output, flush_interval, body=True, equilibrium=x_eq,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
-                        shape_stride=stride_shapes, chunk=CHUNK_STEPS // stride + 1)
+                        shape_stride=stride_shapes, chunk=CHUNK_STEPS // stride + 1,
+                        attrs=None if probe is None else {"line_accuracy": NOT_YET_ESTIMATED})
     series, bseries = recorder.series, recorder.body
     n_steps = (times.size - 1) * stride
     done = 0
@@ -263,6 +269,11 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             recorder.store_group(case, group, sample, index, index + 1)
         bseries["body_displacement"][k] = body.x - x_eq
         bseries["body_velocity"][k] = body.v
+        if probe is not None and not probe.done:
+            probe.sample(float(times[index]), pos)
+            if probe.done:
+                recorder.set_attribute("line_accuracy",
+                                       "\n".join(describe(r) for r in probe.results))
         if recorder.shape_stride and index % recorder.shape_stride == 0:
             for i, (p, t) in enumerate(moored.line_shapes(pos)):
                 recorder.store_shape(i, index // recorder.shape_stride, p, t)
@@ -321,12 +332,16 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
                     last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)
+    if probe is not None and not probe.done:
+        recorder.set_attribute("line_accuracy", "not estimated: the run ended before the wave "
+                               "ramp and three wave periods")
     dataset = recorder.result(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()
     return RunResult(dataset=dataset, status="complete",
                      wall_time_s=_time.perf_counter() - start_wall,
-                     simulated_time_s=recorder.simulated_time)
+                     simulated_time_s=recorder.simulated_time,
+                     line_accuracy=() if probe is None or not probe.done else probe.results)
 
 
 @contextmanager

@@ -27,11 +27,14 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.errors import SolverError
-from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.mooring.dg.line import DynamicLine, DynamicLineState
+from floatmoor.mooring.dg.reference import legendre_vandermonde, lgl_nodes
 from floatmoor.mooring.dg.resolution import MAX_AUTO_ELEMENTS
+from floatmoor.motion import table_state
 
 __all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line",
-           "describe", "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS"]
+           "describe", "refined_state", "estimate_error_from_state", "accuracy_error",
+           "RunProbe", "NOT_YET_ESTIMATED", "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS"]
 
 #: Cycles of the motion run after its ramp in a probe: the first lets the start from rest
 #: pass through the line (its axial and transverse waves cross a chain in well under a
@@ -119,6 +122,81 @@ def _statistics(tension: NDArray[np.float64], cycles: int) -> tuple[float, float
     return float(judged.mean()), float(judged.std()), float(judged.max(axis=1).mean())
 
 
+def _relative_errors(coarse: NDArray[np.float64], fine: NDArray[np.float64], order: int
+                     ) -> tuple[float, float]:
+    """Estimated relative errors (STD, mean cycle maximum) of the coarse probe's tension from
+    the two probes' last :data:`JUDGED_CYCLES` cycles (module docstring)."""
+    coarse_stats = _statistics(coarse, JUDGED_CYCLES)
+    mean, std, maxima = _statistics(fine, JUDGED_CYCLES)
+    richardson = 1.0 - REFINEMENT ** -(order + 1.0)
+    std_error = abs(coarse_stats[1] - std) / max(std, STD_FLOOR * abs(mean), 1e-300)
+    maxima_error = abs(coarse_stats[2] - maxima) / max(abs(maxima), 1e-300)
+    return std_error / richardson, maxima_error / richardson
+
+
+def refined_state(positions: NDArray[np.float64], velocities: NDArray[np.float64],
+                  factor: int = REFINEMENT) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A DG line state (elements, p + 1, 3) on ``factor`` times the elements, the same
+    polynomials: each element's degree-p interpolant evaluated at its children's nodes, which
+    represents it exactly (so a probe at 2K elements starts from the K-element state itself).
+    """
+    elements, nodes, _ = positions.shape
+    p = nodes - 1
+    x, _ = lgl_nodes(p)
+    V, _ = legendre_vandermonde(x, p)
+    # child c covers [-1 + 2c / f, -1 + 2 (c + 1) / f] of its parent
+    children = np.concatenate([-1.0 + (2.0 * c + x + 1.0) / factor for c in range(factor)])
+    W, _ = legendre_vandermonde(children, p)
+    interpolate = W @ np.linalg.inv(V)  # (factor (p + 1), p + 1)
+
+    def split(u: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.einsum("ij,ejk->eik", interpolate, u).reshape(elements * factor, nodes, 3)
+
+    return split(positions), split(velocities)
+
+
+def estimate_error_from_state(line: Line, environment: Environment, seabed: Seabed,
+                              state: DynamicLineState, time: NDArray[np.float64],
+                              path: NDArray[np.float64], velocity: NDArray[np.float64]
+                              ) -> tuple[float, float]:
+    """Estimated relative errors (STD, mean per-cycle maximum) of the fairlead tension of
+    ``line`` at its resolved numerics, from two probes started from its ``state`` (at
+    ``time[0]``): at its elements and at :data:`REFINEMENT` times as many (the state refined
+    exactly, :func:`refined_state`), along the fairlead path (``time`` holding
+    :data:`PROBE_CYCLES` cycles of :data:`SAMPLES_PER_CYCLE` samples after its first). For a
+    path known only as the run goes: a coupled run's fairleads.
+    """
+    settings = replace(line.dynamic, settle=False)
+    tensions = []
+    for factor in (1, REFINEMENT):
+        probe = replace(line, dynamic=replace(settings, elements=settings.elements * factor))
+        model = DynamicLine.from_case(probe, environment, seabed)
+        r, v = ((state.positions, state.velocities) if factor == 1
+                else refined_state(state.positions, state.velocities, factor))
+        model.set_state(DynamicLineState(float(time[0]), r, v, state.fairlead,
+                                         state.fairlead_velocity))
+        n = time.size
+        ff, af, laid, steps = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n), np.zeros(n)
+        model.solve_path(time, path, velocity, ff, af, laid, steps)
+        tensions.append(np.linalg.norm(ff, axis=1))
+    return _relative_errors(tensions[0], tensions[1], settings.order)
+
+
+def accuracy_error(line: str, elements: int, order: int, std_error: float,
+                   maxima_error: float, accuracy: float, refinements: int) -> LineAccuracyError:
+    """The error stopping a run whose line misses its accuracy, with what to set."""
+    error = max(std_error, maxima_error)
+    factor = MARGIN * (error / accuracy) ** (1.0 / (order + 1))
+    advised = max(math.ceil(elements * factor), elements + 1)
+    return LineAccuracyError(
+        f"line '{line}' (dynamic): the fairlead tension's estimated error at {elements} "
+        f"elements of order {order} is {100 * error:.3g} % (STD {100 * std_error:.3g} %, mean "
+        f"cycle maximum {100 * maxima_error:.3g} %), over its accuracy of {100 * accuracy:.3g} "
+        f"%, after {refinements} refinements of the rule's choice; set lines.{line}.dynamic."
+        f"elements (about {advised} for order {order}, by the convergence rate) or a larger "
+        "accuracy")
+
+
 def estimate_error(line: Line, environment: Environment, seabed: Seabed,
                    path_state: PathState, ramp: float) -> tuple[float, float]:
     """Estimated relative errors (STD, mean per-cycle maximum) of the fairlead tension of
@@ -143,15 +221,9 @@ def estimate_error(line: Line, environment: Environment, seabed: Seabed,
     time = np.arange(n + 1) * (period / SAMPLES_PER_CYCLE)
     path, velocity = path_state(time)
     fine = replace(line, dynamic=replace(settings, elements=settings.elements * REFINEMENT))
-    coarse_stats = _statistics(_probe_tension(line, environment, seabed, time, path, velocity),
-                               JUDGED_CYCLES)
-    fine_stats = _statistics(_probe_tension(fine, environment, seabed, time, path, velocity),
-                             JUDGED_CYCLES)
-    richardson = 1.0 - REFINEMENT ** -(settings.order + 1.0)
-    mean, std, maxima = fine_stats
-    std_error = abs(coarse_stats[1] - std) / max(std, STD_FLOOR * abs(mean), 1e-300)
-    maxima_error = abs(coarse_stats[2] - maxima) / max(abs(maxima), 1e-300)
-    return std_error / richardson, maxima_error / richardson
+    return _relative_errors(_probe_tension(line, environment, seabed, time, path, velocity),
+                            _probe_tension(fine, environment, seabed, time, path, velocity),
+                            settings.order)
 
 
 def checked_line(line: Line, environment: Environment, seabed: Seabed,
@@ -178,14 +250,8 @@ def checked_line(line: Line, environment: Environment, seabed: Seabed,
         if error <= accuracy:
             break
         if refinements == MAX_REFINEMENTS or elements >= MAX_AUTO_ELEMENTS:
-            raise LineAccuracyError(
-                f"line '{line.name}' (dynamic): the fairlead tension's estimated error at "
-                f"{elements} elements of order {order} is {100 * error:.3g} % (STD "
-                f"{100 * std_error:.3g} %, mean cycle maximum {100 * maxima_error:.3g} %), "
-                f"over its accuracy of {100 * accuracy:.3g} %, after {refinements} refinements "
-                f"of the rule's choice; set lines.{line.name}.dynamic.elements and order (e.g. "
-                f"{min(2 * elements, 4 * MAX_AUTO_ELEMENTS)} x p{order + 1}) or a larger "
-                "accuracy")
+            raise accuracy_error(line.name, elements, order, std_error, maxima_error,
+                                 accuracy, refinements)
         factor = MARGIN * (error / accuracy) ** (1.0 / (order + 1))
         raised = min(max(math.ceil(elements * factor), elements + 1), MAX_AUTO_ELEMENTS)
         line = replace(line, dynamic=replace(line.dynamic, elements=raised))
@@ -202,3 +268,101 @@ def describe(result: LineAccuracy) -> str:
             f"{100 * result.estimated_error:.2g} % (STD {100 * result.std_error:.2g} %, mean "
             f"cycle maximum {100 * result.maxima_error:.2g} %) against {100 * result.accuracy:g} "
             f"% asked; checked in {result.wall_time_s:.2g} s")
+
+
+#: The ``line_accuracy`` attribute of a coupled run's file until its lines are checked.
+NOT_YET_ESTIMATED = ("not estimated yet: the lines whose elements the accuracy chose are "
+                     "checked after the wave ramp and three wave periods")
+
+
+class RunProbe:
+    """The check of a coupled run's lines whose element count the accuracy chose, as the
+    run goes (their fairlead path is known only then): at the first recorded sample after
+    the wave ramp their states are kept and their fairlead positions recorded for
+    :data:`PROBE_CYCLES` periods; then each is probed from its kept state along the spline
+    through those positions (:func:`estimate_error_from_state`). A line over its accuracy
+    stops the run (:func:`accuracy_error`); the run's numerics are not changed as it goes.
+
+    Parameters
+    ----------
+    lines
+        (index, line with its resolved settings) of the lines to check.
+    models
+        The run's line models, by index.
+    environment, seabed
+        The case's.
+    start
+        When the probe starts [s]: the end of the wave ramp.
+    """
+
+    def __init__(self, lines: list[tuple[int, Line]], models: list, environment: Environment,
+                 seabed: Seabed, start: float) -> None:
+        self.lines = lines
+        self.models = models
+        self.environment = environment
+        self.seabed = seabed
+        omega = lines[0][1].dynamic.motion_frequency
+        self.period = 2.0 * math.pi / omega
+        self.start = float(start)
+        self.end = self.start + PROBE_CYCLES * self.period
+        self.states: dict[int, DynamicLineState] | None = None
+        self._time: list[float] = []
+        self._positions: list[NDArray[np.float64]] = []
+        #: the outcome per line, once checked
+        self.results: tuple[LineAccuracy, ...] | None = None
+
+    @classmethod
+    def for_run(cls, lines: list[Line], models: list, environment: Environment,
+                seabed: Seabed, ramp: float) -> "RunProbe | None":
+        """The probe of a run's dynamic lines whose elements the accuracy chose (None when
+        there are none, or no wave frequency to judge cycles by)."""
+        chosen = [(i, replace(line, dynamic=models[i].settings))
+                  for i, (line, model) in enumerate(zip(lines, models))
+                  if isinstance(model, DynamicLine) and line.dynamic.elements is None
+                  and model.settings.motion_frequency > 0.0]
+        return cls(chosen, models, environment, seabed, ramp) if chosen else None
+
+    @property
+    def done(self) -> bool:
+        """Whether the lines have been checked."""
+        return self.results is not None
+
+    def sample(self, time: float, fairleads: NDArray[np.float64]) -> None:
+        """Take the run's recorded sample at ``time`` (fairlead positions (lines, 3) [m]);
+        check the lines once the probe's window is recorded.
+
+        Raises
+        ------
+        LineAccuracyError
+            For the first line whose estimated error exceeds its accuracy.
+        """
+        if self.done or time < self.start - 1e-9 * max(1.0, self.start):
+            return
+        if self.states is None:
+            self.states = {i: self.models[i].get_state() for i, _ in self.lines}
+        self._time.append(time)
+        self._positions.append(np.array([fairleads[i] for i, _ in self.lines]))
+        if time >= self.end:
+            self._check()
+
+    def _check(self) -> None:
+        started = _time.perf_counter()
+        recorded_t = np.asarray(self._time)
+        recorded = np.asarray(self._positions)  # (samples, lines, 3)
+        t0 = recorded_t[0]
+        time = t0 + np.arange(PROBE_CYCLES * SAMPLES_PER_CYCLE + 1) * (
+            self.period / SAMPLES_PER_CYCLE)
+        results = []
+        for k, (i, line) in enumerate(self.lines):
+            path, velocity = table_state(recorded_t, recorded[:, k], time)
+            state = self.states[i]
+            std_error, maxima_error = estimate_error_from_state(
+                line, self.environment, self.seabed, state, time, path, velocity)
+            settings = line.dynamic
+            if max(std_error, maxima_error) > settings.accuracy:
+                raise accuracy_error(line.name, settings.elements, settings.order, std_error,
+                                     maxima_error, settings.accuracy, 0)
+            results.append(LineAccuracy(line.name, settings.elements, settings.order,
+                                        std_error, maxima_error, settings.accuracy, 0,
+                                        _time.perf_counter() - started))
+        self.results = tuple(results)

@@ -65,9 +65,9 @@ STATUS_ROOM = 4096
 _VOLATILE = ("status", "wall_time_s", "simulated_time_s")
 #: Attributes a resumed run need not share with the file it continues: the volatile ones,
 #: when the file was created, the case file's path (the same case may be reached by another
-#: path) and the numba build that ran it.
+#: path), the numba build that ran it, and the lines' accuracy estimated as the run went.
 _NOT_COMPARED = (*_VOLATILE, "created", "case_file", "numba_version", "llvmlite_version",
-                 "numba_disable_jit")
+                 "numba_disable_jit", "line_accuracy")
 
 #: (name, components per sample) of the recorded time series.
 _SERIES = (
@@ -499,6 +499,15 @@ class Recorder:
         :meth:`floatmoor.io.netcdf_stream.NetCDF3Stream.sync`); nothing before it exists."""
         if self._stream is not None:
             self._stream.sync()
+
+    def set_attribute(self, name: str, value: str) -> None:
+        """Change a text attribute given at construction (``attrs``), in the file too when it
+        is there (a coupled run's lines' accuracy, estimated as the run goes)."""
+        if name not in self.attrs:
+            raise KeyError(f"no attribute '{name}' given to the recorder")
+        self.attrs[name] = value
+        if self._stream is not None:
+            self._stream.set_attributes({name: value})
 
     def close(self) -> None:
         """Close the output file (it stays valid; a later :meth:`write` reopens it)."""
