@@ -88,6 +88,11 @@ def test_a_newline_in_the_file_name_gives_a_valid_case(tmp_path, capsys):
     assert code == 0, err
     case = load_case(out)  # valid TOML, and a case the loader accepts
     assert "\n" not in case.title and "two\\x0alines.txt" in case.title
+    out.unlink()
+    code, err, out = _import(tmp_path, text.replace("902.2", "abc", 1), capsys,
+                             name="bad\nname.txt")
+    _refused(code, err, out)  # one line: the file name's newline is escaped
+    assert "bad\\x0aname.txt:18: LINES, column UnstrLen" in err
 
 
 def test_a_water_depth_given_on_the_command_line_is_checked_against_the_deck():

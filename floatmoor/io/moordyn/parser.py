@@ -90,15 +90,15 @@ def read_deck(path: str | Path) -> Deck:
     try:
         text = read_case_text(Path(path))
     except CaseFileKindError as err:
-        raise CaseError(str(path), "", "a MoorDyn input file (a regular text file)",
+        raise CaseError(shown(str(path)), "", "a MoorDyn input file (a regular text file)",
                         str(err)) from None
     except UnicodeDecodeError:
-        raise CaseError(str(path), "", "a MoorDyn input file (UTF-8 text)",
+        raise CaseError(shown(str(path)), "", "a MoorDyn input file (UTF-8 text)",
                         "bytes that are not UTF-8") from None
     except OSError as err:
-        raise CaseError(str(path), "", "a readable MoorDyn input file",
+        raise CaseError(shown(str(path)), "", "a readable MoorDyn input file",
                         err.strerror or str(err)) from None
-    return parse_deck(text, str(path))
+    return parse_deck(text, shown(str(path)))  # a message naming it stays one line
 
 
 def _section_of(line: str) -> str | None:
