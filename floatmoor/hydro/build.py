@@ -119,11 +119,18 @@ def checked_mesh(floater: Floater, hydro: HydroSettings,
     if mesh.source is None:
         return CheckedMesh(mesh, lid_depth)
     from floatmoor.hydro.mesh_checks import refuse_failed, run_mesh_checks
+    from floatmoor.io.bem_data import BemFileError
 
+    vertices = np.asarray(mesh.full_hull.vertices, dtype=float)
+    if not np.all(np.isfinite(vertices)):  # finite in the file, overflowing once placed
+        raise BemFileError(floater.geometry.path, "vertices", "finite coordinates after "
+                           "length_unit and position", "coordinates beyond the largest float")
     omega_max = float(omegas.max())
-    mesh_checks, mesh_reference = run_mesh_checks(
-        mesh, omega_max=omega_max, wavelength=2.0 * math.pi / wavenumber(omega_max, depth, g),
-        g=g, rotation_center=ref)
+    with np.errstate(all="ignore"):  # extreme but finite hulls: the checks give inf or
+        mesh_checks, mesh_reference = run_mesh_checks(  # nan figures, not numpy warnings
+            mesh, omega_max=omega_max,
+            wavelength=2.0 * math.pi / wavenumber(omega_max, depth, g), g=g,
+            rotation_center=ref)
     refuse_failed(mesh_checks, floater.geometry.path)
     return CheckedMesh(mesh, lid_depth, mesh_checks, mesh_reference)
 

@@ -114,3 +114,15 @@ def test_check_states_the_haskind_requirement_before_the_build(tmp_path, capsys)
     out = capsys.readouterr().out
     assert "haskind check will be n/a" not in out and "symmetry declared xz" in out
     assert np.all(half(tiny_faces())[:, :, 1] >= 0.0)
+
+
+def test_a_hull_placed_beyond_the_floats_is_one_line(tmp_path, capfd):
+    """position = 1e308 m: the mesh checks' figures overflow; one refusal, no numpy warning
+    printed (capfd: what numpy would print goes to the process's standard error)."""
+    write_gdf(tmp_path / "hull.gdf", tiny_faces())
+    case = write_case(tmp_path, MESH.format(file="hull.gdf",
+                                            extra="position = [1e308, 0.0, 0.0]"))
+    assert main(["check", str(case)]) == 2
+    lines = capfd.readouterr().err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("floatmoor: error: ")
+    assert "the watertight check of the immersed hull" in lines[0]
