@@ -107,3 +107,16 @@ def test_good_decks_still_import_and_load():
     for name in ("oc3_hywind_lines.txt", "tripod.txt", "lifting.txt"):
         text = import_deck(parse_deck((DECKS / name).read_text(), name)).text
         assert tomllib.loads(text)["lines"]
+
+
+
+def test_printed_lists_escape_bidi_controls_of_deck_text(tmp_path, capsys):
+    """A right-to-left override in an output flag (a format character, not a control
+    character: valid in the case file) is escaped where the import prints it."""
+    deck = tmp_path / "deck.txt"
+    deck.write_text(OC3.replace("902.2     20      p", "902.2     20      p\u202e", 1))
+    out = tmp_path / "case.toml"
+    assert main(["import", "moordyn", str(deck), "-o", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "\u202e" not in printed and "output flags 'p\\u202e'" in printed
+    assert "output flags 'p\u202e'" in out.read_text()  # the file keeps the text
