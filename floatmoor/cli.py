@@ -289,10 +289,12 @@ def _command(args: argparse.Namespace) -> int:
         return EXIT_BAD_INPUT
     except FloatmoorError as err:
         from floatmoor.hydro.database import HydroDatabaseError
+        from floatmoor.io.bem_data import BemFileError
 
-        if not isinstance(err, HydroDatabaseError):
+        if not isinstance(err, (HydroDatabaseError, BemFileError)):
             raise
-        # a floater case whose database is missing, damaged, stale or fails a check: bad input
+        # a floater case whose database is missing, damaged, stale or fails a check, or whose
+        # hull mesh file cannot be read or fails a fatal mesh check (check): bad input
         print(f"floatmoor: error: {err}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
@@ -301,11 +303,31 @@ def _check(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
 
     case = load_case(args.case, args.overrides)
+    mesh_rows = _check_mesh(case)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
     print(f"{args.case}: valid case \"{case.title}\"")
     print(_describe(case, loads))
+    if mesh_rows:
+        print("\n".join(mesh_rows))
     return EXIT_OK
+
+
+def _check_mesh(case: Case) -> list[str]:
+    """For a hull read from a mesh file that ``hydro build`` will solve on: read it and run
+    the mesh checks as the build does before solving (floatmoor.hydro.build.checked_mesh),
+    so that ``check`` refuses what the build would refuse without solving
+    (:class:`floatmoor.io.bem_data.BemFileError`); the build's summary of the mesh."""
+    if case.floater is None or case.hydro is None or case.hydro.source != "bem" \
+            or case.floater.geometry.kind != "mesh":
+        return []
+    from floatmoor.hydro.build import checked_mesh
+    from floatmoor.hydro.mesh_checks import summary_lines
+
+    checked = checked_mesh(case.floater, case.hydro, case.environment)
+    info = checked.mesh.source.as_dict()
+    return [f"  {row}" for row in summary_lines(info, [c.as_dict()
+                                                       for c in checked.mesh_checks or ()])]
 
 
 def _describe_system(case: Case) -> list[str]:
@@ -422,6 +444,14 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
                  "import)")
         rows.append(f"  hydro: database {case.hydro.database}, {built}"
                     + (f"; accepts failed checks: {', '.join(accepted)}" if accepted else ""))
+        if case.hydro.source == "bem" and case.floater is not None:
+            from floatmoor.hydro.checks import haskind_requirement
+
+            geo = case.floater.geometry
+            need = haskind_requirement(geo.kind, geo.kind != "mesh" or "xz" in geo.symmetry,
+                                       case.hydro.directions)
+            if need is not None:
+                rows.append(f"  hydro: the built database's haskind check will be n/a: {need}")
     if case.motion is not None:
         rows.append(f"  motion: {case.motion.kind}, ramp {case.motion.ramp_duration:g} s; "
                     f"duration {case.simulation.duration:g} s, output every "

@@ -42,7 +42,7 @@ from floatmoor.hydro.geometry import HullMesh, build_mesh
 from floatmoor.hydro.hydrostatics import hull_hydrostatics
 
 __all__ = ["DOFS", "BEM_METHOD", "BemResult", "run_bem", "lid_depth_for", "LID_KH",
-           "wavenumber", "PRONY_SEED"]
+           "wavenumber", "PRONY_SEED", "CheckedMesh", "checked_mesh"]
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 #: capytaine's boundary integral formulation. "direct" (potential) rather than capytaine's
@@ -80,6 +80,59 @@ def wavenumber(omega: float, depth: float, g: float) -> float:
 def lid_depth_for(omega_max: float, depth: float, g: float) -> float:
     """Lid depth giving k d = :data:`LID_KH` at the top frequency [m]."""
     return LID_KH / wavenumber(omega_max, depth, g)
+
+
+class CheckedMesh:
+    """The hull mesh a BEM run solves on, after the checks made before solving."""
+
+    def __init__(self, mesh: HullMesh, lid_depth: float | None, mesh_checks=None,
+                 mesh_reference=None) -> None:
+        self.mesh = mesh
+        self.lid_depth = lid_depth
+        self.mesh_checks = mesh_checks  #: list of mesh_checks.MeshCheck (a mesh file), or None
+        self.mesh_reference = mesh_reference  #: mesh_checks.reference_hydrostatics, or None
+
+
+def checked_mesh(floater: Floater, hydro: HydroSettings,
+                 environment: Environment) -> CheckedMesh:
+    """Mesh the floater as :func:`run_bem` does and, for a hull read from a file, read it and
+    run the mesh checks, refusing a fatal failure: everything ``hydro build`` does before it
+    solves (``floatmoor check`` runs it too).
+
+    Raises
+    ------
+    floatmoor.io.bem_data.BemFileError
+        A hull mesh file that cannot be read or fails a fatal check.
+    """
+    g = environment.gravity
+    depth = math.inf if hydro.infinite_depth else environment.water_depth
+    omegas = np.asarray(hydro.frequencies, dtype=float)
+    lid_depth = None
+    if hydro.lid:
+        lid_depth = hydro.lid_depth if hydro.lid_depth is not None else \
+            lid_depth_for(float(omegas.max()), depth, g)
+    ref = np.asarray(floater.reference_point, dtype=float)
+    mesh = build_mesh(floater.geometry, panel_size=hydro.panel_size,
+                      reference_xy=(float(ref[0]), float(ref[1])), lid_depth=lid_depth,
+                      symmetry=hydro.symmetry, radial_panels=hydro.radial_panels,
+                      water_depth=environment.water_depth)
+    if mesh.source is None:
+        return CheckedMesh(mesh, lid_depth)
+    from floatmoor.hydro.mesh_checks import refuse_failed, run_mesh_checks
+    from floatmoor.io.bem_data import BemFileError
+
+    vertices = np.asarray(mesh.full_hull.vertices, dtype=float)
+    if not np.all(np.isfinite(vertices)):  # finite in the file, overflowing once placed
+        raise BemFileError(floater.geometry.path, "vertices", "finite coordinates after "
+                           "length_unit and position", "coordinates beyond the largest float")
+    omega_max = float(omegas.max())
+    with np.errstate(all="ignore"):  # extreme but finite hulls: the checks give inf or
+        mesh_checks, mesh_reference = run_mesh_checks(  # nan figures, not numpy warnings
+            mesh, omega_max=omega_max,
+            wavelength=2.0 * math.pi / wavenumber(omega_max, depth, g), g=g,
+            rotation_center=ref)
+    refuse_failed(mesh_checks, floater.geometry.path)
+    return CheckedMesh(mesh, lid_depth, mesh_checks, mesh_reference)
 
 
 class BemResult:
@@ -152,24 +205,10 @@ def run_bem(floater: Floater, hydro: HydroSettings, environment: Environment, *,
     rho, g = environment.water_density, environment.gravity
     depth = math.inf if hydro.infinite_depth else environment.water_depth
     omegas = np.asarray(hydro.frequencies, dtype=float)
-    lid_depth = None
-    if hydro.lid:
-        lid_depth = hydro.lid_depth if hydro.lid_depth is not None else \
-            lid_depth_for(float(omegas.max()), depth, g)
     ref = np.asarray(floater.reference_point, dtype=float)
-    mesh = build_mesh(floater.geometry, panel_size=hydro.panel_size,
-                      reference_xy=(float(ref[0]), float(ref[1])), lid_depth=lid_depth,
-                      symmetry=hydro.symmetry, radial_panels=hydro.radial_panels,
-                      water_depth=environment.water_depth)
-    mesh_checks = mesh_reference = None
-    if mesh.source is not None:
-        from floatmoor.hydro.mesh_checks import refuse_failed, run_mesh_checks
-
-        omega_max = float(omegas.max())
-        mesh_checks, mesh_reference = run_mesh_checks(
-            mesh, omega_max=omega_max, wavelength=2.0 * math.pi / wavenumber(omega_max, depth, g),
-            g=g, rotation_center=ref)
-        refuse_failed(mesh_checks, floater.geometry.path)
+    checked = checked_mesh(floater, hydro, environment)
+    mesh, lid_depth = checked.mesh, checked.lid_depth
+    mesh_checks, mesh_reference = checked.mesh_checks, checked.mesh_reference
     dofs = cpt.rigid_body_dofs(rotation_center=ref)
     body = cpt.FloatingBody(mesh=mesh.hull, lid_mesh=mesh.lid, dofs=dofs, center_of_mass=ref,
                             name=floater.name)

@@ -2,13 +2,14 @@
 
 Each check returns a :class:`CheckResult` with its worst measured value and its tolerance:
 
-* ``symmetry``: A(omega) and B(omega) symmetric (reciprocity);
+* ``symmetry``: A(omega) and B(omega) symmetric (reciprocity), each asymmetry measured against
+  the matrix's scale for the pair's kinds of DOF (see :func:`check_symmetry`);
 * ``damping_psd``: B(omega) positive semidefinite (a body in waves radiates energy, never
   absorbs it);
 * ``kramers_kronig``: A(omega) rebuilt from K(t) and A_inf (floatmoor.hydro.radiation) within
   3 % of the BEM values over the band, for each DOF with added mass;
 * ``kernel_decay``: |K_ii(t)| below 1e-3 of its peak from some time before the truncation time
-  on;
+  on (a failure says which frequencies to add: :func:`finer_frequencies`);
 * ``haskind``: radiation damping against the one obtained from the excitation forces (Haskind
   relation, energy flux) within 5 % of the peak damping in surge and heave;
 * ``hydrostatics``: displaced volume and hydrostatic stiffness C33, C44, C55 against the
@@ -18,8 +19,10 @@ Each check returns a :class:`CheckResult` with its worst measured value and its 
 
 A check that cannot apply says so instead of passing silently (``CheckResult.applicable``
 False, the reason in its detail; ``hydro check`` shows "n/a"): ``haskind`` on a database
-without excitation forces, ``hydrostatics`` on one without a geometry (imported from another
-program's files, whose hydrostatics are the files' own).
+without excitation forces or whose wave directions do not give the integral over the circle
+(:func:`haskind_requirement`: built or imported alike; ``floatmoor check`` states it before a
+build), ``hydrostatics`` on one without a geometry (imported from another program's files,
+whose hydrostatics are the files' own).
 """
 
 from __future__ import annotations
@@ -40,15 +43,16 @@ from floatmoor.hydro.values import value_problems
 
 __all__ = [
     "CheckResult", "run_checks", "check_values", "describe_failures", "haskind_damping",
-    "geometry_from_dataset", "mesh_reference_properties",
+    "geometry_from_dataset", "mesh_reference_properties", "haskind_requirement",
+    "finer_frequencies",
     "RECIPROCITY_TOLERANCE", "PSD_TOLERANCE", "KRAMERS_KRONIG_TOLERANCE",
     "KERNEL_DECAY_THRESHOLD", "HASKIND_TOLERANCE", "HYDROSTATICS_TOLERANCE",
     "HASKIND_POINTWISE_REPORT", "NEGLIGIBLE_DOF",
 ]
 
-#: |A_ij - A_ji| and |B_ij - B_ji| relative to sqrt(M_ii M_jj) (see check_symmetry). Panel
-#: methods satisfy reciprocity only to discretisation error; 1 % is far below any physically
-#: relevant asymmetry.
+#: |A_ij - A_ji| and |B_ij - B_ji| relative to the matrix's scale for the pair (see
+#: check_symmetry). Panel methods satisfy reciprocity only to discretisation error; 1 % of the
+#: matrix's scale is far below any physically relevant asymmetry.
 RECIPROCITY_TOLERANCE = 0.01
 #: Most negative eigenvalue of B relative to its largest one (discretisation error, as above).
 PSD_TOLERANCE = 0.01
@@ -130,9 +134,15 @@ def _active_dofs(ds: xr.Dataset) -> list[int]:
 
 
 def check_symmetry(ds: xr.Dataset) -> CheckResult:
-    """|M_ij - M_ji| relative to the pair's own scale sqrt(M_ii M_jj) (units of M_ij): at each
+    """|M_ij - M_ji| relative to the matrix's scale for the pair, sqrt(D_i D_j) (units of
+    M_ij), D_i the largest diagonal term of i's kind (translations, rotations): at each
     frequency for the added mass, the band maxima for the damping (which vanishes at low
-    frequency, where its relative noise says nothing)."""
+    frequency, where its relative noise says nothing).
+
+    Not the pair's own sqrt(M_ii M_jj): a DOF with hardly any radiation (the yaw of an
+    axisymmetric hull, B_66 ~ 0) made a coupling's round-off noise look large (B_36 = -446
+    N s against B_11 = 6.6e5 N s/m read as a failure); against the matrix's scale it is the
+    0.07 % it is. A real asymmetry of a term that matters is as large against either."""
     active = _active_dofs(ds)
     worst, where = 0.0, ""
     for name in ("added_mass", "radiation_damping"):
@@ -140,18 +150,22 @@ def check_symmetry(ds: xr.Dataset) -> CheckResult:
         diag = np.abs(np.diagonal(m, axis1=1, axis2=2))
         if name == "radiation_damping":
             diag = np.broadcast_to(diag.max(axis=0), diag.shape)
+        kinds = np.concatenate([np.repeat(diag[:, :3].max(axis=1, keepdims=True), 3, axis=1),
+                                np.repeat(diag[:, 3:].max(axis=1, keepdims=True), 3, axis=1)],
+                               axis=1)
         for a in active:
             for b in active:
                 if b <= a:
                     continue
-                asym = np.abs(m[:, a, b] - m[:, b, a]) / np.sqrt(diag[:, a] * diag[:, b])
+                asym = np.abs(m[:, a, b] - m[:, b, a]) / np.sqrt(kinds[:, a] * kinds[:, b])
                 i = int(np.argmax(asym))
                 if asym[i] > worst:
                     worst = float(asym[i])
                     where = (f"{name} {_DOFS[a]}-{_DOFS[b]} at omega = "
                              f"{ds['omega'].values[i]:.4g} rad/s")
     return CheckResult("symmetry", worst <= RECIPROCITY_TOLERANCE, worst, RECIPROCITY_TOLERANCE,
-                       f"largest |M_ij - M_ji| / sqrt(M_ii M_jj): {worst:.2e} ({where})")
+                       f"largest |M_ij - M_ji| / sqrt(D_i D_j) (D: the largest diagonal term of "
+                       f"the DOF's kind): {worst:.2e} ({where})")
 
 
 def check_damping_psd(ds: xr.Dataset) -> CheckResult:
@@ -206,6 +220,21 @@ def kernel_decay_times(ds: xr.Dataset, kernel=None) -> dict[int, float]:
     return out
 
 
+def finer_frequencies(omega: np.ndarray) -> np.ndarray:
+    """The frequencies to add for a kernel that does not decay before its truncation time
+    pi / (median step) (:func:`floatmoor.hydro.radiation.truncation_time`): the midpoints of
+    the present steps, which halve the step and double the truncation time [rad/s]."""
+    omega = np.asarray(omega, dtype=float)
+    return 0.5 * (omega[1:] + omega[:-1])
+
+
+def _frequency_list(values: np.ndarray) -> str:
+    """Frequencies for a message: all of them when few, else the first and last and a count."""
+    if len(values) <= 8:
+        return ", ".join(f"{w:.4g}" for w in values)
+    return f"{len(values)} from {values[0]:.4g} to {values[-1]:.4g}"
+
+
 def check_kernel_decay(ds: xr.Dataset, kernel=None) -> CheckResult:
     kernel = kernel or radiation_kernel(ds)
     times = kernel_decay_times(ds, kernel)
@@ -213,9 +242,15 @@ def check_kernel_decay(ds: xr.Dataset, kernel=None) -> CheckResult:
     worst_dof = max(times, key=lambda i: times[i])
     worst = times[worst_dof] / t_max
     text = ", ".join(f"{_DOFS[i]} {t:.3g} s" for i, t in times.items())
-    return CheckResult("kernel_decay", worst < 1.0, worst, 1.0,
-                       f"|K_ii| < {KERNEL_DECAY_THRESHOLD:g} x peak from: {text}; truncation "
-                       f"time {t_max:.4g} s")
+    detail = (f"|K_ii| < {KERNEL_DECAY_THRESHOLD:g} x peak from: {text}; truncation time "
+              f"{t_max:.4g} s (pi / the median frequency step)")
+    if not worst < 1.0:
+        omega = ds["omega"].values
+        added = finer_frequencies(omega)
+        detail += (f"; to double it, halve the frequency step: add the midpoints "
+                   f"{_frequency_list(added)} rad/s ({len(omega) + len(added)} frequencies "
+                   "in all) to [hydro] frequencies, and again while it fails")
+    return CheckResult("kernel_decay", worst < 1.0, worst, 1.0, detail)
 
 
 def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
@@ -239,32 +274,71 @@ def haskind_damping(ds: xr.Dataset, dof: int) -> np.ndarray:
     cg = 0.5 * omega / k * (1.0 + factor)
     beta = ds["wave_direction"].values
     x2 = np.abs(x) ** 2
-    if ds.attrs.get("geometry_kind") == "cylinder":
+    kind = str(ds.attrs.get("geometry_kind", ""))
+    need = haskind_requirement(kind, _mirror_symmetric(ds), beta)
+    if need is not None:
+        raise ValueError(need)
+    if kind == "cylinder":
         if dof in (0, 1, 3, 4):
             integral = x2[:, 0] * math.pi  # int cos^2 = pi
         else:
             integral = x2[:, 0] * 2.0 * math.pi
     else:
         step = np.diff(beta)
-        even = len(beta) > 1 and np.allclose(step, step[0])
-        # [0, pi] or [-pi, 0] (a 180 deg yaw of the former): each mirrors to the full circle
-        half = (abs(beta[0]) < 1e-9 and abs(beta[-1] - math.pi) < 1e-9) or \
-            (abs(beta[0] + math.pi) < 1e-9 and abs(beta[-1]) < 1e-9)
-        full = even and abs(beta[-1] + step[0] - beta[0] - 2.0 * math.pi) < 1e-9
-        if even and half and not _mirror_symmetric(ds):
-            raise ValueError("the Haskind check on directions spanning 0 to 180 deg needs a "
-                             "hull symmetric about y = 0 (declare the mesh's \"xz\" symmetry) "
-                             "or directions covering the full circle")
+        even, half, _ = _direction_span(beta)
         if even and half:
             # periodic trapezoid over [0, 2 pi) with the mirrored half: 2 * (sum of
             # interior) + end points once each
             integral = step[0] * (x2[:, 0] + x2[:, -1] + 2.0 * x2[:, 1:-1].sum(axis=1))
-        elif full:
-            integral = step[0] * x2.sum(axis=1)
         else:
-            raise ValueError("the Haskind check needs directions evenly spanning 0 to 180 "
-                             "deg (or -180 to 0 deg) or the full circle")
+            integral = step[0] * x2.sum(axis=1)
     return k / (8.0 * math.pi * rho * g * cg) * integral
+
+
+def _direction_span(beta: np.ndarray) -> tuple[bool, bool, bool]:
+    """(evenly spaced, spanning [0, pi] or [-pi, 0], evenly covering the full circle)."""
+    beta = np.asarray(beta, dtype=float)
+    step = np.diff(beta)
+    even = len(beta) > 1 and bool(np.allclose(step, step[0]))
+    # [0, pi] or [-pi, 0] (a 180 deg yaw of the former): each mirrors to the full circle
+    half = len(beta) > 1 and ((abs(beta[0]) < 1e-9 and abs(beta[-1] - math.pi) < 1e-9) or
+                              (abs(beta[0] + math.pi) < 1e-9 and abs(beta[-1]) < 1e-9))
+    full = even and abs(beta[-1] + step[0] - beta[0] - 2.0 * math.pi) < 1e-9
+    return even, half, full
+
+
+def haskind_requirement(kind: str, mirror_symmetric: bool, directions) -> str | None:
+    """Why the Haskind check cannot integrate over the circle of wave directions, with what to
+    change; None when it can (:func:`haskind_damping`).
+
+    Parameters
+    ----------
+    kind
+        The geometry's kind ("cylinder", "semisubmersible", "mesh", or "" for files imported
+        from another program).
+    mirror_symmetric
+        Whether the hull is taken as symmetric about y = 0 (a mesh declaring "xz"; the
+        parametric kinds and imported files are).
+    directions
+        The wave directions [rad].
+    """
+    if kind == "cylinder":
+        return None  # axisymmetric: one direction gives every other
+    even, half, full = _direction_span(np.asarray(directions, dtype=float))
+    if even and half and mirror_symmetric:
+        return None
+    if full:
+        return None
+    if even and half:
+        return ("the Haskind check on directions spanning 0 to 180 deg needs a hull "
+                "symmetric about y = 0: declare the mesh's \"xz\" symmetry (the file holding "
+                "the half y >= 0), or give directions evenly covering the full circle (e.g. "
+                "0, 30, ..., 330)")
+    symmetric = "" if mirror_symmetric or kind != "mesh" else \
+        " with the mesh's \"xz\" symmetry declared (the file holding the half y >= 0)"
+    return ("the Haskind check integrates the excitation over the circle of wave directions: "
+            f"give directions evenly spanning 0 to 180 deg (e.g. 0, 30, ..., 180){symmetric}, "
+            "or directions evenly covering the full circle (e.g. 0, 30, ..., 330)")
 
 
 def _mirror_symmetric(ds: xr.Dataset) -> bool:
@@ -306,15 +380,15 @@ def check_haskind(ds: xr.Dataset) -> CheckResult:
             return CheckResult("haskind", False, math.inf, HASKIND_TOLERANCE,
                                f"{_DOFS[i]} radiation damping is nowhere positive (largest "
                                f"{bem.max():.3g})")
-        try:
-            haskind = haskind_damping(ds, i)
-        except ValueError as err:
-            if ds.attrs.get("source", "capytaine") == "capytaine":
-                raise  # a built database's directions are the case's to fix: a failure
-            return CheckResult.not_applicable(  # an imported file's are what they are
-                "haskind", HASKIND_TOLERANCE, f"{err}; the {ds.attrs['source']} files' "
-                "directions are " + ", ".join(
+        need = haskind_requirement(str(ds.attrs.get("geometry_kind", "")),
+                                   _mirror_symmetric(ds), ds["wave_direction"].values)
+        if need is not None:  # n/a, built or imported alike (floatmoor check says so first)
+            source = ds.attrs.get("source", "capytaine")
+            whose = "the database's" if source == "capytaine" else f"the {source} files'"
+            return CheckResult.not_applicable(
+                "haskind", HASKIND_TOLERANCE, f"{need}; {whose} directions are " + ", ".join(
                     f"{d:g}" for d in np.degrees(ds["wave_direction"].values)) + " deg")
+        haskind = haskind_damping(ds, i)
         diff = np.abs(haskind - bem)
         err = diff / bem.max()
         j = int(np.argmax(err))

@@ -27,8 +27,11 @@ panels than :data:`floatmoor.case.limits.MAX_BEM_PANELS` raises
 
 from __future__ import annotations
 
+import contextlib
+import io
 import logging
 import math
+import warnings
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -38,6 +41,7 @@ from floatmoor.case.schema import MeshGeometry
 from floatmoor.file_hash import file_sha256
 from floatmoor.hydro.hull_mesh import HullMesh
 from floatmoor.io.bem_data import BemFileError
+from floatmoor.terminal_text import shown
 
 __all__ = ["MeshFileInfo", "mesh_from_file", "read_mesh_file", "NATIVE_FORMATS",
            "MESHIO_FORMATS", "CAPYTAINE_PLANES"]
@@ -90,11 +94,54 @@ def read_mesh_file(path: str, fmt: str):
     """The capytaine mesh of a file as read (possibly a ``ReflectionSymmetricMesh`` when the
     file flags a symmetry), and notes on what was skipped.
 
+    What the readers print or warn is captured (meshio prints why it cannot read a file, then
+    exits): a failure's is part of the one-line error, a success's a note.
+
     Raises
     ------
     BemFileError
         Unreadable or malformed file.
     """
+    said = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said), \
+                warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mesh, notes = _read_mesh_file(path, fmt)
+    except (BemFileError, SystemExit) as err:
+        told = "; ".join(dict.fromkeys(line.strip() for line in said.getvalue().splitlines()
+                                       if line.strip()))
+        if isinstance(err, BemFileError):
+            if not told:
+                raise
+            raise BemFileError(err.path, err.where, err.expected,
+                               shown(f"{err.found} (the reader said: {told})")) from None
+        raise BemFileError(path, "", f"a {fmt} mesh file capytaine can read",
+                           shown(told or "a reader that gave up")) from None
+    told = [line.strip() for line in said.getvalue().splitlines() if line.strip()]
+    told += [" ".join(str(w.message).split()) for w in caught]
+    if told:
+        notes.append("the reader said: " + shown("; ".join(dict.fromkeys(told))))
+    return mesh, notes
+
+
+def _gdf_length_unit(path: str) -> None:
+    """A GDF file's ULEN (line 2, its length unit) must be a finite number > 0 (capytaine
+    reads past it)."""
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        handle.readline()
+        fields = handle.readline().split()
+    try:
+        ulen = float(fields[0])
+    except (IndexError, ValueError):
+        ulen = math.nan
+    if not (math.isfinite(ulen) and ulen > 0.0):
+        raise BemFileError(path, "line 2, ULEN", "a length unit ULEN > 0 (finite)",
+                           shown(fields[0] if fields else "nothing", 40))
+
+
+def _read_mesh_file(path: str, fmt: str):
+    """:func:`read_mesh_file` without the capture."""
     from capytaine.meshes.io import load_mesh
 
     _quiet_capytaine()
@@ -125,7 +172,10 @@ def read_mesh_file(path: str, fmt: str):
                 raise BemFileError(path, "points", "3-D vertex coordinates",
                                    f"an array of shape {data.points.shape}")
             return load_mesh(data), notes
-        return load_mesh(path, file_format=fmt), notes
+        mesh = load_mesh(path, file_format=fmt)
+        if fmt == "gdf":
+            _gdf_length_unit(path)
+        return mesh, notes
     except BemFileError:
         raise
     except Exception as err:  # noqa: BLE001 - any reader failure means a malformed file

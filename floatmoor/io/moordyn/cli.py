@@ -19,10 +19,13 @@ from pathlib import Path
 from floatmoor.errors import CaseError
 from floatmoor.io.output_files import atomic_target, check_output_file, output_lock
 from floatmoor.io.output_kinds import CASE_FILE, MOORDYN_DECK
+from floatmoor.terminal_text import shown
 
 __all__ = ["add_moordyn_parsers", "moordyn_command"]
 
 EXIT_OK, EXIT_FAILED = 0, 1
+#: Longest item of the printed lists kept whole [characters] (the file holds them whole).
+_ITEM_LIMIT = 2000
 
 
 def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -89,7 +92,7 @@ def _convert(args: argparse.Namespace) -> int:
             raise CaseError("--water-depth", "", "a number > 0 [m]", repr(args.water_depth))
         result = import_deck(read_deck(args.deck), water_depth=args.water_depth)
         _write(output, result.text)
-        print(f"wrote {output} from {args.deck}")
+        print(f"wrote {shown(output)} from {shown(args.deck)}")
         _list("not mapped", result.unmapped)
         return EXIT_OK
     from floatmoor.case.load import load_case
@@ -109,7 +112,7 @@ def _list(what: str, items: list[str]) -> None:
     if items:
         print(f"{what} ({len(items)}):")
         for item in items:
-            print(f"  - {item}")
+            print(f"  - {shown(item, _ITEM_LIMIT)}")  # deck text: bidi controls escaped
     else:
         print(f"{what}: none")
     sys.stdout.flush()

@@ -20,6 +20,14 @@ Choices (stated in the file written):
   rho = 1025 kg/m^3, kBot = 3e6 Pa/m, cBot = 3e5 Pa s/m, no friction, FricDamp = 200 N s/m;
 - the deck's TMax (if any) as the duration, else :data:`DEFAULT_DURATION`; dtOut (if any) as
   the output interval, else :data:`DEFAULT_OUTPUT_INTERVAL`.
+
+The case text is then loaded, in memory, by the case loader (:func:`floatmoor.case.load.
+parse_case`) before anything is written: a deck the loader would refuse (a point below the
+seabed, a line from a point to itself, NumSegs or TMax / dtOut beyond the case's bounds, ...)
+is refused here, the loader's message naming the deck line that gave the value (the importer
+keeps the deck line of every case key it writes). Text from the deck reaches the case file
+only as numbers, names the parser has checked (no control characters) and the deck's file
+name, escaped (:func:`floatmoor.terminal_text.shown`) where a comment or string quotes it.
 """
 
 from __future__ import annotations
@@ -27,8 +35,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from floatmoor._version import __version__
-from floatmoor.case.load import DEFAULT_DG_ORDER
+from floatmoor.case.limits import parse_toml
+from floatmoor.case.load import DEFAULT_DG_ORDER, parse_case
 from floatmoor.case.naming import toml_text
 from floatmoor.errors import CaseError
 from floatmoor.io.moordyn.deck import (POINT_BODY, POINT_COUPLED, POINT_FIXED, Deck,
@@ -36,6 +47,7 @@ from floatmoor.io.moordyn.deck import (POINT_BODY, POINT_COUPLED, POINT_FIXED, D
 from floatmoor.io.moordyn.line_types import (MoorDynLineType, damping_ratio_from_moordyn,
                                              floatmoor_line_type, seabed_from_moordyn,
                                              slip_speed_from_moordyn)
+from floatmoor.terminal_text import shown
 
 __all__ = ["ImportResult", "import_deck", "DEFAULT_DURATION", "DEFAULT_OUTPUT_INTERVAL",
            "MOORDYN_DEFAULTS"]
@@ -88,6 +100,22 @@ class _Importer:
         self.unmapped: list[str] = []
         self.used_options: set[int] = set()
         self.water_depth_override = water_depth
+        #: case key path -> (deck line, the deck item) of the values written (for the loader's
+        #: errors); a key of no deck line (a default, an option given on the command line) has
+        #: none
+        self.origins: dict[str, tuple[int, str]] = {}
+        self.source = shown(deck.source)
+        #: the deck line and item being mapped (for an arithmetic failure)
+        self.current: tuple[int, str] = (0, "OPTIONS")
+
+    def mark(self, key: str, line_number: int, item: str) -> None:
+        """Record that the case key ``key`` comes from deck line ``line_number`` (``item``)."""
+        if line_number:
+            self.origins[key] = (line_number, item)
+
+    def mark_option(self, key: str, opt: DeckOption | None) -> None:
+        if opt is not None:
+            self.mark(key, opt.line_number, f"OPTIONS, {opt.key}")
 
     # -- options ---------------------------------------------------------------------------
     def option(self, name: str) -> DeckOption | None:
@@ -116,25 +144,43 @@ class _Importer:
 
     # -- the case ----------------------------------------------------------------------------
     def run(self) -> ImportResult:
+        """The case text, or the error naming the deck line whose values it cannot map."""
+        try:
+            return self._run()
+        except CaseError:
+            raise
+        except (ArithmeticError, ValueError) as err:
+            # extreme values (Diam 1e-200 m: pi Diam^2 / 4 underflows to 0) break the mapping's
+            # arithmetic: the deck row being mapped is named, as for any bad value
+            line, item = self.current
+            raise CaseError(f"{self.deck.source}:{line}" if line else self.deck.source, item,
+                            "values the mapping to floatmoor's can compute with (finite "
+                            "products, quotients and powers)",
+                            f"{type(err).__name__}: {err}") from None
+
+    def _run(self) -> ImportResult:
         deck = self.deck
         if not deck.lines:
             raise CaseError(deck.source, "LINES", "at least one line", "none")
         out: list[str] = []
         w = out.append
-        w(f"# Imported from the MoorDyn input file {deck.source}")
+        w(f"# Imported from the MoorDyn input file {self.source}")
         w(f"# by floatmoor import moordyn (floatmoor {__version__}); comments give each value's "
           "origin.")
         w("# Items of the deck it could not map are listed at the end of this file.")
         w("")
-        title = deck.title or f"MoorDyn deck {deck.source}"
+        title = deck.title or f"MoorDyn deck {self.source}"
         w(f"title = {toml_text(title)}")
-        w(f"description = {toml_text('Imported from the MoorDyn input file ' + deck.source)}")
+        w(f"description = {toml_text('Imported from the MoorDyn input file ' + self.source)}")
         w("")
         g, g_from = self.number("g", positive=True, default=MOORDYN_DEFAULTS["g"])
         rho, rho_from = self.number("rho", positive=True, default=MOORDYN_DEFAULTS["rho"])
         depth, depth_from = self.number("depth", positive=True)
+        for key, name in (("water_density", "rho"), ("water_depth", "depth"), ("gravity", "g")):
+            self.mark_option(f"environment.{key}", self.deck.option(*_OPTION_KEYS[name]))
         if self.water_depth_override is not None:
             depth, depth_from = self.water_depth_override, "given on the command line"
+            self.origins.pop("environment.water_depth", None)
         if depth is None:
             raise CaseError(deck.source, "OPTIONS, WtrDpth", "a water depth (a WtrDpth option, "
                             "or --water-depth: MoorDyn-F takes it from OpenFAST)",
@@ -145,7 +191,10 @@ class _Importer:
         w(f"gravity = {_fmt(g)}  # m/s^2, {g_from}")  # type: ignore[arg-type]
         w("")
         self.types = {t.name: t for t in deck.line_types}
-        lengths = {ln.number: self.length(ln) for ln in deck.lines}
+        lengths = {}
+        for ln in deck.lines:
+            self.current = (ln.line_number, f"LINES {ln.number}")
+            lengths[ln.number] = self.length(ln)
         w(self.seabed(lengths, rho, g))  # type: ignore[arg-type]
         type_of_line = self.line_types(out, lengths)
         self.points(out)
@@ -158,7 +207,36 @@ class _Importer:
             out.extend(f"# - {item}" for item in self.unmapped)
         else:
             w("# (nothing: every item of the deck was mapped)")
-        return ImportResult(text="\n".join(out) + "\n", unmapped=self.unmapped)
+        text = "\n".join(out) + "\n"
+        self.load(text)
+        return ImportResult(text=text, unmapped=self.unmapped)
+
+    def load(self, text: str) -> None:
+        """Load the case text with the case loader, in memory; its error, if any, as one
+        naming the deck line that gave the value (module docstring)."""
+        where = f"the case imported from {self.source}"
+        try:
+            # the loader's norms of far-out positions (1e308 m) overflow to inf, which it
+            # then refuses: no numpy warning on the way
+            with np.errstate(over="ignore", invalid="ignore"):
+                parse_case(parse_toml(text, where), source=where, text=text)
+        except CaseError as err:
+            raise self.deck_error(err) from None
+
+    def deck_error(self, err: CaseError) -> CaseError:
+        """The loader's error ``err`` as one naming the deck line of its key."""
+        key = err.key
+        best = ""
+        for path in self.origins:
+            if (key == path or key.startswith((path + ".", path + "["))) \
+                    and len(path) > len(best):
+                best = path
+        if not best:
+            return CaseError(self.deck.source, f"the imported case's {key}" if key else
+                             "the imported case", err.expected, err.found)
+        line, item = self.origins[best]
+        return CaseError(f"{self.deck.source}:{line}", f"{item} (the case's {key})",
+                         err.expected, err.found)
 
     def length(self, line: DeckLine) -> float:
         if line.length > 0.0:
@@ -188,11 +266,18 @@ class _Importer:
         if scale != 1.0 and mu:
             self.unmapped.append(f"StatDynFricScale = {scale:g}: floatmoor's friction has one "
                                  "(smoothed) coefficient, static = dynamic [physics]")
+        for key, name in (("stiffness", "kBot"), ("damping_ratio", "cBot"),
+                          ("friction_coefficient", "FrictionCoefficient"),
+                          ("slip_speed", "FricDamp")):
+            self.mark_option(f"seabed.{key}", self.deck.option(*_OPTION_KEYS[name]))
         if k_bot == 0.0:
             raise CaseError(self.deck.source, "OPTIONS, kBot", "a seabed stiffness > 0 "
                             "(floatmoor's seabed is always a spring)", "0")
         ratios, slips = [], []
         for ln in self.deck.lines:
+            t = self.types[ln.line_type]
+            self.current = (t.line_number, f"LINE TYPES '{t.name}' (of LINES {ln.number}, "
+                            "with the seabed options)")
             fm = floatmoor_line_type(self.md_type(self.types[ln.line_type]))
             desc = _Desc(**fm)
             ratios.append(seabed_from_moordyn(k_bot, c_bot, desc)[1])  # type: ignore[arg-type]
@@ -241,6 +326,7 @@ class _Importer:
         origin: dict[str, str] = {}
         for ln in self.deck.lines:
             t = self.types[ln.line_type]
+            self.current = (ln.line_number, f"LINES {ln.number}, with its LineType '{t.name}'")
             ratio = damping_ratio_from_moordyn(t.internal_damping, lengths[ln.number],
                                                ln.segments, t.axial_stiffness,
                                                t.mass_per_length)
@@ -257,8 +343,10 @@ class _Importer:
             type_of_line[ln.number] = names[key]
         for (type_name, ratio), name in names.items():
             t = self.types[type_name]
+            self.current = (t.line_number, f"LINE TYPES '{t.name}'")
             fm = floatmoor_line_type(self.md_type(t))
             src = f"LINE TYPES '{t.name}' (line {t.line_number})"
+            self.mark(f"line_types.{name}", t.line_number, f"LINE TYPES '{t.name}'")
             out.append(f"[line_types.{toml_text(name)}]  # {src}")
             out.append(f"mass_per_length = {_fmt(fm['mass_per_length'])}  # kg/m, Mass/m")
             out.append(f"axial_stiffness = {_fmt(fm['axial_stiffness'])}  # N, EA")
@@ -283,7 +371,9 @@ class _Importer:
 
     def points(self, out: list[str]) -> None:
         bodies_listed: set[int] = set()
-        for p in self.deck.points:
+        for i, p in enumerate(self.deck.points):
+            self.mark(f"points[{i}]", p.line_number, f"POINTS {p.number}")
+            self.current = (p.line_number, f"POINTS {p.number}")
             src = f"POINTS {p.number} (line {p.line_number}): {p.attachment_text}"
             position = p.position
             if p.attachment == POINT_FIXED:
@@ -335,7 +425,9 @@ class _Importer:
 
     def lines(self, out: list[str], lengths: dict[int, float],
               type_of_line: dict[int, str]) -> None:
-        for ln in self.deck.lines:
+        for i, ln in enumerate(self.deck.lines):
+            self.mark(f"lines[{i}]", ln.line_number, f"LINES {ln.number}")
+            self.current = (ln.line_number, f"LINES {ln.number}")
             order = min(DEFAULT_DG_ORDER, ln.segments)
             elements = math.ceil(ln.segments / order)
             src = f"LINES {ln.number} (line {ln.line_number})"
@@ -365,6 +457,14 @@ class _Importer:
         duration = tmax if tmax is not None else DEFAULT_DURATION
         interval = dt_out if dt_out else DEFAULT_OUTPUT_INTERVAL
         interval = min(interval, duration)
+        tmax_opt, dt_opt = self.deck.option(*_OPTION_KEYS["TMax"]), \
+            self.deck.option(*_OPTION_KEYS["dtOut"])
+        self.mark_option("simulation.duration", tmax_opt)
+        # the output interval's bounds involve the duration: name both when both are given
+        self.mark_option("simulation.output_interval", dt_opt or tmax_opt)
+        if dt_opt is not None and tmax_opt is not None:
+            self.mark("simulation.output_interval", dt_opt.line_number,
+                      f"OPTIONS, dtOut (with TMax on line {tmax_opt.line_number})")
         out.append("[simulation]")
         out.append(f"duration = {_fmt(duration)}  # s, "
                    + (t_from if tmax is not None else "a deck has no run length: a default"))

@@ -15,6 +15,12 @@ Tables (LINE TYPES, POINTS, LINES, and the kept-as-text ROD TYPES, BODIES, RODS)
 column names and a row of units in parentheses, then one row per item; OPTIONS rows are
 ``value key [description]``; OUTPUTS rows are channel names. A line of dashes naming no section
 (MoorDyn's "need this line", "END") closes the file.
+
+Refused outright, with the line number: a control character (other than tab) on any line, title
+and comments included. A text deck has none; one means a damaged or binary file, and written
+into a case file it would make invalid TOML (in a name) or an invisible part of a title shown in
+reports. Integers (IDs, NumSegs, AttachA/B, BodyN) are MoorDyn's C ``int``: at most
+:data:`MAX_DECK_INTEGER`, checked on the text before it is converted.
 """
 
 from __future__ import annotations
@@ -27,8 +33,18 @@ from floatmoor.case.files import CaseFileKindError, read_case_text
 from floatmoor.errors import CaseError
 from floatmoor.io.moordyn.deck import (POINT_BODY, POINT_COUPLED, POINT_FIXED, POINT_FREE, Deck,
                                        DeckLine, DeckLineType, DeckOption, DeckPoint, DeckSection)
+from floatmoor.terminal_text import shown
 
-__all__ = ["parse_deck", "read_deck", "SECTION_NAMES", "MODELLED_SECTIONS"]
+__all__ = ["parse_deck", "read_deck", "SECTION_NAMES", "MODELLED_SECTIONS", "MAX_DECK_INTEGER"]
+
+#: Largest integer a deck may give (IDs, NumSegs, point numbers, BodyN): MoorDyn-C reads them
+#: into a C ``int`` (32 bits), so a larger one is no MoorDyn deck. Checked by the number of
+#: digits first: Python refuses to convert integers of more than 4300 digits.
+MAX_DECK_INTEGER = 2**31 - 1
+#: Longest quoted deck text in an error message [characters].
+_QUOTED = 40
+#: Control characters (Unicode category Cc) other than tab: no text deck holds them.
+_CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f-\x9f]")
 
 #: Normalised section name -> the headings MoorDyn accepts for it (v2 first, then v1's).
 SECTION_NAMES: dict[str, tuple[str, ...]] = {
@@ -74,15 +90,15 @@ def read_deck(path: str | Path) -> Deck:
     try:
         text = read_case_text(Path(path))
     except CaseFileKindError as err:
-        raise CaseError(str(path), "", "a MoorDyn input file (a regular text file)",
+        raise CaseError(shown(str(path)), "", "a MoorDyn input file (a regular text file)",
                         str(err)) from None
     except UnicodeDecodeError:
-        raise CaseError(str(path), "", "a MoorDyn input file (UTF-8 text)",
+        raise CaseError(shown(str(path)), "", "a MoorDyn input file (UTF-8 text)",
                         "bytes that are not UTF-8") from None
     except OSError as err:
-        raise CaseError(str(path), "", "a readable MoorDyn input file",
+        raise CaseError(shown(str(path)), "", "a readable MoorDyn input file",
                         err.strerror or str(err)) from None
-    return parse_deck(text, str(path))
+    return parse_deck(text, shown(str(path)))  # a message naming it stays one line
 
 
 def _section_of(line: str) -> str | None:
@@ -112,15 +128,36 @@ class _Rows:
         except ValueError:
             value = math.nan
             if not re.fullmatch(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?", text):
-                raise self.error(number, column, f"a number [{unit}]", repr(text)) from None
+                raise self.error(number, column, f"a number [{unit}]",
+                                 _q(text)) from None
         if not math.isfinite(value):
-            raise self.error(number, column, f"a finite number [{unit}]", repr(text))
+            raise self.error(number, column, f"a finite number [{unit}]",
+                             _q(text))
         return value
 
     def integer(self, number: int, column: str, text: str, minimum: int) -> int:
-        if not re.fullmatch(r"[+-]?\d+", text) or int(text) < minimum:
-            raise self.error(number, column, f"an integer >= {minimum}", repr(text))
-        return int(text)
+        value = deck_integer(text)
+        if value is None or value < minimum:
+            raise self.error(number, column, f"an integer from {minimum} to "
+                             f"{MAX_DECK_INTEGER} (MoorDyn's int)", _q(text))
+        return value
+
+
+def _q(text: str) -> str:
+    """Deck text quoted in an error message: terminal-safe and bounded (one line)."""
+    return f"'{shown(text, _QUOTED)}'"
+
+
+def deck_integer(text: str) -> int | None:
+    """The integer ``text`` writes, or None when it is none or beyond :data:`MAX_DECK_INTEGER`
+    (decided on the digits, before any conversion)."""
+    if not re.fullmatch(r"[+-]?\d+", text):
+        return None
+    digits = text.lstrip("+-").lstrip("0")
+    if len(digits) > len(str(MAX_DECK_INTEGER)):
+        return None
+    value = int(text)
+    return value if abs(value) <= MAX_DECK_INTEGER else None
 
 
 def parse_deck(text: str, source: str = "<deck>") -> Deck:
@@ -132,6 +169,12 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
         Naming ``source`` and the line number, what was expected and what was found.
     """
     lines = text.splitlines()
+    for n, raw in enumerate(lines, start=1):
+        bad = _CONTROL.search(raw)
+        if bad:
+            raise CaseError(f"{source}:{n}", "", "text without control characters (a MoorDyn "
+                            "input file; tabs are fine)", f"{shown(bad.group())} in "
+                            f"{_q(raw.strip())}")
     title: list[str] = []
     blocks: list[tuple[str, str, int, list[tuple[int, str]]]] = []  # section, heading, n, rows
     closed_at = 0
@@ -145,7 +188,7 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
                 if not blocks:
                     raise CaseError(f"{source}:{n}", "", "a section heading (a line of dashes "
                                     "naming LINE TYPES, POINTS, LINES, OPTIONS, ...)",
-                                    repr(stripped))
+                                    _q(stripped))
                 closed_at = n
                 break
             if any(b[0] == section for b in blocks):
@@ -161,7 +204,7 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
         for n in range(closed_at + 1, len(lines) + 1):
             if lines[n - 1].strip():
                 raise CaseError(f"{source}:{n}", "", "nothing after the closing line of dashes "
-                                f"(line {closed_at})", repr(lines[n - 1].strip()))
+                                f"(line {closed_at})", _q(lines[n - 1].strip()))
     if not blocks:
         raise CaseError(source, "", "a MoorDyn input file (sections opened by lines of dashes)",
                         "no section heading")
@@ -188,7 +231,7 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
                 fields = row.split()
                 if len(fields) < 2:
                     raise reader.error(n, "", "an option row 'value key [description]'",
-                                       repr(row))
+                                       _q(row))
                 options.append(DeckOption(key=fields[1], value=fields[0], line_number=n))
         elif section == "OUTPUTS":
             outputs.extend(token for _, row in rows for token in row.replace(",", " ").split())
@@ -199,7 +242,7 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
                     number = reader.integer(n, "ID", fields[0], 1)
                     if len(fields) < 8:
                         raise reader.error(n, "", "a body row 'ID Attachment X0 Y0 Z0 r0 p0 y0 "
-                                           "...'", repr(row))
+                                           "...'", _q(row))
                     bodies[number] = tuple(fields)
             others.append(DeckSection(name=section, heading=heading,
                                       rows=tuple(row for _, row in rows), line_number=n0))
@@ -217,7 +260,7 @@ def _table_rows(reader: _Rows, n0: int, rows: list[tuple[int, str]]) -> list[tup
     units_n, units = rows[1]
     if not units.startswith("("):
         raise reader.error(units_n, "", "a row of units in parentheses, such as '(-) (m) "
-                           "(kg/m)', after the column names", repr(units))
+                           "(kg/m)', after the column names", _q(units))
     return rows[2:]
 
 
@@ -225,7 +268,7 @@ def _columns(reader: _Rows, n: int, row: str, names: tuple[str, ...]) -> list[st
     fields = row.split()
     if len(fields) != len(names):
         raise reader.error(n, "", f"{len(names)} columns ({' '.join(names)})",
-                           f"{len(fields)}: {row!r}")
+                           f"{len(fields)}: {_q(row)}")
     return fields
 
 
@@ -245,12 +288,12 @@ def _line_type(reader: _Rows, n: int, row: str, heading: str) -> DeckLineType:
         text = col[column]
         if column in ("EA", "BA/-zeta", "EI") and not re.fullmatch(r"[-+0-9.eE]+", text):
             raise reader.error(n, column, f"a number [{units[column]}] (tables of nonlinear "
-                               "properties are not supported)", repr(text))
+                               "properties are not supported)", _q(text))
         value = reader.number(n, column, text, units[column])
         if positive and not value > 0.0:
-            raise reader.error(n, column, f"a number > 0 [{units[column]}]", repr(text))
+            raise reader.error(n, column, f"a number > 0 [{units[column]}]", _q(text))
         if not positive and column != "BA/-zeta" and value < 0.0:
-            raise reader.error(n, column, f"a number >= 0 [{units[column]}]", repr(text))
+            raise reader.error(n, column, f"a number >= 0 [{units[column]}]", _q(text))
         return value
 
     return DeckLineType(name=col["TypeName"], diameter=num("Diam", True),
@@ -270,10 +313,14 @@ def _point(reader: _Rows, n: int, row: str) -> DeckPoint:
     if upper in ATTACHMENTS:
         attachment = ATTACHMENTS[upper]
     elif _BODY.match(upper):
-        attachment, body = POINT_BODY, int(_BODY.match(upper).group(1))  # type: ignore[union-attr]
+        body = deck_integer(_BODY.match(upper).group(1)) or 0  # type: ignore[union-attr]
+        if body < 1:
+            raise reader.error(n, "Attachment", f"BodyN with N from 1 to {MAX_DECK_INTEGER}",
+                               _q(text))
+        attachment = POINT_BODY
     else:
         raise reader.error(n, "Attachment", "Fixed, Vessel (Coupled), Free or BodyN",
-                           repr(text))
+                           _q(text))
     x, y, z, mass, volume, cda, ca = (reader.number(n, c, f, u) for c, f, u in zip(
         _POINT_COLUMNS[2:], fields[2:], ("m", "m", "m", "kg", "m^3", "m^2", "-")))
     for column, value in (("Mass", mass), ("Volume", volume), ("CdA", cda), ("Ca", ca)):
@@ -288,13 +335,15 @@ def _line(reader: _Rows, n: int, row: str) -> DeckLine:
     fields = _columns(reader, n, row, _LINE_COLUMNS)
     ends = []
     for column, text in zip(("AttachA", "AttachB"), fields[2:4]):
-        if not re.fullmatch(r"\d+", text):
-            raise reader.error(n, column, "a point number (lines attached to rods or bodies "
-                               "directly cannot be imported)", repr(text))
-        ends.append(int(text))
+        number = deck_integer(text) if re.fullmatch(r"\d+", text) else None
+        if number is None:
+            raise reader.error(n, column, f"a point number up to {MAX_DECK_INTEGER} (lines "
+                               "attached to rods or bodies directly cannot be imported)",
+                               _q(text))
+        ends.append(number)
     length = reader.number(n, "UnstrLen", fields[4], "m")
     if length == 0.0:
-        raise reader.error(n, "UnstrLen", "a non-zero number [m]", repr(fields[4]))
+        raise reader.error(n, "UnstrLen", "a non-zero number [m]", _q(fields[4]))
     return DeckLine(number=reader.integer(n, "ID", fields[0], 1), line_type=fields[1],
                     start=ends[0], end=ends[1], length=length,
                     segments=reader.integer(n, "NumSegs", fields[5], 1), outputs=fields[6],
@@ -319,7 +368,7 @@ def _check_references(source: str, line_types: list[DeckLineType], points: list[
         if line.line_type not in type_names:
             raise CaseError(f"{source}:{line.line_number}", "LINES, column LineType",
                             "the name of a LINE TYPES row (" + ", ".join(sorted(type_names))
-                            + ")", repr(line.line_type))
+                            + ")", _q(line.line_type))
         for column, number in (("AttachA", line.start), ("AttachB", line.end)):
             if number not in point_numbers:
                 raise CaseError(f"{source}:{line.line_number}", f"LINES, column {column}",
