@@ -27,13 +27,12 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.errors import SolverError
-from floatmoor.mooring.dg.line import DynamicLine, DynamicLineState
-from floatmoor.mooring.dg.reference import legendre_vandermonde, lgl_nodes
+from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.dg.resolution import MAX_AUTO_ELEMENTS
 from floatmoor.motion import table_state
 
 __all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line",
-           "describe", "refined_state", "estimate_error_from_state", "accuracy_error",
+           "describe", "estimate_error_along", "accuracy_error",
            "RunProbe", "NOT_YET_ESTIMATED", "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS"]
 
 #: Cycles of the motion run after its ramp in a probe: the first lets the start from rest
@@ -134,51 +133,33 @@ def _relative_errors(coarse: NDArray[np.float64], fine: NDArray[np.float64], ord
     return std_error / richardson, maxima_error / richardson
 
 
-def refined_state(positions: NDArray[np.float64], velocities: NDArray[np.float64],
-                  factor: int = REFINEMENT) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """A DG line state (elements, p + 1, 3) on ``factor`` times the elements, the same
-    polynomials: each element's degree-p interpolant evaluated at its children's nodes, which
-    represents it exactly (so a probe at 2K elements starts from the K-element state itself).
-    """
-    elements, nodes, _ = positions.shape
-    p = nodes - 1
-    x, _ = lgl_nodes(p)
-    V, _ = legendre_vandermonde(x, p)
-    # child c covers [-1 + 2c / f, -1 + 2 (c + 1) / f] of its parent
-    children = np.concatenate([-1.0 + (2.0 * c + x + 1.0) / factor for c in range(factor)])
-    W, _ = legendre_vandermonde(children, p)
-    interpolate = W @ np.linalg.inv(V)  # (factor (p + 1), p + 1)
-
-    def split(u: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.einsum("ij,ejk->eik", interpolate, u).reshape(elements * factor, nodes, 3)
-
-    return split(positions), split(velocities)
-
-
-def estimate_error_from_state(line: Line, environment: Environment, seabed: Seabed,
-                              state: DynamicLineState, time: NDArray[np.float64],
-                              path: NDArray[np.float64], velocity: NDArray[np.float64]
-                              ) -> tuple[float, float]:
+def estimate_error_along(line: Line, environment: Environment, seabed: Seabed,
+                         time: NDArray[np.float64], path: NDArray[np.float64],
+                         velocity: NDArray[np.float64]) -> tuple[float, float]:
     """Estimated relative errors (STD, mean per-cycle maximum) of the fairlead tension of
-    ``line`` at its resolved numerics, from two probes started from its ``state`` (at
-    ``time[0]``): at its elements and at :data:`REFINEMENT` times as many (the state refined
-    exactly, :func:`refined_state`), along the fairlead path (``time`` holding
-    :data:`PROBE_CYCLES` cycles of :data:`SAMPLES_PER_CYCLE` samples after its first). For a
-    path known only as the run goes: a coupled run's fairleads.
+    ``line`` at its resolved numerics along a fairlead path known only as a run goes (a coupled
+    run's): two probes, at its elements and at :data:`REFINEMENT` times as many, each settled at
+    rest with its fairlead where the path starts and brought onto the path over the first of
+    the :data:`PROBE_CYCLES` cycles ``time`` holds (:data:`SAMPLES_PER_CYCLE` samples each
+    after its first) by the cosine ramp of the prescribed motions (docs/conventions.md). A
+    probe cannot start from the run's own state instead: refined, its DG boundary and interface
+    jumps would pull with twice the force (their lifting scales as 1 / h), a jolt of many times
+    the tension on a stiff chain.
     """
-    settings = replace(line.dynamic, settle=False)
+    from floatmoor.motion import ramp, ramp_rate
+
+    settings = line.dynamic
+    start = path[0]
+    s = time - time[0]
+    duration = (time[-1] - time[0]) / PROBE_CYCLES
+    factor, rate = ramp(s, duration)[:, None], ramp_rate(s, duration)[:, None]
+    ramped = start + factor * (path - start)
+    ramped_velocity = factor * velocity + rate * (path - start)
+    at_start = replace(line, fairlead=(float(start[0]), float(start[1]), float(start[2])))
     tensions = []
-    for factor in (1, REFINEMENT):
-        probe = replace(line, dynamic=replace(settings, elements=settings.elements * factor))
-        model = DynamicLine.from_case(probe, environment, seabed)
-        r, v = ((state.positions, state.velocities) if factor == 1
-                else refined_state(state.positions, state.velocities, factor))
-        model.set_state(DynamicLineState(float(time[0]), r, v, state.fairlead,
-                                         state.fairlead_velocity))
-        n = time.size
-        ff, af, laid, steps = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n), np.zeros(n)
-        model.solve_path(time, path, velocity, ff, af, laid, steps)
-        tensions.append(np.linalg.norm(ff, axis=1))
+    for k in (1, REFINEMENT):
+        probe = replace(at_start, dynamic=replace(settings, elements=settings.elements * k))
+        tensions.append(_probe_tension(probe, environment, seabed, s, ramped, ramped_velocity))
     return _relative_errors(tensions[0], tensions[1], settings.order)
 
 
@@ -277,35 +258,31 @@ NOT_YET_ESTIMATED = ("not estimated yet: the lines whose elements the accuracy c
 
 class RunProbe:
     """The check of a coupled run's lines whose element count the accuracy chose, as the
-    run goes (their fairlead path is known only then): at the first recorded sample after
-    the wave ramp their states are kept and their fairlead positions recorded for
-    :data:`PROBE_CYCLES` periods; then each is probed from its kept state along the spline
-    through those positions (:func:`estimate_error_from_state`). A line over its accuracy
-    stops the run (:func:`accuracy_error`); the run's numerics are not changed as it goes.
+    run goes (their fairlead path is known only then): from the first recorded sample after
+    the wave ramp their fairlead positions are recorded for :data:`PROBE_CYCLES` periods; then
+    each is probed along the spline through them (:func:`estimate_error_along`). A line over
+    its accuracy stops the run (:func:`accuracy_error`); the run's numerics are not changed
+    as it goes.
 
     Parameters
     ----------
     lines
         (index, line with its resolved settings) of the lines to check.
-    models
-        The run's line models, by index.
     environment, seabed
         The case's.
     start
         When the probe starts [s]: the end of the wave ramp.
     """
 
-    def __init__(self, lines: list[tuple[int, Line]], models: list, environment: Environment,
-                 seabed: Seabed, start: float) -> None:
+    def __init__(self, lines: list[tuple[int, Line]], environment: Environment, seabed: Seabed,
+                 start: float) -> None:
         self.lines = lines
-        self.models = models
         self.environment = environment
         self.seabed = seabed
         omega = lines[0][1].dynamic.motion_frequency
         self.period = 2.0 * math.pi / omega
         self.start = float(start)
         self.end = self.start + PROBE_CYCLES * self.period
-        self.states: dict[int, DynamicLineState] | None = None
         self._time: list[float] = []
         self._positions: list[NDArray[np.float64]] = []
         #: the outcome per line, once checked
@@ -320,7 +297,7 @@ class RunProbe:
                   for i, (line, model) in enumerate(zip(lines, models))
                   if isinstance(model, DynamicLine) and line.dynamic.elements is None
                   and model.settings.motion_frequency > 0.0]
-        return cls(chosen, models, environment, seabed, ramp) if chosen else None
+        return cls(chosen, environment, seabed, ramp) if chosen else None
 
     @property
     def done(self) -> bool:
@@ -338,8 +315,6 @@ class RunProbe:
         """
         if self.done or time < self.start - 1e-9 * max(1.0, self.start):
             return
-        if self.states is None:
-            self.states = {i: self.models[i].get_state() for i, _ in self.lines}
         self._time.append(time)
         self._positions.append(np.array([fairleads[i] for i, _ in self.lines]))
         if time >= self.end:
@@ -355,9 +330,8 @@ class RunProbe:
         results = []
         for k, (i, line) in enumerate(self.lines):
             path, velocity = table_state(recorded_t, recorded[:, k], time)
-            state = self.states[i]
-            std_error, maxima_error = estimate_error_from_state(
-                line, self.environment, self.seabed, state, time, path, velocity)
+            std_error, maxima_error = estimate_error_along(
+                line, self.environment, self.seabed, time, path, velocity)
             settings = line.dynamic
             if max(std_error, maxima_error) > settings.accuracy:
                 raise accuracy_error(line.name, settings.elements, settings.order, std_error,
