@@ -37,9 +37,9 @@ import argparse
 import json
 import shlex
 import sys
-from contextlib import nullcontext
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Sequence
+from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
@@ -242,12 +242,35 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``floatmoor`` command; returns the exit status."""
     args = _parser().parse_args(argv)
-    with interrupt_handling():
+    with interrupt_handling(), _warnings_shown():
         try:
             return _command(args)
         except KeyboardInterrupt as stop:  # before a command's own handling began
             print(f"floatmoor: {signal_name(stop)}; nothing written", file=sys.stderr)
             return exit_status(stop)
+
+
+@contextmanager
+def _warnings_shown() -> Iterator[None]:
+    """Show floatmoor's warnings as ``floatmoor: warning: MESSAGE`` on standard error (no
+    source line); other warnings as Python shows them."""
+    import warnings
+
+    from floatmoor.errors import FloatmoorWarning
+
+    shown = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        if issubclass(category, FloatmoorWarning):
+            print(f"floatmoor: warning: {message}", file=sys.stderr)
+        else:
+            shown(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
+    try:
+        yield
+    finally:
+        warnings.showwarning = shown
 
 
 def _command(args: argparse.Namespace) -> int:
@@ -291,10 +314,21 @@ def _command(args: argparse.Namespace) -> int:
 def _check(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
 
-    case = load_case(args.case, args.overrides)
+    import warnings
+
+    from floatmoor.errors import ImplausibleInputWarning
+
+    with warnings.catch_warnings(record=True) as implausible:  # printed with the case
+        warnings.simplefilter("always", ImplausibleInputWarning)
+        case = load_case(args.case, args.overrides)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
     print(f"{args.case}: valid case \"{case.title}\"")
+    for w in implausible:
+        if issubclass(w.category, ImplausibleInputWarning):
+            print(f"  warning: {w.message}")
+        else:  # not ours: as it would have been shown
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     print(_describe(case, loads))
     return EXIT_OK
 
