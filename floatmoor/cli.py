@@ -580,7 +580,8 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     before = file_state(output)
     try:
         with (nullcontext() if progress is None
-              else watch_compilation(progress.compiling, progress.compiled)):
+              else watch_compilation(progress.compiling, progress.compiled)), \
+                _validity_in_summary():
             if case.floater is not None:
                 from floatmoor.simulation.coupled_run import run_coupled
 
@@ -612,6 +613,25 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
               f"{output}" + (f", the plot {args.plot} may be missing" if args.plot else ""),
               file=sys.stderr)
         return exit_status(stop)
+
+
+@contextmanager
+def _validity_in_summary() -> Iterator[None]:
+    """Keep the run's model-validity warnings for its summary, which prints them (and so does
+    the message of a run that stops; both from the output file's ``validity_warnings``):
+    not shown as they are raised, once the progress line has moved on."""
+    import warnings
+
+    from floatmoor.errors import ModelValidityWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ModelValidityWarning)
+        try:
+            yield
+        finally:
+            for w in caught:
+                if not issubclass(w.category, ModelValidityWarning):
+                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
 
 
 def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path) -> int:
@@ -915,9 +935,12 @@ def _left_behind(output: Path, before: tuple[int, int, int] | None,
     if not written_since(output, before):
         return ("nothing written" + (f" ({output} is unchanged)" if before is not None else "")
                 + f": {why}")
-    t = (read_attributes(output) or {}).get("simulated_time_s")
+    attrs = read_attributes(output) or {}
+    t = attrs.get("simulated_time_s")
     upto = f" up to t = {float(t):.6g} s" if isinstance(t, (int, float)) else ""
-    return f"partial results{upto} written to {output}"
+    validity = [m for m in str(attrs.get("validity_warnings", "")).split("\n") if m]
+    return f"partial results{upto} written to {output}" + "".join(
+        f"\n  warning: outside the model's validity: {m}" for m in validity)
 
 
 def _campaign_left_behind(output: Path, before: tuple[int, int, int] | None) -> str:

@@ -26,6 +26,7 @@ from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled import MooredBody
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
+from floatmoor.simulation.validity import ValidityMonitor
 from floatmoor.signals import deferred_interrupts
 from floatmoor.waves.synthesis import harmonic_sum
 from floatmoor.waves.settings import (
@@ -195,6 +196,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         When a line or the body goes unstable (partial results written first).
     KeyboardInterrupt
         Re-raised after writing the partial results.
+
+    Warns
+    -----
+    ModelValidityWarning
+        Once per condition, when the floater's rotations or heave or a quasi-dynamic line
+        leave their models' range (:mod:`floatmoor.simulation.validity`); the messages are
+        also in the dataset's ``validity_warnings`` attribute.
     """
     check_coupled_case(case)
     if settings is None:
@@ -227,6 +235,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     done = 0
     if resume:
         done = _load_checkpoint(ckpt, identity, moored, recorder, stride, n_steps)
+    monitor = ValidityMonitor(case, body=True, carried=recorder.validity_warnings)
 
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x, body.v)
@@ -285,7 +294,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             if not np.all(np.isfinite(body.x)):
                 raise SolverError(f"floater: the body motion is not finite at "
                                   f"t = {body.time:.6g} s")
-            recorder.advance(done // stride + 1)
+            first, stop = recorder.n_done, done // stride + 1  # the chunk's samples
+            a, b = first - recorder.offset, stop - recorder.offset
+            monitor.check(times[first:stop], series["fairlead_position"][:, a:b],
+                          bseries["body_displacement"][a:b])
+            recorder.validity_warnings = monitor.messages()
+            recorder.advance(stop)
             if ckpt is not None:
                 snapshot = _Snapshot.take(moored, recorder, done)
                 if _time.perf_counter() - last_ckpt > ckpt_every:
