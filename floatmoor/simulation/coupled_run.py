@@ -236,6 +236,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     if resume:
         done = _load_checkpoint(ckpt, identity, moored, recorder, stride, n_steps)
     monitor = ValidityMonitor(case, body=True, carried=recorder.validity_warnings)
+    checked = recorder.n_done  # samples the monitor has seen: from the first (or the resumed)
 
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x, body.v)
@@ -294,11 +295,12 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             if not np.all(np.isfinite(body.x)):
                 raise SolverError(f"floater: the body motion is not finite at "
                                   f"t = {body.time:.6g} s")
-            first, stop = recorder.n_done, done // stride + 1  # the chunk's samples
+            first, stop = max(checked, recorder.offset), done // stride + 1
             a, b = first - recorder.offset, stop - recorder.offset
             monitor.check(times[first:stop], series["fairlead_position"][:, a:b],
                           bseries["body_displacement"][a:b])
             recorder.validity_warnings = monitor.messages()
+            checked = stop
             recorder.advance(stop)
             if ckpt is not None:
                 snapshot = _Snapshot.take(moored, recorder, done)
