@@ -253,24 +253,24 @@ def main(argv: Sequence[str] | None = None) -> int:
 @contextmanager
 def _warnings_shown() -> Iterator[None]:
     """Show floatmoor's warnings as ``floatmoor: warning: MESSAGE`` on standard error (no
-    source line); other warnings as Python shows them."""
+    source line); other warnings as Python shows them. (The format, not the display, is
+    replaced, so that warnings recorded by a caller stay recorded.)"""
     import warnings
 
     from floatmoor.errors import FloatmoorWarning
 
-    shown = warnings.showwarning
+    formatted = warnings.formatwarning
 
-    def show(message, category, filename, lineno, file=None, line=None) -> None:
+    def format_warning(message, category, filename, lineno, line=None) -> str:
         if issubclass(category, FloatmoorWarning):
-            print(f"floatmoor: warning: {message}", file=sys.stderr)
-        else:
-            shown(message, category, filename, lineno, file, line)
+            return f"floatmoor: warning: {message}\n"
+        return formatted(message, category, filename, lineno, line)
 
-    warnings.showwarning = show
+    warnings.formatwarning = format_warning
     try:
         yield
     finally:
-        warnings.showwarning = shown
+        warnings.formatwarning = formatted
 
 
 def _command(args: argparse.Namespace) -> int:

@@ -34,14 +34,16 @@ GRAVITY_RANGE = (9.0, 10.5)
 #: diameter is the nominal (bar) one and the mass per length about 19.9 d^2 t/m (studless)
 #: to 21.9 d^2 t/m (studlink) with d in m (DNV-OS-E302; docs/theory/cable.md), an implied
 #: density of 25 000-28 000; wire rope gives ~5 000-6 500, polyester ~800, HMPE and
-#: polypropylene ~500-600 (they float). The shipped cases span 398 (a rope) to 27 770 (a
-#: chain). 100-60 000 leaves a factor of 2 beyond the extremes, while a diameter in mm given
+#: polypropylene ~500-600 (they float), buoyancy elements modelled as line segments less (the
+#: MoorDyn tripod deck's float, 252). The shipped cases span 398 (a rope) to 27 770 (a
+#: chain). 50-60 000 leaves a factor of 2 beyond the extremes, while a diameter in mm given
 #: as m (1e-6 of the density), in cm (1e-4) or a mass in t/m (1e-3) falls far outside.
-LINE_DENSITY_RANGE = (100.0, 60_000.0)
-#: Density of a line's material [kg/m^3] (it sets the line's buoyancy): from polypropylene
-#: (~900) and HMPE (~975) to steel (7850) and tungsten (19 300); the shipped cases use 800 to
-#: 8953. Below 300 or above 30 000 it is a unit error (7.85 for t/m^3).
-MATERIAL_DENSITY_RANGE = (300.0, 30_000.0)
+LINE_DENSITY_RANGE = (50.0, 60_000.0)
+#: Density of a line's material [kg/m^3] (it sets the line's buoyancy): from buoyancy foam
+#: (~250: the MoorDyn tripod deck's float; syntactic foams 350-700), polypropylene (~900) and
+#: HMPE (~975) to steel (7850) and tungsten (19 300); the shipped cases use 800 to 8953.
+#: Below 50 or above 30 000 it is a unit error (7.85 for t/m^3).
+MATERIAL_DENSITY_RANGE = (50.0, 30_000.0)
 
 
 def _outside(value: float, bounds: tuple[float, float]) -> bool:

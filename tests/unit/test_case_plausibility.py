@@ -61,7 +61,7 @@ def test_bounds_hold_the_references_they_cite() -> None:
     assert LINE_DENSITY_RANGE[0] * 4 < 500.0  # HMPE rope
     assert WATER_DENSITY_RANGE[0] < 998.0 and 1030.0 < WATER_DENSITY_RANGE[1]
     assert GRAVITY_RANGE[0] < 9.78 and 10.0 <= GRAVITY_RANGE[1]
-    assert MATERIAL_DENSITY_RANGE[0] < 900.0 and 19_300.0 < MATERIAL_DENSITY_RANGE[1]
+    assert MATERIAL_DENSITY_RANGE[0] < 252.0 / 2 and 19_300.0 < MATERIAL_DENSITY_RANGE[1]
 
 
 def test_check_prints_the_warnings_with_the_case(capsys) -> None:
