@@ -27,6 +27,7 @@ occurred, and the run records these messages in its output file (attribute
 from __future__ import annotations
 
 import math
+import re
 import warnings
 
 import numpy as np
@@ -57,6 +58,8 @@ SHAPE_DIFFERENCE_STEP = 1e-4
 SHAPE_POINTS = 51
 
 _ROTATIONS = (("roll", 3), ("pitch", 4), ("yaw", 5))
+#: A number as the messages print it (``%.3g``, ``%.4g``).
+_NUMBER = re.compile(r"[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
 
 
 def condition_of(message: str) -> str:
@@ -115,11 +118,12 @@ class ValidityMonitor:
             if line.model == "quasi-dynamic":
                 self._lines[i] = self._add(
                     f"line '{line.name}' (quasi-dynamic)", QD_ALPHA_LIMIT,
-                    lambda v, t: (f"dimensionless acceleration alpha = omega^2 Z_m / g reached "
-                                  f"{v:.3g} at t = {t:.6g} s, beyond the {QD_ALPHA_LIMIT:g} of "
-                                  "the model's verification (docs/theory/quasi_dynamic.md"
-                                  "#assumptions-and-limits): the line no longer follows its "
-                                  "static shape; use the dynamic model"))
+                    lambda v, t: (f"dimensionless acceleration {v:.3g} at t = {t:.6g} s "
+                                  "(alpha = omega^2 Z_m / g), beyond the "
+                                  f"{QD_ALPHA_LIMIT:g} of the model's verification "
+                                  "(docs/theory/quasi_dynamic.md#assumptions-and-limits): the "
+                                  "line no longer follows its static shape; use the dynamic "
+                                  "model"))
         self._tail_time: NDArray[np.float64] = np.zeros(0)
         self._tail_position: NDArray[np.float64] = np.zeros((len(case.lines), 0, 3))
 
@@ -212,9 +216,17 @@ class ValidityMonitor:
         carried from before a resume."""
         out = dict(self._carried)
         for c in self._conditions:
-            if c.value > c.limit:
-                out[c.label] = c.message
+            if c.value > c.limit and not (c.label in out and
+                                          _value_of(out[c.label]) >= _value_of(c.message)):
+                out[c.label] = c.message  # the larger of the resumed run's and the carried
         return list(out.values())
+
+
+def _value_of(message: str) -> float:
+    """The value a validity message gives (its first number after the condition: every
+    message of a condition states it first, in the same unit)."""
+    match = _NUMBER.search(message.split(": ", 1)[-1])
+    return float(match.group()) if match else -math.inf
 
 
 def _draft_and_freeboard(case: Case) -> tuple[float | None, float | None]:

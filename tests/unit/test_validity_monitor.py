@@ -66,10 +66,11 @@ def test_forced_quasi_dynamic_run_beyond_alpha_warns_once_and_records_it(tmp_pat
     ours = [w for w in caught if issubclass(w.category, ModelValidityWarning)]
     assert len(ours) == 1
     text = str(ours[0].message)
-    assert text.startswith("line 'chain' (quasi-dynamic): dimensionless acceleration alpha")
+    assert text.startswith("line 'chain' (quasi-dynamic): dimensionless acceleration ")
+    assert "(alpha = omega^2 Z_m / g)" in text
     assert f"beyond the {QD_ALPHA_LIMIT:g} of the model's verification" in text
     recorded = read_dataset(tmp_path / "qd.nc").attrs["validity_warnings"]
-    alpha = float(recorded.split("reached ")[1].split()[0])
+    alpha = float(recorded.split("acceleration ")[1].split()[0])
     assert 1.1 < alpha < 1.6  # the docs' 1.3 (docs/theory/quasi_dynamic.md)
     assert result.dataset.attrs["validity_warnings"] == recorded
 
@@ -93,3 +94,31 @@ def test_run_summary_prints_the_validity_warnings(tmp_path, capsys) -> None:
     assert len(rows) == 1 and "floater pitch: 20 deg from equilibrium at t = 0 s" in rows[0]
     assert "floater pitch" not in captured.err  # printed once, in the summary
     assert read_dataset(out).attrs["validity_warnings"] == rows[0].split("validity: ", 1)[1]
+
+
+def test_a_resumed_run_keeps_the_messages_its_file_holds_and_does_not_warn_again(tmp_path):
+    """The interrupted run's file holds its validity messages; the recorder that continues it
+    reads them back, and a monitor given them keeps them without warning again."""
+    from floatmoor.simulation.recorder import Recorder
+
+    case = load_case(BUOY_CASE)
+    times = np.arange(5) * 0.1
+    message = "floater pitch: 95 deg from equilibrium at t = 0.1 s, beyond the 15 deg"
+    first = Recorder(case, times, tmp_path / "run.nc", body=True, equilibrium=np.zeros(6))
+    first.reserve(3)
+    first.advance(3)
+    first.validity_warnings = [message]
+    first.write("running")
+    first.close()
+    resumed = Recorder(case, times, tmp_path / "run.nc", body=True, equilibrium=np.zeros(6))
+    resumed.continue_file(3)
+    assert resumed.validity_warnings == [message]
+    monitor = ValidityMonitor(case, body=True, carried=resumed.validity_warnings)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelValidityWarning)
+        monitor.check(times, np.zeros((len(case.lines), 5, 3)), _pitching(5, 40.0))
+    assert monitor.messages() == [message]  # the larger, from before the interruption
+    monitor.check(times + 1.0, np.zeros((len(case.lines), 5, 3)), _pitching(5, 120.0))
+    (kept,) = monitor.messages()
+    assert kept.startswith("floater pitch: 120 deg")  # the resumed run's, now the larger
+    resumed.close()
