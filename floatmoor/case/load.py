@@ -3,8 +3,8 @@
 Loading is strict. Unknown keys, missing keys, wrong types, non-finite numbers and unphysical
 values each raise one :class:`~floatmoor.errors.CaseError` that names the file, the key path,
 what was expected and what was found. Values that are valid but implausible by orders of
-magnitude (a unit typed wrong) warn (:mod:`floatmoor.case.plausibility`). ``--set`` overrides are applied to the parsed table first
-and validated like the file's own values.
+magnitude (a unit typed wrong) warn (:mod:`floatmoor.case.plausibility`). ``--set``
+overrides are applied to the parsed table first and validated like the file's own values.
 """
 
 from __future__ import annotations

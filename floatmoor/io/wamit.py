@@ -437,8 +437,9 @@ def read_wamit(paths: Sequence[str | Path], *, water_density: float,
     ----------
     paths
         The files, recognised by extension (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``;
-        at most one of each; a ``.out`` is left to :func:`read_wamit_out`). Without ``.3`` but with both ``.3fk`` and ``.3sc`` the
-        excitation is their sum; a lone ``.3fk`` or ``.3sc`` needs the ``.3``.
+        at most one of each; a ``.out`` is left to :func:`read_wamit_out`). Without ``.3``
+        but with both ``.3fk`` and ``.3sc`` the excitation is their sum; a lone ``.3fk`` or
+        ``.3sc`` needs the ``.3``.
     water_density, gravity
         rho [kg/m^3] and g [m/s^2] of the WAMIT run (the numeric files state neither).
     length_scale

@@ -70,8 +70,8 @@ _VOLATILE = ("status", "wall_time_s", "simulated_time_s")
 #: Attributes a resumed run need not share with the file it continues: the volatile ones,
 #: when the file was created, the case file's path (the same case may be reached by another
 #: path) and the numba build that ran it.
-_NOT_COMPARED = (*_VOLATILE, VALIDITY_ATTRIBUTE, "created", "case_file", "numba_version", "llvmlite_version",
-                 "numba_disable_jit")
+_NOT_COMPARED = (*_VOLATILE, VALIDITY_ATTRIBUTE, "created", "case_file", "numba_version",
+                 "llvmlite_version", "numba_disable_jit")
 
 #: (name, components per sample) of the recorded time series.
 _SERIES = (
