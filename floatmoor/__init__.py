@@ -23,7 +23,10 @@ from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
 from floatmoor._version import __version__
-from floatmoor.errors import CaseError, FloatmoorError, SolverError
+from floatmoor.errors import (
+    CaseError, FloatmoorError, FloatmoorWarning, ImplausibleInputWarning, ModelValidityWarning,
+    SolverError,
+)
 
 if TYPE_CHECKING:
     from floatmoor.case.load import load_case
@@ -38,6 +41,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "__version__", "load_case", "Case", "CaseError", "FloatmoorError", "SolverError",
+    "FloatmoorWarning", "ImplausibleInputWarning", "ModelValidityWarning",
     "read_dataset", "write_dataset", "CatenarySolution", "catenary_profile", "solve_catenary",
     "QuasiStaticLine", "QuasiDynamicLine", "RunResult", "run_forced_motion", "run_coupled",
     "run_case",

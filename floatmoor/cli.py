@@ -40,9 +40,9 @@ import json
 import shlex
 import sys
 import time
-from contextlib import nullcontext
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Sequence
+from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
@@ -251,12 +251,35 @@ def _parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``floatmoor`` command; returns the exit status."""
     args = _parser().parse_args(argv)
-    with interrupt_handling():
+    with interrupt_handling(), _warnings_shown():
         try:
             return _command(args)
         except KeyboardInterrupt as stop:  # before a command's own handling began
             print(f"floatmoor: {signal_name(stop)}; nothing written", file=sys.stderr)
             return exit_status(stop)
+
+
+@contextmanager
+def _warnings_shown() -> Iterator[None]:
+    """Show floatmoor's warnings as ``floatmoor: warning: MESSAGE`` on standard error (no
+    source line); other warnings as Python shows them. (The format, not the display, is
+    replaced, so that warnings recorded by a caller stay recorded.)"""
+    import warnings
+
+    from floatmoor.errors import FloatmoorWarning
+
+    formatted = warnings.formatwarning
+
+    def format_warning(message, category, filename, lineno, line=None) -> str:
+        if issubclass(category, FloatmoorWarning):
+            return f"floatmoor: warning: {message}\n"
+        return formatted(message, category, filename, lineno, line)
+
+    warnings.formatwarning = format_warning
+    try:
+        yield
+    finally:
+        warnings.formatwarning = formatted
 
 
 def _command(args: argparse.Namespace) -> int:
@@ -302,11 +325,22 @@ def _command(args: argparse.Namespace) -> int:
 def _check(args: argparse.Namespace) -> int:
     from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
 
-    case = load_case(args.case, args.overrides)
+    import warnings
+
+    from floatmoor.errors import ImplausibleInputWarning
+
+    with warnings.catch_warnings(record=True) as implausible:  # printed with the case
+        warnings.simplefilter("always", ImplausibleInputWarning)
+        case = load_case(args.case, args.overrides)
     mesh_rows = _check_mesh(case)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
     print(f"{args.case}: valid case \"{case.title}\"")
+    for w in implausible:
+        if issubclass(w.category, ImplausibleInputWarning):
+            print(f"  warning: {w.message}")
+        else:  # not ours: as it would have been shown
+            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
     print(_describe(case, loads))
     if mesh_rows:
         print("\n".join(mesh_rows))
@@ -625,7 +659,7 @@ def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     before = file_state(output)
     started = time.perf_counter()
     try:
-        with watch_compilation(compiling, compiled):
+        with watch_compilation(compiling, compiled), _validity_in_summary():
             if case.floater is not None:
                 from floatmoor.simulation.coupled_run import run_coupled
 
@@ -683,6 +717,25 @@ def _checkpoint_every(args: argparse.Namespace, case: Case) -> float | None:
         raise CaseError("--checkpoint-every", "", "seconds of wall time, a number >= 0",
                         f"'{text}'")
     return value
+
+
+@contextmanager
+def _validity_in_summary() -> Iterator[None]:
+    """Keep the run's model-validity warnings for its summary, which prints them (and so does
+    the message of a run that stops; both from the output file's ``validity_warnings``):
+    not shown as they are raised, once the progress line has moved on."""
+    import warnings
+
+    from floatmoor.errors import ModelValidityWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ModelValidityWarning)
+        try:
+            yield
+        finally:
+            for w in caught:
+                if not issubclass(w.category, ModelValidityWarning):
+                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
 
 
 def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path,
@@ -1007,9 +1060,12 @@ def _left_behind(output: Path, before: tuple[int, int, int] | None,
     if not written_since(output, before):
         return ("nothing written" + (f" ({output} is unchanged)" if before is not None else "")
                 + f": {why}")
-    t = (read_attributes(output) or {}).get("simulated_time_s")
+    attrs = read_attributes(output) or {}
+    t = attrs.get("simulated_time_s")
     upto = f" up to t = {float(t):.6g} s" if isinstance(t, (int, float)) else ""
-    return f"partial results{upto} written to {output}"
+    validity = [m for m in str(attrs.get("validity_warnings", "")).split("\n") if m]
+    return f"partial results{upto} written to {output}" + "".join(
+        f"\n  warning: outside the model's validity: {m}" for m in validity)
 
 
 def _campaign_left_behind(output: Path, before: tuple[int, int, int] | None) -> str:

@@ -6,7 +6,8 @@ line can print its message (and nothing else) and choose the exit status.
 
 from __future__ import annotations
 
-__all__ = ["FloatmoorError", "CaseError", "SolverError"]
+__all__ = ["FloatmoorError", "CaseError", "SolverError", "FloatmoorWarning",
+           "ImplausibleInputWarning", "ModelValidityWarning"]
 
 
 class FloatmoorError(Exception):
@@ -45,3 +46,27 @@ class SolverError(FloatmoorError, RuntimeError):
 
     The message names the line, the simulated time and the quantity concerned.
     """
+
+
+class FloatmoorWarning(UserWarning):
+    """Base class of floatmoor's warnings: what a user should know but that stops nothing.
+
+    The command line prints each as ``floatmoor: warning: MESSAGE`` (no source line).
+    """
+
+
+class ImplausibleInputWarning(FloatmoorWarning):
+    """A case value that is valid but implausible by orders of magnitude (a unit typed wrong:
+    a diameter in mm given as m, a density in t/m^3 given as kg/m^3), found at load
+    (:mod:`floatmoor.case.plausibility`).
+
+    The message reads like a :class:`CaseError`'s: the file, the key path, what was expected
+    and what was found.
+    """
+
+
+class ModelValidityWarning(FloatmoorWarning):
+    """A run left the range in which a model it uses is valid (a floater's rotations beyond
+    linear hydrostatics and radiation, a quasi-dynamic line beyond its verified accelerations;
+    :mod:`floatmoor.simulation.validity`). Each condition warns once per run; the run records
+    the messages in its output file (attribute ``validity_warnings``) and its summary."""

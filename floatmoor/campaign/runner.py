@@ -17,6 +17,7 @@ to this process, which writes them (:mod:`floatmoor.campaign.cluster`).
 from __future__ import annotations
 
 import os
+import warnings
 import time as _time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from pathlib import Path
@@ -33,7 +34,7 @@ from floatmoor.campaign.store import CampaignStore, run_file_is_complete, same_c
 from floatmoor.campaign.worker import run_one
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import Case
-from floatmoor.errors import CaseError
+from floatmoor.errors import CaseError, ModelValidityWarning
 from floatmoor.io.dataset import DOFS
 from floatmoor.signals import die_with_parent
 
@@ -156,6 +157,10 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         store.record(index, result, run_file)
         if index in recorded:  # recorded again after an interrupt: counted once
             return
+        for message in result.get("validity_warnings", ()):  # the worker's, warned here
+            where = f"run {Path(run_file).stem}" if run_file else \
+                "run " + ", ".join(map(str, index))
+            warnings.warn(ModelValidityWarning(f"{where}: {message}"))
         recorded.add(index)
         count["done"] += 1
         count["executed"] += 1

@@ -10,10 +10,13 @@ run (:func:`~floatmoor.simulation.coupled_run.run_coupled`), any other a forced-
 from __future__ import annotations
 
 import time
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
+
+from floatmoor.errors import ModelValidityWarning
 
 if TYPE_CHECKING:
     from floatmoor.case.schema import Case
@@ -56,7 +59,9 @@ def run_one(case_path: str, overrides: list[str], timeseries: bool = False,
         (fairlead-tension and largest-tension ones; ``max_tension_over_mbl`` in [-]),
         for coupled runs ``body_statistics`` {dof: {statistic: value [m or rad]}}, and with
         ``timeseries`` the output ``time``, ``fairlead_tension`` (line, time) and for coupled
-        runs ``body_displacement`` (time, dof) arrays.
+        runs ``body_displacement`` (time, dof) arrays; ``validity_warnings``, the messages
+        of the run's :class:`~floatmoor.errors.ModelValidityWarning` (kept for the campaign,
+        which warns with them in its own process, not in the worker's).
     """
     from floatmoor.case.load import load_case
 
@@ -88,9 +93,15 @@ def run_loaded(load: Callable[[], "tuple[Case, Path | None]"], timeseries: bool 
     try:
         case, database = load()
         refuse_static_breaking(case)  # a line that breaks at rest: the run fails
-        with watch_compilation(lambda: None, compiled):
+        with watch_compilation(lambda: None, compiled), \
+                warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ModelValidityWarning)  # returned, not shown here
             dataset = _run(case, database, run_file).dataset
+        for w in caught:
+            if not issubclass(w.category, ModelValidityWarning):
+                warnings.showwarning(w.message, w.category, w.filename, w.lineno)
         summary = run_summary(case, dataset)
+        out["validity_warnings"] = summary["validity_warnings"]
         for name, entry in summary["lines"].items():
             stats = entry["fairlead_tension_N"]
             out["statistics"][name] = {k: (np.nan if stats[k] is None else float(stats[k]))

@@ -2,8 +2,9 @@
 
 Loading is strict. Unknown keys, missing keys, wrong types, non-finite numbers and unphysical
 values each raise one :class:`~floatmoor.errors.CaseError` that names the file, the key path,
-what was expected and what was found. ``--set`` overrides are applied to the parsed table first
-and validated like the file's own values.
+what was expected and what was found. Values that are valid but implausible by orders of
+magnitude (a unit typed wrong) warn (:mod:`floatmoor.case.plausibility`). ``--set``
+overrides are applied to the parsed table first and validated like the file's own values.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from floatmoor.case.motion_body import read_body_motion
 from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
+from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, INTERNAL_DAMPING_METHODS, LINE_MODELS,
@@ -155,6 +157,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     check_system(case, context, {line.name: paths for line, paths in parsed}, user_points)
     check_lines(case, context, {line.name: paths for line, paths in parsed})
     check_motion(case, context)
+    warn_implausible(case, context)  # after every error: a refused case does not warn
     return case
 
 

@@ -235,6 +235,11 @@ def _import(args: argparse.Namespace) -> int:
     print(f"{output}: imported from {ds.attrs['source']} files, {len(omega)} frequencies "
           f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf {ds.attrs['added_mass_infinite_source']}"
           f"; excitation: {ds.attrs['excitation']}")
+    from floatmoor.hydro.importing import RUN_SUMMARY_NOTE
+
+    for note in json.loads(ds.attrs["import_notes_json"]):
+        if note.startswith(RUN_SUMMARY_NOTE):  # values the options did not give
+            print(f"  {note}")
     print(_checks_table(output, ds, "as imported", results))
     if failed:
         print(f"floatmoor: hydro import: {output} is written but fails its checks: "
@@ -246,6 +251,7 @@ def _import(args: argparse.Namespace) -> int:
 
 def _import_options(args: argparse.Namespace):
     """The options of ``hydro import``, checked (CaseError naming the option)."""
+    from floatmoor.case.plausibility import WATER_DENSITY_RANGE
     from floatmoor.hydro.importing import ImportOptions
 
     depth = None
@@ -262,8 +268,15 @@ def _import_options(args: argparse.Namespace):
         if body < 1:
             raise CaseError("--body", "", "a body number >= 1 (BEMIO body1, body2, ...)",
                             f"'{args.body}'")
+    density = _optional("--water-density", args.water_density, "kg/m^3")
+    low, high = WATER_DENSITY_RANGE
+    if density is not None and not low <= density <= high:
+        raise CaseError("--water-density", "", f"a water density of {low:g} to {high:g} kg/m^3 "
+                        "(fresh to sea water; floatmoor.case.plausibility.WATER_DENSITY_RANGE)",
+                        f"'{args.water_density}'"
+                        + (" (t/m^3 or g/cm^3 rather than kg/m^3?)" if density < low else ""))
     return ImportOptions(
-        water_density=_optional("--water-density", args.water_density, "kg/m^3"),
+        water_density=density,
         gravity=_optional("--gravity", args.gravity, "m/s^2"),
         length_scale=_optional("--length-scale", args.length_scale, "m"),
         water_depth=depth,

@@ -35,7 +35,7 @@ import datetime as _dt
 import json
 import math
 import os
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import Any, Sequence
 
@@ -54,12 +54,13 @@ __all__ = [
     "ImportOptions", "WAMIT_EXTENSIONS", "BEMIO_EXTENSIONS", "file_format", "read_source",
     "imported_dataset", "import_database", "source_file_records", "yaw_transform",
     "decay_tail_exponents", "derived_infinite_added_mass", "TAIL_FIT_FRACTION",
-    "TAIL_FIT_MIN_POINTS", "SAME_VALUE_RTOL", "SAME_POINT_ATOL",
+    "TAIL_FIT_MIN_POINTS", "SAME_VALUE_RTOL", "SAME_POINT_ATOL", "RUN_SUMMARY_NOTE",
 ]
 
 #: File extensions of WAMIT's numeric output: added mass and damping, excitation (total,
-#: Haskind), hydrostatics, Froude-Krylov and scattering (diffraction) parts.
-WAMIT_EXTENSIONS = (".1", ".3", ".hst", ".3fk", ".3sc")
+#: Haskind), hydrostatics, Froude-Krylov and scattering (diffraction) parts; and its run
+#: summary (the gravity, ULEN and water depth of the run).
+WAMIT_EXTENSIONS = (".1", ".3", ".hst", ".3fk", ".3sc", ".out")
 #: WEC-Sim BEMIO (HDF5).
 BEMIO_EXTENSIONS = (".h5",)
 #: The damping's tail exponent is fitted over the frequencies above (1 - this) x the top
@@ -196,6 +197,7 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
     if kind == "wamit":
         from floatmoor.io.wamit import read_wamit
 
+        options, adopted = _with_run_summary(paths, options)
         missing = [flag for flag, value in (("--water-density", options.water_density),
                                             ("--gravity", options.gravity)) if value is None]
         if missing:
@@ -205,10 +207,11 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
         if options.body is not None:
             raise CaseError("--body", "", "no --body with WAMIT files (one body per file "
                             "set)", str(options.body))
-        return read_wamit(list(map(str, paths)), water_density=options.water_density,
-                          gravity=options.gravity,
-                          length_scale=1.0 if options.length_scale is None
-                          else options.length_scale, water_depth=options.water_depth)
+        bem = read_wamit(list(map(str, paths)), water_density=options.water_density,
+                         gravity=options.gravity,
+                         length_scale=1.0 if options.length_scale is None
+                         else options.length_scale, water_depth=options.water_depth)
+        return replace(bem, notes=bem.notes + tuple(adopted)) if adopted else bem
     from floatmoor.io.bemio import read_bemio
 
     if options.length_scale is not None:
@@ -222,6 +225,42 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
     _agree(str(paths[0]), "gravity", "--gravity", options.gravity, bem.gravity)
     _agree(str(paths[0]), "water depth", "--water-depth", options.water_depth, bem.water_depth)
     return bem
+
+
+#: How the notes of the values taken from a WAMIT ``.out`` begin (``hydro import`` prints
+#: them).
+RUN_SUMMARY_NOTE = "From the WAMIT run summary"
+
+
+def _with_run_summary(paths: Sequence[str], options: ImportOptions
+                      ) -> tuple[ImportOptions, list[str]]:
+    """The options with the gravity, ULEN and water depth a WAMIT ``.out`` among ``paths``
+    states where they were not given, and a note for each so taken.
+
+    Raises
+    ------
+    BemFileError
+        A value given that is not the one the ``.out`` states (an infinite depth against a
+        finite one included), naming both.
+    """
+    from floatmoor.io.wamit import read_wamit_out
+
+    out = next((p for p in paths if Path(p).suffix.lower() == ".out"), None)
+    if out is None:
+        return options, []
+    summary = read_wamit_out(out)
+    adopted, notes = {}, []
+    for what, flag, field, unit in (("water depth", "--water-depth", "water_depth", "m"),
+                                    ("gravity", "--gravity", "gravity", "m/s^2"),
+                                    ("length scale ULEN", "--length-scale", "length_scale",
+                                     "m")):
+        given, stated = getattr(options, field), getattr(summary, field)
+        _agree(str(out), what, flag, given, stated)
+        if given is None and stated is not None:
+            adopted[field] = stated
+            notes.append(f"{RUN_SUMMARY_NOTE} {out}: {what} {_text(stated)}"
+                         + ("" if math.isinf(stated) else f" {unit}") + f" (no {flag} given).")
+    return (replace(options, **adopted) if adopted else options), notes
 
 
 def source_file_records(paths: Sequence[str], project: str | os.PathLike[str] | None = None

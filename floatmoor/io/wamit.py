@@ -1,4 +1,5 @@
-"""WAMIT numeric output files (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``) -> ImportedBem.
+"""WAMIT numeric output files (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``) -> ImportedBem;
+the run's summary (``.out``) for the gravity, ULEN and water depth it states.
 
 A small strict reader of WAMIT's non-dimensional numeric files, one rigid body (six modes),
 zero forward speed, the first column a wave period (WAMIT's default ``IPEROUT``). The
@@ -22,6 +23,11 @@ WAMIT's A_ij is the force in mode i due to the motion of mode j; floatmoor's (ca
 e^{-i omega t}, the complex conjugate. The hydrostatic matrix keeps WAMIT's (force, motion)
 order, as floatmoor's does.
 
+``.out`` The run's summary, of which only its header lines ``Gravity: G  Length scale: ULEN``
+        and ``Water depth: H`` (or ``infinite``) are read (:func:`read_wamit_out`): the
+        numeric files state none of the three, and a depth given to the importer that is
+        not the run's (deep-water coefficients taken as finite-depth ones) is an error.
+
 Anything that is not a well-formed file of its kind raises :class:`BemFileError` naming the
 file and line: a wrong number of columns, a non-number, NaN or inf, a mode index outside
 1..6 (multi-body files are not supported), a repeated line, a period that is neither > 0 nor
@@ -41,10 +47,10 @@ from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
 
-__all__ = ["read_wamit", "WAMIT_EXTENSIONS"]
+__all__ = ["read_wamit", "read_wamit_out", "WamitRunSummary", "WAMIT_EXTENSIONS"]
 
 #: The file kinds read, by extension (lower case).
-WAMIT_EXTENSIONS = (".1", ".3", ".3fk", ".3sc", ".hst")
+WAMIT_EXTENSIONS = (".1", ".3", ".3fk", ".3sc", ".hst", ".out")
 
 #: Modes of one rigid body (WAMIT's I, J = 1..6; multi-body files number them on to 6 N).
 _N_MODES = 6
@@ -72,7 +78,59 @@ PARTS_SUM_RTOL = 1e-3
 
 _KIND_NAMES = {".1": "added mass and damping (.1)", ".3": "exciting force (.3)",
                ".3fk": "Froude-Krylov force (.3fk)", ".3sc": "scattering force (.3sc)",
-               ".hst": "hydrostatic restoring (.hst)"}
+               ".hst": "hydrostatic restoring (.hst)", ".out": "run summary (.out)"}
+
+#: The header fields of a ``.out`` read, as WAMIT prints them (``Gravity:     9.80665
+#: Length scale:        1.00000``, ``Water depth:        200.000000`` or ``infinite``).
+_OUT_FIELDS = {"gravity": "Gravity:", "length_scale": "Length scale:",
+               "water_depth": "Water depth:"}
+
+
+@dataclass(frozen=True)
+class WamitRunSummary:
+    """What a WAMIT ``.out`` states about its run (None: a field it does not print)."""
+
+    path: str
+    gravity: float | None  #: [m/s^2]
+    length_scale: float | None  #: ULEN [m]
+    water_depth: float | None  #: [m], inf for infinite depth
+
+
+def read_wamit_out(path: str | Path) -> WamitRunSummary:
+    """Read the gravity, ULEN and water depth from a WAMIT ``.out`` file's header.
+
+    Raises
+    ------
+    BemFileError
+        No such file, no ``Water depth:`` line, or a field that is not a number > 0 (the
+        depth may be ``infinite``).
+    """
+    table = _Table(Path(path), ".out")
+    found: dict[str, float] = {}
+    for lineno, parts in table.rows:
+        line = " ".join(parts)
+        for name, label in _OUT_FIELDS.items():
+            at = line.find(label)
+            if name in found or at < 0:
+                continue
+            rest = line[at + len(label):].split()
+            token = rest[0] if rest else ""
+            if name == "water_depth" and token.lower() == "infinite":
+                found[name] = math.inf
+                continue
+            unit = "m/s^2" if name == "gravity" else "m"
+            value = table.number(lineno, token, f"{label} [{unit}]") if token else math.nan
+            if not value > 0.0:
+                raise table.error(lineno, f"a number > 0 after '{label}'",
+                                  f"'{token or 'nothing'}'")
+            found[name] = value
+        if len(found) == len(_OUT_FIELDS):
+            break
+    if "water_depth" not in found:
+        raise BemFileError(table.name, "water depth", "a WAMIT run summary with its "
+                           "'Water depth:' line", "none")
+    return WamitRunSummary(table.name, found.get("gravity"), found.get("length_scale"),
+                           found["water_depth"])
 
 
 def _exponent_radiation(i: int, j: int) -> int:
@@ -379,8 +437,9 @@ def read_wamit(paths: Sequence[str | Path], *, water_density: float,
     ----------
     paths
         The files, recognised by extension (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``;
-        at most one of each). Without ``.3`` but with both ``.3fk`` and ``.3sc`` the
-        excitation is their sum; a lone ``.3fk`` or ``.3sc`` needs the ``.3``.
+        at most one of each; a ``.out`` is left to :func:`read_wamit_out`). Without ``.3``
+        but with both ``.3fk`` and ``.3sc`` the excitation is their sum; a lone ``.3fk`` or
+        ``.3sc`` needs the ``.3``.
     water_density, gravity
         rho [kg/m^3] and g [m/s^2] of the WAMIT run (the numeric files state neither).
     length_scale
@@ -407,7 +466,7 @@ def read_wamit(paths: Sequence[str | Path], *, water_density: float,
     ulen = _positive("length_scale", length_scale)
     depth = None if water_depth is None else _positive("water_depth", water_depth,
                                                        allow_inf=True)
-    files = _sort_files(paths)
+    files = _sort_files(paths)  # a .out is read by read_wamit_out (its caller's)
     one = _Table(files[".1"], ".1")
     radiation = _read_radiation(one)
     periods = np.asarray(radiation.periods)

@@ -27,6 +27,8 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     Per line, ``strength`` holds the largest tension at either end, after the ramp and over the
     whole run, over the MBL of its type and the safety factor MBL / T_max
     (:func:`floatmoor.post.strength.line_strength`; None without an MBL). Tensions are in N.
+    ``validity_warnings``: the messages of the conditions under which the run left its
+    models' range (the dataset's attribute; :mod:`floatmoor.simulation.validity`).
     """
     motion = case.motion
     start = motion.ramp_duration if motion is not None else 0.0
@@ -56,6 +58,7 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
                 continue
             sections[section.label] = section_strength(
                 dataset, section.label, section.line_type.minimum_breaking_load, start=window)
+    validity = str(dataset.attrs.get("validity_warnings", ""))
     out = {
         "title": case.title,
         "case": case.source,
@@ -65,6 +68,8 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
         "window_start_reason": reason,
         "lines": lines,
         "sections": sections,
+        # where the run left its models' range (floatmoor.simulation.validity)
+        "validity_warnings": [m for m in validity.split("\n") if m],
     }
     checked = str(dataset.attrs.get("line_accuracy", ""))
     if checked:  # the a-posteriori check of lines whose numerics the accuracy chose
@@ -163,4 +168,6 @@ def format_summary(summary: dict[str, Any]) -> str:
             if b:
                 rows.append(f"  {dof:<10}{b['mean']:>11.4g}{b['std']:>11.4g}{b['min']:>11.4g}"
                             f"{b['max']:>11.4g}")
+    rows.extend(f"warning: outside the model's validity: {m}"
+                for m in summary.get("validity_warnings", ()))
     return "\n".join(rows)

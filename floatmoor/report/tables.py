@@ -177,16 +177,20 @@ def _reference_note(reference: ReferenceValues | None) -> list[str]:
 
 
 def runs_table(runs: Sequence[RunData], analyses: Sequence[RunAnalysis]) -> Table:
-    """One row per run: file, title, line models, status and analysis window."""
-    rows = []
+    """One row per run: file, title, line models, status and analysis window; a note for
+    each run that left its models' validity (its file's ``validity_warnings``,
+    :mod:`floatmoor.simulation.validity`)."""
+    rows, notes = [], []
     for run, a in zip(runs, analyses):
+        notes += [f"**Run {run.label} is outside its model's validity**: {m}" for m in
+                  str(run.dataset.attrs.get("validity_warnings", "")).split("\n") if m]
         models = ", ".join(f"{k}: {v}" for k, v in run.models.items())
         rows.append([run.label, str(run.path) if run.path else EMPTY,
                      str(run.dataset.attrs.get("title", "")), models,
                      str(run.dataset.attrs.get("status", "")),
                      f"{run.start:g} s ({run.start_source})", f"{a.window:g} s"])
     return Table("Runs", ["run", "file", "title", "line models", "status",
-                          "analysis window from", "window length"], rows)
+                          "analysis window from", "window length"], rows, notes)
 
 
 def tension_tables(runs: Sequence[RunData], analyses: Sequence[RunAnalysis],

@@ -28,6 +28,7 @@ from floatmoor.simulation.coupled import MooredBody
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.line_accuracy import NOT_YET_ESTIMATED, RunProbe, describe
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
+from floatmoor.simulation.validity import ValidityMonitor
 from floatmoor.signals import deferred_interrupts
 from floatmoor.waves.synthesis import harmonic_sum
 from floatmoor.waves.settings import (
@@ -215,6 +216,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         When a line or the body goes unstable (partial results written first).
     KeyboardInterrupt
         Re-raised after writing the partial results.
+
+    Warns
+    -----
+    ModelValidityWarning
+        Once per condition, when the floater's rotations or heave or a quasi-dynamic line
+        leave their models' range (:mod:`floatmoor.simulation.validity`); the messages are
+        also in the dataset's ``validity_warnings`` attribute.
     """
     check_coupled_case(case)
     if checkpoint_interval is None:
@@ -255,6 +263,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     done = 0
     if resume:
         done = _load_checkpoint(ckpt, identity, moored, recorder, stride, n_steps)
+    monitor = ValidityMonitor(case, body=True, carried=recorder.validity_warnings)
+    checked = recorder.n_done  # samples the monitor has seen: from the first (or the resumed)
 
     def record(index: int) -> None:
         ff, af = moored.line_forces(body.x, body.v)
@@ -324,7 +334,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             if not np.all(np.isfinite(body.x)):
                 raise SolverError(f"floater: the body motion is not finite at "
                                   f"t = {body.time:.6g} s")
-            recorder.advance(done // stride + 1)
+            first, stop = max(checked, recorder.offset), done // stride + 1
+            a, b = first - recorder.offset, stop - recorder.offset
+            monitor.check(times[first:stop], series["fairlead_position"][:, a:b],
+                          bseries["body_displacement"][a:b])
+            recorder.validity_warnings = monitor.messages()
+            checked = stop
+            recorder.advance(stop)
             if ckpt is not None:
                 snapshot = _Snapshot.take(moored, recorder, done)
                 if _time.perf_counter() - last_ckpt >= checkpoint_interval:

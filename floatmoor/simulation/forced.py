@@ -26,6 +26,7 @@ from floatmoor.simulation.assembly import LineModel, assemble
 from floatmoor.simulation.line_accuracy import LineAccuracy, checked_line, describe
 from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_line
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
+from floatmoor.simulation.validity import ValidityMonitor
 
 __all__ = ["RunResult", "run_forced_motion", "check_forced_case", "check_line_accuracy", "output_times",
            "body_points_state"]
@@ -111,6 +112,13 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
         When a line has no valid state; the partial results are written first.
     KeyboardInterrupt
         Re-raised after writing the partial results.
+
+    Warns
+    -----
+    ModelValidityWarning
+        Once per condition, when a quasi-dynamic line leaves its model's range
+        (:mod:`floatmoor.simulation.validity`); the messages are also in the dataset's
+        ``validity_warnings`` attribute.
     """
     check_forced_case(case)
     times = output_times(case.simulation)
@@ -124,10 +132,15 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
                         shape_nodes=_shape_nodes(models, groups) if stride else None,
                         shape_stride=stride, prescribed=is_body_motion(case.motion),
                         chunk=CHUNK_SAMPLES, attrs=attrs)
+    monitor = ValidityMonitor(case, body=False)
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
             stop = min(start + CHUNK_SAMPLES, times.size)
             _solve_chunk(case, models, groups, recorder, start, stop)
+            off = recorder.offset  # the chunk's samples are still in the window
+            monitor.check(times[start:stop],
+                          recorder.series["fairlead_position"][:, start - off:stop - off])
+            recorder.validity_warnings = monitor.messages()
             if progress is not None:
                 progress(float(times[stop - 1]))
     dataset = recorder.result(status="complete")

@@ -42,7 +42,7 @@ from floatmoor.signals import deferred_interrupts, signal_name
 if TYPE_CHECKING:
     from floatmoor.simulation.groups import GroupSamples, SystemGroup
 
-__all__ = ["Recorder", "FLUSH_INTERVAL_S", "WINDOW_BYTES", "STATUS_ROOM",
+__all__ = ["Recorder", "FLUSH_INTERVAL_S", "WINDOW_BYTES", "STATUS_ROOM", "VALIDITY_ATTRIBUTE",
            "estimated_output_bytes"]
 
 #: Wall time between partial writes of a long run [s]: often enough that a killed run loses
@@ -60,14 +60,18 @@ WINDOW_BYTES = 2 << 20
 #: (``running: ...``, ``complete``, ``failed: message``): a longer one makes the file be
 #: rewritten with more room.
 STATUS_ROOM = 4096
+#: The attribute of the model-validity messages of a run (floatmoor.simulation.validity), one
+#: a line ("" when it stayed valid), and its room in the file: a few conditions of ~250
+#: bytes each (a longer text makes the file be rewritten with more room).
+VALIDITY_ATTRIBUTE, VALIDITY_ROOM = "validity_warnings", 2048
 
 #: Attributes that change while the run goes, updated in the file at every write.
 _VOLATILE = ("status", "wall_time_s", "simulated_time_s")
 #: Attributes a resumed run need not share with the file it continues: the volatile ones,
 #: when the file was created, the case file's path (the same case may be reached by another
 #: path), the numba build that ran it, and the lines' accuracy estimated as the run went.
-_NOT_COMPARED = (*_VOLATILE, "created", "case_file", "numba_version", "llvmlite_version",
-                 "numba_disable_jit", "line_accuracy")
+_NOT_COMPARED = (*_VOLATILE, VALIDITY_ATTRIBUTE, "created", "case_file", "numba_version",
+                 "llvmlite_version", "numba_disable_jit", "line_accuracy")
 
 #: (name, components per sample) of the recorded time series.
 _SERIES = (
@@ -236,6 +240,9 @@ class Recorder:
                            "section_start_tension": np.zeros((n_sections, n_time)),
                            "section_end_tension": np.zeros((n_sections, n_time))}
         self.n_done = 0
+        #: the run's model-validity messages (floatmoor.simulation.validity), written to the
+        #: file's attribute VALIDITY_ATTRIBUTE with every write
+        self.validity_warnings: list[str] = []
         # line shapes every shape_stride samples, on each line's nodes; lines with fewer
         # nodes than the longest repeat their last node so every line shares the node axis
         self.shape_stride = shape_stride if shape_nodes else 0
@@ -434,7 +441,9 @@ class Recorder:
                                     shapes=shape_data, body=body, system=system,
                                     body_equilibrium=self.equilibrium,
                                     extra_attrs={**self.attrs, "wall_time_s": wall,
-                                                 "simulated_time_s": self.simulated_time})
+                                                 "simulated_time_s": self.simulated_time,
+                                                 VALIDITY_ATTRIBUTE:
+                                                     "\n".join(self.validity_warnings)})
 
     def _template(self, first: int, stop: int, status: str) -> bytes:
         """netCDF bytes of samples [first, stop) as xarray writes them, ``time`` the record
@@ -477,7 +486,9 @@ class Recorder:
             # file appears with all of them, or (a failed write) not at all
             template = self._template(0, 1, status)
             self._stream = NetCDF3Stream.create(self.path, template, sizes=sizes,
-                                                values=values, reserve={"status": STATUS_ROOM},
+                                                values=values, reserve={"status": STATUS_ROOM,
+                                                                         VALIDITY_ATTRIBUTE:
+                                                                         VALIDITY_ROOM},
                                                 records=self._records(1, stop, status))
         elif stop > first:
             self._stream.append(self._records(first, stop, status))
@@ -489,9 +500,11 @@ class Recorder:
                                          self.shape_position[:, a:b])
                 self._stream.write_along("shape_tension", "shape_time", lo,
                                          self.shape_tension[:, a:b])
-        self._stream.set_attributes({"status": status,
-                                     "wall_time_s": _time.perf_counter() - self._start,
-                                     "simulated_time_s": self.simulated_time})
+        attributes = {"status": status, "wall_time_s": _time.perf_counter() - self._start,
+                      "simulated_time_s": self.simulated_time}
+        if self._stream.header.attribute(VALIDITY_ATTRIBUTE) is not None:  # (older files: none)
+            attributes[VALIDITY_ATTRIBUTE] = "\n".join(self.validity_warnings)
+        self._stream.set_attributes(attributes)
         self.written = stop
 
     def sync(self) -> None:
@@ -547,6 +560,10 @@ class Recorder:
                 raise NetCDF3Error(f"a file holding the {n_done} samples its checkpoint "
                                    f"covers, not {stream.numrecs}")
             stream.truncate(n_done)
+            carried = stream.header.attribute(VALIDITY_ATTRIBUTE)  # kept by the resumed run
+            if carried is not None:
+                text = bytes(carried.raw).rstrip(b"\x00").decode("utf-8", "replace")
+                self.validity_warnings = [m for m in text.split("\n") if m]
             if self.shape_stride:
                 self._blank_shapes(stream, self._shapes_before(n_done))
         except BaseException:

@@ -163,6 +163,70 @@ def test_output_must_be_a_database_file(oc4_copy, capsys):
     assert "a database file PATH.nc" in capsys.readouterr().err
 
 
+#: The header lines of a WAMIT run summary (.out) as WAMIT prints them (the rest of the file,
+#: the run's tables, is not read); DEPTH is replaced.
+OUT_HEADER = """ WAMIT  Version 7.3
+ ...
+ Gravity:     9.80665                Length scale:        1.00000
+ Water depth:        DEPTH
+ Logarithmic singularity index:              ILOG =     1
+"""
+
+
+def _with_out(folder, depth: str) -> tuple[str, ...]:
+    (folder / "marin_semi.out").write_text(OUT_HEADER.replace("DEPTH", depth))
+    return ("marin_semi.1", "marin_semi.hst", "marin_semi.out")
+
+
+@pytest.mark.parametrize("depth, option, given, stated", [
+    ("200.000000", "inf", "infinite", "200"),
+    ("infinite", "200", "200", "infinite"),
+    ("200.000000", "320", "320", "200"),
+])
+def test_water_depth_against_the_wamit_run_summary_exits_2_naming_both(
+        oc4_copy, capsys, monkeypatch, depth, option, given, stated):
+    """A depth given that is not the one the WAMIT run used (deep-water coefficients taken as
+    finite-depth ones, or the reverse) is refused, naming both values."""
+    i = OPTIONS.index("--water-depth")
+    monkeypatch.setattr(f"{__name__}.OPTIONS", OPTIONS[:i] + OPTIONS[i + 2:])
+    assert _import(oc4_copy, "--water-depth", option, files=_with_out(oc4_copy, depth)) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("floatmoor: error: "), err
+    assert "marin_semi.out: water depth: expected the --water-depth given " \
+        f"({given}), found {stated} in the file" in err[0]
+    assert list((oc4_copy / "hydrodb").iterdir()) == []
+
+
+def test_water_depth_and_gravity_come_from_the_run_summary_when_not_given(
+        oc4_copy, capsys, monkeypatch):
+    kept = list(OPTIONS)
+    for flag in ("--water-depth", "--gravity"):
+        i = kept.index(flag)
+        del kept[i:i + 2]
+    monkeypatch.setattr(f"{__name__}.OPTIONS", kept)
+    assert _import(oc4_copy, files=_with_out(oc4_copy, "200.000000")) == 0
+    out = capsys.readouterr().out
+    assert "From the WAMIT run summary" in out and "water depth 200 m (no --water-depth " \
+        "given)" in out and "gravity 9.80665 m/s^2 (no --gravity given)" in out
+    ds = read_database(oc4_copy / "hydrodb" / "w.nc")
+    assert ds.attrs["bem_water_depth"] == "200.0" and float(ds.attrs["gravity"]) == 9.80665
+
+
+@pytest.mark.parametrize("value", ["1.025", "1025000", "800"])
+def test_implausible_water_density_exits_2(oc4_copy, capsys, value):
+    """1.025 is t/m^3 typed for kg/m^3: every value of the import would be 1000 times too
+    small. Outside 900-1100 kg/m^3 the option is refused."""
+    i = OPTIONS.index("--water-density")
+    assert main(["hydro", "import", str(oc4_copy / "marin_semi.1"),
+                 str(oc4_copy / "marin_semi.hst"), "-o", str(oc4_copy / "hydrodb" / "w.nc"),
+                 *OPTIONS[:i], "--water-density", value, *OPTIONS[i + 2:]]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("floatmoor: error: --water-density: expected "
+                                               "a water density of 900 to 1100 kg/m^3"), err
+    assert f"found '{value}'" in err[0]
+    assert list((oc4_copy / "hydrodb").iterdir()) == []
+
+
 def write_bemio(path, ds, *, cg=(0.0, 0.0, 0.0), cb=None, rho=None, code="CAPYTAINE"):
     """A floatmoor database in WEC-Sim's BEMIO layout (writeBEMIOH5.m, as
     floatmoor/io/bemio.py documents it: normalised by rho and g, BEMIO's (force, motion)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from floatmoor.io.bem_data import BemFileError
-from floatmoor.io.wamit import read_wamit
+from floatmoor.io.wamit import read_wamit, read_wamit_out
 
 OC4 = Path(__file__).parents[1] / "data" / "wamit_oc4"
 RHO, G = 1025.0, 9.80665
@@ -363,7 +363,7 @@ def test_hydrostatics_errors(tmp_path):
 def test_file_set_errors(tmp_path):
     one = _write(tmp_path, "m.1", GOOD_ONE)
     with pytest.raises(BemFileError, match=r"m\.2: expected a WAMIT file ending in \.1, \.3, "
-                       r"\.3fk, \.3sc, \.hst, found extension '\.2'"):
+                       r"\.3fk, \.3sc, \.hst, \.out, found extension '\.2'"):
         read_wamit([one, _write(tmp_path, "m.2", GOOD_THREE)], water_density=RHO)
     with pytest.raises(BemFileError, match=r"n\.1: expected one \.1 file, found a second"):
         read_wamit([one, _write(tmp_path, "n.1", GOOD_ONE)], water_density=RHO)
@@ -375,3 +375,27 @@ def test_file_set_errors(tmp_path):
         with pytest.raises(ValueError):
             read_wamit([one], **bad)
     assert read_wamit([one], water_density=RHO, water_depth=math.inf).water_depth == math.inf
+
+
+@pytest.mark.parametrize("lines, depth, gravity, ulen", [
+    ([" Gravity:     9.80665                Length scale:        1.00000",
+      " Water depth:        200.000000"], 200.0, 9.80665, 1.0),
+    ([" Water depth:        infinite", " Gravity:     9.81"], math.inf, 9.81, None),
+])
+def test_run_summary_states_depth_gravity_and_ulen(tmp_path, lines, depth, gravity, ulen):
+    out = _write(tmp_path, "m.out", [" WAMIT  Version 7.3", *lines, " ILOG = 1"])
+    summary = read_wamit_out(out)
+    assert (summary.water_depth, summary.gravity, summary.length_scale) == (depth, gravity, ulen)
+
+
+@pytest.mark.parametrize("lines, message", [
+    ([" Gravity:     9.80665"], "m.out: water depth: expected a WAMIT run summary with its "
+     "'Water depth:' line, found none"),
+    ([" Water depth:        deep"], "m.out: line 1: expected a number (Water depth: [m]), "
+     "found 'deep'"),
+    ([" Water depth:        -3.0"], "m.out: line 1: expected a number > 0 after 'Water depth:'"),
+])
+def test_run_summary_errors_name_file_and_line(tmp_path, lines, message):
+    with pytest.raises(BemFileError) as err:
+        read_wamit_out(_write(tmp_path, "m.out", lines))
+    assert message in str(err.value)

@@ -197,3 +197,21 @@ def test_volume_equivalent_diameter_is_flagged() -> None:
     assert not LineChain("line1", "chain", 0.0779, 125.6).looks_volume_equivalent
     # Lindahl's chain: 0.0818 kg/m at its nominal 2.2 mm
     assert not LineChain("chain", "chain", 2.2e-3, 0.0818).looks_volume_equivalent
+
+
+def test_runs_outside_their_models_validity_are_flagged(runs_dir, tmp_path, capsys) -> None:
+    """A run whose file records validity warnings (floatmoor.simulation.validity) is named
+    under the Runs table with them: the report does not show its numbers as if valid."""
+    ds = read_dataset(runs_dir / "lindahl.nc").load()
+    ds.attrs["validity_warnings"] = ("line 'chain' (quasi-dynamic): dimensionless "
+                                     "acceleration 1.36 at t = 5.2275 s")
+    flagged = tmp_path / "flagged.nc"
+    write_dataset(ds, flagged)
+    out = tmp_path / "report"
+    status = report_command(_namespace(runs=[str(flagged), str(runs_dir / "buoy.nc")],
+                                       output=str(out), html=False))
+    assert status == 0, capsys.readouterr().err
+    md = (out / "summary.md").read_text()
+    assert "**Run flagged is outside its model's validity**: line 'chain' (quasi-dynamic): " \
+        "dimensionless acceleration 1.36" in md
+    assert "Run buoy is outside" not in md
