@@ -27,12 +27,16 @@ file and line: a wrong number of columns, a non-number, NaN or inf, a mode index
 1..6 (multi-body files are not supported), a repeated line, a period that is neither > 0 nor
 -1 or 0, excitation periods that are not the ``.1``'s finite periods, a period missing a
 wave direction that another has, fewer than two finite periods, an empty or missing file.
+The files are data from elsewhere (docs/guide/safeguards.md#files-from-elsewhere): only
+regular files of at most :data:`MAX_FILE_BYTES` are read (a FIFO or a device is refused before
+it is opened), and quoted tokens are shown with :func:`floatmoor.terminal_text.shown`.
 """
 
 from __future__ import annotations
 
+import io
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -40,8 +44,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
+from floatmoor.io.input_files import InputFileError, read_bounded
+from floatmoor.terminal_text import shown
 
-__all__ = ["read_wamit", "WAMIT_EXTENSIONS"]
+__all__ = ["read_wamit", "WAMIT_EXTENSIONS", "MAX_FILE_BYTES"]
+
+#: Largest WAMIT file read [bytes]: a .3 of 1000 periods x 72 wave directions x 6 modes is
+#: ~40 MB of ~90-byte lines, OC4's .1 of 498 periods 0.5 MB; the bound keeps the text and the
+#: values parsed from it (a few hundred MB at worst) well inside a workstation's memory.
+MAX_FILE_BYTES = 64 * 2**20
 
 #: The file kinds read, by extension (lower case).
 WAMIT_EXTENSIONS = (".1", ".3", ".3fk", ".3sc", ".hst")
@@ -107,21 +118,25 @@ class _Table:
         self.path = path
         self.name = str(path)
         self.kind = kind
-        if not path.exists():
-            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
-                               "no such file")
-        if not path.is_file():
-            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
-                               "a folder or special file")
         try:
-            text = path.read_text(encoding="utf-8")
+            self.text = read_bounded(path, MAX_FILE_BYTES).decode("utf-8")
+        except InputFileError as err:
+            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
+                               err.found) from None
         except UnicodeDecodeError:
             raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} text file",
                                "bytes that are not UTF-8 text") from None
         except OSError as err:
-            raise BemFileError(self.name, "", "a readable file", str(err)) from None
-        self.rows = [(n, line.split()) for n, line in enumerate(text.splitlines(), 1)
-                     if line.strip()]
+            raise BemFileError(self.name, "", "a readable file", shown(err)) from None
+
+    @property
+    def rows(self) -> Iterator[tuple[int, list[str]]]:
+        """(line number, tokens) of the non-blank lines, one at a time (a list of them all
+        would take ten times the text's memory)."""
+        for n, line in enumerate(io.StringIO(self.text), 1):
+            parts = line.split()
+            if parts:
+                yield n, parts
 
     def error(self, lineno: int, expected: str, found: str) -> BemFileError:
         return BemFileError(self.name, f"line {lineno}", expected, found)
@@ -130,9 +145,9 @@ class _Table:
         try:
             value = float(token)
         except ValueError:
-            raise self.error(lineno, f"a number ({what})", f"'{token}'") from None
+            raise self.error(lineno, f"a number ({what})", f"'{shown(token, 40)}'") from None
         if not math.isfinite(value):
-            raise self.error(lineno, f"a finite number ({what})", f"'{token}'")
+            raise self.error(lineno, f"a finite number ({what})", f"'{shown(token, 40)}'")
         return value
 
     def mode(self, lineno: int, token: str, what: str) -> int:
@@ -140,7 +155,7 @@ class _Table:
             value = int(token)
         except ValueError:
             raise self.error(lineno, f"an integer mode index {what} in 1..6",
-                             f"'{token}'") from None
+                             f"'{shown(token, 40)}'") from None
         if value > _N_MODES:
             raise self.error(lineno, f"a mode index {what} in 1..6 (one rigid body; "
                              "multi-body WAMIT files are not supported)", f"index {value}")
@@ -153,13 +168,13 @@ class _Table:
         if per < 0.0 and per != -1.0:
             raise self.error(lineno, "a wave period PER > 0, or -1 (omega = 0) or 0 (omega "
                              "= infinity); the first column must be the period (WAMIT's "
-                             "default IPEROUT)", f"PER = {token}")
+                             "default IPEROUT)", f"PER = {shown(token, 40)}")
         return per
 
     def columns(self, lineno: int, parts: list[str], count: int, layout: str) -> None:
         if len(parts) != count:
             raise self.error(lineno, f"{count} columns '{layout}'",
-                             f"{len(parts)}: '{' '.join(parts)}'")
+                             f"{len(parts)}: '{shown(' '.join(parts), 120)}'")
 
     def once(self, seen: dict, key: tuple, lineno: int, fields: str, described: str) -> None:
         """Refuse a second line for ``key`` (``fields`` names its columns, ``described``
@@ -170,7 +185,7 @@ class _Table:
         seen[key] = lineno
 
     def require_rows(self, layout: str) -> None:
-        if not self.rows:
+        if not self.text.strip():
             raise BemFileError(self.name, "", f"lines '{layout}'", "an empty file")
 
 
@@ -203,7 +218,7 @@ def _read_radiation(table: _Table) -> _Radiation:
         a = table.number(lineno, parts[3], "Abar")
         b = 0.0 if limit else table.number(lineno, parts[4], "Bbar")
         table.once(first_line, (per, i, j), lineno, "PER, I, J",
-                   f"PER = {parts[0]}, I = {i}, J = {j}")
+                   f"PER = {shown(parts[0], 40)}, I = {i}, J = {j}")
         values.setdefault(per, {})[(i, j)] = (a, b)
 
     periods = sorted((p for p in values if p > 0.0), reverse=True)
@@ -281,9 +296,9 @@ def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
         re = table.number(lineno, parts[5], "Re")
         im = table.number(lineno, parts[6], "Im")
         if mod < 0.0:
-            raise table.error(lineno, "a modulus Mod >= 0", f"Mod = {parts[3]}")
+            raise table.error(lineno, "a modulus Mod >= 0", f"Mod = {shown(parts[3], 40)}")
         table.once(first_line, (per, beta, i), lineno, "PER, BETA, I",
-                   f"PER = {parts[0]}, BETA = {parts[1]}, I = {i}")
+                   f"PER = {shown(parts[0], 40)}, BETA = {shown(parts[1], 40)}, I = {i}")
         if per in (-1.0, 0.0):
             dropped.add(per)
             continue
