@@ -258,8 +258,9 @@ def _read_source(kind: str, paths: Sequence[str], options: ImportOptions) -> Imp
 def source_file_records(paths: Sequence[str], project: str | os.PathLike[str] | None = None
                         ) -> list[dict[str, Any]]:
     """Each file as given (``path``), with its SHA-256 and size [bytes], and, for a file
-    inside the folder ``project`` (the one holding the database's ``hydrodb/``), its path
-    from there (``project_path``): the staleness check finds it there wherever it runs."""
+    inside the folder ``project`` (:func:`floatmoor.hydro.database.project_folder` of the
+    database), its path from there (``project_path``): the staleness check looks for it there,
+    and only there, wherever it runs."""
     out = []
     for p in paths:
         record: dict[str, Any] = {"path": str(p), "sha256": file_sha256(p),
