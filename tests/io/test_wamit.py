@@ -411,3 +411,18 @@ def test_fifo_and_device_are_refused_unopened(tmp_path, kind, found):
 def test_quoted_tokens_are_shown_escaped(tmp_path):
     err = _error(tmp_path, {"m.1": ["10.0 1 1 \x1b]0;owned\x07 1.0"]})
     assert "\x1b" not in str(err) and "'\\x1b]0;owned\\x07'" in str(err)
+
+
+def test_distinct_periods_and_directions_are_bounded(tmp_path, monkeypatch):
+    from floatmoor.io import wamit
+
+    monkeypatch.setattr(wamit, "MAX_PERIODS", 2)
+    err = _error(tmp_path, {"m.1": _one_lines(periods=(10.0, 5.0, 2.5, 1.25))})
+    assert "line 145: expected at most 4 distinct wave periods (PER = -1 and 0 included), " \
+        "found one more, 2.5" in str(err)
+    monkeypatch.setattr(wamit, "MAX_PERIODS", 10)
+    monkeypatch.setattr(wamit, "MAX_DIRECTIONS", 1)
+    three = [f"10.0 {beta} 1 1.0 0.0 1.0 0.0" for beta in (0.0, 90.0)]
+    err = _error(tmp_path, {"m.1": _one_lines(periods=(10.0, 5.0)), "m.3": three})
+    assert "m.3: line 2: expected at most 1 distinct wave directions, found one more, 90" \
+        in str(err)
