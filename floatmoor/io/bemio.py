@@ -568,9 +568,9 @@ def _read(file: _File, body: int | None, water_density: float | None) -> Importe
         notes.append("disp_vol = 0 in the file (BEMIO writes 0 when the BEM run gave no "
                      "hydrostatics): displaced volume and centre of buoyancy not used.")
     if code.upper() != "WAMIT":
-        notes.append(f"added_mass/inf_freq of a {shown(code, 80) or 'non-WAMIT'} run is BEMIO's estimate "
-                     "(radiationIRF, or A at the highest frequency), not a BEM solution at "
-                     "omega = infinity.")
+        notes.append(f"added_mass/inf_freq of a {shown(code, 80) or 'non-WAMIT'} run is "
+                     "BEMIO's estimate (radiationIRF, or A at the highest frequency), not a "
+                     "BEM solution at omega = infinity.")
     else:
         notes.append("BEMIO's readWAMIT takes WAMIT's values as normalised with ULEN = 1 and "
                      "records rho = 1000 kg/m^3 whatever the run's density.")

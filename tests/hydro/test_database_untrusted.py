@@ -164,3 +164,12 @@ def test_not_a_database_fifo_and_device_are_one_clean_line(tmp_path, capsys):
         assert len(err) == 1 and err[0].startswith(f"floatmoor: error: {path}: expected a "
                                                    "hydrodynamic database"), err
         assert err[0].endswith(found)
+
+
+def test_recorded_geometry_of_another_shape_is_a_failed_check(tmp_path, buoy_db, capsys):
+    ds = buoy_db.copy(deep=True)
+    ds.attrs["geometry_json"] = '["\\u001b[2J"]'  # JSON, but not the recorded geometry
+    write_database(ds, tmp_path / "odd.nc")
+    assert main(["hydro", "check", str(tmp_path / "odd.nc")]) == 1
+    out = capsys.readouterr().out
+    assert "hydrostatics    FAIL" in out and "cannot be evaluated on these values" in out
