@@ -566,7 +566,8 @@ def stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
     if not isinstance(recorded, dict):
         recorded = {}
     keys = sorted(k for k in set(wanted) | set(recorded) if wanted.get(k) != recorded.get(k))
-    return keys or ["inputs_hash"]
+    # the recorded keys are the file's text: escaped for the messages that list them
+    return [shown(k, 80) for k in keys] or ["inputs_hash"]
 
 
 def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,

@@ -19,7 +19,7 @@ from floatmoor.hydro.database import (
     HydroDatabaseError, changed_source_files, load_for_case, read_database, write_database,
 )
 from floatmoor.hydro.importing import imported_dataset, source_file_records
-from tests.hydro.conftest import BUOY_CASE
+from tests.hydro.conftest import BUOY_CASE, REPO
 from tests.hydro.test_imported_case import IMPORTED_HYDRO, _with_hydro
 from tests.hydro.test_importing import as_imported, options_of
 
@@ -173,3 +173,20 @@ def test_recorded_geometry_of_another_shape_is_a_failed_check(tmp_path, buoy_db,
     assert main(["hydro", "check", str(tmp_path / "odd.nc")]) == 1
     out = capsys.readouterr().out
     assert "hydrostatics    FAIL" in out and "cannot be evaluated on these values" in out
+
+
+def test_recorded_input_keys_are_shown_escaped(tmp_path, buoy_db, capsys):
+    """A built database's recorded inputs are the file's text: a key listed as differing is
+    escaped (the recorded case file is found in the database's project)."""
+    ds = buoy_db.copy(deep=True)
+    inputs = json.loads(ds.attrs["inputs_json"])
+    inputs["\x1b]0;owned\x07"] = 1
+    ds.attrs["inputs_json"] = json.dumps(inputs)
+    ds.attrs["inputs_hash"] = "0" * 64
+    case = tmp_path / ds.attrs["case_file"]
+    case.parent.mkdir(parents=True)
+    case.write_text((REPO / ds.attrs["case_file"]).read_text())
+    write_database(ds, tmp_path / "hydrodb" / "odd.nc")
+    assert main(["hydro", "check", str(tmp_path / "hydrodb" / "odd.nc")]) == 2
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and "\\x1b]0;owned\\x07" in err
