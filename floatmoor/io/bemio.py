@@ -61,7 +61,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
-from floatmoor.io.input_files import InputFileError, regular_file_size
+from floatmoor.io.input_files import InputFileError, open_regular
 from floatmoor.terminal_text import shown
 
 __all__ = ["read_bemio", "MAX_FILE_BYTES", "MAX_READ_BYTES", "MAX_TEXT_BYTES", "MAX_BODIES"]
@@ -394,25 +394,26 @@ def read_bemio(path: str | Path, *, body: int | None = None,
     if water_density is not None and not (math.isfinite(water_density)
                                           and water_density > 0.0):
         raise ValueError(f"water_density must be a finite number > 0, got {water_density!r}")
-    file_path = Path(path)
     try:
-        regular_file_size(file_path, MAX_FILE_BYTES)
+        # opened here (regular, bounded, not blocking on a FIFO), then HDF5 reads this stream
+        stream = open_regular(path, MAX_FILE_BYTES)
     except InputFileError as err:
         raise BemFileError(name, "", "a WEC-Sim BEMIO .h5 file (a regular file of at most "
                            f"{MAX_FILE_BYTES} bytes)", err.found) from None
-    try:
-        handle = h5py.File(file_path, "r")
-    except OSError as err:
-        raise BemFileError(name, "", "an HDF5 file (WEC-Sim BEMIO .h5)",
-                           f"a file HDF5 cannot open ({shown(err)})") from None
-    with handle:
+    with stream:
         try:
-            return _read(_File(handle, name), body, water_density)
-        except (OSError, RuntimeError, KeyError) as err:
-            # HDF5's own failures on a damaged file (a truncated object header, a broken
-            # B-tree), met while walking it: one line, not a traceback
-            raise BemFileError(name, "", "a readable WEC-Sim BEMIO .h5 file",
-                               f"a damaged HDF5 file ({shown(err)})") from None
+            handle = h5py.File(stream, "r")
+        except OSError as err:
+            raise BemFileError(name, "", "an HDF5 file (WEC-Sim BEMIO .h5)",
+                               f"a file HDF5 cannot open ({shown(err)})") from None
+        with handle:
+            try:
+                return _read(_File(handle, name), body, water_density)
+            except (OSError, RuntimeError, KeyError) as err:
+                # HDF5's own failures on a damaged file (a truncated object header, a broken
+                # B-tree), met while walking it: one line, not a traceback
+                raise BemFileError(name, "", "a readable WEC-Sim BEMIO .h5 file",
+                                   f"a damaged HDF5 file ({shown(err)})") from None
 
 
 def _read(file: _File, body: int | None, water_density: float | None) -> ImportedBem:
