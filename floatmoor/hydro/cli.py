@@ -585,9 +585,12 @@ def _state_space_info(ds) -> str:
     if realisation is None:
         return ("  state-space radiation: none (add it with 'floatmoor hydro fit-state-space "
                 f"{shown(ds.attrs.get('database', 'NAME'), 80)}')")
-    stale = ss.stale_reasons(ds, realisation)
+    try:
+        stale = ss.stale_reasons(ds, realisation)
+    except (TypeError, ValueError, AttributeError):  # recorded settings of another shape
+        stale = ["its recorded K(t) settings are not readable"]
     status = "up to date with the database's K(t)" if not stale else \
-        "STALE (refit with 'floatmoor hydro fit-state-space'): " + "; ".join(stale)
+        "STALE (refit with 'floatmoor hydro fit-state-space'): " + shown("; ".join(stale))
     rtol = realisation.settings.get("kernel_rtol")
     head = (f"  state-space radiation: {len(realisation.pairs)} pairs, {realisation.n_states} "
             f"states, worst K error {realisation.worst_kernel_error:.2e}, fitted "

@@ -190,3 +190,21 @@ def test_recorded_input_keys_are_shown_escaped(tmp_path, buoy_db, capsys):
     assert main(["hydro", "check", str(tmp_path / "hydrodb" / "odd.nc")]) == 2
     err = capsys.readouterr().err
     assert "\x1b" not in err and "\\x1b]0;owned\\x07" in err
+
+
+@pytest.mark.parametrize("attr, value, exit_status, shows", [
+    ("state_space_errors_json", "[1]", 2, "damaged state-space realisation"),
+    ("state_space_settings_json", '{"kernel_rtol": "x"}', 2, "damaged state-space"),
+    ("state_space_created", "\x1b[2Jyesterday", 0, "fitted \\x1b[2Jyesterday"),
+], ids=["errors-list", "rtol-text", "created-escape"])
+def test_recorded_state_space_attributes(tmp_path, buoy_db, capsys, attr, value, exit_status,
+                                         shows):
+    ds = buoy_db.copy(deep=True)
+    ds.attrs[attr] = value
+    write_database(ds, tmp_path / "ss.nc")
+    assert main(["hydro", "info", str(tmp_path / "ss.nc")]) == exit_status
+    captured = capsys.readouterr()
+    text = captured.err if exit_status else captured.out
+    assert shows in text and "\x1b" not in text
+    if exit_status:
+        assert len(captured.err.strip().splitlines()) == 1
