@@ -381,7 +381,7 @@ def _check(args: argparse.Namespace) -> int:
 def _checks_table(path: Path, ds, note: str, results, accepted: tuple[str, ...] = ()) -> str:
     """The table of ``hydro check`` (and ``hydro build``): one row per check; a failed check
     in ``accepted`` is marked as accepted."""
-    rows = [f"{path}: {shown(ds.attrs['database'], 80)} ({note})",
+    rows = [f"{path}: {shown(ds.attrs.get('database', path.stem), 80)} ({note})",
             f"  {'check':<16}{'result':<8}{'worst':>11}{'tolerance':>11}  detail"]
     for r in results:
         if not r.applicable:

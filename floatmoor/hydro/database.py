@@ -348,7 +348,6 @@ def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
     """
     p = Path(path)
     try:
-        regular_file_size(p, MAX_DATABASE_BYTES)
         with open_regular(p, MAX_DATABASE_BYTES) as stream:
             magic = stream.read(4)
     except InputFileError as err:
@@ -369,7 +368,7 @@ def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
         raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, not readable as "
                                  f"netCDF ({type(err).__name__}: {shown(err, 200)})") from None
     source = ds.attrs.get("source", "capytaine")
-    if source not in DATABASE_SOURCES:
+    if not isinstance(source, str) or source not in DATABASE_SOURCES:
         raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, expected a source "
                                  f"attribute among {', '.join(DATABASE_SOURCES)}, found "
                                  f"'{shown(source, 80)}'")
