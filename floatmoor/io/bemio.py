@@ -149,6 +149,8 @@ class _File:
             raise self.error(where, f"a dataset ({what})", "none")
         if not isinstance(obj, h5py.Dataset):
             raise self.error(where, f"a dataset ({what})", "a group")
+        if obj.shape is None:
+            raise self.error(where, f"a dataset ({what})", "an empty (null) dataset")
         if obj.is_virtual:
             raise self.error(where, f"a dataset ({what}) stored in the file itself",
                              "a virtual dataset (data mapped from other datasets or files)")
@@ -241,8 +243,7 @@ class _File:
         return value.strip()
 
     def _string_type(self, tid: Any, shape: tuple[int, ...], where: str, what: str) -> None:
-        """Refuse anything but one string of at most :data:`MAX_TEXT_BYTES` (fixed length),
-        from its HDF5 type, before it is read."""
+        """Refuse all but one string of fixed length <= MAX_TEXT_BYTES, before reading."""
         if _type_class(tid) != "a string" or math.prod(shape) != 1:
             raise self.error(where, f"a string ({what})",
                              f"{_type_text(tid)}, shape {tuple(shape)}")
@@ -251,8 +252,7 @@ class _File:
                              f"a string type of {tid.get_size()} bytes")
 
     def attribute_text(self, data: Any, where: str, name: str, default: str) -> str:
-        """String attribute ``name`` of the dataset ``data`` (``default`` when absent), its
-        type and size checked before it is read."""
+        """String attribute ``name`` of ``data`` (or ``default``), checked before reading."""
         if name not in data.attrs:
             return default
         attr = data.attrs.get_id(name)

@@ -172,3 +172,16 @@ def test_fifo_and_device_are_refused_unopened(tmp_path, kind, found):
     else:
         path.symlink_to("/dev/zero")
     assert f"found {found}, not a regular file" in _error(path)
+
+
+@pytest.mark.parametrize("where, data, found", [
+    ("simulation_parameters/rho", h5py.Empty("f8"), "found an empty (null) dataset"),
+    ("bem_data/code", h5py.Empty("S5"), "found an empty (null) dataset"),
+    ("simulation_parameters/g", np.array([[9.81]], dtype=[("a", "f8")]),
+     "expected floating-point numbers (gravity [m/s^2]), found data of type another type"),
+])
+def test_null_and_compound_datasets_are_one_line(bemio, where, data, found):
+    with h5py.File(bemio, "r+") as f:
+        del f[where]
+        f[where] = data
+    assert found in _error(bemio)
