@@ -208,3 +208,13 @@ def test_recorded_state_space_attributes(tmp_path, buoy_db, capsys, attr, value,
     assert shows in text and "\x1b" not in text
     if exit_status:
         assert len(captured.err.strip().splitlines()) == 1
+
+
+def test_a_symbolic_link_out_of_the_project_is_not_followed(project, opened):
+    folder, _, decoy = project
+    (folder / "link.1").symlink_to(decoy)
+    _record(folder, [{"path": "link.1", "project_path": "link.1", "sha256": "0" * 64,
+                      "size": decoy.stat().st_size}])
+    del opened[:]
+    assert changed_source_files(read_database(_database(folder))) == []
+    assert not [p for p in opened if Path(p).name in (decoy.name, "link.1")]
