@@ -34,6 +34,7 @@ class InputFileError(OSError):
     def __init__(self, found: str) -> None:
         super().__init__(found)
         self.found = found
+        self.strerror = found  # what callers catching OSError quote
 
 
 def _checked_mode(mode: int, size: int, limit: int | None) -> int:
