@@ -49,7 +49,13 @@ def read_case_text(path: Path) -> str:
     mode = os.stat(path).st_mode
     if not stat.S_ISREG(mode):
         raise CaseFileKindError(file_kind(mode))
-    with open(path, "rb") as stream:
+    # opened without blocking (a FIFO put in its place after the look above does not hang the
+    # command) and looked at again: only the regular file that was checked is read
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
+    with os.fdopen(fd, "rb") as stream:
+        mode = os.fstat(stream.fileno()).st_mode
+        if not stat.S_ISREG(mode):
+            raise CaseFileKindError(file_kind(mode))
         data = stream.read(MAX_CASE_FILE_BYTES + 1)
     if len(data) > MAX_CASE_FILE_BYTES:
         raise CaseFileKindError(f"a file of more than {MAX_CASE_FILE_BYTES} bytes")

@@ -40,6 +40,7 @@ from floatmoor.hydro.complex_values import merge_complex
 from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_from_kernel, radiation_kernel
 from floatmoor.hydro.values import value_problems
+from floatmoor.terminal_text import shown
 
 __all__ = [
     "CheckResult", "run_checks", "check_values", "describe_failures", "haskind_damping",
@@ -498,9 +499,11 @@ def run_checks(ds: xr.Dataset) -> list[CheckResult]:
         try:
             with np.errstate(all="raise", under="ignore"):
                 results.append(check())
-        except (ValueError, ArithmeticError, np.linalg.LinAlgError, KeyError) as err:
-            # KeyError: recorded attributes (geometry_json, mesh records) missing an entry
-            what = f"missing {err}" if isinstance(err, KeyError) else str(err)
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError, KeyError, TypeError,
+                AttributeError) as err:
+            # KeyError, TypeError, AttributeError: recorded attributes (geometry_json, mesh
+            # records) missing an entry or of another shape; their text is the file's: shown
+            what = shown(f"missing {err}" if isinstance(err, KeyError) else str(err), 200)
             results.append(CheckResult(name, False, math.inf, tolerance,
                                        f"cannot be evaluated on these values ({what})"))
     return results

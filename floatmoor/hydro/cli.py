@@ -29,6 +29,7 @@ from pathlib import Path
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
+from floatmoor.terminal_text import shown
 
 __all__ = ["hydro_command", "resolve_database"]
 
@@ -68,7 +69,7 @@ def resolve_database(text: str) -> Path:
 
 
 def _build(args: argparse.Namespace) -> int:
-    from floatmoor.hydro.database import HydroDatabaseError, database_path
+    from floatmoor.hydro.database import REIMPORT_ADVICE, HydroDatabaseError, database_path
     from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
@@ -78,22 +79,11 @@ def _build(args: argparse.Namespace) -> int:
     if case.hydro.source == "imported":
         raise HydroDatabaseError(
             f"{args.case}: [hydro] source = \"imported\": its database "
-            f"{case.hydro.database} is imported, not built; re-import with "
-            f"'{_recorded_import(database_path(case))}'")
+            f"{database_path(case)} is imported, not built; {REIMPORT_ADVICE}")
     output = _database_output(args, case, database_path(case))
     with output_lock(output):
         _refuse_replacing_import(output, args.force)
         return _build_locked(args, case, output)
-
-
-def _recorded_import(path: Path) -> str:
-    """The command that imported the database at ``path`` (with --force), or its form."""
-    from floatmoor.hydro.database import HydroDatabaseError, read_database, reimport_command
-
-    try:
-        return reimport_command(read_database(path))
-    except HydroDatabaseError:
-        return "floatmoor hydro import FILE... -o PATH.nc"
 
 
 def _refuse_replacing_import(output: Path, force: bool) -> None:
@@ -171,9 +161,15 @@ def _report_mesh(ds, *, warn: bool) -> None:
 
     if "mesh_file_json" not in ds.attrs:
         return
-    info = json.loads(ds.attrs["mesh_file_json"])
-    checks = json.loads(ds.attrs.get("mesh_checks_json", "[]"))
-    print("\n".join(summary_lines(info, checks)))
+    from floatmoor.hydro.database import recorded_json
+
+    info = recorded_json(ds, "mesh_file_json", {})
+    checks = recorded_json(ds, "mesh_checks_json", [])
+    try:
+        lines = summary_lines(info, checks)
+    except (KeyError, TypeError, AttributeError, ValueError):  # recorded by another hand
+        lines = ["  mesh: the recorded mesh description is not readable"]
+    print("\n".join(shown(line) for line in lines))  # recorded text: escaped
     for c in checks:
         if warn and not c["passed"]:
             print(f"floatmoor: warning: mesh {info['file']}: {c['name']}: {c['detail']} "
@@ -210,7 +206,7 @@ def _import(args: argparse.Namespace) -> int:
     """``hydro import``: read, label, check and write atomically; nothing written on an
     error."""
     from floatmoor.hydro.checks import check_values, run_checks
-    from floatmoor.hydro.database import write_database
+    from floatmoor.hydro.database import project_folder, write_database
     from floatmoor.hydro.importing import file_format, import_database
     from floatmoor.io.output_files import check_output_file, output_lock
     from floatmoor.io.output_kinds import HYDRO_DATABASE_FILE
@@ -227,7 +223,7 @@ def _import(args: argparse.Namespace) -> int:
                             f"the existing file '{output}'")
         ds = import_database(args.files, options, name=output.stem,
                              command=_import_command(args),
-                             project=output.resolve().parent.parent)
+                             project=project_folder(output))
         results = [check_values(ds), *run_checks(ds)]
         failed = _record_checks(ds, results)
         write_database(ds, output)
@@ -330,19 +326,21 @@ def _import_command(args: argparse.Namespace) -> str:
 
 def _open(text: str):
     """Read a database and check it is up to date: with its recorded case file when present
-    (built), with its recorded source files where present (imported)."""
-    from floatmoor.hydro.database import HydroDatabaseError, is_imported, read_database, \
-        stale_keys
+    in the database's project (built), with its recorded source files where present there
+    (imported); a recorded path out of the project is not looked at."""
+    from floatmoor.hydro.database import (
+        HydroDatabaseError, inside_project, is_imported, read_database, stale_keys,
+    )
 
     path = resolve_database(text)
     ds = read_database(path)
     if is_imported(ds):
         return path, ds, _imported_note(path, ds)
-    note = "recorded case file not found: staleness not checked"
-    source = Path(ds.attrs.get("case_file", ""))
-    candidates = [source] + [p / source for p in [path.resolve().parent.parent]]
-    for candidate in candidates:
-        if str(source) and candidate.is_file():
+    note = ("recorded case file not found: staleness not checked (looked for in the "
+            "database's project only)")
+    candidate = inside_project(ds, ds.attrs.get("case_file"))
+    for candidate in [candidate] if candidate is not None else []:
+        if candidate.is_file():
             try:
                 case = load_case(candidate)
             except CaseError as err:
@@ -362,21 +360,22 @@ def _imported_note(path: Path, ds) -> str:
     """Whether an imported database's source files are unchanged (HydroDatabaseError when
     one present at its recorded path is not)."""
     from floatmoor.hydro.database import (
-        HydroDatabaseError, changed_source_files, located_source_file, reimport_command,
+        REIMPORT_ADVICE, HydroDatabaseError, changed_source_files, located_source_file,
         source_files,
     )
 
     changed = changed_source_files(ds)
     if changed:
         raise HydroDatabaseError(f"{path}: stale hydrodynamic database: source file "
-                                 f"{', '.join(changed)} changed since the import (SHA-256 "
-                                 f"differs); re-import with '{reimport_command(ds)}'")
+                                 f"{', '.join(changed)} changed since the import (size or "
+                                 f"SHA-256 differs); {REIMPORT_ADVICE}")
     records = source_files(ds)
     found = sum(located_source_file(ds, r) is not None for r in records)
     if found == len(records):
         return "source files unchanged since the import"
     if found == 0:
-        return "source files not found: staleness not checked"
+        return ("source files not found: staleness not checked (looked for in the "
+                "database's project only)")
     return f"{found} of {len(records)} source files found, unchanged since the import"
 
 
@@ -397,7 +396,7 @@ def _check(args: argparse.Namespace) -> int:
 def _checks_table(path: Path, ds, note: str, results, accepted: tuple[str, ...] = ()) -> str:
     """The table of ``hydro check`` (and ``hydro build``): one row per check; a failed check
     in ``accepted`` is marked as accepted."""
-    rows = [f"{path}: {ds.attrs['database']} ({note})",
+    rows = [f"{path}: {shown(ds.attrs.get('database', path.stem), 80)} ({note})",
             f"  {'check':<16}{'result':<8}{'worst':>11}{'tolerance':>11}  detail"]
     for r in results:
         if not r.applicable:
@@ -513,6 +512,19 @@ def _pairs_table(realisation, rtol: float | None = None) -> str:
     return "\n".join(rows)
 
 
+def _attr(ds, name: str, limit: int = 200) -> str:
+    """Recorded attribute ``name`` as text for a terminal (:func:`shown`: a database is data
+    from elsewhere), or "not recorded"."""
+    return shown(ds.attrs[name], limit) if name in ds.attrs else "not recorded"
+
+
+def _seconds(ds) -> str:
+    try:
+        return f"{float(ds.attrs['build_seconds']):.1f}"
+    except (KeyError, TypeError, ValueError):
+        return _attr(ds, "build_seconds", 40)
+
+
 def _info(args: argparse.Namespace) -> int:
     from floatmoor.hydro.database import (
         EXCITATION_VARIABLES, database_source, has_excitation, is_imported,
@@ -522,21 +534,24 @@ def _info(args: argparse.Namespace) -> int:
     omega = ds["omega"].values
     import numpy as np
 
-    a = ds.attrs
-    print(f"{path}: {a['database']} ({note})")
+    def a(name: str, limit: int = 200) -> str:
+        return _attr(ds, name, limit)
+
+    print(f"{path}: {a('database', 80)} ({note})")
     if is_imported(ds):
         print(_import_info(ds))
     else:
-        print(f"  source: capytaine ('floatmoor hydro build' of {a['case_file']}), "
-              f"capytaine {a['capytaine_version']}, floatmoor {a['floatmoor_version']}, built "
-              f"{a['created']} in {float(a['build_seconds']):.1f} s")
-        print(f"  floater {a['floater']} ({a['geometry_kind']}), case {a['case_file']}")
-        print(f"  mesh: {a['hull_panels']} hull + {a['lid_panels']} lid panels, "
-              f"{a['mesh_symmetry']}, panel size {a['panel_size']} m, lid depth "
-              f"{a['lid_depth']}, hash {a['mesh_hash'][:12]}")
-        print(f"  build settings: {a.get('build_settings_json', 'not recorded')}")
-    print(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf: "
-          f"{a.get('added_mass_infinite_source', 'capytaine (omega = infinity solved)')}")
+        print(f"  source: capytaine ('floatmoor hydro build' of {a('case_file')}), "
+              f"capytaine {a('capytaine_version', 40)}, floatmoor {a('floatmoor_version', 40)}"
+              f", built {a('created', 40)} in {_seconds(ds)} s")
+        print(f"  floater {a('floater', 80)} ({a('geometry_kind', 40)}), case {a('case_file')}")
+        print(f"  mesh: {a('hull_panels', 40)} hull + {a('lid_panels', 40)} lid panels, "
+              f"{a('mesh_symmetry', 40)}, panel size {a('panel_size', 40)} m, lid depth "
+              f"{a('lid_depth', 40)}, hash {a('mesh_hash', 80)[:12]}")
+        print(f"  build settings: {a('build_settings_json')}")
+    a_inf = a("added_mass_infinite_source") if "added_mass_infinite_source" in ds.attrs else \
+        "capytaine (omega = infinity solved)"
+    print(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf: {a_inf}")
     if has_excitation(ds):
         held = [v for v in EXCITATION_VARIABLES if v in ds.variables]
         print(f"  excitation: {', '.join(held)}; directions "
@@ -544,8 +559,8 @@ def _info(args: argparse.Namespace) -> int:
     else:
         print(f"  excitation: none (from {database_source(ds)} files without it): a run with "
               "waves refuses this database; still water and wind only run")
-    print(f"  water depth {a['water_depth']} m (BEM: {a['bem_water_depth']}), density "
-          f"{a['water_density']} kg/m^3, g {a['gravity']} m/s^2")
+    print(f"  water depth {a('water_depth', 40)} m (BEM: {a('bem_water_depth', 40)}), density "
+          f"{a('water_density', 40)} kg/m^3, g {a('gravity', 40)} m/s^2")
     print(f"  displaced volume {float(ds['disp_volume']):.6g} m^3, waterplane "
           f"{float(ds['waterplane_area']):.6g} m^2, rotation centre "
           f"{', '.join(f'{v:g}' for v in ds['rotation_center'].values)} m")
@@ -555,22 +570,27 @@ def _info(args: argparse.Namespace) -> int:
 
 def _import_info(ds) -> str:
     """Where an imported database came from: format, files with sizes and SHA-256, options,
-    the reader's notes."""
-    from floatmoor.hydro.database import source_files
+    the reader's notes, and the recorded import command, shown as recorded text (escaped,
+    bounded) and never as a command to run."""
+    from floatmoor.hydro.database import recorded_json, source_files
 
-    a = ds.attrs
-    rows = [f"  source: {a['source']} files, imported by {a.get('importer', 'floatmoor')} at "
-            f"{a['created']}" + (f", body {a['body_name']}" if a.get("body_name") else "")]
+    body = _attr(ds, "body_name", 80) if ds.attrs.get("body_name") else ""
+    rows = [f"  source: {_attr(ds, 'source', 40)} files, imported by "
+            f"{_attr(ds, 'importer', 80)} at {_attr(ds, 'created', 40)}"
+            + (f", body {body}" if body else "")]
     for record in source_files(ds):
-        rows.append(f"    {record.get('path')}  {record.get('size')} bytes  SHA-256 "
-                    f"{record.get('sha256')}")
-    options = json.loads(a.get("import_options_json", "{}"))
-    given = ", ".join(f"{k} {v}" for k, v in sorted(options.items()) if v is not None)
-    rows.append(f"  import options: {given or 'none'}")
-    if a.get("import_command"):
-        rows.append(f"  command: {a['import_command']}")
-    for note in json.loads(a.get("import_notes_json", "[]")):
-        rows.append(f"  note: {note}")
+        rows.append(f"    {shown(record.get('path'), 200)}  {shown(record.get('size'), 40)} "
+                    f"bytes  SHA-256 {shown(record.get('sha256'), 64)}")
+    options = recorded_json(ds, "import_options_json", {})
+    given = ", ".join(f"{k} {v}" for k, v in sorted(options.items()) if v is not None) \
+        if isinstance(options, dict) else str(options)
+    rows.append(f"  import options: {shown(given or 'none')}")
+    if ds.attrs.get("import_command"):
+        rows.append(f"  recorded import command (text from the file, not checked): "
+                    f"{_attr(ds, 'import_command', 400)}")
+    notes = recorded_json(ds, "import_notes_json", [])
+    for note in notes if isinstance(notes, list) else [notes]:
+        rows.append(f"  note: {shown(note)}")
     return "\n".join(rows)
 
 
@@ -580,10 +600,13 @@ def _state_space_info(ds) -> str:
     realisation = ss.read_state_space(ds)
     if realisation is None:
         return ("  state-space radiation: none (add it with 'floatmoor hydro fit-state-space "
-                f"{ds.attrs.get('database', 'NAME')}')")
-    stale = ss.stale_reasons(ds, realisation)
+                f"{shown(ds.attrs.get('database', 'NAME'), 80)}')")
+    try:
+        stale = ss.stale_reasons(ds, realisation)
+    except (TypeError, ValueError, AttributeError):  # recorded settings of another shape
+        stale = ["its recorded K(t) settings are not readable"]
     status = "up to date with the database's K(t)" if not stale else \
-        "STALE (refit with 'floatmoor hydro fit-state-space'): " + "; ".join(stale)
+        "STALE (refit with 'floatmoor hydro fit-state-space'): " + shown("; ".join(stale))
     rtol = realisation.settings.get("kernel_rtol")
     head = (f"  state-space radiation: {len(realisation.pairs)} pairs, {realisation.n_states} "
             f"states, worst K error {realisation.worst_kernel_error:.2e}, fitted "

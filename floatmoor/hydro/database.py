@@ -29,6 +29,17 @@ per file version and process; ~0.3-0.8 s on the shipped databases), never truste
 file: a database whose values were edited with its recorded inputs kept is checked as it is.
 The results recorded by ``floatmoor hydro build`` (attributes ``checks_failed``,
 ``checks_json``) are for the reader only.
+
+A database is data from elsewhere (docs/guide/safeguards.md#files-from-elsewhere): it must be a
+regular netCDF classic file of at most :data:`MAX_DATABASE_BYTES`; the files it records
+(source files, case file) are looked for only inside its own project (:func:`project_folder`)
+and a source file is read only when it has its recorded size (:func:`located_source_file`);
+recorded text reaches a message only through :func:`floatmoor.terminal_text.shown`, and a
+recorded command is never offered as advice (:data:`REIMPORT_ADVICE`).
+
+Size: the layout, the structural read, the staleness rules and the reading of what a database
+records share :class:`HydroDatabaseError` and the attribute conventions; split, each part would
+import the others.
 """
 
 from __future__ import annotations
@@ -50,7 +61,9 @@ from floatmoor.case.schema import Case, Environment, Floater, HydroSettings
 from floatmoor.errors import FloatmoorError
 from floatmoor.file_hash import file_sha256
 from floatmoor.hydro.complex_values import merge_complex
+from floatmoor.io.input_files import InputFileError, open_regular, regular_file_size
 from floatmoor.io.netcdf import read_dataset, write_dataset
+from floatmoor.terminal_text import shown
 
 if TYPE_CHECKING:
     from floatmoor.hydro.build import Progress
@@ -62,8 +75,22 @@ __all__ = [
     "capytaine_major", "EXCITATION_VARIABLES", "DATABASE_SOURCES", "database_source",
     "is_imported", "has_excitation", "labelled_variable", "database_coords", "stale_keys",
     "stale_message", "source_mismatch", "file_sha256", "source_files", "located_source_file",
-    "changed_source_files", "reimport_command",
+    "changed_source_files", "REIMPORT_ADVICE", "MAX_DATABASE_BYTES", "project_folder",
+    "inside_project", "recorded_json",
 ]
+
+#: Largest database file read [bytes]: the shipped ones are 0.1-0.3 MB and a database of 2000
+#: frequencies (the case limit) and 360 directions holds ~100 MB; a netCDF classic file is not
+#: compressed, so this bounds the memory a load takes whatever its header declares.
+MAX_DATABASE_BYTES = 2**30
+#: The leading bytes of a netCDF classic file (CDF-1, CDF-2 64-bit offset; CDF-5 is read by
+#: no engine floatmoor has) and of an HDF5 (netCDF-4) file.
+_NETCDF_CLASSIC_MAGIC = (b"CDF\x01", b"CDF\x02")
+_HDF5_MAGIC = b"\x89HDF"
+#: What to do with an imported database that is stale, in floatmoor's own words: the command
+#: recorded in a database is the file's text, never offered to be run.
+REIMPORT_ADVICE = ("re-import it with 'floatmoor hydro import FILE... -o PATH.nc --force' (the "
+                   "files and options 'floatmoor hydro info' lists, with the case's values)")
 
 #: Variables every database holds.
 REQUIRED_VARIABLES = ("added_mass", "radiation_damping", "added_mass_infinite",
@@ -320,14 +347,31 @@ def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
         Missing or unreadable file, missing variables, wrong shapes or non-finite values.
     """
     p = Path(path)
-    if not p.is_file():
-        raise HydroDatabaseError(f"{p}: no hydrodynamic database (build it with "
-                                 f"'floatmoor hydro build CASE')")
+    try:
+        with open_regular(p, MAX_DATABASE_BYTES) as stream:
+            magic = stream.read(4)
+    except InputFileError as err:
+        if err.found == "no such file":
+            raise HydroDatabaseError(f"{p}: no hydrodynamic database (build it with "
+                                     f"'floatmoor hydro build CASE')") from None
+        raise HydroDatabaseError(f"{p}: expected a hydrodynamic database (a regular netCDF "
+                                 f"file of at most {MAX_DATABASE_BYTES} bytes), found "
+                                 f"{err.found}") from None
+    if magic not in _NETCDF_CLASSIC_MAGIC:
+        found = ("a netCDF-4 / HDF5 file (floatmoor's databases are netCDF classic)"
+                 if magic == _HDF5_MAGIC else "not a netCDF file")
+        raise HydroDatabaseError(f"{p}: expected a hydrodynamic database (a netCDF classic "
+                                 f"file), found {found}")
     try:
         ds = read_dataset(p)
     except Exception as err:  # noqa: BLE001 - any reader failure means a damaged file
         raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, not readable as "
-                                 f"netCDF ({type(err).__name__}: {err})") from None
+                                 f"netCDF ({type(err).__name__}: {shown(err, 200)})") from None
+    source = ds.attrs.get("source", "capytaine")
+    if not isinstance(source, str) or source not in DATABASE_SOURCES:
+        raise HydroDatabaseError(f"{p}: damaged hydrodynamic database, expected a source "
+                                 f"attribute among {', '.join(DATABASE_SOURCES)}, found "
+                                 f"'{shown(source, 80)}'")
     missing = [v for v in REQUIRED_VARIABLES if v not in ds.variables]
     if missing or "inputs_hash" not in ds.attrs:
         what = ", ".join(missing) if missing else "the inputs_hash attribute"
@@ -381,44 +425,94 @@ def source_mismatch(ds: xr.Dataset, case: Case) -> str | None:
     return None
 
 
+def recorded_json(ds: xr.Dataset, name: str, default: Any) -> Any:
+    """The JSON value of attribute ``name`` (``default`` when absent).
+
+    Raises
+    ------
+    HydroDatabaseError
+        The attribute is not JSON Python can read (also 5000-digit integers, which Python
+        refuses to convert, and nesting deeper than its recursion limit).
+    """
+    if name not in ds.attrs:
+        return default
+    try:
+        return json.loads(str(ds.attrs[name]))
+    except (ValueError, RecursionError) as err:
+        raise HydroDatabaseError(f"{ds.attrs.get('path', 'database')}: damaged hydrodynamic "
+                                 f"database, attribute {name} is not readable JSON "
+                                 f"({shown(err, 120)})") from None
+
+
 def source_files(ds: xr.Dataset) -> list[dict[str, Any]]:
     """The source files an imported database records: ``path`` (as given to ``floatmoor hydro
-    import``), ``sha256``, ``size`` [bytes] (empty for a built database)."""
+    import``), ``sha256``, ``size`` [bytes], and ``project_path`` for a file inside the
+    database's project (empty for a built database); records that are not JSON objects are
+    left out."""
+    files = recorded_json(ds, "source_files_json", [])
+    return [f for f in files if isinstance(f, dict)] if isinstance(files, list) else []
+
+
+def project_folder(database: str | os.PathLike[str]) -> Path:
+    """The project a database belongs to: the folder above its ``hydrodb/`` folder, or the
+    database's own folder when that folder has another name (resolved)."""
+    folder = Path(database).resolve().parent
+    return folder.parent if folder.name == "hydrodb" else folder
+
+
+def inside_project(ds: xr.Dataset, recorded: Any) -> Path | None:
+    """The path a database records (relative to its project, or absolute) resolved, if it
+    lies inside the database's project (:func:`project_folder`); None otherwise (also for a
+    database read from no file)."""
+    if "path" not in ds.attrs or not isinstance(recorded, str) or not recorded \
+            or "\x00" in recorded:
+        return None
+    project = project_folder(ds.attrs["path"])
     try:
-        files = json.loads(ds.attrs.get("source_files_json", "[]"))
-    except json.JSONDecodeError:
-        return []
-    return files if isinstance(files, list) else []
+        candidate = (project / recorded).resolve()
+    except (OSError, RuntimeError, ValueError):  # a symbolic-link loop, an odd name
+        return None
+    return candidate if candidate.is_relative_to(project) else None
+
+
+def _recorded_size(record: dict[str, Any]) -> int | None:
+    size = record.get("size")
+    return size if isinstance(size, int) and not isinstance(size, bool) and size >= 0 else None
 
 
 def located_source_file(ds: xr.Dataset, record: dict[str, Any]) -> Path | None:
-    """Where a recorded source file is now: from the project folder of the database (the one
-    above its ``hydrodb/``) when it was inside it at the import (``project_path``), else its
-    path as given (relative paths from the current folder); None when it is not there."""
-    if record.get("project_path") and "path" in ds.attrs:
-        candidate = Path(ds.attrs["path"]).resolve().parent.parent / str(record["project_path"])
-    elif record.get("path"):
-        candidate = Path(str(record["path"]))
-    else:
+    """Where a recorded source file is now, only ever inside the database's project
+    (:func:`inside_project`): its ``project_path`` there when recorded, else its ``path`` as
+    given when that lies inside; None when it is not there as a regular file (a recorded path
+    leading out of the project, to a FIFO or a device is never looked at further)."""
+    candidate = inside_project(ds, record.get("project_path") or record.get("path"))
+    if candidate is None:
         return None
-    return candidate if candidate.is_file() else None
+    try:
+        regular_file_size(candidate)
+    except InputFileError:
+        return None
+    return candidate
 
 
 def changed_source_files(ds: xr.Dataset) -> list[str]:
-    """The recorded source files present at their recorded paths whose SHA-256 differs from
-    the recorded one (missing files cannot be checked and are not listed)."""
+    """The recorded source files present in the project (:func:`located_source_file`) that
+    changed since the import: another size than the recorded one (not read), or the recorded
+    size and another SHA-256 (missing files cannot be checked and are not listed)."""
     changed = []
     for record in source_files(ds):
         found = located_source_file(ds, record)
-        if found is not None and file_sha256(found) != record.get("sha256"):
-            changed.append(str(record.get("path")))
+        size = _recorded_size(record)
+        if found is None or size is None:
+            continue
+        try:
+            same = found.stat().st_size == size and file_sha256(found, size) == record.get(
+                "sha256")
+        except OSError:  # gone, or replaced by another kind of file, since it was located
+            continue
+        if not same:
+            changed.append(shown(record.get("path"), 200))
     return changed
-
-
-def reimport_command(ds: xr.Dataset) -> str:
-    """The ``floatmoor hydro import`` command that made ``ds``, to run again (with --force)."""
-    command = str(ds.attrs.get("import_command", "floatmoor hydro import FILE... -o PATH"))
-    return command if " --force" in command else command + " --force"
 
 
 def _imported_stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
@@ -434,7 +528,7 @@ def _imported_stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
         except (TypeError, ValueError):
             same = False
         if not same:
-            out.append(f"{name} (database {recorded}, case {wanted!r})")
+            out.append(f"{name} (database {shown(recorded, 40)}, case {wanted!r})")
 
     differs("water_density", ds.attrs.get("water_density"), env.water_density)
     differs("gravity", ds.attrs.get("gravity"), env.gravity)
@@ -465,11 +559,14 @@ def stale_keys(ds: xr.Dataset, case: Case) -> list[str]:
     if ds.attrs.get("inputs_hash") == inputs_hash(wanted):
         return []
     try:
-        recorded = json.loads(ds.attrs.get("inputs_json", "{}"))
-    except json.JSONDecodeError:
+        recorded = json.loads(str(ds.attrs.get("inputs_json", "{}")))
+    except (ValueError, RecursionError):
+        recorded = {}
+    if not isinstance(recorded, dict):
         recorded = {}
     keys = sorted(k for k in set(wanted) | set(recorded) if wanted.get(k) != recorded.get(k))
-    return keys or ["inputs_hash"]
+    # the recorded keys are the file's text: escaped for the messages that list them
+    return [shown(k, 80) for k in keys] or ["inputs_hash"]
 
 
 def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,
@@ -519,8 +616,7 @@ def stale_message(path: str | os.PathLike[str], ds: xr.Dataset, case_file: str,
     built database, re-import an imported one."""
     if is_imported(ds):
         return (f"{path}: stale hydrodynamic database for {case_file}: differs in "
-                f"{', '.join(differ)}; re-import with '{reimport_command(ds)}' (with the "
-                "case's values)")
+                f"{', '.join(differ)}; {REIMPORT_ADVICE}")
     return (f"{path}: stale hydrodynamic database for {case_file}: recorded inputs differ in "
             f"{', '.join(differ)}; rebuild with 'floatmoor hydro build CASE --force'")
 

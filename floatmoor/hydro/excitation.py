@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 from floatmoor.hydro.database import (
     HydroDatabaseError, database_source, merge_complex, source_files,
 )
+from floatmoor.terminal_text import shown
 
 __all__ = ["ExcitationInterpolator", "CUBIC_MIN_DIRECTIONS", "no_excitation_message"]
 
@@ -108,4 +109,4 @@ def no_excitation_message(ds: xr.Dataset, variable: str = "excitation_force") ->
 
 
 def _file_names(ds: xr.Dataset) -> list[str]:
-    return [str(f.get("path")) for f in source_files(ds)] or ["not recorded"]
+    return [shown(f.get("path"), 200) for f in source_files(ds)] or ["not recorded"]

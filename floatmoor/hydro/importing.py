@@ -49,6 +49,7 @@ from floatmoor.hydro.database import (
     DOF_DEFINITION, database_coords, file_sha256, inputs_hash, labelled_variable,
 )
 from floatmoor.io.bem_data import BemFileError, ImportedBem
+from floatmoor.io.input_files import InputFileError, regular_file_size
 
 __all__ = [
     "ImportOptions", "WAMIT_EXTENSIONS", "BEMIO_EXTENSIONS", "file_format", "read_source",
@@ -192,8 +193,38 @@ def read_source(paths: Sequence[str], options: ImportOptions) -> ImportedBem:
     """
     kind = file_format(paths)
     for path in paths:
-        if not Path(path).is_file():
-            raise BemFileError(str(path), "", "a readable file", "no such file")
+        try:
+            regular_file_size(path)
+        except InputFileError as err:
+            raise BemFileError(str(path), "", "a readable regular file", err.found) from None
+    # extreme options (--length-scale 1e308) overflow the scaling: refused below, with one
+    # line, instead of NumPy's warnings
+    with np.errstate(over="ignore", invalid="ignore"):
+        bem = _read_source(kind, paths, options)
+    _require_finite(bem, options)
+    return bem
+
+
+#: The arrays of an ImportedBem that must be finite once dimensional.
+_ARRAYS = ("omega", "added_mass", "radiation_damping", "added_mass_infinite", "added_mass_zero",
+           "directions", "excitation_force", "froude_krylov_force", "diffraction_force",
+           "hydrostatic_stiffness", "disp_volume", "center_of_buoyancy", "center_of_gravity",
+           "rotation_center")
+
+
+def _require_finite(bem: ImportedBem, options: ImportOptions) -> None:
+    """Refuse dimensional values that overflowed (finite file values times extreme scales)."""
+    for name in _ARRAYS:
+        value = getattr(bem, name)
+        if value is not None and not np.all(np.isfinite(value)):
+            scales = f"rho = {bem.water_density:g}, g = {bem.gravity:g}" + (
+                f", ULEN = {options.length_scale:g}" if options.length_scale is not None else "")
+            raise BemFileError(" ".join(map(str, bem.files)), name, "finite dimensional "
+                               f"values (the files' values scaled with {scales})",
+                               "values that overflow")
+
+
+def _read_source(kind: str, paths: Sequence[str], options: ImportOptions) -> ImportedBem:
     if kind == "wamit":
         from floatmoor.io.wamit import read_wamit
 
@@ -266,8 +297,9 @@ def _with_run_summary(paths: Sequence[str], options: ImportOptions
 def source_file_records(paths: Sequence[str], project: str | os.PathLike[str] | None = None
                         ) -> list[dict[str, Any]]:
     """Each file as given (``path``), with its SHA-256 and size [bytes], and, for a file
-    inside the folder ``project`` (the one holding the database's ``hydrodb/``), its path
-    from there (``project_path``): the staleness check finds it there wherever it runs."""
+    inside the folder ``project`` (:func:`floatmoor.hydro.database.project_folder` of the
+    database), its path from there (``project_path``): the staleness check looks for it there,
+    and only there, wherever it runs."""
     out = []
     for p in paths:
         record: dict[str, Any] = {"path": str(p), "sha256": file_sha256(p),
@@ -555,5 +587,11 @@ def import_database(paths: Sequence[str], options: ImportOptions, *, name: str,
     """Read ``paths`` (:func:`read_source`) and label them (:func:`imported_dataset`);
     ``project``: see :func:`source_file_records`."""
     bem = read_source(paths, options)
-    return imported_dataset(bem, options, name=name, command=command,
-                            files=source_file_records(paths, project))
+    with np.errstate(over="ignore", invalid="ignore"):
+        ds = imported_dataset(bem, options, name=name, command=command,
+                              files=source_file_records(paths, project))
+    for var in ds.data_vars:
+        if not np.all(np.isfinite(ds[var].values)):
+            raise BemFileError(" ".join(map(str, bem.files)), var, "finite values once placed "
+                               "and turned into the case's frame", "values that overflow")
+    return ds

@@ -19,6 +19,7 @@ from floatmoor._version import __version__
 from floatmoor.hydro.database import HydroDatabaseError
 from floatmoor.hydro.kernel_fit import METHOD
 from floatmoor.hydro.state_space_model import DOFS, PairRealisation, StateSpaceRadiation
+from floatmoor.terminal_text import shown
 
 __all__ = ["has_state_space", "read_state_space", "add_to_dataset", "remove_from_dataset"]
 
@@ -136,7 +137,7 @@ def read_state_space(ds: xr.Dataset) -> StateSpaceRadiation | None:
     """
     if not has_state_space(ds):
         return None
-    where = ds.attrs.get("path", ds.attrs.get("database", "database"))
+    where = shown(ds.attrs.get("path", ds.attrs.get("database", "database")), 200)
     try:
         orders = ds[f"{_PREFIX}order"].values.astype(int)
         rad = [DOFS.index(str(v)) for v in ds[f"{_PREFIX}radiating_dof"].values]
@@ -151,28 +152,35 @@ def read_state_space(ds: xr.Dataset) -> StateSpaceRadiation | None:
         summary = json.loads(ds.attrs[f"{_PREFIX}errors_json"])["pairs"]
         settings = json.loads(ds.attrs[f"{_PREFIX}settings_json"])
         ksettings = json.loads(ds.attrs[f"{_PREFIX}kernel_json"])
+        if not (isinstance(settings, dict) and isinstance(ksettings, dict)
+                and isinstance(ksettings.get("fingerprint", {}), dict)
+                and isinstance(settings.get("kernel_rtol", 0.0), (int, float))):
+            raise ValueError("settings of another kind than recorded by a fit")
         if orders.sum() != b.size or diagonal.size != b.size or upper.size != b.size or \
                 c.size != b.size or np.any(orders < 1):
             raise ValueError("state counts disagree")
         if not all(np.all(np.isfinite(x)) for x in (diagonal, upper, b, c)):
             raise ValueError("non-finite values")
-    except (KeyError, ValueError, TypeError) as err:
-        raise HydroDatabaseError(f"{where}: damaged state-space realisation ({err}); refit with "
-                                 "'floatmoor hydro fit-state-space'") from None
-    pairs = []
-    k = 0
-    for p, n in enumerate(orders):
-        info = summary[p] if p < len(summary) else {}
-        pairs.append(PairRealisation(
-            rad[p], inf[p], _modal_matrix(diagonal[k:k + n], upper[k:k + n]),
-            b[k:k + n].copy(), c[k:k + n].copy(),
-            float(errors["kernel_error"][p]), float(errors["damping_error"][p]),
-            float(errors["min_damping"][p]), float(errors["added_mass_error"][p]),
-            int(info.get("dropped", 0)), int(info.get("reflected", 0)),
-            bool(info.get("passivity_enforced", False)),
-            bool(info.get("within_tolerance", True))))
-        k += n
-    return StateSpaceRadiation(tuple(pairs), settings, ksettings,
-                               str(ds.attrs.get(f"{_PREFIX}created", "")),
-                               float(ds.attrs.get(f"{_PREFIX}fit_seconds", math.nan)),
-                               math.nan if matrix is None else float(matrix))
+        pairs = []
+        k = 0
+        for p, n in enumerate(orders):
+            info = summary[p] if p < len(summary) else {}
+            pairs.append(PairRealisation(
+                rad[p], inf[p], _modal_matrix(diagonal[k:k + n], upper[k:k + n]),
+                b[k:k + n].copy(), c[k:k + n].copy(),
+                float(errors["kernel_error"][p]), float(errors["damping_error"][p]),
+                float(errors["min_damping"][p]), float(errors["added_mass_error"][p]),
+                int(info.get("dropped", 0)), int(info.get("reflected", 0)),
+                bool(info.get("passivity_enforced", False)),
+                bool(info.get("within_tolerance", True))))
+            k += n
+        return StateSpaceRadiation(tuple(pairs), settings, ksettings,
+                                   shown(ds.attrs.get(f"{_PREFIX}created", ""), 40),
+                                   float(ds.attrs.get(f"{_PREFIX}fit_seconds", math.nan)),
+                                   math.nan if matrix is None else float(matrix))
+    # the variables and attributes are the file's: any of another kind or shape (also JSON
+    # Python cannot read, or nested past its recursion limit) is a damaged realisation
+    except (KeyError, ValueError, TypeError, AttributeError, IndexError, RecursionError) as err:
+        raise HydroDatabaseError(f"{where}: damaged state-space realisation "
+                                 f"({shown(err, 200)}); refit with 'floatmoor hydro "
+                                 "fit-state-space'") from None

@@ -40,6 +40,14 @@ Multi-body files: ``body`` selects one; its coupling blocks with the other bodie
 columns of their DOFs) are dropped, with a note. Anything missing, of the wrong shape, NaN,
 or inconsistent (frequencies not positive or repeated, T not 2 pi / omega) raises
 :class:`BemFileError` naming the file and the HDF5 path.
+
+A BEMIO file is data from elsewhere (docs/guide/safeguards.md#files-from-elsewhere): the file
+must be a regular file of at most :data:`MAX_FILE_BYTES`; only datasets stored in the file
+itself are read (soft and external links, virtual datasets and external raw storage are
+refused), of a floating-point type (strings where a string is expected), their shape checked
+against the expected one before their data are read, and at most :data:`MAX_READ_BYTES` of data
+in all. Text from the file (names, entries) is quoted with
+:func:`floatmoor.terminal_text.shown`.
 """
 
 from __future__ import annotations
@@ -53,8 +61,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
+from floatmoor.io.input_files import InputFileError, open_regular
+from floatmoor.terminal_text import shown
 
-__all__ = ["read_bemio"]
+__all__ = ["read_bemio", "MAX_FILE_BYTES", "MAX_READ_BYTES", "MAX_TEXT_BYTES", "MAX_BODIES"]
 
 _N_DOF = 6
 
@@ -69,44 +79,122 @@ PERIOD_RTOL = 1e-5
 #: run.
 PARTS_SUM_RTOL = 1e-3
 
-_BODY_GROUP = re.compile(r"body(\d+)$")
+#: Largest BEMIO file opened [bytes]: a real file of hundreds of frequencies and wave directions
+#: and a few bodies holds a few MB to tens of MB (6 x 60 x 1000 x 8 bytes = 2.9 MB for the
+#: added mass of ten bodies at 1000 frequencies); the bytes of a variable-length string lie
+#: uncompressed in the file, so this also bounds the longest string HDF5 can hand back.
+MAX_FILE_BYTES = 256 * 2**20
+#: Most data read from one file [bytes, as float64], summed over the datasets read and checked
+#: before each is read: a compressed dataset can declare far more data than its file holds (a
+#: few kB declaring (6, 6, 2e9) values), and this bounds the memory an import takes whatever a
+#: file declares (the same figure as :data:`MAX_FILE_BYTES`).
+MAX_READ_BYTES = 256 * 2**20
+#: Longest string read (body name, BEM code, water depth "infinite", units) [bytes]: such names
+#: are tens of characters.
+MAX_TEXT_BYTES = 4096
+#: Most bodies a file may number (body1 .. bodyN): BEMIO files of wave farms hold tens.
+MAX_BODIES = 10_000
+
+_BODY_GROUP = re.compile(r"body([1-9][0-9]{0,5})$")
 
 
 class _File:
-    """An open BEMIO file with strict dataset access (every error names the HDF5 path)."""
+    """An open BEMIO file with strict dataset access (every error names the HDF5 path).
+
+    Only what the file itself stores is read (:func:`_entry`): an entry reached through a soft
+    or external link, a virtual dataset or one with external raw storage (bytes kept in another
+    file, e.g. ``/etc/passwd``) is refused before any data are read; so is a dataset of another
+    type or shape than expected, or one that would take the read past :data:`MAX_READ_BYTES`.
+    """
 
     def __init__(self, handle: Any, name: str) -> None:
         self.h5 = handle
         self.name = name
+        self.read_bytes = 0
 
     def error(self, where: str, expected: str, found: str) -> BemFileError:
         return BemFileError(self.name, where, expected, found)
 
+    def _entry(self, where: str, what: str) -> Any:
+        """The object at ``where`` reached through hard links only (None when absent)."""
+        import h5py
+
+        node = self.h5
+        walked = ""
+        for part in [p for p in where.split("/") if p]:
+            walked += "/" + part
+            if not isinstance(node, h5py.Group):
+                return None
+            link = node.get(part, getlink=True)
+            if link is None:
+                return None
+            if not isinstance(link, h5py.HardLink):
+                kind = ("an external link to another file" if isinstance(link, h5py.ExternalLink)
+                        else "a soft link" if isinstance(link, h5py.SoftLink) else "a link")
+                raise self.error(walked, f"{what} stored in the file itself", kind)
+            node = node[part]
+        return node
+
     def has(self, where: str) -> bool:
         import h5py
 
-        return isinstance(self.h5.get(where), h5py.Dataset)
+        return isinstance(self._entry(where, "an entry"), h5py.Dataset)
 
     def raw(self, where: str, what: str) -> Any:
+        """The dataset at ``where``, stored in the file itself (no data read yet)."""
         import h5py
 
-        obj = self.h5.get(where)
+        obj = self._entry(where, f"a dataset ({what})")
         if obj is None:
             raise self.error(where, f"a dataset ({what})", "none")
         if not isinstance(obj, h5py.Dataset):
             raise self.error(where, f"a dataset ({what})", "a group")
+        if obj.shape is None:
+            raise self.error(where, f"a dataset ({what})", "an empty (null) dataset")
+        if obj.is_virtual:
+            raise self.error(where, f"a dataset ({what}) stored in the file itself",
+                             "a virtual dataset (data mapped from other datasets or files)")
+        if obj.id.get_create_plist().get_external_count():
+            raise self.error(where, f"a dataset ({what}) stored in the file itself",
+                             "a dataset with external raw storage (its bytes in another file)")
         return obj
 
-    def array(self, where: str, what: str, shape: tuple[int, ...]) -> NDArray[np.float64]:
-        """A numeric dataset of exactly ``shape``, finite."""
+    def _budget(self, where: str, what: str, count: int, item: int = 8) -> None:
+        """Account for ``count`` values of ``item`` bytes, refusing what passes the budget."""
+        size = count * item
+        if self.read_bytes + size > MAX_READ_BYTES:
+            raise self.error(where, f"at most {MAX_READ_BYTES} bytes of data in the file "
+                             f"({what})", f"{count} values ({size} bytes) after "
+                             f"{self.read_bytes} bytes read")
+        self.read_bytes += size
+
+    def _values(self, data: Any, where: str) -> NDArray[np.float64]:
+        try:
+            return np.asarray(data[()], dtype=float)
+        except (OSError, RuntimeError, ValueError, TypeError) as err:
+            raise self.error(where, "data HDF5 can read", shown(err)) from None
+
+    def _numbers(self, where: str, what: str) -> Any:
         data = self.raw(where, what)
-        if data.dtype.kind not in "fiu":
-            raise self.error(where, f"numbers ({what})", f"data of type {data.dtype}")
-        values = np.asarray(data[()], dtype=float)
-        if values.shape != shape:
-            raise self.error(where, f"shape {shape} ({what})", f"shape {values.shape}")
+        if _type_class(data.id.get_type()) != "floating-point numbers":
+            raise self.error(where, f"floating-point numbers ({what})",
+                             _type_text(data.id.get_type()))
+        return data
+
+    def array(self, where: str, what: str, shape: tuple[int, ...]) -> NDArray[np.float64]:
+        """A floating-point dataset of exactly ``shape``, finite."""
+        values = self.float_array(where, what, shape)
         self.finite(where, values)
         return values
+
+    def float_array(self, where: str, what: str, shape: tuple[int, ...]
+                    ) -> NDArray[np.float64]:
+        """A floating-point dataset of exactly ``shape`` (checked before it is read)."""
+        data = self._numbers(where, what)
+        if tuple(data.shape) != shape:
+            raise self.error(where, f"shape {shape} ({what})", f"shape {tuple(data.shape)}")
+        self._budget(where, what, math.prod(shape))
+        return self._values(data, where)
 
     def finite(self, where: str, values: NDArray[np.float64]) -> None:
         bad = np.argwhere(~np.isfinite(values))
@@ -117,17 +205,18 @@ class _File:
                              f"({len(bad)} such value{'s' if len(bad) > 1 else ''})")
 
     def vector(self, where: str, what: str, size: int | None = None) -> NDArray[np.float64]:
-        """A numeric dataset with one non-singleton dimension (MATLAB rows and columns)."""
-        data = self.raw(where, what)
-        if data.dtype.kind not in "fiu":
-            raise self.error(where, f"numbers ({what})", f"data of type {data.dtype}")
-        values = np.asarray(data[()], dtype=float)
-        if sum(n > 1 for n in values.shape) > 1:
-            raise self.error(where, f"a vector ({what})", f"shape {values.shape}")
-        flat = values.reshape(-1)
-        if size is not None and flat.size != size:
+        """A floating-point dataset with one non-singleton dimension (MATLAB rows and
+        columns)."""
+        data = self._numbers(where, what)
+        shape = tuple(data.shape)
+        if sum(n > 1 for n in shape) > 1:
+            raise self.error(where, f"a vector ({what})", f"shape {shape}")
+        count = math.prod(shape)
+        if size is not None and count != size:
             raise self.error(where, f"{size} value{'s' if size > 1 else ''} ({what})",
-                             f"{flat.size} (shape {values.shape})")
+                             f"{count} (shape {shape})")
+        self._budget(where, what, count)
+        flat = self._values(data, where).reshape(-1)
         self.finite(where, flat)
         return flat
 
@@ -135,38 +224,94 @@ class _File:
         return float(self.vector(where, what, 1)[0])
 
     def text(self, where: str, what: str) -> str:
+        """A string dataset of one element (fixed length at most :data:`MAX_TEXT_BYTES`)."""
         data = self.raw(where, what)
-        value = data[()]
+        self._string_type(data.id.get_type(), data.shape, where, what)
+        try:
+            value = data[()]
+        except (OSError, RuntimeError, ValueError, TypeError) as err:
+            raise self.error(where, "data HDF5 can read", shown(err)) from None
         if isinstance(value, np.ndarray):
-            if value.size != 1:
-                raise self.error(where, f"a string ({what})", f"shape {value.shape}")
             value = value.reshape(-1)[0]
         if isinstance(value, (bytes, np.bytes_)):
-            return bytes(value).decode("utf-8", errors="replace").rstrip("\x00").strip()
-        if isinstance(value, str):
-            return value.strip()
-        raise self.error(where, f"a string ({what})", f"data of type {data.dtype}")
+            value = bytes(value).decode("utf-8", errors="replace").rstrip("\x00")
+        if not isinstance(value, str):
+            raise self.error(where, f"a string ({what})", f"data of type {type(value).__name__}")
+        if len(value) > MAX_TEXT_BYTES:
+            raise self.error(where, f"a string of at most {MAX_TEXT_BYTES} characters "
+                             f"({what})", f"{len(value)} characters")
+        return value.strip()
+
+    def _string_type(self, tid: Any, shape: tuple[int, ...], where: str, what: str) -> None:
+        """Refuse all but one string of fixed length <= MAX_TEXT_BYTES, before reading."""
+        if _type_class(tid) != "a string" or math.prod(shape) != 1:
+            raise self.error(where, f"a string ({what})",
+                             f"{_type_text(tid)}, shape {tuple(shape)}")
+        if not tid.is_variable_str() and tid.get_size() > MAX_TEXT_BYTES:
+            raise self.error(where, f"a string of at most {MAX_TEXT_BYTES} bytes ({what})",
+                             f"a string type of {tid.get_size()} bytes")
+
+    def attribute_text(self, data: Any, where: str, name: str, default: str) -> str:
+        """String attribute ``name`` of ``data`` (or ``default``), checked before reading."""
+        if name not in data.attrs:
+            return default
+        attr = data.attrs.get_id(name)
+        at = f"{where} (attribute '{name}')"
+        self._string_type(attr.get_type(), attr.shape or (), at, name)
+        value = data.attrs[name]
+        if isinstance(value, np.ndarray):
+            value = value.reshape(-1)[0]
+        value = value.decode("utf-8", errors="replace") if isinstance(value, bytes) \
+            else str(value)
+        if len(value) > MAX_TEXT_BYTES:
+            raise self.error(at, f"a string of at most {MAX_TEXT_BYTES} characters",
+                             f"{len(value)} characters")
+        return value
+
+
+def _type_class(tid: Any) -> str:
+    """What an HDF5 type holds, read from the type itself (numpy cannot represent every
+    HDF5 type: a 3e9-byte string type makes ``Dataset.dtype`` raise)."""
+    from h5py import h5t
+
+    return {h5t.FLOAT: "floating-point numbers", h5t.INTEGER: "integers",
+            h5t.STRING: "a string"}.get(tid.get_class(), "another type")
+
+
+def _type_text(tid: Any) -> str:
+    return f"data of type {_type_class(tid)} ({tid.get_size()} bytes per value)"
 
 
 def _bodies(file: _File) -> list[int]:
-    numbers = sorted(int(m.group(1)) for key in file.h5.keys()
-                     if (m := _BODY_GROUP.match(key)))
+    keys = list(file.h5.keys())
+    numbers = sorted(int(m.group(1)) for key in keys if (m := _BODY_GROUP.match(key)))
     if not numbers:
         raise file.error("/", "groups body1, body2, ... (a WEC-Sim BEMIO file)",
-                         "none; top-level entries: " + ", ".join(sorted(file.h5.keys())))
+                         "none; top-level entries: " + shown(", ".join(sorted(keys))))
     if numbers != list(range(1, len(numbers) + 1)):
-        raise file.error("/", "body groups numbered 1.." + str(len(numbers)),
-                         ", ".join(f"body{n}" for n in numbers))
+        raise file.error("/", f"body groups numbered 1..{len(numbers)}",
+                         shown(", ".join(f"body{n}" for n in numbers)))
+    if len(numbers) > MAX_BODIES:
+        raise file.error("/", f"at most {MAX_BODIES} body groups", f"{len(numbers)}")
     return numbers
+
+
+def _count(file: _File, where: str, what: str) -> int:
+    """A whole number 0..6 x :data:`MAX_BODIES` (a DOF count or index)."""
+    value = file.scalar(where, what)
+    if value != round(value) or not 0 <= value <= _N_DOF * MAX_BODIES:
+        raise file.error(where, f"a whole number from 0 to {_N_DOF * MAX_BODIES} ({what})",
+                         f"{value:g}")
+    return int(value)
 
 
 def _dof_range(file: _File, number: int) -> tuple[int, int, int]:
     """(dof, first column, end column) of body ``number`` in the coupled matrices."""
     base = f"/body{number}/properties/"
-    dof = round(file.scalar(base + "dof", "DOFs")) if file.has(base + "dof") else _N_DOF
-    start = (round(file.scalar(base + "dof_start", "first DOF")) if file.has(base + "dof_start")
+    dof = _count(file, base + "dof", "DOFs") if file.has(base + "dof") else _N_DOF
+    start = (_count(file, base + "dof_start", "first DOF") if file.has(base + "dof_start")
              else (number - 1) * _N_DOF + 1)
-    end = (round(file.scalar(base + "dof_end", "last DOF")) if file.has(base + "dof_end")
+    end = (_count(file, base + "dof_end", "last DOF") if file.has(base + "dof_end")
            else start + dof - 1)
     if end - start + 1 != dof or start < 1:
         raise file.error(base + "dof_end", f"dof_start + dof - 1 = {start + dof - 1}",
@@ -177,11 +322,11 @@ def _dof_range(file: _File, number: int) -> tuple[int, int, int]:
 def _water_depth(file: _File) -> float:
     where = "/simulation_parameters/water_depth"
     data = file.raw(where, "water depth [m] or 'infinite'")
-    if data.dtype.kind in "SUO":
+    if _type_class(data.id.get_type()) == "a string":
         text = file.text(where, "water depth")
         if text.lower() in ("infinite", "inf"):
             return math.inf
-        raise file.error(where, "a depth [m] or the string 'infinite'", f"'{text}'")
+        raise file.error(where, "a depth [m] or the string 'infinite'", f"'{shown(text)}'")
     depth = file.scalar(where, "water depth [m]")
     if depth <= 0.0:
         raise file.error(where, "a water depth > 0 [m]", f"{depth:g}")
@@ -201,14 +346,9 @@ def _excitation_part(file: _File, base: str, shape: tuple[int, ...], name: str
     re_path, im_path = base + "/re", base + "/im"
     if not file.has(re_path) and not file.has(im_path):
         return None, f"no {name} part in the file"
-    parts = []
-    for where, what in ((re_path, f"real part of the {name} force"),
-                        (im_path, f"imaginary part of the {name} force")):
-        data = file.raw(where, what)
-        values = np.asarray(data[()], dtype=float)
-        if values.shape != shape:
-            raise file.error(where, f"shape {shape} ({what})", f"shape {values.shape}")
-        parts.append(values)
+    parts = [file.float_array(where, what, shape) for where, what in (
+        (re_path, f"real part of the {name} force"),
+        (im_path, f"imaginary part of the {name} force"))]
     if np.all(np.isnan(parts[0])) and np.all(np.isnan(parts[1])):
         # BEMIO's readWAMIT fills the parts with NaN when the run has no .3fk / .3sc.
         return None, f"the {name} part is all NaN in the file (BEMIO's mark for not computed)"
@@ -254,27 +394,35 @@ def read_bemio(path: str | Path, *, body: int | None = None,
     if water_density is not None and not (math.isfinite(water_density)
                                           and water_density > 0.0):
         raise ValueError(f"water_density must be a finite number > 0, got {water_density!r}")
-    file_path = Path(path)
-    if not file_path.exists():
-        raise BemFileError(name, "", "a WEC-Sim BEMIO .h5 file", "no such file")
-    if not file_path.is_file():
-        raise BemFileError(name, "", "a WEC-Sim BEMIO .h5 file", "a folder or special file")
     try:
-        handle = h5py.File(file_path, "r")
-    except OSError as err:
-        raise BemFileError(name, "", "an HDF5 file (WEC-Sim BEMIO .h5)",
-                           f"a file HDF5 cannot open ({err})") from None
-    with handle:
-        return _read(_File(handle, name), body, water_density)
+        # opened here (regular, bounded, not blocking on a FIFO), then HDF5 reads this stream
+        stream = open_regular(path, MAX_FILE_BYTES)
+    except InputFileError as err:
+        raise BemFileError(name, "", "a WEC-Sim BEMIO .h5 file (a regular file of at most "
+                           f"{MAX_FILE_BYTES} bytes)", err.found) from None
+    with stream:
+        try:
+            handle = h5py.File(stream, "r")
+        except OSError as err:
+            raise BemFileError(name, "", "an HDF5 file (WEC-Sim BEMIO .h5)",
+                               f"a file HDF5 cannot open ({shown(err)})") from None
+        with handle:
+            try:
+                return _read(_File(handle, name), body, water_density)
+            except (OSError, RuntimeError, KeyError) as err:
+                # HDF5's own failures on a damaged file (a truncated object header, a broken
+                # B-tree), met while walking it: one line, not a traceback
+                raise BemFileError(name, "", "a readable WEC-Sim BEMIO .h5 file",
+                                   f"a damaged HDF5 file ({shown(err)})") from None
 
 
 def _read(file: _File, body: int | None, water_density: float | None) -> ImportedBem:
     numbers = _bodies(file)
-    names = {n: (file.text(f"/body{n}/properties/name", "body name")
-                 if file.has(f"/body{n}/properties/name") else "") for n in numbers}
     if body is None:
         if len(numbers) > 1:
-            listed = ", ".join(f"{n} '{names[n]}'" for n in numbers)
+            names = {n: (file.text(f"/body{n}/properties/name", "body name")
+                         if file.has(f"/body{n}/properties/name") else "") for n in numbers}
+            listed = shown(", ".join(f"{n} '{names[n]}'" for n in numbers))
             raise file.error("", f"a body number (the file has {len(numbers)} bodies: "
                              f"{listed})", "none given")
         body = 1
@@ -313,20 +461,21 @@ def _read(file: _File, body: int | None, water_density: float | None) -> Importe
 
     dir_path = sim + "wave_dir"
     directions = file.vector(dir_path, "wave directions")
-    units = file.raw(dir_path, "wave directions").attrs.get("units", "deg")
-    units = units.decode() if isinstance(units, bytes) else str(units)
+    units = file.attribute_text(file.raw(dir_path, "wave directions"), dir_path, "units",
+                                "deg")
     if units.strip().lower() in ("rad", "radian", "radians"):
         directions_rad = directions.copy()
     elif units.strip().lower() in ("deg", "degree", "degrees", ""):
         directions_rad = np.radians(directions)
     else:
-        raise file.error(dir_path, "units 'deg' or 'rad' (attribute 'units')", f"'{units}'")
+        raise file.error(dir_path, "units 'deg' or 'rad' (attribute 'units')",
+                         f"'{shown(units)}'")
     n_dir = directions.size
     if n_dir < 1:
         raise file.error(dir_path, "at least 1 wave direction", "none")
     if np.unique(directions).size != n_dir:
         raise file.error(dir_path, "distinct wave directions",
-                         ", ".join(f"{d:g}" for d in directions))
+                         shown(", ".join(f"{d:g}" for d in directions)))
     dir_order = np.argsort(directions_rad, kind="stable")
 
     rho_file = _positive(file, sim + "rho", "water density [kg/m^3]")
@@ -420,9 +569,9 @@ def _read(file: _File, body: int | None, water_density: float | None) -> Importe
         notes.append("disp_vol = 0 in the file (BEMIO writes 0 when the BEM run gave no "
                      "hydrostatics): displaced volume and centre of buoyancy not used.")
     if code.upper() != "WAMIT":
-        notes.append(f"added_mass/inf_freq of a {code or 'non-WAMIT'} run is BEMIO's estimate "
-                     "(radiationIRF, or A at the highest frequency), not a BEM solution at "
-                     "omega = infinity.")
+        notes.append(f"added_mass/inf_freq of a {shown(code, 80) or 'non-WAMIT'} run is "
+                     "BEMIO's estimate (radiationIRF, or A at the highest frequency), not a "
+                     "BEM solution at omega = infinity.")
     else:
         notes.append("BEMIO's readWAMIT takes WAMIT's values as normalised with ULEN = 1 and "
                      "records rho = 1000 kg/m^3 whatever the run's density.")

@@ -33,21 +33,42 @@ file and line: a wrong number of columns, a non-number, NaN or inf, a mode index
 1..6 (multi-body files are not supported), a repeated line, a period that is neither > 0 nor
 -1 or 0, excitation periods that are not the ``.1``'s finite periods, a period missing a
 wave direction that another has, fewer than two finite periods, an empty or missing file.
+The files are data from elsewhere (docs/guide/safeguards.md#files-from-elsewhere): only
+regular files of at most :data:`MAX_FILE_BYTES` are read (a FIFO or a device is refused before
+it is opened), and quoted tokens are shown with :func:`floatmoor.terminal_text.shown`.
 """
 
 from __future__ import annotations
 
+import io
 import math
-from collections.abc import Sequence
+from array import array
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
+from floatmoor.io.input_files import InputFileError, read_bounded
+from floatmoor.terminal_text import shown
 
-__all__ = ["read_wamit", "read_wamit_out", "WamitRunSummary", "WAMIT_EXTENSIONS"]
+__all__ = ["read_wamit", "read_wamit_out", "WamitRunSummary", "WAMIT_EXTENSIONS",
+           "MAX_FILE_BYTES"]
+
+#: Largest WAMIT file read [bytes]: a .3 of 1000 periods x 72 wave directions x 6 modes is
+#: ~40 MB of ~90-byte lines, OC4's .1 of 498 periods 0.5 MB; the bound keeps the text and the
+#: values parsed from it well inside a workstation's memory (measured: 0.5 GB peak for a
+#: 64 MiB .3 of the shortest valid lines, 4.8 million of them).
+MAX_FILE_BYTES = 64 * 2**20
+#: Most distinct wave periods a file may hold (besides PER = -1 and 0): floatmoor's own
+#: databases take at most 2000 frequencies (docs/guide/safeguards.md#input-limits), BEM runs
+#: hundreds; the bound keeps what is held per line small whatever the file's size.
+MAX_PERIODS = 10_000
+#: Most distinct wave directions an excitation file may hold: 3600 is a 0.1 deg grid.
+MAX_DIRECTIONS = 3_600
 
 #: The file kinds read, by extension (lower case).
 WAMIT_EXTENSIONS = (".1", ".3", ".3fk", ".3sc", ".hst", ".out")
@@ -75,6 +96,9 @@ MOD_PHASE_ATOL_REL = 1e-6
 #: mode over the file: WAMIT's diffraction-method force is the sum of the two parts, each
 #: printed with 7 digits; 1e-3 catches parts taken from another run.
 PARTS_SUM_RTOL = 1e-3
+
+#: An excitation block before any line filled it: (Re, Im, line number) x 6 modes, all NaN.
+_EMPTY_BLOCK = array("d", [math.nan] * (3 * _N_MODES))
 
 _KIND_NAMES = {".1": "added mass and damping (.1)", ".3": "exciting force (.3)",
                ".3fk": "Froude-Krylov force (.3fk)", ".3sc": "scattering force (.3sc)",
@@ -165,21 +189,25 @@ class _Table:
         self.path = path
         self.name = str(path)
         self.kind = kind
-        if not path.exists():
-            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
-                               "no such file")
-        if not path.is_file():
-            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
-                               "a folder or special file")
         try:
-            text = path.read_text(encoding="utf-8")
+            self.text = read_bounded(path, MAX_FILE_BYTES).decode("utf-8")
+        except InputFileError as err:
+            raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} file",
+                               err.found) from None
         except UnicodeDecodeError:
             raise BemFileError(self.name, "", f"a WAMIT {_KIND_NAMES[kind]} text file",
                                "bytes that are not UTF-8 text") from None
         except OSError as err:
-            raise BemFileError(self.name, "", "a readable file", str(err)) from None
-        self.rows = [(n, line.split()) for n, line in enumerate(text.splitlines(), 1)
-                     if line.strip()]
+            raise BemFileError(self.name, "", "a readable file", shown(err)) from None
+
+    @property
+    def rows(self) -> Iterator[tuple[int, list[str]]]:
+        """(line number, tokens) of the non-blank lines, one at a time (a list of them all
+        would take ten times the text's memory)."""
+        for n, line in enumerate(io.StringIO(self.text), 1):
+            parts = line.split()
+            if parts:
+                yield n, parts
 
     def error(self, lineno: int, expected: str, found: str) -> BemFileError:
         return BemFileError(self.name, f"line {lineno}", expected, found)
@@ -188,9 +216,9 @@ class _Table:
         try:
             value = float(token)
         except ValueError:
-            raise self.error(lineno, f"a number ({what})", f"'{token}'") from None
+            raise self.error(lineno, f"a number ({what})", f"'{shown(token, 40)}'") from None
         if not math.isfinite(value):
-            raise self.error(lineno, f"a finite number ({what})", f"'{token}'")
+            raise self.error(lineno, f"a finite number ({what})", f"'{shown(token, 40)}'")
         return value
 
     def mode(self, lineno: int, token: str, what: str) -> int:
@@ -198,7 +226,7 @@ class _Table:
             value = int(token)
         except ValueError:
             raise self.error(lineno, f"an integer mode index {what} in 1..6",
-                             f"'{token}'") from None
+                             f"'{shown(token, 40)}'") from None
         if value > _N_MODES:
             raise self.error(lineno, f"a mode index {what} in 1..6 (one rigid body; "
                              "multi-body WAMIT files are not supported)", f"index {value}")
@@ -211,13 +239,13 @@ class _Table:
         if per < 0.0 and per != -1.0:
             raise self.error(lineno, "a wave period PER > 0, or -1 (omega = 0) or 0 (omega "
                              "= infinity); the first column must be the period (WAMIT's "
-                             "default IPEROUT)", f"PER = {token}")
+                             "default IPEROUT)", f"PER = {shown(token, 40)}")
         return per
 
     def columns(self, lineno: int, parts: list[str], count: int, layout: str) -> None:
         if len(parts) != count:
             raise self.error(lineno, f"{count} columns '{layout}'",
-                             f"{len(parts)}: '{' '.join(parts)}'")
+                             f"{len(parts)}: '{shown(' '.join(parts), 120)}'")
 
     def once(self, seen: dict, key: tuple, lineno: int, fields: str, described: str) -> None:
         """Refuse a second line for ``key`` (``fields`` names its columns, ``described``
@@ -227,8 +255,26 @@ class _Table:
                              f"a second line for {described} (first at line {seen[key]})")
         seen[key] = lineno
 
+    def new_key(self, held: dict, key: float, lineno: int, limit: int, what: str) -> dict:
+        """The entries of ``held[key]``, a new dict when ``key`` is new and fewer than
+        ``limit`` keys are held."""
+        entries = held.get(key)
+        if entries is None:
+            if len(held) >= limit:
+                raise self.error(lineno, f"at most {limit} distinct {what}",
+                                 f"one more, {key:g}")
+            entries = held[key] = {}
+        return entries
+
+    def once_in(self, entries: dict, key: Any, lineno: int, fields: str, described: str,
+                ) -> None:
+        """Refuse a second line for ``key`` in ``entries`` (values ``(..., first line)``)."""
+        if key in entries:
+            raise self.error(lineno, f"one line per ({fields})", f"a second line for "
+                             f"{described} (first at line {entries[key][-1]})")
+
     def require_rows(self, layout: str) -> None:
-        if not self.rows:
+        if not self.text.strip():
             raise BemFileError(self.name, "", f"lines '{layout}'", "an empty file")
 
 
@@ -245,8 +291,8 @@ class _Radiation:
 def _read_radiation(table: _Table) -> _Radiation:
     layout = "PER I J Abar [Bbar]"
     table.require_rows(layout)
-    values: dict[float, dict[tuple[int, int], tuple[float, float]]] = {}
-    first_line: dict[tuple[float, int, int], int] = {}
+    # per period: (I, J) -> (Abar, Bbar, line number)
+    values: dict[float, dict[tuple[int, int], tuple[float, float, int]]] = {}
     for lineno, parts in table.rows:
         if len(parts) not in (4, 5):
             table.columns(lineno, parts, 5, layout)
@@ -260,16 +306,18 @@ def _read_radiation(table: _Table) -> _Radiation:
         j = table.mode(lineno, parts[2], "J")
         a = table.number(lineno, parts[3], "Abar")
         b = 0.0 if limit else table.number(lineno, parts[4], "Bbar")
-        table.once(first_line, (per, i, j), lineno, "PER, I, J",
-                   f"PER = {parts[0]}, I = {i}, J = {j}")
-        values.setdefault(per, {})[(i, j)] = (a, b)
+        entries = table.new_key(values, per, lineno, MAX_PERIODS + 2,
+                                 "wave periods (PER = -1 and 0 included)")
+        table.once_in(entries, (i, j), lineno, "PER, I, J",
+                      f"PER = {shown(parts[0], 40)}, I = {i}, J = {j}")
+        entries[(i, j)] = (a, b, lineno)
 
     periods = sorted((p for p in values if p > 0.0), reverse=True)
     if len(periods) < 2:
         raise BemFileError(table.name, "", "at least 2 finite wave periods (PER > 0)",
                            f"{len(periods)}")
 
-    def matrix(entries: dict[tuple[int, int], tuple[float, float]], column: int
+    def matrix(entries: dict[tuple[int, int], tuple[float, float, int]], column: int
                ) -> NDArray[np.float64]:
         out = np.zeros((_N_MODES, _N_MODES))
         for (i, j), pair in entries.items():
@@ -325,10 +373,14 @@ def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
                      ) -> _Excitation:
     layout = "PER BETA I Mod Pha Re Im"
     table.require_rows(layout)
-    lines: dict[float, dict[float, dict[int, complex]]] = {}
-    first_line: dict[tuple[float, float, int], int] = {}
-    dropped: set[float] = set()
-    mod_pha: list[tuple[int, float, float, complex]] = []
+    # per period, per direction: a block of (Re, Im, line number) x 6 modes, NaN where no
+    # line gave the mode (a compact array: ~35 bytes per line held); PER = -1 / 0 lines too
+    lines: dict[float, dict[float, array]] = {}
+    betas: dict[float, dict] = {}               # the distinct directions (bounded)
+    largest = 0.0                               # the largest Mod at finite periods
+    # lines whose Mod/Pha miss Re/Im by more than the relative tolerance: checked again with
+    # the absolute floor once the largest Mod is known (kept, not every line: memory)
+    suspects: list[tuple[int, float, float, complex]] = []
     for lineno, parts in table.rows:
         table.columns(lineno, parts, 7, layout)
         per = table.period(lineno, parts[0])
@@ -339,24 +391,36 @@ def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
         re = table.number(lineno, parts[5], "Re")
         im = table.number(lineno, parts[6], "Im")
         if mod < 0.0:
-            raise table.error(lineno, "a modulus Mod >= 0", f"Mod = {parts[3]}")
-        table.once(first_line, (per, beta, i), lineno, "PER, BETA, I",
-                   f"PER = {parts[0]}, BETA = {parts[1]}, I = {i}")
+            raise table.error(lineno, "a modulus Mod >= 0", f"Mod = {shown(parts[3], 40)}")
+        by_beta = table.new_key(lines, per, lineno, MAX_PERIODS + 2,
+                                 "wave periods (PER = -1 and 0 included)")
+        table.new_key(betas, beta, lineno, MAX_DIRECTIONS, "wave directions")
+        block = by_beta.get(beta)
+        if block is None:
+            block = by_beta[beta] = array("d", _EMPTY_BLOCK)
+        k = 3 * (i - 1)
+        if not math.isnan(block[k + 2]):
+            raise table.error(lineno, "one line per (PER, BETA, I)", "a second line for "
+                              f"PER = {shown(parts[0], 40)}, BETA = {shown(parts[1], 40)}, "
+                              f"I = {i} (first at line {int(block[k + 2])})")
+        block[k], block[k + 1], block[k + 2] = re, im, lineno
+        value = complex(re, im)
         if per in (-1.0, 0.0):
-            dropped.add(per)
             continue
-        mod_pha.append((lineno, mod, pha, complex(re, im)))
-        lines.setdefault(per, {}).setdefault(beta, {})[i] = complex(re, im)
+        largest = max(largest, mod)
+        polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
+        if abs(polar - value) > MOD_PHASE_RTOL * mod:
+            suspects.append((lineno, mod, pha, value))
 
-    if mod_pha:
-        atol = MOD_PHASE_ATOL_REL * max(m for _, m, _, _ in mod_pha)
-        for lineno, mod, pha, value in mod_pha:
-            polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
-            if abs(polar - value) > MOD_PHASE_RTOL * mod + atol:
-                raise table.error(lineno, f"Mod and Pha agreeing with Re and Im (within "
-                                  f"{MOD_PHASE_RTOL:g} of Mod)",
-                                  f"Mod e^(i Pha) = {polar.real:.6g}{polar.imag:+.6g}i, "
-                                  f"Re + i Im = {value.real:.6g}{value.imag:+.6g}i")
+    atol = MOD_PHASE_ATOL_REL * largest
+    for lineno, mod, pha, value in suspects:
+        polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
+        if abs(polar - value) > MOD_PHASE_RTOL * mod + atol:
+            raise table.error(lineno, f"Mod and Pha agreeing with Re and Im (within "
+                              f"{MOD_PHASE_RTOL:g} of Mod)",
+                              f"Mod e^(i Pha) = {polar.real:.6g}{polar.imag:+.6g}i, "
+                              f"Re + i Im = {value.real:.6g}{value.imag:+.6g}i")
+    dropped = {p for p in (-1.0, 0.0) if lines.pop(p, None) is not None}
     if not lines:
         raise BemFileError(table.name, "", "lines at finite wave periods (PER > 0)",
                            "only PER = -1 or 0 lines")
@@ -368,16 +432,19 @@ def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
         if absent:
             raise BemFileError(table.name, f"PER = {_format_period(per)} s",
                                f"every wave direction of the file ({len(directions)}: "
-                               f"BETA = {', '.join(f'{b:g}' for b in directions)} deg)",
-                               f"no lines for BETA = {', '.join(f'{b:g}' for b in absent)} "
-                               "deg")
+                               f"BETA = {shown(', '.join(f'{b:g}' for b in directions), 200)}"
+                               " deg)", "no lines for BETA = "
+                               f"{shown(', '.join(f'{b:g}' for b in absent), 200)} deg")
     values = np.zeros((len(radiation.periods), len(directions), _N_MODES), dtype=complex)
     omitted = 0
     for per, by_beta in lines.items():
         for b, beta in enumerate(directions):
-            omitted += _N_MODES - len(by_beta[beta])
-            for i, value in by_beta[beta].items():
-                values[index[per], b, i - 1] = value
+            block = by_beta[beta]
+            for m in range(_N_MODES):
+                if math.isnan(block[3 * m + 2]):
+                    omitted += 1
+                else:
+                    values[index[per], b, m] = complex(block[3 * m], block[3 * m + 1])
     return _Excitation(table.name, directions, values, sorted(dropped), omitted)
 
 

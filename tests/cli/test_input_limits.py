@@ -201,3 +201,11 @@ def test_wave_period_beyond_the_dispersion_relation_is_a_case_error(capsys, peri
     err = _refused(capsys, CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml",
                    f"waves.period={period}")
     assert "waves.period: expected a wave period for which the dispersion relation" in err
+
+
+def test_huge_motion_radius_is_one_line_without_numpy_warnings(capsys):
+    """motion.radius = 1e308 overflows while the fairlead's path is sampled: one line, no
+    RuntimeWarning before it (pytest turns a floatmoor warning into an error)."""
+    err = _refused(capsys, CASES / "lindahl" / "lindahl_r0.20_T1.25.toml", "motion.radius=1e308")
+    assert "motion.radius: expected a motion that keeps the fairlead of line 'chain' above " \
+           "the seabed" in err

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import pytest
@@ -155,14 +156,18 @@ def test_check_damaged_or_missing_database_exits_2(tmp_path, capsys):
     assert main(["hydro", "check", str(tmp_path / "absent.nc")]) == 2
 
 
-def test_check_stale_database_exits_2(tmp_path, buoy_db, capsys, monkeypatch):
-    monkeypatch.chdir(REPO)
+def test_check_stale_database_exits_2(tmp_path, buoy_db, capsys):
+    """The recorded case file is found in the database's project (the folder above its
+    hydrodb/), wherever the command runs."""
     stale = buoy_db.copy(deep=True)
     inputs = json.loads(stale.attrs["inputs_json"])
     inputs["panel_size"] = 0.05
     stale.attrs["inputs_json"] = json.dumps(inputs)
     stale.attrs["inputs_hash"] = "0" * 64
-    path = tmp_path / "stale.nc"
+    case = tmp_path / stale.attrs["case_file"]
+    case.parent.mkdir(parents=True)
+    shutil.copy(REPO / stale.attrs["case_file"], case)
+    path = tmp_path / "hydrodb" / "stale.nc"
     write_database(stale, path)
     assert main(["hydro", "check", str(path)]) == 2
     assert "stale" in capsys.readouterr().err

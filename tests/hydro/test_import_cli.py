@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import os
 import shutil
 
 import pytest
@@ -365,3 +366,23 @@ def test_bemio_water_density_given_redimensionalises(tmp_path, deepcwind_db):
                                atol=1e-6)
     notes = " ".join(json.loads(back.attrs["import_notes_json"]))
     assert "given; the file says 1025" in notes
+
+
+def test_overflowing_length_scale_is_one_line_and_nothing_written(oc4_copy, capsys):
+    """--length-scale 1e308 overflows the scaling (L^5): one line, no NumPy warning before it
+    (pytest turns a floatmoor warning into an error), no database with infinite values."""
+    assert _import(oc4_copy, "--length-scale", "1e308") == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"floatmoor: error: {oc4_copy / 'marin_semi.1'} "
+                   f"{oc4_copy / 'marin_semi.hst'}: added_mass: expected finite dimensional "
+                   "values (the files' values scaled with rho = 1025, g = 9.80665, ULEN = "
+                   "1e+308), found values that overflow"]
+    assert list((oc4_copy / "hydrodb").iterdir()) == []
+
+
+def test_fifo_source_is_refused_unopened(oc4_copy, capsys):
+    os.mkfifo(oc4_copy / "pipe.hst")
+    assert _import(oc4_copy, files=("marin_semi.1", "pipe.hst")) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"floatmoor: error: {oc4_copy / 'pipe.hst'}: expected a readable regular "
+                   "file, found a FIFO (named pipe), not a regular file"]

@@ -6,6 +6,7 @@ convention, and every malformed-file error naming its file and line."""
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -399,3 +400,53 @@ def test_run_summary_errors_name_file_and_line(tmp_path, lines, message):
     with pytest.raises(BemFileError) as err:
         read_wamit_out(_write(tmp_path, "m.out", lines))
     assert message in str(err.value)
+
+
+# --- files from elsewhere (docs/guide/safeguards.md#files-from-elsewhere) ------------------
+
+def test_oversized_file_is_refused_before_reading(tmp_path, monkeypatch):
+    """A sparse 4 GB .1 (a MemoryError before the bound): refused by its size, unread."""
+    from floatmoor.io import wamit
+
+    path = tmp_path / "big.1"
+    with open(path, "wb") as f:
+        f.truncate(4 * 2**30)
+    with pytest.raises(BemFileError) as info:
+        read_wamit([path], water_density=RHO)
+    assert str(info.value) == (f"{path}: expected a WAMIT added mass and damping (.1) file, "
+                               f"found a file of {4 * 2**30} bytes, more than the "
+                               f"{wamit.MAX_FILE_BYTES} bytes read")
+
+
+@pytest.mark.parametrize("kind, found", [("fifo", "a FIFO (named pipe)"),
+                                         ("device", "a character device")])
+def test_fifo_and_device_are_refused_unopened(tmp_path, kind, found):
+    path = tmp_path / "m.1"
+    if kind == "fifo":
+        os.mkfifo(path)
+    else:
+        path.symlink_to("/dev/zero")
+    with pytest.raises(BemFileError) as info:
+        read_wamit([path], water_density=RHO)
+    assert str(info.value) == (f"{path}: expected a WAMIT added mass and damping (.1) file, "
+                               f"found {found}, not a regular file")
+
+
+def test_quoted_tokens_are_shown_escaped(tmp_path):
+    err = _error(tmp_path, {"m.1": ["10.0 1 1 \x1b]0;owned\x07 1.0"]})
+    assert "\x1b" not in str(err) and "'\\x1b]0;owned\\x07'" in str(err)
+
+
+def test_distinct_periods_and_directions_are_bounded(tmp_path, monkeypatch):
+    from floatmoor.io import wamit
+
+    monkeypatch.setattr(wamit, "MAX_PERIODS", 2)
+    err = _error(tmp_path, {"m.1": _one_lines(periods=(10.0, 5.0, 2.5, 1.25))})
+    assert "line 145: expected at most 4 distinct wave periods (PER = -1 and 0 included), " \
+        "found one more, 2.5" in str(err)
+    monkeypatch.setattr(wamit, "MAX_PERIODS", 10)
+    monkeypatch.setattr(wamit, "MAX_DIRECTIONS", 1)
+    three = [f"10.0 {beta} 1 1.0 0.0 1.0 0.0" for beta in (0.0, 90.0)]
+    err = _error(tmp_path, {"m.1": _one_lines(periods=(10.0, 5.0)), "m.3": three})
+    assert "m.3: line 2: expected at most 1 distinct wave directions, found one more, 90" \
+        in str(err)

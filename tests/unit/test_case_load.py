@@ -120,3 +120,40 @@ def test_time_integration_and_accuracy_keys():
             load_case(LINDAHL_CASE, [override])
         key = override.split("=")[0].replace("lines.chain", "lines[0]")
         assert key in str(err.value) and found.strip('"') in str(err.value), str(err.value)
+
+
+def test_case_file_replaced_by_a_fifo_after_the_look_does_not_block(tmp_path, monkeypatch):
+    """The case file is opened without blocking and looked at again once open: a FIFO put in
+    place of the regular file between the look and the open is refused, not waited on."""
+    import os
+    import stat as stat_module
+    import threading
+    from pathlib import Path
+
+    from floatmoor.case import files
+    from floatmoor.case.files import CaseFileKindError, read_case_text
+
+    fifo = tmp_path / "case.toml"
+    os.mkfifo(fifo)
+    real_stat = os.stat
+
+    class _Regular:  # what the first look saw: a regular file
+        st_mode = stat_module.S_IFREG | 0o644
+
+    monkeypatch.setattr(files.os, "stat", lambda p, *a, **k: _Regular()
+                        if Path(p) == fifo else real_stat(p, *a, **k))
+    outcome = []
+
+    def read() -> None:
+        try:
+            read_case_text(fifo)
+        except CaseFileKindError as err:
+            outcome.append(str(err))
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(5.0)
+    if reader.is_alive():  # blocked opening the FIFO: release it before failing
+        os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
+        reader.join(5.0)
+    assert outcome and "FIFO" in outcome[0]
