@@ -36,6 +36,9 @@ wave direction that another has, fewer than two finite periods, an empty or miss
 The files are data from elsewhere (docs/guide/safeguards.md#files-from-elsewhere): only
 regular files of at most :data:`MAX_FILE_BYTES` are read (a FIFO or a device is refused before
 it is opened), and quoted tokens are shown with :func:`floatmoor.terminal_text.shown`.
+
+Size: one reader per WAMIT file kind sharing one strict line table and its bounds (file
+size, periods, directions); the ``.out`` header reader uses the same table.
 """
 
 from __future__ import annotations
