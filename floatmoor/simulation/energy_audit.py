@@ -16,6 +16,14 @@ Per body step [t_n, t_n + dt] and per dynamic line:
   upwind flux, the slack filter, the seabed's normal damper) when positive; energy created
   by the discretisation or the coupling when negative.
 
+and, per body DOF, ``body_work``: the work the mooring's generalised force does on the body
+in the step's quadrature, dt sum_s b_s Q_s[j] x'_s[j]: where the energy of a DOF (roll,
+yaw) comes from. With lines solved on their own, the sum over the DOFs is minus the sum of
+the lines' ``work`` to round-off: the kinematics hand the lines the power the body loses
+(:func:`floatmoor.body.kinematics.generalised_force`). That balance held with the
+small-angle identification too; what broke was that the fairlead velocity was not the
+derivative of the fairlead position the lines follow (docs/theory/floater.md).
+
 The audit also reports how far two mirror-image lines (mirrored by y -> -y) are from being
 mirror images, the measure of a symmetric case's symmetry (:func:`mirror_difference`).
 """
@@ -61,6 +69,8 @@ class StepAudit:
 
     time: float  #: time at the end of the step [s]
     lines: list[LineAudit | None]
+    #: work of the mooring's generalised force on each body DOF over the step [J]
+    body_work: NDArray[np.float64]
 
 
 def line_energy(line: DynamicLine) -> float:
@@ -115,7 +125,9 @@ def audit_step(moored: MooredBody) -> StepAudit:
     e0 = [line_energy(m) if d else 0.0 for m, d in zip(models, dynamic)]
     d0 = [line_dissipation_rate(m) if d else 0.0 for m, d in zip(models, dynamic)]
     stages: list[tuple[NDArray[np.float64], NDArray[np.float64]]] = []
+    body_power: list[NDArray[np.float64]] = []
     original = moored.line_forces
+    original_mooring = moored.mooring_force
 
     def observed(x: NDArray[np.float64], v: NDArray[np.float64] | None = None
                  ) -> tuple[NDArray, NDArray]:
@@ -125,13 +137,20 @@ def audit_step(moored: MooredBody) -> StepAudit:
             stages.append((ff.copy(), vel))
         return ff, af
 
+    def observed_mooring(x: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray:
+        f = original_mooring(x, v)
+        body_power.append(f * v)
+        return f
+
     dt = moored.body.dt
     moored.line_forces = observed  # type: ignore[method-assign]
+    moored.mooring_force = observed_mooring  # type: ignore[method-assign]
     try:
         moored.step()
     finally:
         del moored.line_forces
-    if len(stages) != len(_RK4_WEIGHTS):
+        del moored.mooring_force
+    if len(stages) != len(_RK4_WEIGHTS) or len(body_power) != len(_RK4_WEIGHTS):
         raise RuntimeError(f"the audit expects the {len(_RK4_WEIGHTS)} stages of an RK4 step, "
                            f"found {len(stages)}")
     out: list[LineAudit | None] = []
@@ -142,4 +161,5 @@ def audit_step(moored: MooredBody) -> StepAudit:
         work = -dt * sum(b * float(ff[i] @ vel[i]) for b, (ff, vel) in zip(_RK4_WEIGHTS, stages))
         d1 = line_dissipation_rate(m)
         out.append(LineAudit(work, line_energy(m) - e0[i], 0.5 * dt * (d0[i] + d1)))
-    return StepAudit(moored.body.time, out)
+    body_work = dt * sum(b * p for b, p in zip(_RK4_WEIGHTS, body_power))
+    return StepAudit(moored.body.time, out, np.asarray(body_work, dtype=float))
