@@ -17,8 +17,8 @@ point p0 keeps its distance to the reference point exactly. The velocity is exac
              yaw' - roll' sin(pitch)),
 
 omega the angular velocity in global axes from the Euler-angle rates (omega x = R' R^T),
-not the small-angle identification omega = (roll', pitch', yaw') of the floater's linear
-hydrodynamics. The displacement is ramped DOF by DOF as every prescribed motion is
+as the coupled floater's points take it (:mod:`floatmoor.body.kinematics`). The
+displacement is ramped DOF by DOF as every prescribed motion is
 (:func:`floatmoor.motion.ramp`); a table is interpolated in each DOF by the not-a-knot cubic
 spline of a translational table (:func:`floatmoor.motion.table_state`), rotations in the Euler
 angles, with the spline's exact derivatives as rates.
@@ -35,10 +35,11 @@ Rx(roll) Ry(pitch) Rz(yaw) (Euler2Quat in its Misc.hpp): the reverse order, equa
 order in the angles and different at second order (products of two angles), so a record
 with two large rotations at once is a different attitude there. Both MoorDyn versions take
 the rotational rates a coupled body is given as its angular velocity for the points'
-velocities (v = v0 + w x r), the small-angle identification floatmoor's floater also makes;
-a prescribed motion here converts Euler-angle rates exactly. OrcaFlex documents right-handed
-rotations ("clockwise" looking along the axis) applied in a stated order on rotating axes,
-for vessels yaw (heading) first, then pitch, then roll: the convention used here.
+velocities (v = v0 + w x r), a small-angle identification; floatmoor converts Euler-angle
+rates exactly, for a prescribed motion and a coupled floater alike. OrcaFlex documents
+right-handed rotations ("clockwise" looking along the axis) applied in a stated order on
+rotating axes, for vessels yaw (heading) first, then pitch, then roll: the convention used
+here.
 """
 
 from __future__ import annotations

@@ -11,7 +11,8 @@ import numpy as np
 
 from floatmoor._numba import jit
 
-__all__ = ["rotation_into", "points_state_into", "generalised_force_into"]
+__all__ = ["rotation_into", "angular_velocity", "points_state_into",
+           "generalised_force_into"]
 
 
 @jit(inline="always")
@@ -31,14 +32,25 @@ def rotation_into(roll: float, pitch: float, yaw: float, R: np.ndarray) -> None:
     R[2, 2] = cp * cr
 
 
+@jit(inline="always")
+def angular_velocity(pitch: float, yaw: float, droll: float, dpitch: float,
+                     dyaw: float) -> tuple[float, float, float]:
+    """Angular velocity omega = T (roll', pitch', yaw') in global axes of R = Rz Ry Rx
+    (omega x = R' R^T; the rows of T: (cy cp, -sy, 0), (sy cp, cy, 0), (-sp, 0, 1))."""
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return (droll * cy * cp - dpitch * sy, droll * sy * cp + dpitch * cy, dyaw - droll * sp)
+
+
 @jit
 def points_state_into(x: np.ndarray, v: np.ndarray, arms: np.ndarray, centre: np.ndarray,
                       positions: np.ndarray, velocities: np.ndarray) -> None:
     """Global positions and velocities (n, 3) of the body-fixed points with rest arms
-    ``arms`` (n, 3): p = c0 + x[:3] + R a, v = x'[:3] + omega x (R a)."""
+    ``arms`` (n, 3): p = c0 + x[:3] + R a, v = x'[:3] + omega x (R a), omega the angular
+    velocity of the Euler-angle rates v[3:] (:func:`angular_velocity`): v = dp/dt exactly."""
     R = np.empty((3, 3))
     rotation_into(x[3], x[4], x[5], R)
-    wx, wy, wz = v[3], v[4], v[5]
+    wx, wy, wz = angular_velocity(x[4], x[5], v[3], v[4], v[5])
     for i in range(arms.shape[0]):
         a0, a1, a2 = arms[i, 0], arms[i, 1], arms[i, 2]
         r0 = R[0, 0] * a0 + R[0, 1] * a1 + R[0, 2] * a2
@@ -55,8 +67,11 @@ def points_state_into(x: np.ndarray, v: np.ndarray, arms: np.ndarray, centre: np
 @jit
 def generalised_force_into(x: np.ndarray, forces: np.ndarray, arms: np.ndarray,
                            out: np.ndarray) -> None:
-    """The 6-DOF force (forces, moments about the displaced reference point) of point forces
-    ``forces`` (n, 3) at the body-fixed points with rest arms ``arms``, into ``out`` (6,)."""
+    """The 6-DOF generalised force of point forces ``forces`` (n, 3) at the body-fixed points
+    with rest arms ``arms``, into ``out`` (6,): the forces, and the moment M about the
+    displaced reference point turned onto the Euler angles, T^T M (T of
+    :func:`angular_velocity`), so that out . x' = sum f . v exactly (v of
+    :func:`points_state_into`)."""
     R = np.empty((3, 3))
     rotation_into(x[3], x[4], x[5], R)
     for c in range(6):
@@ -73,3 +88,9 @@ def generalised_force_into(x: np.ndarray, forces: np.ndarray, arms: np.ndarray,
         out[3] += r1 * f2 - r2 * f1
         out[4] += r2 * f0 - r0 * f2
         out[5] += r0 * f1 - r1 * f0
+    mx, my, mz = out[3], out[4], out[5]
+    cp, sp = math.cos(x[4]), math.sin(x[4])
+    cy, sy = math.cos(x[5]), math.sin(x[5])
+    out[3] = cy * cp * mx + sy * cp * my - sp * mz
+    out[4] = -sy * mx + cy * my
+    out[5] = mz

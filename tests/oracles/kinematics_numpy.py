@@ -1,7 +1,9 @@
 """Plain NumPy reference of the rigid-body point kinematics (floatmoor.body._kinematics_kernels):
 the rotation R = Rz(yaw) Ry(pitch) Rx(roll) built as the product of the three elementary
-rotations, positions c0 + x[:3] + R a, velocities x'[:3] + omega x (R a), and forces summed
-with their moments (R a) x f about the displaced reference point."""
+rotations, positions c0 + x[:3] + R a, velocities x'[:3] + omega x (R a) with omega = T rates
+(T the Euler-angle-rate matrix, built from the elementary axes: omega = yaw' z + pitch' Rz y +
+roll' Rz Ry x), and forces summed with their moments (R a) x f about the displaced reference
+point, turned onto the Euler angles by T^T."""
 
 from __future__ import annotations
 
@@ -19,11 +21,21 @@ def rotation(roll: float, pitch: float, yaw: float) -> Array:
     return Rz @ Ry @ Rx
 
 
+def rate_matrix(pitch: float, yaw: float) -> Array:
+    """T: omega = T (roll', pitch', yaw'), columns Rz Ry e_x, Rz e_y, e_z."""
+    Rz = rotation(0.0, 0.0, yaw)
+    Ry = rotation(0.0, pitch, 0.0)
+    e = np.eye(3)
+    return np.column_stack([Rz @ Ry @ e[0], Rz @ e[1], e[2]])
+
+
 def points_state(x: Array, v: Array, arms: Array, centre: Array) -> tuple[Array, Array]:
     rotated = arms @ rotation(*x[3:]).T
-    return centre + x[:3] + rotated, v[:3] + np.cross(v[3:], rotated)
+    omega = rate_matrix(x[4], x[5]) @ v[3:]
+    return centre + x[:3] + rotated, v[:3] + np.cross(omega, rotated)
 
 
 def generalised_force(x: Array, forces: Array, arms: Array) -> Array:
     rotated = arms @ rotation(*x[3:]).T
-    return np.concatenate([forces.sum(axis=0), np.cross(rotated, forces).sum(axis=0)])
+    moment = np.cross(rotated, forces).sum(axis=0)
+    return np.concatenate([forces.sum(axis=0), rate_matrix(x[4], x[5]).T @ moment])
