@@ -37,6 +37,9 @@ def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignor
                      help="water depth [m] when the deck has no WtrDpth (MoorDyn-F decks), or "
                      "to replace it")
     imd.add_argument("--force", action="store_true", help="replace an existing output file")
+    from floatmoor.io.orcaflex.cli import add_orcaflex_parser
+
+    add_orcaflex_parser(isub)
     exp = sub.add_parser("export", help="write another program's input file from a case")
     esub = exp.add_subparsers(dest="export_format", required=True)
     emd = esub.add_parser("moordyn", help="a floatmoor case -> a MoorDyn v2 input file")

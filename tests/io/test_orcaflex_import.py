@@ -1,0 +1,258 @@
+"""``floatmoor import orcaflex``: OrcaFlex text data files (hand-written fixtures in
+tests/data/orcaflex/) -> case files whose statics are those of a hand-built equivalent case
+(exactly) and of MoorPy's catenary; exact unit conversions; every class of malformed input a
+one-line status-2 error with nothing written (docs/guide/mooring_systems.md#orcaflex-models).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from floatmoor.case.limits import parse_toml
+from floatmoor.case.load import parse_case
+from floatmoor.cli import main
+from floatmoor.errors import CaseError
+from floatmoor.io.orcaflex.importer import import_model
+from floatmoor.io.orcaflex.reader import MAX_MODEL_FILE_BYTES, parse_model, read_model
+from floatmoor.mooring.strength import static_line_loads
+
+MODELS = Path(__file__).parents[1] / "data" / "orcaflex"
+#: MoorPy and floatmoor solve the same elastic catenary; the brief's agreement asked of an
+#: import is 0.5 % (OrcaFlex's own FE statics differ from the catenary by discretisation).
+MOORPY_RTOL = 5e-3
+
+
+def _case(name: str):
+    path = MODELS / name
+    result = import_model(read_model(path), str(path))
+    return parse_case(parse_toml(result.text, "imported"), source="imported",
+                      text=result.text), result
+
+
+def _tensions(case) -> dict[str, float]:
+    return {load.line: load.fairlead_tension for load in static_line_loads(case)}
+
+
+def test_units_are_converted_exactly():
+    case, _ = _case("single_chain.yml")
+    chain = case.line_types["Chain"]
+    assert chain.mass_per_length == 0.12 * 1000.0  # te/m -> kg/m
+    assert chain.axial_stiffness == 6.0e5 * 1000.0  # kN -> N
+    assert chain.diameter == 0.15
+    assert chain.material_density == 120.0 / (math.pi * 0.15 ** 2 / 4.0)
+    assert chain.tangential_drag_coefficient == math.pi * 1.15
+    assert case.environment.water_density == 1.025 * 1000.0
+    assert case.environment.gravity == 9.81 and case.environment.water_depth == 100.0
+    assert case.seabed.stiffness == 100.0 * 1000.0  # kN/m/m^2 -> Pa/m
+    assert case.seabed.damping_ratio == 0.5 and case.seabed.friction_coefficient == 0.5
+    assert case.simulation.duration == 100.0 and case.simulation.output_interval == 0.5
+    anchor = next(p for p in case.points if p.name == "Mooring1_A")
+    assert tuple(anchor.position) == (-500.0, 0.0, -100.0)  # Anchored: z above the seabed
+
+
+SINGLE_CHAIN_BY_HAND = f"""
+title = "by hand"
+[environment]
+water_density = 1025.0
+water_depth = 100.0
+gravity = 9.81
+[seabed]
+stiffness = 1.0e5
+damping_ratio = 0.5
+friction_coefficient = 0.5
+slip_speed = 0.01
+[line_types.Chain]
+mass_per_length = 120.0
+axial_stiffness = 6.0e8
+diameter = 0.15
+material_density = {120.0 / (math.pi * 0.15 ** 2 / 4.0)!r}
+normal_drag_coefficient = 2.4
+tangential_drag_coefficient = {math.pi * 1.15!r}
+added_mass_coefficient = 1.0
+[[points]]
+name = "anchor"
+kind = "fixed"
+position = [-500.0, 0.0, -100.0]
+[[points]]
+name = "fairlead"
+kind = "fixed"
+position = [0.0, 0.0, -10.0]
+[[lines]]
+name = "Mooring1"
+start = "anchor"
+end = "fairlead"
+model = "dynamic"
+sections = [{{ type = "Chain", length = 550.0 }}]
+[lines.quasi_static]
+seabed_friction = false
+[simulation]
+duration = 100.0
+output_interval = 0.5
+"""
+
+
+def test_single_chain_statics_equal_a_hand_built_case_and_moorpy():
+    case, result = _case("single_chain.yml")
+    by_hand = parse_case(parse_toml(SINGLE_CHAIN_BY_HAND, "hand"), source="hand",
+                         text=SINGLE_CHAIN_BY_HAND)
+    imported, expected = _tensions(case), _tensions(by_hand)
+    assert imported == expected  # bit for bit: the same case
+    catenary = pytest.importorskip("moorpy.Catenary").catenary
+    w = (120.0 - 1025.0 * math.pi * 0.15 ** 2 / 4.0) * 9.81
+    fa_h, fa_v, fb_h, fb_v, _ = catenary(500.0, 90.0, 550.0, 6.0e8, w, CB=0.0, Tol=1e-10)
+    t_moorpy = math.hypot(fb_h, fb_v)
+    assert imported["Mooring1[0]"] == pytest.approx(t_moorpy, rel=MOORPY_RTOL)
+    assert result.not_imported  # the slip speed is always listed
+
+
+def test_three_lines_on_a_vessel_fairleads_in_the_vessel_frame():
+    case, result = _case("vessel_three_lines.yml")
+    pos = {p.name: tuple(p.position) for p in case.points}
+    kinds = {p.name: p.kind for p in case.points}
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    assert pos["L1_A"] == pytest.approx((10.0 + 20.0 * c, 5.0 + 20.0 * s, -8.0), abs=1e-12)
+    assert pos["L3_A"] == pytest.approx((10.0 - 10.0 * c + 17.32 * s,
+                                         5.0 - 10.0 * s - 17.32 * c, -8.0), abs=1e-12)
+    assert kinds["L1_A"] == kinds["L3_A"] == "body" and kinds["L2_B"] == "fixed"
+    assert pos["L2_B"] == (-475.0, 285.0, -150.0)
+    line = case.lines[0]  # End A on the vessel: reversed to run from the anchor
+    assert [s.line_type.name for s in line.sections] == ["Wire", "Chain"]
+    wire = case.line_types["Wire"]
+    assert wire.normal_drag_coefficient == 1.2 * 0.08 / 0.09  # drag diameter referred to OD
+    tensions = _tensions(case)
+    # the 120-degree pattern about the turned vessel: three equal fairlead tensions
+    tops = [t for name, t in tensions.items() if name.endswith("[1]")]
+    assert len(tops) == 3 and max(tops) == pytest.approx(min(tops), rel=1e-3)
+    text = "\n".join(result.not_imported)
+    assert "WaveType" in text and "VesselTypes" in text
+    assert "EndAConnection" not in text  # the older end keys are read, not dropped
+
+
+def test_three_lines_against_moorpy_system():
+    system_mod = pytest.importorskip("moorpy")
+    case, _ = _case("vessel_three_lines.yml")
+    tensions = _tensions(case)
+    ms = system_mod.System(depth=150.0, rho=1025.0, g=9.80665)
+    for name, d, m, ea in (("chain", 0.15, 120.0, 6.0e8), ("wire", 0.09, 35.0, 7.0e8)):
+        ms.lineTypes[name] = {"name": name, "d_vol": d, "m": m, "EA": ea,
+                              "w": (m - 1025.0 * math.pi * d * d / 4.0) * 9.80665,
+                              "MBL": 0.0, "cost": 0.0, "input_d": d, "input_type": {}}
+    points = {p.name: list(p.position) for p in case.points}
+    for line in case.lines:
+        start, end = points[line.start], points[line.end]
+        a = ms.addPoint(1, start)
+        j = ms.addPoint(0, [0.5 * (u + v) for u, v in zip(start, end)])
+        f = ms.addPoint(1, end)
+        for (p, q), sec, lt in (((a, j), line.sections[0], "wire"),
+                                ((j, f), line.sections[1], "chain")):
+            ms.addLine(sec.length, lt)
+            p.attachLine(len(ms.lineList), 0)
+            q.attachLine(len(ms.lineList), 1)
+    ms.initialize()
+    ms.solveEquilibrium(tol=1e-8)
+    for k, line in enumerate(case.lines):
+        top = ms.lineList[2 * k + 1]
+        assert tensions[f"{line.name}[1]"] == pytest.approx(top.TB, rel=MOORPY_RTOL)
+
+
+def test_two_sections_and_a_clump():
+    case, _ = _case("clump_two_sections.yml")
+    clump = next(p for p in case.points if p.name == "Clump")
+    assert clump.kind == "free" and clump.mass == 3000.0 and clump.volume == 0.64
+    assert clump.drag_area == 2.0 and clump.added_mass_coefficient == 0.5
+    lower = next(line for line in case.lines if line.name == "Lower")
+    assert [s.length for s in lower.sections] == [150.0, 100.0]
+    assert lower.end == "Clump"
+    loads = _tensions(case)
+    assert loads["Upper[0]"] > loads["Lower[1]"] > 0.0
+
+
+def _run(tmp_path, text: str, capsys, name="model.yml") -> tuple[int, str, Path]:
+    model = tmp_path / name
+    model.write_text(text)
+    out = tmp_path / "case.toml"
+    status = main(["import", "orcaflex", str(model), "-o", str(out)])
+    return status, capsys.readouterr().err, out
+
+
+BASE = (MODELS / "single_chain.yml").read_text()
+
+MALFORMED = {
+    "missing key": (BASE.replace("  WaterDepth: 100\n", ""), "Environment.WaterDepth"),
+    "unknown unit system": (BASE.replace("UnitsSystem: SI", "UnitsSystem: US"),
+                            "General.UnitsSystem"),
+    "unsupported connection": (BASE.replace("[Fixed, 0, 0, -10", "[Winch1, 0, 0, -10"),
+                               'Lines["Mooring1"].Connection[End B].Connection'),
+    "non-numeric": (BASE.replace("EA: 6.0e5", "EA: lots"), 'LineTypes["Chain"].EA'),
+    "negative length": (BASE.replace("[Chain, 550, 10]", "[Chain, -550, 10]"),
+                        "LineType, Length, TargetSegmentLength[0].Length"),
+    "huge number": (BASE.replace("OD: 0.15", "OD: 1e300"), 'LineTypes["Chain"].OD'),
+    "infinite": (BASE.replace("OD: 0.15", "OD: .inf"), 'LineTypes["Chain"].OD'),
+    "sexagesimal": (BASE.replace("OD: 0.15", "OD: 1:30"), 'LineTypes["Chain"].OD'),
+    "alias": (BASE.replace("Cd: [2.4, ~, 1.15]", "Cd: &c [2.4, ~, 1.15]\n    Ca: *c"),
+              "anchors and aliases"),
+    "merge key": (BASE.replace("    Category: General\n", "    <<: {OD: 0.2}\n"),
+                  "merge keys"),
+    "repeated key": (BASE.replace("    ID: 0\n", "    ID: 0\n    ID: 0\n"), "each key once"),
+    "not yaml": ("General: [1, 2\n", "an OrcaFlex text data file (YAML)"),
+    "unknown line type": (BASE.replace("[Chain, 550, 10]", "[Rope, 550, 10]"),
+                          "LineType"),
+    "nonlinear EA": (BASE.replace("EA: 6.0e5", "EA: Stiffness curve"),
+                     'LineTypes["Chain"].EA'),
+    "released end": (BASE.replace("[Fixed, 0, 0, -10, 0, 170, 0, ~, ~]",
+                                  "[Fixed, 0, 0, -10, 0, 170, 0, 2, ~]"),
+                     "ConnectionReleaseStage"),
+    "sloping seabed": (BASE.replace("SeabedSlope: 0", "SeabedSlope: 5"),
+                       "Environment.SeabedSlope"),
+    "spar buoy": (BASE + "6DBuoys:\n  - Name: B\n    BuoyType: Spar buoy\n"
+                  "    InitialPosition: [0, 0, -5]\n", '6DBuoys["B"].BuoyType'),
+    "control characters": (BASE.replace("Name: Mooring1", "Name: \"M\\e[2J\""),
+                           "Lines[0].Name"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(MALFORMED))
+def test_malformed_input_is_a_one_line_error_and_nothing_is_written(tmp_path, capsys, kind):
+    text, key = MALFORMED[kind]
+    status, err, out = _run(tmp_path, text, capsys)
+    assert status == 2, err
+    assert err.count("\n") == 1 and err.startswith("floatmoor: error: ")
+    assert "model.yml" in err and key in err and "expected" in err
+    assert "\x1b" not in err
+    assert not out.exists()
+
+
+def test_a_file_over_the_size_bound_is_refused_before_parsing(tmp_path, capsys):
+    model = tmp_path / "big.yml"
+    with open(model, "wb") as fh:
+        fh.truncate(MAX_MODEL_FILE_BYTES + 1)
+    with pytest.raises(CaseError, match="at most"):
+        read_model(model)
+
+
+def test_an_alias_bomb_is_refused_without_expanding():
+    bomb = "a: &a [x, x, x, x, x, x, x, x, x]\n" + "".join(
+        f"{chr(98 + i)}: &{chr(98 + i)} [*{chr(97 + i)}, *{chr(97 + i)}, *{chr(97 + i)}]\n"
+        for i in range(20))
+    with pytest.raises(CaseError, match="anchors and aliases"):
+        parse_model(bomb, "bomb.yml")
+
+
+def test_cli_writes_the_case_lists_what_was_not_imported_and_honours_force(tmp_path, capsys):
+    out = tmp_path / "case.toml"
+    model = str(MODELS / "vessel_three_lines.yml")
+    assert main(["import", "orcaflex", model, "-o", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "not imported (3):" in printed and "WaveType" in printed
+    assert len(tomllib.loads(out.read_text())["lines"]) == 3
+    assert main(["import", "orcaflex", model, "-o", str(out)]) == 2  # exists
+    assert "--force" in capsys.readouterr().err
+    assert main(["import", "orcaflex", model, "-o", str(out), "--force"]) == 0
+    other = tmp_path / "notes.txt"
+    other.write_text("keep me\n")
+    assert main(["import", "orcaflex", model, "-o", str(other), "--force"]) == 2
+    assert other.read_text() == "keep me\n"
