@@ -25,8 +25,10 @@ __all__ = ["add_moordyn_parsers", "moordyn_command"]
 EXIT_OK, EXIT_FAILED = 0, 1
 
 
-def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
-    """Add ``import moordyn`` and ``export moordyn`` to the top-level subparsers."""
+def add_moordyn_parsers(
+        sub: argparse._SubParsersAction) -> argparse._SubParsersAction:  # type: ignore[type-arg]
+    """Add ``import moordyn`` and ``export moordyn`` to the top-level subparsers; the
+    ``import`` subparsers, for the other importers."""
     imp = sub.add_parser("import", help="write a case file from another program's input file")
     isub = imp.add_subparsers(dest="import_format", required=True)
     imd = isub.add_parser("moordyn", help="a MoorDyn v2 input file -> a floatmoor case file")
@@ -37,9 +39,6 @@ def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignor
                      help="water depth [m] when the deck has no WtrDpth (MoorDyn-F decks), or "
                      "to replace it")
     imd.add_argument("--force", action="store_true", help="replace an existing output file")
-    from floatmoor.io.orcaflex.cli import add_orcaflex_parser
-
-    add_orcaflex_parser(isub)
     exp = sub.add_parser("export", help="write another program's input file from a case")
     esub = exp.add_subparsers(dest="export_format", required=True)
     emd = esub.add_parser("moordyn", help="a floatmoor case -> a MoorDyn v2 input file")
@@ -51,6 +50,7 @@ def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignor
     emd.add_argument("--force", action="store_true", help="replace an existing output file")
     for p in (imd, emd):
         p.set_defaults(moordyn_handler=moordyn_command)
+    return isub
 
 
 def _check_output(text: str, force: bool, source: str, kind: tuple) -> Path:

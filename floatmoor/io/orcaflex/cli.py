@@ -1,5 +1,5 @@
-"""``floatmoor import orcaflex MODEL.yml -o CASE.toml [--force]`` (added to ``import`` by
-:func:`floatmoor.io.moordyn.cli.add_moordyn_parsers`).
+"""``floatmoor import orcaflex MODEL.yml -o CASE.toml [--force]`` (added to the ``import`` subparsers
+that :func:`floatmoor.io.moordyn.cli.add_moordyn_parsers` makes).
 
 The output rules are those of ``import moordyn``: an existing file is refused unless
 ``--force``, and then only a case file is replaced; the output passes the checks of every

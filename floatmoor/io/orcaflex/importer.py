@@ -13,6 +13,10 @@ docs/guide/mooring_systems.md#orcaflex-models; in short:
   initial position (still: no [motion]), 3D and lumped 6D buoys free points;
 - seabed: the normal stiffness per unit area and the damping (% of critical) of Environment,
   the line types' common friction coefficient.
+
+Size: one mapping class whose methods share the model, the value readers and the list of what
+was not imported, plus the writer of the case text that follows the same order; split, each
+part would pass that state around.
 """
 
 from __future__ import annotations
