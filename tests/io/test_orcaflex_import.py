@@ -159,6 +159,66 @@ def test_three_lines_against_moorpy_system():
         assert tensions[f"{line.name}[1]"] == pytest.approx(top.TB, rel=MOORPY_RTOL)
 
 
+def _line_type_by_hand(name: str, od: float, mass: float, ea: float, cd_n: float,
+                       cd_a: float, ca_a: float) -> str:
+    return (f"[line_types.{name}]\nmass_per_length = {mass!r}\naxial_stiffness = {ea!r}\n"
+            f"diameter = {od!r}\nmaterial_density = {mass / (math.pi * od ** 2 / 4.0)!r}\n"
+            f"normal_drag_coefficient = {cd_n!r}\n"
+            f"tangential_drag_coefficient = {math.pi * cd_a!r}\n"
+            f"added_mass_coefficient = 1.0\ntangential_added_mass_coefficient = {ca_a!r}\n")
+
+
+CLUMP_BY_HAND = f"""
+title = "by hand"
+[environment]
+water_density = 1025.0
+water_depth = 100.0
+gravity = 9.80665
+[seabed]
+stiffness = 1.0e5
+damping_ratio = 0.0
+friction_coefficient = 0.5
+slip_speed = 0.01
+{_line_type_by_hand("Chain", 0.15, 120.0, 6.0e8, 2.4, 1.15, 0.5)}
+{_line_type_by_hand("Wire", 0.09, 35.0, 7.0e8, 1.2, 0.008, 0.0)}
+[[points]]
+name = "anchor"
+kind = "fixed"
+position = [-440.0, 0.0, -100.0]
+[[points]]
+name = "clump"
+kind = "free"
+position = [-220.0, 0.0, -85.0]
+mass = 3000.0
+volume = 0.64
+drag_area = 2.0
+added_mass_coefficient = 0.5
+[[points]]
+name = "fairlead"
+kind = "fixed"
+position = [0.0, 0.0, -10.0]
+[[lines]]
+name = "Lower"
+start = "anchor"
+end = "clump"
+model = "dynamic"
+sections = [{{ type = "Chain", length = 150.0 }}, {{ type = "Wire", length = 100.0 }}]
+[lines.quasi_static]
+seabed_friction = false
+[[lines]]
+name = "Upper"
+start = "clump"
+end = "fairlead"
+model = "dynamic"
+sections = [{{ type = "Chain", length = 220.0 }}]
+[lines.quasi_static]
+seabed_friction = false
+[simulation]
+duration = 60.0
+output_interval = 0.1
+"""
+
+
 def test_two_sections_and_a_clump():
     case, _ = _case("clump_two_sections.yml")
     clump = next(p for p in case.points if p.name == "Clump")
@@ -169,6 +229,8 @@ def test_two_sections_and_a_clump():
     assert lower.end == "Clump"
     loads = _tensions(case)
     assert loads["Upper[0]"] > loads["Lower[1]"] > 0.0
+    by_hand = parse_case(parse_toml(CLUMP_BY_HAND, "hand"), source="hand", text=CLUMP_BY_HAND)
+    assert loads == _tensions(by_hand)  # bit for bit: the same case
 
 
 def _run(tmp_path, text: str, capsys, name="model.yml") -> tuple[int, str, Path]:
@@ -212,6 +274,45 @@ MALFORMED = {
                   "    InitialPosition: [0, 0, -5]\n", '6DBuoys["B"].BuoyType'),
     "control characters": (BASE.replace("Name: Mooring1", "Name: \"M\\e[2J\""),
                            "Lines[0].Name"),
+    "missing section": (BASE.replace("LineTypes:", "Unused:"), 'Lines["Mooring1"]'),
+    "missing drag": (BASE.replace("    Cd: [2.4, ~, 1.15]\n", ""), 'LineTypes["Chain"].Cd'),
+    "a bore": (BASE.replace("ID: 0", "ID: 0.05"), 'LineTypes["Chain"].ID'),
+    "anisotropic drag": (BASE.replace("Cd: [2.4, ~, 1.15]", "Cd: [2.4, 2.0, 1.15]"),
+                         'LineTypes["Chain"].Cd[1]'),
+    "contact diameter": (BASE.replace("    ID: 0\n", "    ID: 0\n    OuterContactDiameter: 0.3\n"),
+                         'LineTypes["Chain"].OuterContactDiameter'),
+    "axial friction": (BASE.replace("SeabedAxialFrictionCoefficient: ~",
+                                    "SeabedAxialFrictionCoefficient: 0.3"),
+                       'LineTypes["Chain"].SeabedAxialFrictionCoefficient'),
+    "as-laid friction": (BASE.replace("StaticsSeabedFrictionPolicy: None",
+                                      "StaticsSeabedFrictionPolicy: As laid"),
+                         'Lines["Mooring1"].StaticsSeabedFrictionPolicy'),
+    "unknown column with a value": (
+        BASE.replace("LineType, Length, TargetSegmentLength:\n      - [Chain, 550, 10]",
+                     "LineType, Length, TargetSegmentLength, ExpansionFactor:\n"
+                     "      - [Chain, 550, 10, 1.01]"),
+        "ExpansionFactor"),
+    "included file": (BASE.replace("General:\n", "BaseFile: other.yml\nGeneral:\n"),
+                      "BaseFile"),
+    "heeled vessel": ((MODELS / "vessel_three_lines.yml").read_text().replace(
+        "InitialHeading: 30", "InitialHeading: 30\n    InitialHeel: 2"),
+        'Vessels["Barge"].InitialAttitude'),
+    "vessel in statics": ((MODELS / "vessel_three_lines.yml").read_text().replace(
+        "PrimaryMotion: None", "IncludedInStatics: 6 DOF"),
+        'Vessels["Barge"].IncludedInStatics'),
+    "offset at a buoy": ((MODELS / "clump_two_sections.yml").read_text().replace(
+        "[Clump, 0, 0, 0]\n      - [Fixed", "[Clump, 0, 0, 1]\n      - [Fixed"),
+        'Lines["Upper"].Connection[End A].ConnectionX'),
+    "one line type's friction": ((MODELS / "clump_two_sections.yml").read_text().replace(
+        "    Ca: [1, ~, 0]\n    SeabedLateralFrictionCoefficient: 0.5",
+        "    Ca: [1, ~, 0]\n    SeabedLateralFrictionCoefficient: 0.8"),
+        "SeabedLateralFrictionCoefficient"),
+    "6D buoy added mass": ((MODELS / "clump_two_sections.yml").read_text().replace(
+        "3DBuoys:", "6DBuoys:").replace("    Height: 1\n", "    BuoyType: Lumped buoy\n"),
+        '6DBuoys["Clump"].Ca'),
+    "a surface-piercing buoy": ((MODELS / "clump_two_sections.yml").read_text().replace(
+        "InitialPosition: [-220, 0, -85]", "InitialPosition: [-220, 0, -0.2]"),
+        '3DBuoys["Clump"].Height'),
 }
 
 
@@ -224,6 +325,31 @@ def test_malformed_input_is_a_one_line_error_and_nothing_is_written(tmp_path, ca
     assert "model.yml" in err and key in err and "expected" in err
     assert "\x1b" not in err
     assert not out.exists()
+
+
+def test_harmless_extras_are_listed_not_refused():
+    text = BASE.replace("LineType, Length, TargetSegmentLength:\n      - [Chain, 550, 10]",
+                        "LineType, Length, TargetSegmentLength, ExpansionFactor:\n"
+                        "      - [Chain, 550, 10, ~]").replace(
+        "EI: [0, ~]", "EI: [12, ~]\n    PoissonRatio: 0.5") + "Groups:\n  - Name: G\n"
+    result = import_model(parse_model(text, "m.yml"), "m.yml")
+    listed = "\n".join(result.not_imported)
+    assert "ExpansionFactor" in listed and "PoissonRatio" in listed
+    assert "EI = [12, ~] kN m^2" in listed and "Groups (1 items)" in listed
+    assert "# - " + result.not_imported[0] in result.text
+
+
+def test_a_lumped_6d_buoy_is_the_same_point_as_a_3d_buoy():
+    text = (MODELS / "clump_two_sections.yml").read_text()
+    six = text.replace("3DBuoys:", "6DBuoys:").replace(
+        "    Height: 1\n", "    BuoyType: Lumped buoy\n    CentreOfMass: [0, 0, 0]\n").replace(
+        "    Ca: [0.5, 0.5, 0.5]\n", "")
+    three = text.replace("    Ca: [0.5, 0.5, 0.5]\n", "")
+    cases = []
+    for t in (three, six):
+        r = import_model(parse_model(t, "m.yml"), "m.yml")
+        cases.append(parse_case(parse_toml(r.text, "m"), source="m", text=r.text))
+    assert _tensions(cases[0]) == _tensions(cases[1])
 
 
 def test_a_file_over_the_size_bound_is_refused_before_parsing(tmp_path, capsys):

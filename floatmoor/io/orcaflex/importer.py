@@ -29,7 +29,7 @@ from floatmoor._version import __version__
 from floatmoor.case.load import DEFAULT_DG_ORDER
 from floatmoor.case.naming import toml_text
 from floatmoor.errors import CaseError
-from floatmoor.io.orcaflex.values import Values
+from floatmoor.io.orcaflex.values import Values, plain
 from floatmoor.terminal_text import shown
 
 __all__ = ["ImportResult", "import_model", "ORCAFLEX_DEFAULTS", "KN", "TE",
@@ -195,7 +195,7 @@ class _Importer:
                                 ORCAFLEX_DEFAULTS["SeabedDamping"], minimum=0.0)
         if env.get("SeabedShearStiffness") is not None:
             self.dropped.append(f"{path}.SeabedShearStiffness = "
-                                f"{shown(env['SeabedShearStiffness'], 40)} kN/m/m^2: floatmoor's "
+                                f"{plain(env['SeabedShearStiffness'], 40)} kN/m/m^2: floatmoor's "
                                 f"friction is smoothed by a slip speed ({SLIP_SPEED} m/s) "
                                 "instead of a shear spring [physics, approximate]")
         sea = [k for k in env if isinstance(k, str) and k.startswith(("Wave", "Current",
@@ -239,7 +239,7 @@ class _Importer:
     def line_type(self, item: dict[str, Any], path: str) -> dict[str, Any]:
         self.choice(item, "Category", path, ("General",), "the General category, whose OD, "
                     "mass and EA are given; a Homogeneous pipe's are derived and not imported")
-        for key in ("OD", "MassPerUnitLength", "EA"):
+        for key in ("OD", "MassPerUnitLength", "EA", "Cd", "Ca"):
             if item.get(key) is None:
                 raise self.v.error(f"{path}.{key}", "a value", None)
         od = self.v.number(item["OD"], f"{path}.OD", "m", positive=True)
@@ -258,10 +258,10 @@ class _Importer:
         eis = ei if isinstance(ei, list) else [ei]
         if any(e is not None and self.v.number(e, f"{path}.EI", "kN m^2", minimum=0.0) != 0.0
                for e in eis):
-            self.dropped.append(f"{path}.EI = {shown(ei, 60)} kN m^2: floatmoor's lines have "
+            self.dropped.append(f"{path}.EI = {plain(ei, 60)} kN m^2: floatmoor's lines have "
                                 "no bending stiffness [physics]")
-        cd_n, cd_a = self.pair(item.get("Cd", [1.2, None, 0.008]), f"{path}.Cd", "-")
-        ca_n, ca_a = self.pair(item.get("Ca", [1.0, None, 0.0]), f"{path}.Ca", "-")
+        cd_n, cd_a = self.pair(item["Cd"], f"{path}.Cd", "-")
+        ca_n, ca_a = self.pair(item["Ca"], f"{path}.Ca", "-")
         d_n = self.optional(item, "NormalDragLiftDiameter", path, "m", od, positive=True)
         d_a = self.optional(item, "AxialDragLiftDiameter", path, "m", od, positive=True)
         contact = self.optional(item, "OuterContactDiameter", path, "m", od, positive=True)
@@ -342,7 +342,7 @@ class _Importer:
                         "vessel at its initial position; OrcaFlex's statics would move it")
             for key in ("PrimaryMotion", "SuperimposedMotion"):
                 if item.get(key) not in (None, "None"):
-                    self.dropped.append(f"{path}.{key} = {shown(item[key], 60)}: the vessel "
+                    self.dropped.append(f"{path}.{key} = {plain(item[key], 60)}: the vessel "
                                         "is held still (no [motion]) [physics]")
             self.unread(item, _VESSEL_KEYS, path)
             out[name] = (self.position(item, path), math.radians(heading))
@@ -376,6 +376,11 @@ class _Importer:
                                                                        f"{path}.{key}", "m")):
                     raise self.v.error(f"{path}.{key}", "[0, 0, 0] (a point: mass and volume at "
                                        "the buoy's origin, where its lines meet)", item[key])
+            cas = item.get("Ca") if isinstance(item.get("Ca"), list) else [item.get("Ca")]
+            if any(c is not None and self.v.number(c, f"{path}.Ca", "-") != 0.0 for c in cas):
+                raise self.v.error(f"{path}.Ca", "0 or ~ (a lumped buoy's added mass refers to "
+                                   "its hydrodynamic mass, not its volume: not imported; a 3D "
+                                   "buoy's Ca is)", item["Ca"])
         mass = self.optional(item, "Mass", path, "te", 0.0, minimum=0.0) * TE
         volume = self.optional(item, "Volume", path, "m^3", 0.0, minimum=0.0)
 
@@ -420,7 +425,10 @@ class _Importer:
                              ("Connection", "ConnectionX", "ConnectionY", "ConnectionZ"),
                              optional=True)
         if table is not None:
-            key, rows = table
+            key, rows, unknown = table
+            if unknown:
+                self.dropped.append(f"{path}.{key}: columns {', '.join(unknown)}, ~ on every "
+                                    "row (not read)")
             if len(rows) != 2:
                 raise self.v.error(f"{path}.{key}", "two rows (End A, End B)",
                                    f"{len(rows)} rows")
@@ -485,15 +493,19 @@ class _Importer:
 
     def sections(self, item: dict[str, Any], path: str,
                  types: dict[str, dict[str, Any]]) -> list[tuple[str, float, int | None]]:
-        key, rows = self.v.table(item, path, "LineType", _SECTION_COLUMNS,  # type: ignore[misc]
-                                 ("LineType", "Length"))
+        key, rows, unknown = self.v.table(  # type: ignore[misc]
+            item, path, "LineType", _SECTION_COLUMNS, ("LineType", "Length"))
+        if unknown:
+            self.dropped.append(f"{path}.{key}: columns {', '.join(unknown)}, ~ on every row "
+                                "(not read)")
         out = []
         for i, row in enumerate(rows):
             where = f"{path}.{key}[{i}]"
             lt = row["LineType"]
             if not isinstance(lt, str) or lt not in types:
                 raise self.v.error(f"{where}.LineType", "the name of a LineTypes entry ("
-                                   + ", ".join(sorted(types))[:200] + ")", lt)
+                                   + (", ".join(sorted(types))[:200] or "none defined") + ")",
+                                   lt)
             length = self.v.number(row["Length"], f"{where}.Length", "m", positive=True)
             segments = None
             if row.get("NumberOfSegments") is not None:
@@ -552,8 +564,8 @@ class _Importer:
                                        f"{name}_B)", p.name)
                 points[p.name] = p
             sections = self.sections(item, path, types)
-            reverse = ends[0].kind != "fixed" and ends[1].kind == "fixed"
-            if reverse:  # floatmoor's lines run from their anchor; the same line reversed
+            reverse = ends[0].kind == "body" and ends[1].kind == "fixed"
+            if reverse:  # floatmoor's lines run from anchor to fairlead: the same line reversed
                 ends, sections = ends[::-1], sections[::-1]
             used_types += [s[0] for s in sections if s[0] not in used_types]
             policy = item.get("StaticsSeabedFrictionPolicy")

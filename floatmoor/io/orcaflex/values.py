@@ -14,7 +14,7 @@ from typing import Any
 from floatmoor.errors import CaseError
 from floatmoor.terminal_text import shown
 
-__all__ = ["Values", "MAX_ABS_VALUE", "MAX_OBJECTS", "MAX_NAME_LENGTH"]
+__all__ = ["Values", "plain", "MAX_ABS_VALUE", "MAX_OBJECTS", "MAX_NAME_LENGTH"]
 
 #: Largest magnitude of a number read, in the file's units (kN, m, te, s) [-]: a chain's EA is
 #: about 1e6 kN, a seabed stiffness 1e2 to 1e5 kN/m/m^2; nothing in a mooring comes within
@@ -99,10 +99,12 @@ class Values:
 
     def table(self, obj: dict[str, Any], path: str, first: str,
               allowed: tuple[str, ...], required: tuple[str, ...],
-              optional: bool = False) -> tuple[str, list[dict[str, Any]]] | None:
+              optional: bool = False) -> tuple[str, list[dict[str, Any]], list[str]] | None:
         """OrcaFlex's table of rows under a key naming its columns (``"LineType, Length,
-        TargetSegmentLength"``): the key and its rows as {column: value} (a short row leaves
-        its last columns ~). None when ``optional`` and there is no such key."""
+        TargetSegmentLength"``): the key, its rows as {column: value} (a short row leaves its
+        last columns ~) and the columns not in ``allowed``, which must be ~ in every row (a
+        value there is refused: floatmoor does not read it). None when ``optional`` and there
+        is no such key."""
         keys = [k for k in obj if isinstance(k, str) and k.split(",")[0].strip() == first]
         if not keys:
             if optional:
@@ -112,10 +114,6 @@ class Values:
             raise self.error(path, f"one table starting with {first}", ", ".join(keys))
         key = keys[0]
         columns = [c.strip() for c in key.split(",")]
-        for column in columns:
-            if column not in allowed:
-                raise self.error(f"{path}.{key}", "columns among " + ", ".join(allowed)
-                                 + " (others are not imported)", column)
         for column in required:
             if column not in columns:
                 raise self.error(f"{path}.{key}", f"a column {column}", "none")
@@ -128,7 +126,29 @@ class Values:
                 raise self.error(f"{path}.{key}[{i}]", f"a row of at most {len(columns)} "
                                  "values", row)
             out.append(dict(zip(columns, row + [None] * (len(columns) - len(row)))))
-        return key, out
+        unknown = [c for c in columns if c not in allowed]
+        for column in unknown:
+            for i, row in enumerate(out):
+                if row[column] is not None:
+                    raise self.error(f"{path}.{key}[{i}].{column}", "~ (floatmoor reads only "
+                                     + ", ".join(allowed) + ")", row[column])
+        return key, out, unknown
+
+
+def plain(value: Any, limit: int = 120) -> str:
+    """A value as the file writes it (``~`` for nothing, lists in brackets), shown safely."""
+    def text(v: Any) -> str:
+        if v is None:
+            return "~"
+        if isinstance(v, bool):
+            return "Yes" if v else "No"
+        if isinstance(v, list):
+            return "[" + ", ".join(text(x) for x in v[:20]) + (", ...]" if len(v) > 20
+                                                                else "]")
+        if isinstance(v, dict):
+            return "{...}"
+        return str(v)
+    return shown(text(value), limit)
 
 
 def _found(value: Any) -> str:
@@ -137,5 +157,5 @@ def _found(value: Any) -> str:
     if isinstance(value, dict):
         return "a mapping"
     if isinstance(value, list):
-        return shown(f"a list {value!r}", 120)
+        return "a list " + plain(value)
     return shown(repr(value) if isinstance(value, str) else value, 120)
