@@ -174,6 +174,8 @@ class _Importer:
                              "water depth") if path in self.model else None
         if env is None:
             raise self.v.error(path, "an Environment section (the water depth)", None)
+        self.choice(env, "VerticalDensityVariation", path, ("Constant",), "floatmoor's water "
+                    "has one density")
         if "WaterDepth" not in env:
             raise self.v.error(f"{path}.WaterDepth", "the water depth [m]", None)
         depth = self.v.number(env["WaterDepth"], f"{path}.WaterDepth", "m", positive=True)
@@ -601,7 +603,9 @@ class _Importer:
           "value's origin.")
         w("# What was not imported is listed at the end of this file.")
         w("")
-        w(f"title = {toml_text('OrcaFlex model ' + self.source)}")
+        # a title's {...} are placeholders (floatmoor.case.title): the file name's braces doubled
+        literal = self.source.replace("{", "{{").replace("}", "}}")
+        w(f"title = {toml_text('OrcaFlex model ' + literal)}")
         w(f"description = {toml_text('Imported from the OrcaFlex text data file ' + self.source)}")
         w("")
         w("[environment]")
