@@ -7,6 +7,7 @@ one-line status-2 error with nothing written (docs/guide/mooring_systems.md#orca
 from __future__ import annotations
 
 import math
+import os
 import tomllib
 from pathlib import Path
 
@@ -19,6 +20,7 @@ from floatmoor.errors import CaseError
 from floatmoor.io.orcaflex.importer import import_model
 from floatmoor.io.orcaflex.reader import MAX_MODEL_FILE_BYTES, parse_model, read_model
 from floatmoor.mooring.strength import static_line_loads
+from tests.cli.test_output_files import tmpfs  # noqa: F401 (a fixture)
 
 MODELS = Path(__file__).parents[1] / "data" / "orcaflex"
 #: Agreement asked of an imported case's static tensions with MoorPy: 0.5 %, the margin of an
@@ -399,3 +401,17 @@ def test_cli_writes_the_case_lists_what_was_not_imported_and_honours_force(tmp_p
     other.write_text("keep me\n")
     assert main(["import", "orcaflex", model, "-o", str(other), "--force"]) == 2
     assert other.read_text() == "keep me\n"
+
+
+def test_the_output_gets_the_common_checks(tmp_path, tmpfs, capsys):  # noqa: F811
+    model = tmp_path / "m.yml"
+    model.write_text(BASE)
+    assert main(["import", "orcaflex", str(model), "-o", str(model), "--force"]) == 2
+    assert "input file" in capsys.readouterr().err and model.read_text() == BASE
+    read_only = tmpfs("ro", "ro,size=1m")
+    small = tmpfs("small", "size=4k")
+    for folder, found in ((read_only, "Read-only file system"), (small, "free in")):
+        assert main(["import", "orcaflex", str(model), "-o", str(folder / "c.toml")]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "-o/--output: expected" in err and found in err
+        assert os.listdir(folder) == []

@@ -181,8 +181,7 @@ class _Importer:
         depth = self.v.number(env["WaterDepth"], f"{path}.WaterDepth", "m", positive=True)
         rho = self.optional(env, "Density", path, "te/m^3", ORCAFLEX_DEFAULTS["Density"],
                             positive=True)
-        self.optional(env, "WaterSurfaceZ", path, "m", 0.0)
-        if env.get("WaterSurfaceZ") not in (None, 0, "0"):
+        if self.optional(env, "WaterSurfaceZ", path, "m", 0.0) != 0.0:
             raise self.v.error(f"{path}.WaterSurfaceZ", "0 (floatmoor's water surface is at z = "
                                "0)", env["WaterSurfaceZ"])
         self.choice(env, "SeabedType", path, ("Flat",), "floatmoor's seabed is flat")
