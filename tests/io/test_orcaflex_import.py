@@ -343,6 +343,12 @@ def test_harmless_extras_are_listed_not_refused():
     assert "# - " + result.not_imported[0] in result.text
 
 
+@pytest.mark.parametrize("written", ["WaterSurfaceZ: 0.0", "WaterSurfaceZ: -0", "WaterSurfaceZ: ~"])
+def test_a_water_surface_at_zero_however_written(written):
+    text = BASE.replace("WaterSurfaceZ: 0", written)
+    assert import_model(parse_model(text, "m.yml"), "m.yml").text
+
+
 def test_a_lumped_6d_buoy_is_the_same_point_as_a_3d_buoy():
     text = (MODELS / "clump_two_sections.yml").read_text()
     six = text.replace("3DBuoys:", "6DBuoys:").replace(

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import os
 import stat
-from pathlib import Path
 from typing import Any
 
 import yaml
@@ -128,8 +127,3 @@ def read_model(path: str | os.PathLike[str]) -> dict[str, Any]:
         raise CaseError(source, "", "an OrcaFlex text data file (UTF-8 text)",
                         "bytes that are not UTF-8") from None
     return parse_model(text, source)
-
-
-def model_source(path: str | os.PathLike[str]) -> str:
-    """The file name as messages and the case file show it."""
-    return shown(Path(path))
