@@ -10,7 +10,8 @@ quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature de
 ``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
 hydro info NAME`` describes it and where its data came from, and ``floatmoor hydro
 fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
-``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files; ``floatmoor animate
+``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files, ``floatmoor
+import orcaflex MODEL.yml -o CASE.toml`` reads the mooring of an OrcaFlex text data file; ``floatmoor animate
 RUN.nc -o OUT.gif`` and ``floatmoor vtk RUN.nc -o DIR`` draw a run's line shapes
 (:mod:`floatmoor.plots.cli`); ``floatmoor scale CASE --length-scale LAMBDA -o NEW.toml``
 writes the case at another scale (:mod:`floatmoor.similitude`); a missing, damaged or
@@ -241,7 +242,9 @@ def _parser() -> argparse.ArgumentParser:
     from floatmoor.report.cli import add_report_parsers
 
     add_report_parsers(sub)
-    add_moordyn_parsers(sub)
+    from floatmoor.io.orcaflex.cli import add_orcaflex_parser
+
+    add_orcaflex_parser(add_moordyn_parsers(sub))
     from floatmoor.plots.cli import add_view_parsers
 
     add_view_parsers(sub)

@@ -28,8 +28,10 @@ EXIT_OK, EXIT_FAILED = 0, 1
 _ITEM_LIMIT = 2000
 
 
-def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
-    """Add ``import moordyn`` and ``export moordyn`` to the top-level subparsers."""
+def add_moordyn_parsers(
+        sub: argparse._SubParsersAction) -> argparse._SubParsersAction:  # type: ignore[type-arg]
+    """Add ``import moordyn`` and ``export moordyn`` to the top-level subparsers; the
+    ``import`` subparsers, for the other importers."""
     imp = sub.add_parser("import", help="write a case file from another program's input file")
     isub = imp.add_subparsers(dest="import_format", required=True)
     imd = isub.add_parser("moordyn", help="a MoorDyn v2 input file -> a floatmoor case file")
@@ -51,6 +53,7 @@ def add_moordyn_parsers(sub: argparse._SubParsersAction) -> None:  # type: ignor
     emd.add_argument("--force", action="store_true", help="replace an existing output file")
     for p in (imd, emd):
         p.set_defaults(moordyn_handler=moordyn_command)
+    return isub
 
 
 def _check_output(text: str, force: bool, source: str, kind: tuple) -> Path:
