@@ -300,3 +300,72 @@ def test_case2_tension_matches_settled_moordyn_c(tmp_path, capsys):
     print(f"\nmd_case2 line2 top: floatmoor {ours / 1e3:.1f} kN at 20 s, MoorDyn-C "
           f"{theirs['line2'][-1] / 1e3:.1f} kN at 60 s ({error:.2%})")
     assert error <= CASE2_RTOL
+
+
+def _oc4_copy(tmp_path: Path, driver_edit=None, motion: str | None = None) -> Path:
+    for name in ("moordyn.dat", "md_driver.inp", "ptfm_motion.dat"):
+        (tmp_path / name).write_text((OC4 / name).read_text())
+    if driver_edit is not None:
+        text = (tmp_path / "md_driver.inp").read_text()
+        (tmp_path / "md_driver.inp").write_text(driver_edit(text))
+    if motion is not None:
+        (tmp_path / "ptfm_motion.dat").write_text(motion)
+    return tmp_path
+
+
+def _run_import(folder: Path, *extra: str) -> int:
+    return main(["import", "moordyn", str(folder / "moordyn.dat"), "--driver",
+                 str(folder / "md_driver.inp"), "-o", str(folder / "case.toml"), *extra])
+
+
+def test_six_dof_motion_file_is_taken_as_it_is(tmp_path, capsys):
+    t = np.linspace(0.0, 60.0, 61)
+    dofs = np.c_[t, 5.0 + 0.01 * t, 0.1 * np.sin(t), 0 * t, 0.01 * np.cos(t), 0.03 + 0 * t,
+                 0.002 * t]
+    text = "Time PtfmSurge PtfmSway PtfmHeave PtfmRoll PtfmPitch PtfmYaw\n" + "\n".join(
+        " ".join(f"{v:.12g}" for v in row) for row in dofs) + "\n"
+    folder = _oc4_copy(tmp_path, motion=text)
+    assert _run_import(folder) == 0
+    assert "six DOFs" in capsys.readouterr().out
+    motion = load_case(folder / "case.toml").motion
+    np.testing.assert_allclose(motion.time, t)
+    np.testing.assert_allclose(motion.displacement, dofs[:, 1:], atol=1e-12)
+
+
+def test_inputs_mode_0_holds_the_driver_pose(tmp_path, capsys):
+    folder = _oc4_copy(tmp_path, lambda s: s.replace("1                   InputsMode",
+                                                     "0                   InputsMode"))
+    assert _run_import(folder) == 0
+    assert "held at the driver's initial pose" in capsys.readouterr().out
+    motion = load_case(folder / "case.toml").motion
+    np.testing.assert_allclose(motion.time, [0.0, 60.0])
+    np.testing.assert_allclose(motion.displacement,
+                               [[5.0, 0.0, 0.0, 0.0, 0.0331612, 0.0]] * 2)
+
+
+def test_motion_output_outside_the_case_folder_is_refused(tmp_path, capsys):
+    (tmp_path / "a").mkdir()
+    folder = _oc4_copy(tmp_path / "a")
+    (tmp_path / "b").mkdir()
+    code = _run_import(folder, "--motion-output", str(tmp_path / "b" / "m.csv"))
+    err = capsys.readouterr().err
+    assert code == 2 and "--motion-output: expected a file in the case file's folder" in err
+    assert not (folder / "case.toml").exists() and not (tmp_path / "b" / "m.csv").exists()
+    code = main(["import", "moordyn", str(folder / "moordyn.dat"), "--motion-output", "m.csv",
+                 "-o", str(folder / "case.toml")])
+    assert code == 2 and "expected --driver as well" in capsys.readouterr().err
+
+
+def test_two_coupled_points_need_a_header_to_tell_positions_from_dofs():
+    from floatmoor.io.moordyn.driver import MotionRecord
+    from floatmoor.io.moordyn.driver_import import _classify
+
+    values = np.zeros((2, 6))
+    record = MotionRecord("m.dat", (), np.array([0.0, 1.0]), values, np.array([2, 3]))
+    with pytest.raises(CaseError, match="m.dat:2: .*no header naming them"):
+        _classify(record, 2)
+    named = MotionRecord("m.dat", ("P4PX", "P4PY", "P4PZ", "P5PX", "P5PY", "P5PZ"),
+                         record.time, values, record.line_numbers)
+    assert _classify(named, 2) == "points"
+    assert _classify(MotionRecord("m.dat", ("surge", "sway", "heave", "roll", "pitch", "yaw"),
+                                  record.time, values, record.line_numbers), 2) == "dofs"

@@ -119,10 +119,11 @@ def _import_with_driver(args: argparse.Namespace, output: Path) -> int:
     if table.exists() and not _is_motion_table(table, MOTION_TABLE_HEADER):
         raise CaseError("--motion-output", "", "a new file or a body-motion table to replace "
                         f"(header {MOTION_TABLE_HEADER})", f"'{table_name}', another file")
-    try:
+    try:  # a case reads its tables from its own folder only (docs/guide/safeguards.md)
         relative = table.resolve().relative_to(output.resolve().parent).as_posix()
     except ValueError:
-        relative = str(table.resolve())
+        raise CaseError("--motion-output", "", "a file in the case file's folder (a case "
+                        "reads its tables from there)", f"'{table_name}'") from None
     result = import_with_driver(read_deck(args.deck), read_driver(args.driver),
                                 motion_file_name=relative, water_depth=args.water_depth)
     if result.table is not None:

@@ -78,7 +78,7 @@ def _driver_values(deck: Deck, driver: DriverInput, notes: list[str]
     return values
 
 
-def _classify(record: MotionRecord, coupled: int, driver: DriverInput) -> str:
+def _classify(record: MotionRecord, coupled: int) -> str:
     """"points" or "dofs" from the column count and the header names."""
     columns = record.values.shape[1]
     by_points = coupled > 0 and columns == 3 * coupled
@@ -152,7 +152,7 @@ def import_with_driver(deck: Deck, driver: DriverInput, *, motion_file_name: str
                             "motion to drive", "none in the deck")
         path = Path(driver.source).parent / driver.inputs_file
         record = read_motion_file(path)
-        kind = _classify(record, len(coupled), driver)
+        kind = _classify(record, len(coupled))
         if record.time[-1] < driver.duration:
             raise CaseError(f"{record.source}:{record.line_numbers[-1]}", "time",
                             f"rows up to TMax = {driver.duration:g} s "
