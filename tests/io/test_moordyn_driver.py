@@ -115,6 +115,15 @@ def test_malformed_driver_file_names_file_and_line(old, new, where, expected):
     assert str(err.value).startswith(f"md_driver.inp{where}")
 
 
+def test_driver_gravity_zero_without_a_deck_value_is_refused(tmp_path, capsys):
+    folder = _oc4_copy(tmp_path, lambda s: s.replace("9.80665             Gravity",
+                                                     "0                   Gravity"))
+    assert _run_import(folder) == 2
+    err = capsys.readouterr().err
+    assert "md_driver.inp:5: Gravity: expected a number > 0" in err
+    assert not (folder / "case.toml").exists()
+
+
 def test_driver_without_a_key_is_refused():
     text = "\n".join(line for line in (OC4 / "md_driver.inp").read_text().splitlines()
                      if "dtC" not in line)

@@ -66,6 +66,9 @@ def _driver_values(deck: Deck, driver: DriverInput, notes: list[str]
                                    ("depth", ("wtrdpth",), "WtrDpth", driver.water_depth)):
         values[name] = (value, f"{key} of the driver ({driver.where(key)})", False)
         opt = deck.option(*keys)
+        if opt is None and not value > 0.0:
+            raise CaseError(driver.where(key), key, "a number > 0 (floatmoor's gravity, water "
+                            "density and depth are positive)", repr(value))
         if opt is not None:
             try:
                 differs = float(opt.value) != value
