@@ -148,7 +148,8 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
         if "---" in stripped:
             section = _section_of(stripped)
             if section is None:
-                if "MOORDYN INPUT FILE" in stripped.upper() and not blocks and not title:
+                upper = stripped.upper()  # "MoorDyn Input File", "MoorDyn FAST.Farm Input File"
+                if "MOORDYN" in upper and "INPUT FILE" in upper and not blocks and not title:
                     continue
                 if not blocks:
                     raise CaseError(f"{source}:{n}", "", "a section heading (a line of dashes "
