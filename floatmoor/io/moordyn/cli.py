@@ -41,6 +41,12 @@ def add_moordyn_parsers(
     imd.add_argument("--water-depth", type=float, metavar="M",
                      help="water depth [m] when the deck has no WtrDpth (MoorDyn-F decks), or "
                      "to replace it")
+    imd.add_argument("--driver", metavar="md_driver.inp",
+                     help="MoorDyn driver file: its environment, TMax and motion (InputsFile, "
+                     "initial pose) go into the case, the motion as a body-motion table")
+    imd.add_argument("--motion-output", metavar="MOTION.csv",
+                     help="body-motion table to write with --driver (default: CASE_motion.csv "
+                     "beside the case)")
     imd.add_argument("--force", action="store_true", help="replace an existing output file")
     exp = sub.add_parser("export", help="write another program's input file from a case")
     esub = exp.add_subparsers(dest="export_format", required=True)
@@ -93,6 +99,8 @@ def _convert(args: argparse.Namespace) -> int:
         output = _check_output(args.output, args.force, args.deck, CASE_FILE)
         if args.water_depth is not None and not args.water_depth > 0.0:
             raise CaseError("--water-depth", "", "a number > 0 [m]", repr(args.water_depth))
+        if args.driver is not None or args.motion_output is not None:
+            return _import_with_driver(args, output)
         result = import_deck(read_deck(args.deck), water_depth=args.water_depth)
         _write(output, result.text)
         print(f"wrote {shown(output)} from {shown(args.deck)}")
@@ -109,6 +117,60 @@ def _convert(args: argparse.Namespace) -> int:
     print(f"wrote {output} from {args.case}")
     _list("notes (also in the file's title block)", result.notes)
     return EXIT_OK
+
+
+def _import_with_driver(args: argparse.Namespace, output: Path) -> int:
+    """``import moordyn DECK --driver DRIVER``: the case and its body-motion table."""
+    from floatmoor.io.moordyn.driver import read_driver
+    from floatmoor.io.moordyn.driver_import import MOTION_TABLE_HEADER, import_with_driver
+    from floatmoor.io.moordyn.parser import read_deck
+
+    if args.driver is None:
+        raise CaseError("--motion-output", "", "--driver as well (the motion comes from the "
+                        "driver's InputsFile)", "no --driver")
+    table_name = (args.motion_output if args.motion_output is not None
+                  else str(output.with_name(output.stem + "_motion.csv")))
+    table = _check_output(table_name, args.force, args.deck)
+    for other in (args.driver, str(output)):
+        if table.exists() and table.resolve() == Path(other).resolve() or \
+                Path(table_name).absolute() == Path(other).absolute():
+            raise CaseError("--motion-output", "", "a file other than the case and the "
+                            "inputs", f"'{table_name}'")
+    if table.exists() and not _is_motion_table(table, MOTION_TABLE_HEADER):
+        raise CaseError("--motion-output", "", "a new file or a body-motion table to replace "
+                        f"(header {MOTION_TABLE_HEADER})", f"'{table_name}', another file")
+    try:  # a case reads its tables from its own folder only (docs/guide/safeguards.md)
+        relative = table.resolve().relative_to(output.resolve().parent).as_posix()
+    except ValueError:
+        raise CaseError("--motion-output", "", "a file in the case file's folder (a case "
+                        "reads its tables from there)", f"'{table_name}'") from None
+    result = import_with_driver(read_deck(args.deck), read_driver(args.driver),
+                                motion_file_name=relative, water_depth=args.water_depth)
+    if result.table is not None:
+        _write(table, result.table)
+    _write(output, result.text)
+    print(f"wrote {output} from {args.deck} and {args.driver}"
+          + (f", and its motion table {table}" if result.table is not None else ""))
+    for line in result.summary:
+        print(line)
+    _list("not mapped", result.unmapped)
+    return EXIT_OK
+
+
+def _is_motion_table(path: Path, header: str) -> bool:
+    """Whether ``path`` is a body-motion table (its first line that is not a comment)."""
+    try:
+        with path.open("r", encoding="utf-8") as stream:
+            for _ in range(100):
+                line = stream.readline()
+                if not line:
+                    return False
+                if line.strip() and not line.lstrip().startswith("#"):
+                    return line.strip().replace(" ", "") in (
+                        header, header.replace("_rad", "_deg"))
+    except (OSError, UnicodeDecodeError):
+        return False
+    return False
 
 
 def _list(what: str, items: list[str]) -> None:

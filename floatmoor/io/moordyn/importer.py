@@ -33,6 +33,7 @@ name, escaped (:func:`floatmoor.terminal_text.shown`) where a comment or string 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -95,8 +96,10 @@ def _fmt(value: float) -> str:
 
 
 class _Importer:
-    def __init__(self, deck: Deck, water_depth: float | None) -> None:
+    def __init__(self, deck: Deck, water_depth: float | None,
+                 driver_values: Mapping[str, tuple[float, str, bool]] | None = None) -> None:
         self.deck = deck
+        self.driver_values = dict(driver_values or {})
         self.unmapped: list[str] = []
         self.used_options: set[int] = set()
         self.water_depth_override = water_depth
@@ -128,6 +131,9 @@ class _Importer:
                default: float | None = None) -> tuple[float | None, str]:
         """The option's value and the comment saying where it came from."""
         opt = self.option(name)
+        given = self.driver_values.get(name)  # (value, origin, whether it beats the deck's)
+        if given is not None and (opt is None or given[2]):
+            return given[0], given[1]
         if opt is None:
             if default is None:
                 return None, ""
@@ -511,7 +517,9 @@ class _Desc:
     tangential_added_mass_coefficient: float
 
 
-def import_deck(deck: Deck, *, water_depth: float | None = None) -> ImportResult:
+def import_deck(deck: Deck, *, water_depth: float | None = None,
+                driver_values: Mapping[str, tuple[float, str, bool]] | None = None
+                ) -> ImportResult:
     """The case file text for ``deck`` and the list of what it could not map.
 
     Parameters
@@ -521,6 +529,10 @@ def import_deck(deck: Deck, *, water_depth: float | None = None) -> ImportResult
     water_depth
         The water depth [m] when the deck has none (MoorDyn-F decks take it from OpenFAST), or
         to replace the deck's.
+    driver_values
+        Values of a MoorDyn driver file (:mod:`.driver_import`) by option name (``g``,
+        ``rho``, ``depth``, ``TMax``): (value, origin comment, whether it replaces the
+        deck's option rather than filling in a missing one).
 
     Raises
     ------
@@ -528,4 +540,4 @@ def import_deck(deck: Deck, *, water_depth: float | None = None) -> ImportResult
         An item of the deck floatmoor cannot represent at all (no water depth, a body point on
         a rotated body, ...), naming the file and line.
     """
-    return _Importer(deck, water_depth).run()
+    return _Importer(deck, water_depth, driver_values).run()

@@ -60,6 +60,7 @@ SECTION_NAMES: dict[str, tuple[str, ...]] = {
     "EXTERNAL LOADS": ("EXTERNAL LOADS",),
     "OPTIONS": ("OPTIONS",),
     "OUTPUTS": ("OUTPUTS", "OUTPUT"),
+    "SYROPE IC": ("SYROPE IC",),
 }
 #: Sections floatmoor maps; the others are kept as text and listed by the importer.
 MODELLED_SECTIONS = ("LINE TYPES", "POINTS", "LINES", "OPTIONS", "OUTPUTS")
@@ -71,6 +72,11 @@ ATTACHMENTS = {"FIXED": POINT_FIXED, "FIX": POINT_FIXED, "ANCHOR": POINT_FIXED,
                "CPLD": POINT_COUPLED, "FREE": POINT_FREE, "CONNECT": POINT_FREE,
                "CON": POINT_FREE}
 _BODY = re.compile(r"^BODY(\d+)$")
+#: A header flag row before the first section, such as MoorDyn v1's ``FALSE Echo - echo the
+#: input file data (flag)``: a value, a key, nothing else or a description after a dash.
+#: MoorDyn-C skips it; it is not part of the title.
+_HEADER_OPTION = re.compile(r"^(TRUE|FALSE|T|F|[+-]?\d+\.?\d*)\s+([A-Za-z_]\w*)(\s+-.*)?$",
+                            re.IGNORECASE)
 _LINE_TYPE_COLUMNS = ("TypeName", "Diam", "Mass/m", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx",
                       "CaAx")
 _V1_LINE_TYPE_COLUMNS = ("Name", "Diam", "MassDen", "EA", "BA/-zeta", "Can", "Cat", "Cdn",
@@ -178,12 +184,15 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
     title: list[str] = []
     blocks: list[tuple[str, str, int, list[tuple[int, str]]]] = []  # section, heading, n, rows
     closed_at = 0
+    header_options: list[DeckOption] = []
+    outputs_end = 0  # line of OUTPUTS' END row: MoorDyn's end of the channel list
     for n, raw in enumerate(lines, start=1):
         stripped = raw.strip()
         if "---" in stripped:
             section = _section_of(stripped)
             if section is None:
-                if "MOORDYN INPUT FILE" in stripped.upper() and not blocks and not title:
+                upper = stripped.upper()  # "MoorDyn Input File", "MoorDyn FAST.Farm Input File"
+                if "MOORDYN" in upper and "INPUT FILE" in upper and not blocks and not title:
                     continue
                 if not blocks:
                     raise CaseError(f"{source}:{n}", "", "a section heading (a line of dashes "
@@ -196,8 +205,17 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
                                 f"a second {section} heading")
             blocks.append((section, stripped, n, []))
         elif not blocks:
-            if stripped and not stripped.startswith("#"):  # "#" lines: comments (the export's
-                title.append(stripped)                     # notes); MoorDyn reads none of it
+            match = _HEADER_OPTION.match(stripped)
+            if title and match:  # a header flag (Echo) after the title line, not more title
+                header_options.append(DeckOption(key=match.group(2), value=match.group(1),
+                                                 line_number=n))
+            elif stripped and not stripped.startswith("#"):  # "#" lines: comments (the
+                title.append(stripped)                       # export's notes); MoorDyn reads none
+        elif stripped and blocks[-1][0] == "OUTPUTS" and stripped.split()[0].upper() == "END":
+            outputs_end = n
+        elif stripped and outputs_end and blocks[-1][0] == "OUTPUTS":
+            raise CaseError(f"{source}:{n}", "OUTPUTS", f"nothing after END (line {outputs_end}) "
+                            "but the closing line of dashes", repr(stripped))
         elif stripped:
             blocks[-1][3].append((n, stripped))
     if closed_at:
@@ -212,7 +230,7 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
     line_types: list[DeckLineType] = []
     points: list[DeckPoint] = []
     deck_lines: list[DeckLine] = []
-    options: list[DeckOption] = []
+    options: list[DeckOption] = list(header_options)
     outputs: list[str] = []
     others: list[DeckSection] = []
     bodies: dict[int, tuple[str, ...]] = {}
@@ -286,6 +304,13 @@ def _line_type(reader: _Rows, n: int, row: str, heading: str) -> DeckLineType:
 
     def num(column: str, positive: bool = False) -> float:
         text = col[column]
+        if column == "EA" and text.upper().startswith("SYROPE"):
+            raise reader.error(n, column, "a number [N] (MoorDyn-F's SYROPE synthetic-rope "
+                               "model, a load-history-dependent stiffness, is not modelled by "
+                               "floatmoor)", repr(text))
+        if column == "BA/-zeta" and "|" in text:
+            raise reader.error(n, column, "a number [N s, or -zeta] (MoorDyn's viscoelastic "
+                               "'BA|BA_D' damping is not modelled by floatmoor)", repr(text))
         if column in ("EA", "BA/-zeta", "EI") and not re.fullmatch(r"[-+0-9.eE]+", text):
             raise reader.error(n, column, f"a number [{units[column]}] (tables of nonlinear "
                                "properties are not supported)", _q(text))
