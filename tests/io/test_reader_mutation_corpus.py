@@ -203,9 +203,10 @@ def _bemio_edits(folder: Path):
     decoy = str(folder / DECOY)
 
     def retype(f, name):
-        data = f[name][()]
+        data = np.asarray(f[name][()])
         del f[name]
-        f[name] = np.asarray(data).astype(np.int64) if np.size(data) else np.int64(1)
+        numeric = data.dtype.kind in "fiu" and data.size
+        f[name] = data.astype(np.int64) if numeric else np.int64(1)
 
     def reshape(f, name):
         del f[name]
@@ -234,9 +235,9 @@ def _bemio_edits(folder: Path):
                          compression="gzip")
 
     def nan(f, name):
-        data = np.array(f[name][()], dtype=float)
+        data = np.asarray(f[name][()])
         del f[name]
-        f[name] = np.full_like(data, np.nan)
+        f[name] = np.full(data.shape if data.dtype.kind in "fiu" else (), np.nan)
 
     return (retype, reshape, empty, text, external, loop, huge, nan)
 
