@@ -29,6 +29,7 @@ from pathlib import Path
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
+from floatmoor.terminal_text import MESSAGE_LIMIT, shown
 
 __all__ = ["hydro_command", "resolve_database"]
 
@@ -51,7 +52,7 @@ def hydro_command(args: argparse.Namespace) -> int:
             return _fit_state_space(args)
         return _info(args)
     except (HydroDatabaseError, BemFileError) as err:
-        print(f"floatmoor: error: {err}", file=sys.stderr)
+        print(f"floatmoor: error: {shown(err, MESSAGE_LIMIT)}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
 

@@ -1,0 +1,144 @@
+"""Work and output sized by the input are bounded before they start, and extreme input gives
+one line and status 2 rather than a traceback, a hang or a flooded terminal.
+
+Titles: a format spec's width and precision and the filled title's length are bounded (a
+``{motion.radius:300000000.2f}`` title took a gigabyte). Text from a file printed by the
+command line is escaped (:func:`floatmoor.terminal_text.shown`); a UTF-8 byte order mark at
+the start of a case is dropped. ``floatmoor check`` is linear in the number of lines. A closed
+standard output ends any command quietly.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+
+import pytest
+
+from floatmoor.case.load import load_case
+from floatmoor.case.title import MAX_SPEC_FIELD, MAX_TITLE_CHARS
+from floatmoor.cli import EXIT_BROKEN_PIPE, main
+from floatmoor.errors import CaseError
+from tests.cli.many_lines import many_lines_case
+from tests.conftest import LINDAHL_CASE, REPO
+
+
+def _status_2_one_line(capsys, argv) -> str:
+    status = main(argv)
+    captured = capsys.readouterr()
+    assert status == 2, captured.err
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("floatmoor: error: "), captured.err
+    assert captured.out == ""
+    return lines[0]
+
+
+# -- titles ------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("title, words", [
+    ("{motion.radius:300000000.2f}", f"width at most {MAX_SPEC_FIELD}"),
+    ("{motion.radius:99999999999}", f"width at most {MAX_SPEC_FIELD}"),
+    ("{motion.radius:.65f}", f"precision at most {MAX_SPEC_FIELD}"),
+    ("{motion.radius:>100000}", f"width at most {MAX_SPEC_FIELD}"),
+    ("x" * (MAX_TITLE_CHARS + 1), f"at most {MAX_TITLE_CHARS} characters"),
+    ("{motion.radius:64.60f}" * 20, f"at most {MAX_TITLE_CHARS} characters"),
+])
+def test_a_title_cannot_size_the_output(capsys, title, words):
+    """It took 1 GB in check, wrote a 200 MB file in run, and 99999999999 raised MemoryError."""
+    start = time.perf_counter()
+    line = _status_2_one_line(capsys, ["check", str(LINDAHL_CASE), "--set", f'title="{title}"'])
+    assert "title: expected" in line and words in line
+    assert len(line) < 2500
+    assert time.perf_counter() - start < 30.0
+
+
+def test_widths_up_to_the_bound_still_format():
+    case = load_case(LINDAHL_CASE, [f'title="r = {{motion.radius:>{MAX_SPEC_FIELD}.3f}}"'])
+    assert case.title == "r = " + " " * (MAX_SPEC_FIELD - 5) + "0.200"
+
+
+def test_a_title_with_terminal_escapes_is_printed_escaped(capsys):
+    """``run`` and ``check`` printed ESC ] 0; ... BEL raw: the terminal obeyed it."""
+    status = main(["check", str(LINDAHL_CASE), "--set", 'title="\\u001b]0;owned\\u0007 x\\r"'])
+    out = capsys.readouterr().out
+    assert status == 0
+    assert "\x1b" not in out and "\x07" not in out and "\r" not in out
+    assert 'valid case "\\x1b]0;owned\\x07 x\\x0d"' in out
+
+
+def test_the_run_summary_escapes_the_title():
+    from floatmoor.post.summary import format_summary
+
+    text = format_summary({"title": "a\x1b[2Jb", "lines": {}})
+    assert text.splitlines()[0] == "a\\x1b[2Jb"
+
+
+def test_an_error_quoting_file_text_is_one_escaped_line(capsys):
+    line = _status_2_one_line(capsys, ["check", str(LINDAHL_CASE), "--set",
+                                       'title="{motion.radius:\\u001b[2J}"'])
+    assert "\x1b" not in line and "\\x1b[2J" in line
+
+
+def test_a_byte_order_mark_at_the_start_of_a_case_is_dropped(tmp_path, capsys):
+    """A UTF-8 BOM (written by some Windows editors) gave a bare 'syntax error'."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + LINDAHL_CASE.read_bytes())
+    assert main(["check", str(path)]) == 0
+    assert "valid case" in capsys.readouterr().out
+    assert load_case(path).text == LINDAHL_CASE.read_text()
+
+
+# -- check is linear in the number of lines -----------------------------------------------------
+
+def _time_per_lookup(case) -> float:
+    """The shortest of several timings of a lookup of every point, per lookup [s]."""
+    names = [p.name for p in case.points] * 5
+    best = float("inf")
+    for _ in range(7):
+        start = time.perf_counter()
+        for name in names:
+            case.point(name)
+        best = min(best, time.perf_counter() - start)
+    return best / len(names)
+
+
+def test_point_lookup_does_not_grow_with_the_number_of_points(tmp_path):
+    """Case.point scanned every point: a lookup per line end made loading quadratic (8x the
+    points made a lookup 8x slower)."""
+    small = load_case(many_lines_case(tmp_path, 150))
+    large = load_case(many_lines_case(tmp_path, 1200))
+    assert len(large.points) == 8 * len(small.points)
+    assert _time_per_lookup(large) < 3.0 * _time_per_lookup(small)
+
+
+def test_check_time_grows_linearly_with_the_lines(tmp_path, capsys):
+    """check on a 5000-line case took 36 s: 4x the lines must take less than 8x the time."""
+    small, large = many_lines_case(tmp_path, 150), many_lines_case(tmp_path, 600)
+    assert main(["check", str(small)]) == 0  # compiles and imports outside the timing
+
+    def timed(path) -> float:
+        start = time.perf_counter()
+        assert main(["check", str(path)]) == 0
+        return time.perf_counter() - start
+
+    t_small = min(timed(small), timed(small))
+    t_large = timed(large)
+    capsys.readouterr()
+    assert t_large < 8.0 * t_small, (t_small, t_large)
+
+
+# -- a closed standard output --------------------------------------------------------------------
+
+@pytest.mark.parametrize("args", [["check", str(LINDAHL_CASE)], ["hydro", "info", "{db}"]])
+def test_a_closed_pipe_ends_the_command_quietly(args):
+    """``floatmoor check ... | head`` ended in a BrokenPipeError traceback."""
+    db = REPO / "hydrodb" / "cylinder_buoy.nc"
+    argv = [a.format(db=db) for a in args]
+    proc = subprocess.Popen([sys.executable, "-m", "floatmoor", *argv], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, cwd=REPO)
+    proc.stdout.close()  # the reader has gone before the first line is written
+    _, err = proc.communicate(timeout=120)
+    assert b"Traceback" not in err and b"BrokenPipe" not in err, err
+    assert err == b""
+    assert proc.returncode == EXIT_BROKEN_PIPE
