@@ -151,15 +151,18 @@ class ReadContext:
 
 
 def _bound_text(gt: float | None, ge: float | None, lt: float | None, le: float | None) -> str:
+    def text(v: float) -> str:  # an integer bound exactly (2^32 - 1, not 4.29497e+09)
+        return str(v) if isinstance(v, int) else f"{v:g}"
+
     parts = []
     if gt is not None:
-        parts.append(f"> {gt:g}")
+        parts.append(f"> {text(gt)}")
     if ge is not None:
-        parts.append(f">= {ge:g}")
+        parts.append(f">= {text(ge)}")
     if lt is not None:
-        parts.append(f"< {lt:g}")
+        parts.append(f"< {text(lt)}")
     if le is not None:
-        parts.append(f"<= {le:g}")
+        parts.append(f"<= {text(le)}")
     return " and ".join(parts)
 
 
