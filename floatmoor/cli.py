@@ -281,6 +281,8 @@ def _command(args: argparse.Namespace) -> int:
             return scale_command(args)
         return _run(args)
     except CaseError as err:
+        if not err.source and getattr(args, "case", None):  # raised by a model: the case file
+            err = CaseError(args.case, err.key, err.expected, err.found)
         print(error_line(err), file=sys.stderr)
         return EXIT_BAD_INPUT
     except FloatmoorError as err:
@@ -305,8 +307,9 @@ def _check(args: argparse.Namespace) -> int:
     case = load_case(args.case, args.overrides)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
+    description = _describe(case, loads)  # (may still refuse the case: a line's settle)
     print(f"{shown(args.case)}: valid case \"{shown(case.title)}\"")
-    print(_describe(case, loads))
+    print(description)
     return EXIT_OK
 
 

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
            "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS", "MAX_SHAPE_POINTS", "MAX_MESH_FILE_BYTES",
+           "MIN_GRAVITY", "MAX_GRAVITY",
            "nesting_depth", "parse_toml", "check_sizes"]
 
 #: Deepest nesting of tables and arrays in a case (or a ``--set`` value). Case files nest at
@@ -77,6 +78,11 @@ MAX_BEM_PANELS = 20_000
 #: a mistaken file from being read into memory. The panel count itself is checked when the
 #: file is read, at build time (floatmoor.hydro.mesh_file).
 MAX_MESH_FILE_BYTES = 100 * 1024 * 1024
+#: Range of ``environment.gravity`` [m/s^2]. On Earth g is 9.78 to 9.83 m/s^2 (equator to
+#: poles; standard 9.80665); 1 to 30 admits the Moon (1.6) and a deliberately altered tank or
+#: model gravity. Times scale with sqrt(L / g): a dynamic line settles for 11 sqrt(L / g)
+#: (floatmoor.mooring.dg.line), so g = 1e-9 asked a 33 m chain for 2e6 s of relaxation.
+MIN_GRAVITY, MAX_GRAVITY = 1.0, 30.0
 #: Largest case file [bytes]. The longest shipped case is ~12 kB; 10 MB keeps a mistaken
 #: argument (a data file, /dev/zero) from being read into memory.
 MAX_CASE_FILE_BYTES = 10 * 1024 * 1024

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -43,7 +43,7 @@ if TYPE_CHECKING:
     from floatmoor.simulation.coupled_run import CoupledSettings
 
 __all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "LineModel",
-           "key_origin"]
+           "key_origin", "refuse_long_runs"]
 
 LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
 _MODELS = {"quasi-static": QuasiStaticLine.from_case,
@@ -55,6 +55,21 @@ def build_line_models(case: Case) -> list[LineModel | None]:
     the case chooses; None for the lines of a system group (:mod:`.groups`)."""
     return [_MODELS[line.model](line, case.environment, case.seabed)
             if case.is_independent(line) else None for line in case.lines]
+
+
+def refuse_long_runs(case: Case, models: Sequence[LineModel | None]) -> None:
+    """Refuse, before the first step, a dynamic line whose explicit steps over the run
+    would exceed ``MAX_DYNAMIC_STEPS`` (:meth:`DynamicLine.refuse_long_work`).
+
+    Raises
+    ------
+    CaseError
+    """
+    for model in models:
+        if isinstance(model, DynamicLine):
+            model.refuse_long_work(case.simulation.duration,
+                                   f"the run (simulation.duration {case.simulation.duration:g} s)",
+                                   case.source)
 
 
 def key_origin(case: Case, key: str) -> str:
@@ -213,7 +228,9 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
         does not accept, or has no excitation forces for the case's waves.
     """
     if case.floater is None:
-        return MooredSystem(case=case, points=case.points, line_models=build_line_models(case),
+        models = build_line_models(case)
+        refuse_long_runs(case, models)
+        return MooredSystem(case=case, points=case.points, line_models=models,
                             groups=system_groups(case))
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
@@ -244,6 +261,7 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
                        mean_force=None if rotor is None else rotor.steady_force(),
                        system_force=_system_force(case, centre))
     moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    refuse_long_runs(case, moored.models)
     moored.equilibrium_position = x_eq
     if case.floater.drag is not None:
         loads.drag = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,

@@ -142,3 +142,35 @@ def test_a_closed_pipe_ends_the_command_quietly(args):
     assert b"Traceback" not in err and b"BrokenPipe" not in err, err
     assert err == b""
     assert proc.returncode == EXIT_BROKEN_PIPE
+
+
+# -- the work of a dynamic line is estimated before its first step --------------------------------
+
+def test_an_unphysical_gravity_is_refused_at_load(capsys):
+    """g = 1e-9 made the chain's settle last 11 sqrt(L / g) = 2e6 s: a 0.5 s run hung."""
+    line = _status_2_one_line(capsys, ["check", str(LINDAHL_CASE), "--set",
+                                       "environment.gravity=1e-9"])
+    assert "environment.gravity: expected a finite number >= 1 and <= 30 [m/s^2]" in line
+
+
+@pytest.mark.parametrize("command, overrides, what", [
+    ("check", ["lines.chain.dynamic.cfl=1e-6"], "for the initial settle"),
+    ("run", ["lines.chain.dynamic.cfl=1e-5", "lines.chain.dynamic.settle=false"], "for the run"),
+])
+def test_a_dynamic_line_step_count_is_bounded_before_it_starts(capsys, tmp_path, command,
+                                                               overrides, what):
+    """cfl = 1e-6 ran with no estimate (hours in the settle): refused at once, with the
+    estimate and the key that sets the step."""
+    from floatmoor.mooring.dg.line import MAX_DYNAMIC_STEPS
+
+    out = tmp_path / "out.nc"
+    argv = [command, str(LINDAHL_CASE), *(a for o in overrides for a in ("--set", o))]
+    argv += ["-o", str(out), "--quiet"] if command == "run" else []
+    start = time.perf_counter()
+    line = _status_2_one_line(capsys, argv)
+    assert time.perf_counter() - start < 60.0
+    assert line.startswith(f"floatmoor: error: {LINDAHL_CASE}")
+    assert "lines.chain.dynamic.cfl: expected numerics giving at most " \
+        f"{MAX_DYNAMIC_STEPS:.3g} explicit steps" in line
+    assert what in line and "steps" in line.split("found")[-1]
+    assert list(tmp_path.iterdir()) == []
