@@ -83,6 +83,8 @@ def resolve_case_file(t: TableReader, key: str, base_dir: Path, name: str) -> Pa
         that is not a regular file.
     """
     expected = "a path to a regular file inside the case file's folder, relative to it"
+    if "\0" in name:  # no file system takes it (os functions raise ValueError)
+        raise t.error(key, expected, _Found("a path holding a null character (\\x00)"))
     if Path(name).is_absolute():
         raise t.error(key, expected, _Found(f'the absolute path "{name}"'))
     folder = base_dir.resolve()

@@ -210,7 +210,8 @@ def wetted_area_estimate(geometry: Any) -> float:
     area = 0.0
     for c in geometry.columns:
         area += math.pi * c.diameter * max(min(c.z_top, 0.0) - c.z_bottom, 0.0)
-        area += math.pi * max(c.diameter, c.heave_plate_diameter or 0.0) ** 2 / 2.0
+        plate = max(c.diameter, c.heave_plate_diameter or 0.0)
+        area += math.pi * plate * plate / 2.0  # (a product: 1e308^2 is inf, ** raises)
     for m in geometry.members:
         area += math.pi * m.diameter * math.dist(m.start, m.end)
     return area
@@ -220,7 +221,12 @@ def _check_panels(case: "Case", context: "ReadContext") -> None:
     if case.floater is None or case.hydro is None or case.hydro.panel_size is None:
         return  # no BEM build (an imported database)
     size = case.hydro.panel_size
-    panels = wetted_area_estimate(case.floater.geometry) / size / size  # (size * size: 0)
+    area = wetted_area_estimate(case.floater.geometry)
+    if not math.isfinite(area):
+        raise context.error(("floater", "geometry"), "dimensions giving a finite wetted area "
+                            "[m]", "dimensions whose wetted area overflows double precision "
+                            f"({area!r} m^2)")
+    panels = area / size / size  # (size * size: 0)
     if not panels <= MAX_BEM_PANELS:
         raise context.error(("hydro", "panel_size"), f"a panel size giving at most "
                             f"{MAX_BEM_PANELS} hull panels (wetted area / panel_size^2; "

@@ -206,7 +206,7 @@ def _points(root: TableReader, environment: Environment) -> list[Point]:
     """``[[points]]``: named fixed, free and body points."""
     points: list[Point] = []
     for t in root.tables("points"):
-        name = t.string("name")
+        name = t.name()
         if "." in name:  # implicit points are "LINE.anchor", ...; --set addresses by name
             raise t.error("name", "a name without '.'", name)
         kind = t.string("kind", choices=POINT_KINDS)
@@ -291,7 +291,7 @@ def _line(t: TableReader, line_types: dict[str, LineType],
           implicit: list[Point]) -> tuple[Line, dict[str, Any]]:
     """A ``[[lines]]`` entry; also the key paths of its point names (``ends``, start to end)
     and of its last section's ``length`` (for errors)."""
-    name = t.string("name")
+    name = t.name()
     start = _end(t, "start", "anchor", "fixed", name, implicit)
     model = t.string("model", choices=LINE_MODELS)
     if model not in AVAILABLE_LINE_MODELS:

@@ -14,6 +14,7 @@ choices and default. Inside :func:`recording`, every accessor also reports them 
 from __future__ import annotations
 
 import math
+import unicodedata
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -298,6 +299,18 @@ class TableReader:
             raise self.error(key, expected, value)
         if choices and value not in choices:
             raise self.error(key, expected, value)
+        return value
+
+    def name(self) -> str:
+        """The key ``name`` (of a line, point or floater): a non-empty string without
+        control, format or line-separator characters, since it is printed, written into
+        result files and exported decks, each of which takes one line."""
+        value = self.string("name")
+        bad = [c for c in value if unicodedata.category(c) in ("Cc", "Cf", "Zl", "Zp")]
+        if bad:
+            raise self.error("name", "a name without control or format characters (newline, "
+                             "tab, escape, bidi controls)", _Found(
+                                 f"a name holding {', '.join(sorted({repr(c) for c in bad}))}"))
         return value
 
     def boolean(self, key: str, *, default: Any = MISSING) -> bool:

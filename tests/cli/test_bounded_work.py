@@ -174,3 +174,68 @@ def test_a_dynamic_line_step_count_is_bounded_before_it_starts(capsys, tmp_path,
         f"{MAX_DYNAMIC_STEPS:.3g} explicit steps" in line
     assert what in line and "steps" in line.split("found")[-1]
     assert list(tmp_path.iterdir()) == []
+
+
+# -- extreme values: one line and status 2, not a traceback ------------------------------------
+
+DEEPCWIND = LINDAHL_CASE.parents[1] / "deepcwind" / "deepcwind_lc43.toml"
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["check", str(LINDAHL_CASE), "--set", 'motion={kind="table", file="a\\u0000b"}'],
+     "motion.file: expected a path to a regular file"),
+    (["check", str(DEEPCWIND), "--set",
+      "floater.geometry.columns.1.heave_plate_diameter=1e308"],
+     "floater.geometry: expected dimensions giving a finite wetted area"),
+    (["check", str(DEEPCWIND), "--set", "floater.mass=1e308"],
+     "floater.mass: expected a mass and centre of mass whose weight"),
+    (["check", str(DEEPCWIND), "--set", "floater.centre_of_mass=[0, 0, 1e308]"],
+     "floater.centre_of_mass: expected a mass and centre of mass"),
+    (["export", "moordyn", str(LINDAHL_CASE), "--set", 'lines.chain.name="a\\nb"', "-o",
+      "{tmp}/deck.dat"], "lines[0].name: expected a name without control"),
+    (["scale", str(LINDAHL_CASE), "--length-scale", "1e308", "-o", "{tmp}/s.toml"],
+     "--length-scale: expected a number from 1e-06 to 1e+06"),
+    (["scale", str(LINDAHL_CASE), "--match", "elastic", "--length-scale", "1e150", "-o",
+      "{tmp}/s.toml"], "--length-scale: expected a number from 1e-06 to 1e+06"),
+])
+def test_extreme_values_are_one_line_and_status_2(capsys, tmp_path, argv, says):
+    """Each was a traceback: ValueError (embedded null byte), OverflowError (wetted area,
+    scale factors), LinAlgError (the equilibrium of an infinite weight), ValueError (a
+    newline in an exported deck's note)."""
+    line = _status_2_one_line(capsys, [a.replace("{tmp}", str(tmp_path)) for a in argv])
+    assert says in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_infinite_static_force_is_bad_input_not_a_linalg_error():
+    """The equilibrium solve of a non-finite static force raised LinAlgError (SVD did not
+    converge); whatever got past loading, it is a CaseError at floater."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from floatmoor.simulation.coupled import equilibrium
+
+    body = SimpleNamespace(static_force=np.array([0.0, 0.0, -np.inf, 0.0, 0.0, 0.0]),
+                           stiffness=np.eye(6))
+    case = load_case(LINDAHL_CASE)
+    with pytest.raises(CaseError) as info:
+        equilibrium(body, [], np.zeros((0, 3)), np.zeros(3), case.environment, case.seabed)
+    assert info.value.key == "floater"
+
+
+def test_the_radiation_kernel_samples_are_bounded_before_allocation():
+    """simulation.time_step = 1e-9 on the buoy asked np.linspace for 2.29 TiB of kernel."""
+    import xarray as xr
+
+    from floatmoor.body.model import MAX_KERNEL_SAMPLES, build_body
+
+    case = load_case(LINDAHL_CASE.parents[1] / "cylinder_buoy" / "buoy_regular_T1.00.toml")
+    with xr.open_dataset(REPO / "hydrodb" / "cylinder_buoy.nc") as ds:
+        start = time.perf_counter()
+        with pytest.raises(CaseError) as info:
+            build_body(case.floater, ds.load(), case.environment, 1e-7)
+    assert time.perf_counter() - start < 10.0
+    assert info.value.key == "simulation.time_step"
+    assert f"at most {MAX_KERNEL_SAMPLES:.3g} samples of the radiation kernel" in \
+        info.value.expected
