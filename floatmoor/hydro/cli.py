@@ -498,6 +498,11 @@ def _pairs_table(realisation, rtol: float | None = None) -> str:
     return "\n".join(rows)
 
 
+def _say(text: str) -> None:
+    """Print a line quoting database attributes (file text): escaped, bounded (shown)."""
+    print("\n".join(shown(line, MESSAGE_LIMIT) for line in str(text).split("\n")))
+
+
 def _info(args: argparse.Namespace) -> int:
     from floatmoor.hydro.database import (
         EXCITATION_VARIABLES, database_source, has_excitation, is_imported,
@@ -508,33 +513,33 @@ def _info(args: argparse.Namespace) -> int:
     import numpy as np
 
     a = ds.attrs
-    print(f"{path}: {a['database']} ({note})")
+    _say(f"{path}: {a['database']} ({note})")
     if is_imported(ds):
-        print(_import_info(ds))
+        _say(_import_info(ds))
     else:
-        print(f"  source: capytaine ('floatmoor hydro build' of {a['case_file']}), "
+        _say(f"  source: capytaine ('floatmoor hydro build' of {a['case_file']}), "
               f"capytaine {a['capytaine_version']}, floatmoor {a['floatmoor_version']}, built "
               f"{a['created']} in {float(a['build_seconds']):.1f} s")
-        print(f"  floater {a['floater']} ({a['geometry_kind']}), case {a['case_file']}")
-        print(f"  mesh: {a['hull_panels']} hull + {a['lid_panels']} lid panels, "
+        _say(f"  floater {a['floater']} ({a['geometry_kind']}), case {a['case_file']}")
+        _say(f"  mesh: {a['hull_panels']} hull + {a['lid_panels']} lid panels, "
               f"{a['mesh_symmetry']}, panel size {a['panel_size']} m, lid depth "
               f"{a['lid_depth']}, hash {a['mesh_hash'][:12]}")
-        print(f"  build settings: {a.get('build_settings_json', 'not recorded')}")
-    print(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf: "
+        _say(f"  build settings: {a.get('build_settings_json', 'not recorded')}")
+    _say(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf: "
           f"{a.get('added_mass_infinite_source', 'capytaine (omega = infinity solved)')}")
     if has_excitation(ds):
         held = [v for v in EXCITATION_VARIABLES if v in ds.variables]
-        print(f"  excitation: {', '.join(held)}; directions "
+        _say(f"  excitation: {', '.join(held)}; directions "
               f"{', '.join(f'{d:g}' for d in np.degrees(ds['wave_direction'].values))} deg")
     else:
-        print(f"  excitation: none (from {database_source(ds)} files without it): a run with "
+        _say(f"  excitation: none (from {database_source(ds)} files without it): a run with "
               "waves refuses this database; still water and wind only run")
-    print(f"  water depth {a['water_depth']} m (BEM: {a['bem_water_depth']}), density "
+    _say(f"  water depth {a['water_depth']} m (BEM: {a['bem_water_depth']}), density "
           f"{a['water_density']} kg/m^3, g {a['gravity']} m/s^2")
-    print(f"  displaced volume {float(ds['disp_volume']):.6g} m^3, waterplane "
+    _say(f"  displaced volume {float(ds['disp_volume']):.6g} m^3, waterplane "
           f"{float(ds['waterplane_area']):.6g} m^2, rotation centre "
           f"{', '.join(f'{v:g}' for v in ds['rotation_center'].values)} m")
-    print(_state_space_info(ds))
+    _say(_state_space_info(ds))
     return EXIT_OK
 
 

@@ -80,6 +80,20 @@ def test_an_error_quoting_file_text_is_one_escaped_line(capsys):
     assert "\x1b" not in line and "\\x1b[2J" in line
 
 
+def test_hydro_info_escapes_the_database_attributes(tmp_path, capsys):
+    """A database is a file from elsewhere: its recorded attributes are file text."""
+    import xarray as xr
+
+    with xr.open_dataset(REPO / "hydrodb" / "cylinder_buoy.nc") as ds:
+        ds = ds.load()
+    ds.attrs["floater"] = "cyl\x1b]0;owned\x07"
+    ds.to_netcdf(tmp_path / "evil.nc")
+    assert main(["hydro", "info", str(tmp_path / "evil.nc")]) == 0
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "\x07" not in out
+    assert "floater cyl\\x1b]0;owned\\x07 (cylinder)" in out
+
+
 def test_a_byte_order_mark_at_the_start_of_a_case_is_dropped(tmp_path, capsys):
     """A UTF-8 BOM (written by some Windows editors) gave a bare 'syntax error'."""
     path = tmp_path / "bom.toml"
