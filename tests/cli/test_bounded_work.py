@@ -253,3 +253,15 @@ def test_the_radiation_kernel_samples_are_bounded_before_allocation():
     assert info.value.key == "simulation.time_step"
     assert f"at most {MAX_KERNEL_SAMPLES:.3g} samples of the radiation kernel" in \
         info.value.expected
+
+
+def test_moordyn_import_escapes_the_deck_text_it_lists(tmp_path, capsys):
+    """The 'not mapped' list quotes the deck (an unknown option's name): escaped."""
+    deck = (REPO / "tests" / "data" / "moordyn" / "oc3_hywind_lines.txt").read_text()
+    assert "writeLog" in deck
+    path = tmp_path / "deck.txt"
+    path.write_text(deck.replace("writeLog", "write\x1b]0;owned\x07Log"))
+    assert main(["import", "moordyn", str(path), "-o", str(tmp_path / "case.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "\x07" not in out
+    assert "option write\\x1b]0;owned\\x07Log = 2" in out

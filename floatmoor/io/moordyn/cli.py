@@ -14,6 +14,7 @@ from pathlib import Path
 
 from floatmoor.errors import CaseError
 from floatmoor.io.output_files import atomic_target
+from floatmoor.terminal_text import shown
 
 __all__ = ["add_moordyn_parsers", "moordyn_command"]
 
@@ -95,7 +96,7 @@ def _list(what: str, items: list[str]) -> None:
     if items:
         print(f"{what} ({len(items)}):")
         for item in items:
-            print(f"  - {item}")
+            print(f"  - {shown(item)}")  # quotes the deck's text: escaped, bounded
     else:
         print(f"{what}: none")
     sys.stdout.flush()
