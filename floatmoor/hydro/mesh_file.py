@@ -17,6 +17,10 @@ PLY, OFF, VTK, VTU, Gmsh ``msh``; triangles and quads). Then, in this order:
    z = -lid_depth with panels of about ``[hydro] panel_size`` (for a mesh hull the lid's panel
    edge), generated on the full hull and cut to the kept symmetry.
 
+Before any reader runs, the panel and vertex counts the file declares (:func:`claimed_counts`)
+are held to :data:`MAX_FILE_PANELS` and :data:`MAX_FILE_VERTICES`, so that a large or forged
+header cannot make a reader allocate tens of GiB.
+
 The result is the :class:`~floatmoor.hydro.hull_mesh.HullMesh` the parametric kinds give, so
 the BEM and the database code need no special case. A file that cannot be read, holds no
 panels, non-finite vertices, nothing below the waterline, panels below the seabed, or more
