@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import shlex
 import sys
 import time
@@ -48,6 +49,7 @@ from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 from floatmoor._version import __version__
 from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.signals import exit_status, interrupt_handling, signal_name
+from floatmoor.terminal_text import MESSAGE_LIMIT, shown
 
 #: What a Ctrl-C before a command has started says (status 130).
 STARTUP_INTERRUPTED = "floatmoor: interrupted while starting; nothing was run or written"
@@ -67,6 +69,9 @@ if TYPE_CHECKING:
 __all__ = ["main"]
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+#: Status of a command whose standard output was closed early (``floatmoor check ... | head``):
+#: 128 + SIGPIPE, what a shell reports for a program the closed pipe stopped.
+EXIT_BROKEN_PIPE = 128 + 13
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -311,7 +316,9 @@ def _command(args: argparse.Namespace) -> int:
             return scale_command(args)
         return _run(args)
     except CaseError as err:
-        print(f"floatmoor: error: {err}", file=sys.stderr)
+        if not err.source and getattr(args, "case", None):  # raised by a model: the case file
+            err = CaseError(args.case, err.key, err.expected, err.found)
+        print(error_line(err), file=sys.stderr)
         return EXIT_BAD_INPUT
     except FloatmoorError as err:
         from floatmoor.hydro.database import HydroDatabaseError
@@ -321,8 +328,14 @@ def _command(args: argparse.Namespace) -> int:
             raise
         # a floater case whose database is missing, damaged, stale or fails a check, or whose
         # hull mesh file cannot be read or fails a fatal mesh check (check): bad input
-        print(f"floatmoor: error: {err}", file=sys.stderr)
+        print(error_line(err), file=sys.stderr)
         return EXIT_BAD_INPUT
+
+
+def error_line(err: BaseException) -> str:
+    """``floatmoor: error: MESSAGE`` as one terminal-safe line (the message quotes file text:
+    control characters are escaped and the length bounded, :func:`shown`)."""
+    return f"floatmoor: error: {shown(err, MESSAGE_LIMIT)}"
 
 
 def _check(args: argparse.Namespace) -> int:
@@ -338,13 +351,14 @@ def _check(args: argparse.Namespace) -> int:
     mesh_rows = _check_mesh(case)
     loads = static_line_loads(case)
     check_static_below_mbl(case, loads)
-    print(f"{args.case}: valid case \"{case.title}\"")
+    description = _describe(case, loads)  # (may still refuse the case: a line's settle)
+    print(f"{shown(args.case)}: valid case \"{shown(case.title)}\"")
     for w in implausible:
         if issubclass(w.category, ImplausibleInputWarning):
-            print(f"  warning: {w.message}")
+            print(f"  warning: {shown(str(w.message), MESSAGE_LIMIT)}")
         else:  # not ours: as it would have been shown
             warnings.showwarning(w.message, w.category, w.filename, w.lineno)
-    print(_describe(case, loads))
+    print(description)
     if mesh_rows:
         print("\n".join(mesh_rows))
     return EXIT_OK
@@ -511,8 +525,9 @@ def _describe_groups(case: Case) -> list[str]:
             f"a = {float(groups.amplitude[0]):.4g} m):" if groups.sizes["section"] else
             "  dimensionless groups: no lines",
             f"    {'section':<16}" + "".join(f"{h:>11}" for h in heads)]
+    values = [groups[n].values for n in names]  # numpy once: xarray indexing per cell is slow
     for i, label in enumerate(groups.section.values):
-        rows.append(f"    {label:<16}" + "".join(f"{float(groups[n][i]):>11.4g}" for n in names))
+        rows.append(f"    {label:<16}" + "".join(f"{float(v[i]):>11.4g}" for v in values))
     return rows if groups.sizes["section"] else rows[:1]
 
 
@@ -1033,7 +1048,7 @@ def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
 
 def _format_uq_summary(summary: dict) -> str:
     """The study summary as plain text: one line per quantity."""
-    rows = [f"{summary['title']}: {summary['method']}, {summary['runs']} runs "
+    rows = [f"{shown(summary['title'])}: {summary['method']}, {summary['runs']} runs "
             f"({len(summary['dropped_runs'])} dropped)"]
     for name, q in summary["quantities"].items():
         u = q["units"]
@@ -1090,15 +1105,33 @@ def _close(progress: object) -> None:
 
 
 def run() -> None:  # pragma: no cover - console-script shim
-    """Console-script entry: exit with :func:`main`'s status."""
+    """Console-script entry: exit with :func:`main`'s status.
+
+    A closed standard output (``floatmoor check CASE | head``) ends any command quietly with
+    :data:`EXIT_BROKEN_PIPE`: standard output is pointed at the null device so that the final
+    flush at exit cannot fail again (the Python documentation's recipe for SIGPIPE)."""
     try:
-        sys.exit(main())
+        status = main()
+        sys.stdout.flush()  # a pipe closed after the last print fails here
+        sys.exit(status)
+    except BrokenPipeError:
+        _quiet_broken_pipe()
+        sys.exit(EXIT_BROKEN_PIPE)
     except FloatmoorError as err:
-        print(f"floatmoor: error: {err}", file=sys.stderr)
+        print(error_line(err), file=sys.stderr)
         sys.exit(EXIT_FAILED)
     except KeyboardInterrupt:  # one a command did not handle: while loading, importing
         print(STARTUP_INTERRUPTED.replace("while starting", "before running"), file=sys.stderr)
         sys.exit(EXIT_INTERRUPTED)
+
+
+def _quiet_broken_pipe() -> None:
+    """Point standard output at the null device (its reader has gone)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # no file descriptor (a replaced sys.stdout): nothing to do
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover - ``python -m floatmoor.cli``

@@ -13,12 +13,15 @@ from __future__ import annotations
 
 import unicodedata
 
-__all__ = ["shown", "SHOWN_LIMIT"]
+__all__ = ["shown", "SHOWN_LIMIT", "MESSAGE_LIMIT"]
 
 #: Longest quoted text kept whole [characters]: a title or a recorded command line fits in a few
 #: hundred; beyond this the text is cut and the number of characters left out is said, so a
 #: megabyte attribute cannot flood a terminal or a log.
 SHOWN_LIMIT = 400
+#: Longest error message printed whole [characters]: a message names a file, a key, what was
+#: expected (a list of choices may take a few hundred characters) and quotes what was found.
+MESSAGE_LIMIT = 2000
 
 
 def _escaped(char: str) -> str:

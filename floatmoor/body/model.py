@@ -10,14 +10,15 @@ from numpy.typing import NDArray
 from floatmoor.body.cummins import CumminsBody
 from floatmoor.body.radiation_states import RadiationStates
 from floatmoor.case.schema import RADIATION_METHODS, Environment, Floater
+from floatmoor.errors import CaseError
 from floatmoor.hydro.radiation import (
     consistent_infinite_added_mass, hydrostatic_stiffness_total, kernel_samples,
-    radiation_kernel,
+    radiation_kernel, truncation_time,
 )
 from floatmoor.hydro.state_space_model import StateSpaceRadiation
 
 __all__ = ["static_force", "build_body", "consistent_infinite_added_mass", "KERNEL_SUBSTEPS",
-           "KERNEL_START_SUBSTEPS",
+           "KERNEL_START_SUBSTEPS", "MAX_KERNEL_SAMPLES",
            "radiation_states_of", "checked_state_space", "state_space_infinite_added_mass"]
 
 #: Fine samples of K(t) per body step for the memory weights (the kernel's peak at t = 0 of
@@ -28,6 +29,11 @@ KERNEL_SUBSTEPS = 10
 #: kernel (tail exponent 1.2) has a cusp there; its W_0 at dt = 0.1 s converges to 1e-5 at
 #: 100 samples per step and 3e-6 at 200 (against 1.3 % at :data:`KERNEL_SUBSTEPS`).
 KERNEL_START_SUBSTEPS = 200
+#: Most samples of K(t) (truncation time / (time step / KERNEL_SUBSTEPS)), counted before they
+#: are allocated: each is 36 doubles and a term of every body step's convolution. The shipped
+#: cases take 15 700 to 31 400; 2 million (0.6 GB of kernel) is 60 times that, while a 1e-9 s
+#: step on the buoy asked for 3e11 (2.3 TiB).
+MAX_KERNEL_SAMPLES = 2_000_000
 
 
 def static_force(floater: Floater, ds: xr.Dataset, environment: Environment
@@ -133,6 +139,13 @@ def build_body(floater: Floater, ds: xr.Dataset, environment: Environment, dt: f
             a_inf = ds["added_mass_infinite"].transpose("radiating_dof",
                                                         "influenced_dof").values
     else:
+        t_max = truncation_time(ds["omega"].values) if kernel_time is None else kernel_time
+        samples = t_max / (dt / KERNEL_SUBSTEPS)
+        if not samples <= MAX_KERNEL_SAMPLES:  # the CLI names the case file
+            raise CaseError("", "simulation.time_step", f"a body step giving at most "
+                            f"{MAX_KERNEL_SAMPLES:.3g} samples of the radiation kernel over its "
+                            f"{t_max:.4g} s ({KERNEL_SUBSTEPS} a step; floatmoor.body.model."
+                            "MAX_KERNEL_SAMPLES) [s]", f"{dt!r} (~{samples:.3g} samples)")
         kernel = radiation_kernel(ds, dt=dt / KERNEL_SUBSTEPS, t_max=kernel_time)
         t_start = np.linspace(0.0, 2.0 * dt, 2 * KERNEL_START_SUBSTEPS + 1)
         kernel_start = (t_start, kernel_samples(ds, t_start, kernel.tail_exponent))

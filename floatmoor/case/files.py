@@ -40,7 +40,9 @@ class CaseFileKindError(OSError):
 
 def read_case_text(path: Path) -> str:
     """The UTF-8 text of a case file, refusing FIFOs, devices, folders and files larger
-    than :data:`~floatmoor.case.limits.MAX_CASE_FILE_BYTES` before reading them.
+    than :data:`~floatmoor.case.limits.MAX_CASE_FILE_BYTES` before reading them. A UTF-8
+    byte order mark at the start (some Windows editors write one) is dropped, as Python's
+    ``utf-8-sig`` codec does; anywhere else it is text (docs/guide/case_files.md).
 
     Raises
     ------
@@ -59,7 +61,7 @@ def read_case_text(path: Path) -> str:
         data = stream.read(MAX_CASE_FILE_BYTES + 1)
     if len(data) > MAX_CASE_FILE_BYTES:
         raise CaseFileKindError(f"a file of more than {MAX_CASE_FILE_BYTES} bytes")
-    return data.decode("utf-8")
+    return data.decode("utf-8-sig")
 
 
 def read_input_text(path: str | os.PathLike[str], kind: str) -> str:
@@ -87,6 +89,8 @@ def resolve_case_file(t: TableReader, key: str, base_dir: Path, name: str) -> Pa
         that is not a regular file.
     """
     expected = "a path to a regular file inside the case file's folder, relative to it"
+    if "\0" in name:  # no file system takes it (os functions raise ValueError)
+        raise t.error(key, expected, _Found("a path holding a null character (\\x00)"))
     if Path(name).is_absolute():
         raise t.error(key, expected, _Found(f'the absolute path "{name}"'))
     folder = base_dir.resolve()

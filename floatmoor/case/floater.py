@@ -66,7 +66,7 @@ def read_floater(t: TableReader, environment: Environment,
                  base_dir: Path | None = None) -> Floater:
     """Read ``[floater]``; files it names (a hull mesh) are found in ``base_dir``, the case
     file's folder (default the current folder)."""
-    name = t.string("name")
+    name = t.name()
     mass = t.number("mass", unit="kg", gt=0.0)
     com = t.vector("centre_of_mass", size=3, unit="m")
     raw = t.data.get("inertia")
@@ -80,6 +80,14 @@ def read_floater(t: TableReader, environment: Environment,
     if np.linalg.eigvalsh(tensor).min() <= 0.0:
         raise t.error("inertia", "a positive definite inertia tensor [kg m^2]", list(inertia))
     ref = t.vector("reference_point", size=3, unit="m")
+    # the weight m g and its moments about the reference point enter the equilibrium and the
+    # hydrostatic stiffness: beyond double precision they are inf (and the solve a traceback)
+    arm = max(1.0, *(abs(c - r) for c, r in zip(com, ref)))
+    if not math.isfinite(mass * environment.gravity * arm * arm):
+        key = "mass" if not math.isfinite(mass * environment.gravity) else "centre_of_mass"
+        raise t.error(key, "a mass and centre of mass whose weight m g and its moments "
+                      "about the reference point are finite in double precision",
+                      mass if key == "mass" else list(com))
     radiation = t.string("radiation", choices=RADIATION_METHODS, default="convolution")
     geometry = _geometry(t.table("geometry"), mass, environment, base_dir or Path("."))
     drag = _drag(t.table("drag")) if t.has("drag") else None

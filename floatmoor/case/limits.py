@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 __all__ = ["MAX_NESTING_DEPTH", "MAX_OUTPUT_SAMPLES", "MAX_TIME_STEPS", "MAX_WAVE_COMPONENTS",
            "MAX_WIND_COMPONENTS", "MAX_AXIAL_WAVE_SPEED", "MAX_MOTION_TABLE_BYTES",
            "MAX_CASE_FILE_BYTES", "MAX_BEM_PANELS", "MAX_SHAPE_POINTS", "MAX_MESH_FILE_BYTES",
+           "MIN_GRAVITY", "MAX_GRAVITY",
            "nesting_depth", "parse_toml", "check_sizes"]
 
 #: Deepest nesting of tables and arrays in a case (or a ``--set`` value). Case files nest at
@@ -77,6 +78,11 @@ MAX_BEM_PANELS = 20_000
 #: a mistaken file from being read into memory. The panel count itself is checked when the
 #: file is read, at build time (floatmoor.hydro.mesh_file).
 MAX_MESH_FILE_BYTES = 100 * 1024 * 1024
+#: Range of ``environment.gravity`` [m/s^2]. On Earth g is 9.78 to 9.83 m/s^2 (equator to
+#: poles; standard 9.80665); 1 to 30 admits the Moon (1.6) and a deliberately altered tank or
+#: model gravity. Times scale with sqrt(L / g): a dynamic line settles for 11 sqrt(L / g)
+#: (floatmoor.mooring.dg.line), so g = 1e-9 asked a 33 m chain for 2e6 s of relaxation.
+MIN_GRAVITY, MAX_GRAVITY = 1.0, 30.0
 #: Largest case file [bytes]. The longest shipped case is ~12 kB; 10 MB keeps a mistaken
 #: argument (a data file, /dev/zero) from being read into memory.
 MAX_CASE_FILE_BYTES = 10 * 1024 * 1024
@@ -204,7 +210,8 @@ def wetted_area_estimate(geometry: Any) -> float:
     area = 0.0
     for c in geometry.columns:
         area += math.pi * c.diameter * max(min(c.z_top, 0.0) - c.z_bottom, 0.0)
-        area += math.pi * max(c.diameter, c.heave_plate_diameter or 0.0) ** 2 / 2.0
+        plate = max(c.diameter, c.heave_plate_diameter or 0.0)
+        area += math.pi * plate * plate / 2.0  # (a product: 1e308^2 is inf, ** raises)
     for m in geometry.members:
         area += math.pi * m.diameter * math.dist(m.start, m.end)
     return area
@@ -214,7 +221,12 @@ def _check_panels(case: "Case", context: "ReadContext") -> None:
     if case.floater is None or case.hydro is None or case.hydro.panel_size is None:
         return  # no BEM build (an imported database)
     size = case.hydro.panel_size
-    panels = wetted_area_estimate(case.floater.geometry) / size / size  # (size * size: 0)
+    area = wetted_area_estimate(case.floater.geometry)
+    if not math.isfinite(area):
+        raise context.error(("floater", "geometry"), "dimensions giving a finite wetted area "
+                            "[m]", "dimensions whose wetted area overflows double precision "
+                            f"({area!r} m^2)")
+    panels = area / size / size  # (size * size: 0)
     if not panels <= MAX_BEM_PANELS:
         raise context.error(("hydro", "panel_size"), f"a panel size giving at most "
                             f"{MAX_BEM_PANELS} hull panels (wetted area / panel_size^2; "

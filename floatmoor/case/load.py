@@ -20,7 +20,7 @@ import numpy as np
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
-    MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
+    MAX_GRAVITY, MAX_NESTING_DEPTH, MIN_GRAVITY, check_sizes, nesting_depth, parse_toml,
 )
 from floatmoor.case.files import read_input_text
 from floatmoor.case.motion_body import read_body_motion
@@ -167,7 +167,7 @@ def _environment(t: TableReader) -> Environment:
     env = Environment(
         water_density=t.number("water_density", unit="kg/m^3", gt=0.0),
         water_depth=t.number("water_depth", unit="m", gt=0.0),
-        gravity=t.number("gravity", unit="m/s^2", gt=0.0),
+        gravity=t.number("gravity", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY),
         current_velocity=t.vector("current_velocity", size=3, unit="m/s",
                                   default=(0.0, 0.0, 0.0)),  # type: ignore[arg-type]
     )
@@ -209,7 +209,7 @@ def _points(root: TableReader, environment: Environment) -> list[Point]:
     """``[[points]]``: named fixed, free and body points."""
     points: list[Point] = []
     for t in root.tables("points"):
-        name = t.string("name")
+        name = t.name()
         if "." in name:  # implicit points are "LINE.anchor", ...; --set addresses by name
             raise t.error("name", "a name without '.'", name)
         kind = t.string("kind", choices=POINT_KINDS)
@@ -294,7 +294,7 @@ def _line(t: TableReader, line_types: dict[str, LineType],
           implicit: list[Point]) -> tuple[Line, dict[str, Any]]:
     """A ``[[lines]]`` entry; also the key paths of its point names (``ends``, start to end)
     and of its last section's ``length`` (for errors)."""
-    name = t.string("name")
+    name = t.name()
     start = _end(t, "start", "anchor", "fixed", name, implicit)
     model = t.string("model", choices=LINE_MODELS)
     if model not in AVAILABLE_LINE_MODELS:

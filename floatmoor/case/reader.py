@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import unicodedata
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -158,15 +159,18 @@ class ReadContext:
 
 
 def _bound_text(gt: float | None, ge: float | None, lt: float | None, le: float | None) -> str:
+    def text(v: float) -> str:  # an integer bound exactly (2^32 - 1, not 4.29497e+09)
+        return str(v) if isinstance(v, int) else f"{v:g}"
+
     parts = []
     if gt is not None:
-        parts.append(f"> {gt:g}")
+        parts.append(f"> {text(gt)}")
     if ge is not None:
-        parts.append(f">= {ge:g}")
+        parts.append(f">= {text(ge)}")
     if lt is not None:
-        parts.append(f"< {lt:g}")
+        parts.append(f"< {text(lt)}")
     if le is not None:
-        parts.append(f"<= {le:g}")
+        parts.append(f"<= {text(le)}")
     return " and ".join(parts)
 
 
@@ -312,6 +316,18 @@ class TableReader:
             raise self.error(key, expected, value)
         if choices and value not in choices:
             raise self.error(key, expected, value)
+        return value
+
+    def name(self) -> str:
+        """The key ``name`` (of a line, point or floater): a non-empty string without
+        control, format or line-separator characters, since it is printed, written into
+        result files and exported decks, each of which takes one line."""
+        value = self.string("name")
+        bad = [c for c in value if unicodedata.category(c) in ("Cc", "Cf", "Zl", "Zp")]
+        if bad:
+            raise self.error("name", "a name without control or format characters (newline, "
+                             "tab, escape, bidi controls)", _Found(
+                                 f"a name holding {', '.join(sorted({repr(c) for c in bad}))}"))
         return value
 
     def boolean(self, key: str, *, default: Any = MISSING) -> bool:

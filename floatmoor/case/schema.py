@@ -10,6 +10,7 @@ with their docstrings); together they are the one schema :mod:`floatmoor.case.lo
 from __future__ import annotations
 
 from dataclasses import InitVar, dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -607,10 +608,16 @@ class Case:
 
     def point(self, name: str) -> Point:
         """The point called ``name`` (KeyError if none is)."""
+        return self._points_by_name[name]
+
+    @cached_property
+    def _points_by_name(self) -> dict[str, Point]:
+        # one dict for every lookup: a scan per lookup made loading a case of thousands of
+        # lines quadratic in its size (the first point of a name wins, as the scan did)
+        by_name: dict[str, Point] = {}
         for p in self.points:
-            if p.name == name:
-                return p
-        raise KeyError(name)
+            by_name.setdefault(p.name, p)
+        return by_name
 
     @property
     def sections(self) -> tuple[Section, ...]:

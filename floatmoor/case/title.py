@@ -13,6 +13,7 @@ whatever the overrides); where an override replaced its table (``--set 'motion={
 
 from __future__ import annotations
 
+import re
 import string
 from typing import Any, Sequence
 
@@ -21,10 +22,21 @@ from floatmoor.case.overrides import resolve_key
 from floatmoor.case.reader import Path
 from floatmoor.errors import CaseError
 
-__all__ = ["render_title", "REMOVED"]
+__all__ = ["render_title", "REMOVED", "MAX_SPEC_FIELD", "MAX_TITLE_CHARS"]
 
 #: What a placeholder reads when an override removed its key.
 REMOVED = "n/a"
+#: Largest width and precision of a placeholder's format spec: a number needs at most ~25
+#: digits to be told apart (17 significant digits and an exponent); 64 leaves room for
+#: alignment, while ``{motion.radius:300000000.2f}`` would be a 300 MB title.
+MAX_SPEC_FIELD = 64
+#: Longest title once filled [characters] (before the overrides are appended): the shipped
+#: titles take about 90; a title is a line of a summary, a plot and a result file's
+#: attributes, whose header a longer text would bloat.
+MAX_TITLE_CHARS = 1000
+#: A standard format spec: [[fill]align][sign][z][#][0][width][grouping][.precision][type].
+_SPEC = re.compile(r"(?:.?[<>=^])?[-+ ]?z?#?0?(?P<width>\d*)[,_]?(?:\.(?P<precision>\d*))?"
+                   r"[a-zA-Z%]?", re.DOTALL)
 
 _EXPECTED = ("a title whose {...} placeholders each name one key path of the case, such as "
              "{motion.period} or {motion.period:.2f} ({{ and }} write braces)")
@@ -57,10 +69,14 @@ def render_title(template: str, original: dict[str, Any], raw: dict[str, Any],
         pieces = list(string.Formatter().parse(template))
     except ValueError as err:
         raise CaseError(source, "title", _EXPECTED, f'"{template}" ({err})') from None
-    out = []
+    out: list[str] = []
+    length = 0
     shown: set[Path] = {("title",)}  # an override of the title is the title
     for literal, field, spec, conversion in pieces:
         out.append(literal)
+        length += len(literal)
+        if length > MAX_TITLE_CHARS:
+            break
         if field is None:
             continue
         if not field or conversion is not None or "{" in (spec or ""):
@@ -74,6 +90,13 @@ def render_title(template: str, original: dict[str, Any], raw: dict[str, Any],
             continue
         shown.add(path)
         out.append(_format(value, spec or "", field, source))
+        length += len(out[-1])
+        if length > MAX_TITLE_CHARS:
+            break
+    if length > MAX_TITLE_CHARS:  # stopped at the first piece past the bound
+        raise CaseError(source, "title", f"a title of at most {MAX_TITLE_CHARS} characters once "
+                        "its placeholders are filled (floatmoor.case.title.MAX_TITLE_CHARS)",
+                        f"more than {MAX_TITLE_CHARS} characters")
     title = "".join(out)
     unshown = [override_label(text) for text, paths in applied
                if not paths or not set(paths) <= shown]
@@ -93,7 +116,24 @@ def _lookup(raw: dict[str, Any], field: str, source: str) -> tuple[Path, Any]:
     return path, value
 
 
+def _check_spec(spec: str, field: str, source: str) -> None:
+    """Refuse a format spec whose width or precision exceeds :data:`MAX_SPEC_FIELD` (checked
+    before formatting: the width alone sizes the output)."""
+    match = _SPEC.fullmatch(spec)
+    if match is None:
+        raise CaseError(source, "title", "a Python format spec ([[fill]align][sign][#][0]"
+                        "[width][,][.precision][type])", f'"{{{field}:{spec}}}"')
+    for name in ("width", "precision"):
+        digits = match.group(name) or ""
+        if digits and (len(digits) > 3 or int(digits) > MAX_SPEC_FIELD):
+            raise CaseError(source, "title", f"a format spec of {name} at most "
+                            f"{MAX_SPEC_FIELD} (floatmoor.case.title.MAX_SPEC_FIELD)",
+                            f'"{{{field}:{spec}}}"')
+
+
 def _format(value: Any, spec: str, field: str, source: str) -> str:
+    if spec:
+        _check_spec(spec, field, source)
     if not spec:
         return value_text(value)
     if isinstance(value, bool):

@@ -32,7 +32,7 @@ from pathlib import Path
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
-from floatmoor.terminal_text import shown
+from floatmoor.terminal_text import MESSAGE_LIMIT, shown
 
 __all__ = ["hydro_command", "resolve_database"]
 
@@ -55,7 +55,7 @@ def hydro_command(args: argparse.Namespace) -> int:
             return _fit_state_space(args)
         return _info(args)
     except (HydroDatabaseError, BemFileError) as err:
-        print(f"floatmoor: error: {err}", file=sys.stderr)
+        print(f"floatmoor: error: {shown(err, MESSAGE_LIMIT)}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
 
@@ -521,6 +521,11 @@ def _attr(ds, name: str, limit: int = 200) -> str:
     return shown(ds.attrs[name], limit) if name in ds.attrs else "not recorded"
 
 
+def _say(text: str) -> None:
+    """Print a line quoting database attributes (file text): escaped, bounded (shown)."""
+    print("\n".join(shown(line, MESSAGE_LIMIT) for line in str(text).split("\n")))
+
+
 def _seconds(ds) -> str:
     try:
         return f"{float(ds.attrs['build_seconds']):.1f}"
@@ -542,7 +547,7 @@ def _info(args: argparse.Namespace) -> int:
 
     print(f"{path}: {a('database', 80)} ({note})")
     if is_imported(ds):
-        print(_import_info(ds))
+        _say(_import_info(ds))
     else:
         print(f"  source: capytaine ('floatmoor hydro build' of {a('case_file')}), "
               f"capytaine {a('capytaine_version', 40)}, floatmoor {a('floatmoor_version', 40)}"
@@ -557,17 +562,17 @@ def _info(args: argparse.Namespace) -> int:
     print(f"  {len(omega)} frequencies {omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf: {a_inf}")
     if has_excitation(ds):
         held = [v for v in EXCITATION_VARIABLES if v in ds.variables]
-        print(f"  excitation: {', '.join(held)}; directions "
+        _say(f"  excitation: {', '.join(held)}; directions "
               f"{', '.join(f'{d:g}' for d in np.degrees(ds['wave_direction'].values))} deg")
     else:
-        print(f"  excitation: none (from {database_source(ds)} files without it): a run with "
+        _say(f"  excitation: none (from {database_source(ds)} files without it): a run with "
               "waves refuses this database; still water and wind only run")
     print(f"  water depth {a('water_depth', 40)} m (BEM: {a('bem_water_depth', 40)}), density "
           f"{a('water_density', 40)} kg/m^3, g {a('gravity', 40)} m/s^2")
     print(f"  displaced volume {float(ds['disp_volume']):.6g} m^3, waterplane "
           f"{float(ds['waterplane_area']):.6g} m^2, rotation centre "
           f"{', '.join(f'{v:g}' for v in ds['rotation_center'].values)} m")
-    print(_state_space_info(ds))
+    _say(_state_space_info(ds))
     return EXIT_OK
 
 

@@ -17,6 +17,10 @@ PLY, OFF, VTK, VTU, Gmsh ``msh``; triangles and quads). Then, in this order:
    z = -lid_depth with panels of about ``[hydro] panel_size`` (for a mesh hull the lid's panel
    edge), generated on the full hull and cut to the kept symmetry.
 
+Before any reader runs, the panel and vertex counts the file declares (:func:`claimed_counts`)
+are held to :data:`MAX_FILE_PANELS` and :data:`MAX_FILE_VERTICES`, so that a large or forged
+header cannot make a reader allocate tens of GiB.
+
 The result is the :class:`~floatmoor.hydro.hull_mesh.HullMesh` the parametric kinds give, so
 the BEM and the database code need no special case. A file that cannot be read, holds no
 panels, non-finite vertices, nothing below the waterline, panels below the seabed, or more
@@ -31,6 +35,9 @@ import contextlib
 import io
 import logging
 import math
+import mmap
+import re
+import struct
 import warnings
 from dataclasses import asdict, dataclass
 
@@ -44,7 +51,8 @@ from floatmoor.io.bem_data import BemFileError
 from floatmoor.terminal_text import shown
 
 __all__ = ["MeshFileInfo", "mesh_from_file", "read_mesh_file", "NATIVE_FORMATS",
-           "MESHIO_FORMATS", "CAPYTAINE_PLANES"]
+           "MESHIO_FORMATS", "CAPYTAINE_PLANES", "MAX_FILE_PANELS", "MAX_FILE_VERTICES",
+           "claimed_counts"]
 
 #: Formats capytaine reads itself (they may carry symmetry flags).
 NATIVE_FORMATS = ("gdf", "mar", "nemoh", "pnl", "hst")
@@ -56,6 +64,14 @@ CAPYTAINE_PLANES = {"xz": "xOz", "yz": "yOz"}
 #: meshio cell types that are not surface panels and are skipped (points, lines, volumes).
 _SKIPPED_CELLS = {"vertex", "line", "line3", "tetra", "tetra10", "hexahedron", "hexahedron20",
                   "wedge", "pyramid"}
+#: Most panels a mesh file may hold, wet and dry, checked from its header (or a count of its
+#: panel records) before any reader allocates: the immersed bound MAX_BEM_PANELS applies
+#: after clipping and mirroring, and a file holding the dry hull too, or a quarter that is
+#: mirrored, still fits in 4 times it. capytaine's dense BEM needs 2 matrices of 16 N^2 bytes
+#: (complex doubles) for N immersed panels: 13 GB at MAX_BEM_PANELS already.
+MAX_FILE_PANELS = 4 * MAX_BEM_PANELS
+#: Most vertices a mesh file may declare: 4 per panel (unshared quads) at most.
+MAX_FILE_VERTICES = 4 * MAX_FILE_PANELS
 #: Fraction of the hull's extent within which a vertex is on a plane (as
 #: floatmoor.hydro.mesh_checks.COORDINATE_TOLERANCE, the same reasoning).
 _PLANE_TOLERANCE = 1e-6
@@ -146,6 +162,7 @@ def _read_mesh_file(path: str, fmt: str):
 
     _quiet_capytaine()
     notes: list[str] = []
+    _refuse_large_counts(path, fmt)
     try:
         if fmt in MESHIO_FORMATS:
             import meshio
@@ -183,6 +200,107 @@ def _read_mesh_file(path: str, fmt: str):
         raise BemFileError(path, "", f"a {fmt} mesh file capytaine can read",
                            f"{type(err).__name__}: {text}" if text else type(err).__name__) \
             from None
+
+
+#: Header counts by format: (what, regular expression whose last matching group is the count).
+_HEADER_COUNTS: dict[str, tuple[tuple[str, bytes], ...]] = {
+    "ply": (("vertices", rb"element[ \t]+vertex[ \t]+(\d+)"),
+            ("panels", rb"element[ \t]+face[ \t]+(\d+)")),
+    "vtk": (("vertices", rb"\nPOINTS[ \t]+(\d+)"),
+            ("panels", rb"\n(?:POLYGONS|CELLS)[ \t]+(\d+)")),
+    "vtu": (("vertices", rb'NumberOfPoints="(\d+)"'), ("panels", rb'NumberOfCells="(\d+)"')),
+    "gdf": (("panels", rb"\A(?:[^\n]*\n){3}[ \t]*(\d+)"),),
+}
+
+
+def claimed_counts(path: str, fmt: str) -> list[tuple[str, int]]:
+    """The vertex and panel counts a mesh file declares in its header (or, for the formats
+    without one, its panel records counted), read without loading the file: (what, count).
+
+    A reader sizes its arrays from these counts; a header claiming 1e9 nodes asked for tens
+    of GiB before anything was checked. Formats: binary and ASCII STL, OFF, Gmsh ``msh`` 2 and
+    4 (ASCII or binary), PLY, legacy VTK, VTU, OBJ and GDF; others are not counted."""
+    with open(path, "rb") as stream:
+        try:
+            data = mmap.mmap(stream.fileno(), 0, access=mmap.ACCESS_READ)
+        except ValueError:  # an empty file: the reader says so
+            return []
+        with data:
+            return _counts(data, fmt)
+
+
+def _counts(data: mmap.mmap, fmt: str) -> list[tuple[str, int]]:
+    size = len(data)
+    if fmt == "stl":
+        if data[:5].lower() == b"solid" and b"facet" in data[:1024]:
+            return [("panels", _occurrences(data, b"endfacet"))]
+        if size < 84:
+            return []
+        return [("panels", struct.unpack_from("<I", data, 80)[0])]  # 80-byte header, uint32
+    if fmt == "off":
+        words = re.sub(rb"#[^\n]*", b"", data[:4096]).split()
+        if words and words[0].endswith(b"OFF"):
+            numbers = [int(w) for w in words[1:3] if w.isdigit()]
+            return list(zip(("vertices", "panels"), numbers))
+        return []
+    if fmt == "obj":
+        return [("vertices", _occurrences(data, b"\nv ")), ("panels", _occurrences(data, b"\nf "))]
+    if fmt == "msh":
+        return _msh_counts(data)
+    found = []
+    for what, pattern in _HEADER_COUNTS.get(fmt, ()):
+        match = re.search(pattern, data)
+        if match:
+            found.append((what, int(match.group(1))))
+    return found
+
+
+def _occurrences(data: mmap.mmap, needle: bytes) -> int:
+    count, at = 0, data.find(needle)
+    while at >= 0:
+        count += 1
+        at = data.find(needle, at + len(needle))
+    return count
+
+
+def _msh_counts(data: mmap.mmap) -> list[tuple[str, int]]:
+    """Gmsh: the counts after ``$Nodes`` and ``$Elements`` (version 4 binary: size_t)."""
+    header = re.search(rb"\$MeshFormat\s+(\d+)(?:\.\d+)?\s+(\d)\s+(\d+)", data)
+    version, binary, width = (int(header.group(1)), header.group(2) == b"1",
+                              int(header.group(3))) if header else (2, False, 8)
+    found = []
+    for what, section in (("vertices", b"$Nodes"), ("panels", b"$Elements")):
+        at = data.find(section + b"\n")
+        if at < 0:
+            continue
+        at += len(section) + 1
+        if version >= 4 and binary and width in (4, 8):
+            if at + 2 * width <= len(data):
+                found.append((what, struct.unpack_from("<Q" if width == 8 else "<I", data,
+                                                       at + width)[0]))
+            continue
+        numbers = data[at:at + 200].split(b"\n", 1)[0].split()
+        if numbers:
+            index = 1 if version >= 4 and len(numbers) > 1 else 0
+            if numbers[index].isdigit():
+                found.append((what, int(numbers[index])))
+    return found
+
+
+def _refuse_large_counts(path: str, fmt: str) -> None:
+    """Refuse a file whose declared (or counted) panels or vertices exceed the bounds, before
+    a reader allocates for them."""
+    try:
+        counts = claimed_counts(path, fmt)
+    except OSError as err:
+        raise BemFileError(path, "", "a readable mesh file", err.strerror or str(err)) from None
+    for what, count in counts:
+        bound = MAX_FILE_PANELS if what == "panels" else MAX_FILE_VERTICES
+        if count > bound:
+            raise BemFileError(path, what, f"at most {bound} {what} in the file (floatmoor."
+                               f"hydro.mesh_file.MAX_FILE_{what.upper()}, from the "
+                               f"{MAX_BEM_PANELS} immersed panels the dense BEM's O(N^2) "
+                               "memory allows)", f"{count}")
 
 
 def _unwrap(mesh) -> tuple[object, tuple[str, ...]]:

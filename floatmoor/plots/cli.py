@@ -20,6 +20,7 @@ from typing import Any, Callable
 
 from floatmoor.errors import CaseError
 from floatmoor.signals import exit_status, signal_name
+from floatmoor.terminal_text import MESSAGE_LIMIT, shown
 
 __all__ = ["add_view_parsers", "animate_command", "vtk_command", "VIEW_COMMANDS",
            "parse_positive", "parse_every", "parse_time", "write_vtk",
@@ -123,7 +124,7 @@ def _window(args: argparse.Namespace):
 
 
 def _bad_input(err: Exception) -> int:
-    print(f"floatmoor: error: {err}", file=sys.stderr)
+    print(f"floatmoor: error: {shown(err, MESSAGE_LIMIT)}", file=sys.stderr)
     return EXIT_BAD_INPUT
 
 

@@ -12,6 +12,7 @@ import xarray as xr
 from floatmoor.case.schema import Case
 from floatmoor.post.statistics import channel_statistics
 from floatmoor.post.strength import line_strength, section_strength
+from floatmoor.terminal_text import shown
 
 __all__ = ["run_summary", "format_summary"]
 
@@ -150,7 +151,7 @@ def _section_rows(sections: dict[str, Any]) -> list[str]:
 
 def format_summary(summary: dict[str, Any]) -> str:
     """A plain-text table of :func:`run_summary`."""
-    rows = [f"{summary['title']}"]
+    rows = [shown(summary["title"])]  # the case's text: escapes shown, not obeyed
     if summary["lines"]:
         rows.extend(_line_rows(summary["lines"], summary.get("window_start_reason")))
     else:

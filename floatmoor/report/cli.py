@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from floatmoor.errors import CaseError, SolverError
+from floatmoor.terminal_text import MESSAGE_LIMIT, shown
 
 __all__ = ["add_report_parsers", "report_command", "compare_command", "REPORT_COMMANDS",
            "parse_start", "parse_nominal_diameters"]
@@ -112,7 +113,7 @@ def parse_nominal_diameters(items: list[str] | None) -> dict[str, float]:
 
 
 def _bad_input(err: Exception) -> int:
-    print(f"floatmoor: error: {err}", file=sys.stderr)
+    print(f"floatmoor: error: {shown(err, MESSAGE_LIMIT)}", file=sys.stderr)
     return EXIT_BAD_INPUT
 
 

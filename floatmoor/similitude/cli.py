@@ -22,15 +22,27 @@ from floatmoor.similitude.laws import SAME_FACTOR, ScaleLaw, froude_volume_coeff
 __all__ = ["scale_command", "law_from_arguments"]
 
 
-def _positive(text: str | None, option: str, unit: str = "-") -> float | None:
+#: Range of a scale factor (--length-scale, --diameter-scale, --volume-coefficient-ratio):
+#: model tests use 1/10 to 1/100, a prototype 10 to 100 times a model. Quantities scale with
+#: up to the fifth power of a factor (a moment of inertia: lambda^5), which for 1e308 (or for
+#: 1e150 squared by the elastic match) overflowed with a traceback; 1e6^5 = 1e30 stays finite.
+MAX_SCALE_FACTOR = 1.0e6
+
+
+def _positive(text: str | None, option: str, unit: str = "-",
+              bound: float | None = MAX_SCALE_FACTOR) -> float | None:
     if text is None:
         return None
     try:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not (math.isfinite(value) and value > 0.0):
-        raise CaseError(option, "", f"a finite number > 0 [{unit}]", f"'{text}'")
+    if bound is None:
+        if not (math.isfinite(value) and value > 0.0):
+            raise CaseError(option, "", f"a finite number > 0 [{unit}]", f"'{text}'")
+    elif not 1.0 / bound <= value <= bound:
+        raise CaseError(option, "", f"a number from {1.0 / bound:g} to {bound:g} [{unit}] "
+                        "(floatmoor.similitude.cli.MAX_SCALE_FACTOR)", f"'{text}'")
     return value
 
 
@@ -39,7 +51,7 @@ def law_from_arguments(args: argparse.Namespace, water_density: float) -> ScaleL
     length = _positive(args.length_scale, "--length-scale")
     diameter = _positive(args.diameter_scale, "--diameter-scale")
     phi = _positive(args.volume_coefficient_ratio, "--volume-coefficient-ratio")
-    rho = _positive(args.water_density, "--water-density", "kg/m^3")
+    rho = _positive(args.water_density, "--water-density", "kg/m^3", bound=None)
     assert length is not None  # required by the parser
     beta = length if diameter is None else diameter
     ratio = 1.0 if rho is None else rho / water_density

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -44,7 +44,7 @@ if TYPE_CHECKING:
     from floatmoor.simulation.coupled_run import CoupledSettings
 
 __all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "LineModel",
-           "key_origin", "start_positions"]
+           "key_origin", "start_positions", "refuse_long_runs"]
 
 LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
 _MODELS = {"quasi-static": QuasiStaticLine.from_case,
@@ -76,6 +76,21 @@ def start_positions(case: Case) -> dict[str, NDArray[np.float64]] | None:
         if not np.array_equal(position, np.asarray(point.position, dtype=float)):
             moved[point.name] = position
     return moved or None
+
+
+def refuse_long_runs(case: Case, models: Sequence[LineModel | None]) -> None:
+    """Refuse, before the first step, a dynamic line whose explicit steps over the run
+    would exceed ``MAX_DYNAMIC_STEPS`` (:meth:`DynamicLine.refuse_long_work`).
+
+    Raises
+    ------
+    CaseError
+    """
+    for model in models:
+        if isinstance(model, DynamicLine):
+            model.refuse_long_work(case.simulation.duration,
+                                   f"the run (simulation.duration {case.simulation.duration:g} s)",
+                                   case.source)
 
 
 def key_origin(case: Case, key: str) -> str:
@@ -234,7 +249,9 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
         does not accept, or has no excitation forces for the case's waves.
     """
     if case.floater is None:
-        return MooredSystem(case=case, points=case.points, line_models=build_line_models(case),
+        models = build_line_models(case)
+        refuse_long_runs(case, models)
+        return MooredSystem(case=case, points=case.points, line_models=models,
                             groups=system_groups(case, start_positions(case)))
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
@@ -265,6 +282,7 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
                        mean_force=None if rotor is None else rotor.steady_force(),
                        system_force=_system_force(case, centre))
     moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    refuse_long_runs(case, moored.models)
     moored.equilibrium_position = x_eq
     if case.floater.drag is not None:
         loads.drag = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,

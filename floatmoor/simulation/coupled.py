@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 from floatmoor.body.cummins import CumminsBody
 from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.case.schema import Case, Environment, Line, Seabed
+from floatmoor.errors import CaseError
 from floatmoor.mooring.catenary import solve_catenary
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
@@ -89,6 +90,10 @@ def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float
 
     x = np.zeros(6)
     r = residual(x)
+    if not (np.all(np.isfinite(r)) and np.all(np.isfinite(body.stiffness))):
+        raise CaseError("", "floater", "a floater whose static forces and stiffness are finite "
+                        "(weight, buoyancy, their moments and the lines' pull)",
+                        f"a static force {np.array2string(r, precision=3)} N and N m at rest")
     scale = max(float(np.abs(body.static_force).max()), float(np.abs(r).max()), 1.0)
     for _ in range(_MAX_NEWTON):
         if np.abs(r).max() <= EQUILIBRIUM_RTOL * scale:
@@ -98,6 +103,10 @@ def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float
             e = np.zeros(6)
             e[j] = _FD_STEP
             J[:, j] = (residual(x + e) - residual(x - e)) / (2.0 * _FD_STEP)
+        if not np.all(np.isfinite(J)):  # (lstsq would raise LinAlgError: SVD not converged)
+            raise CaseError("", "floater", "a floater with a static equilibrium on its lines",
+                            f"a mooring stiffness that is not finite at x = "
+                            f"{np.array2string(x, precision=3)}")
         dx = np.linalg.lstsq(J, -r, rcond=1e-10)[0]
         step = 1.0
         while True:

@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 
 from floatmoor.uq.inputs import UncertainInput, joint_distribution
 
-__all__ = ["PolynomialBasis"]
+__all__ = ["PolynomialBasis", "probe_input"]
 
 
 class PolynomialBasis:
@@ -108,3 +108,28 @@ class PolynomialBasis:
             raise ValueError(f"points of shape {x.shape}: expected (k, {self.dimension}), one "
                              f"column per uncertain input ({keys})")
         return x
+
+
+def probe_input(inp: UncertainInput, order: int) -> str | None:
+    """Why ``inp`` cannot be propagated at ``order`` in double precision, or None.
+
+    Builds what a study builds from it (its OpenTURNS distribution and polynomial family, the
+    Gauss rule of ``order + 1`` points mapped back to input values, the basis values there) and
+    requires every number to be finite: extreme but valid parameters (bounds of +-1e308, a
+    gamma shape of 1e300, beta exponents of 1e-300) otherwise fail inside OpenTURNS, or give
+    infinite nodes, only after the runs.
+    """
+    try:
+        with np.errstate(all="ignore"):
+            basis = PolynomialBasis([inp])
+            nodes, weights = basis.gauss_rule(order + 1, 0)
+            values = basis.from_measure(nodes[:, None])
+            psi = basis.design_matrix(values, basis.multi_indices(order))
+    except (TypeError, RuntimeError, ValueError, ArithmeticError) as err:  # OpenTURNS' errors
+        text = str(err).strip().splitlines()
+        return f"OpenTURNS refuses them ({text[0] if text else type(err).__name__})"
+    for name, array in (("Gauss nodes", values), ("Gauss weights", weights),
+                        ("basis values", psi)):
+        if not np.all(np.isfinite(array)):
+            return f"non-finite {name} at order {order}"
+    return None

@@ -38,6 +38,7 @@ from pathlib import Path as FilePath
 from typing import Sequence
 
 import numpy as np
+import openturns as ot
 
 from floatmoor.case.files import read_input_text
 from floatmoor.case.limits import parse_toml
@@ -48,12 +49,14 @@ from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError
 from floatmoor.io.dataset import DOFS
 from floatmoor.simulation.forced import output_times
+from floatmoor.uq.basis import probe_input
 from floatmoor.uq.inputs import DISTRIBUTIONS, UncertainInput, check_input
 from floatmoor.uq.propagate import QuadratureMethod, RegressionMethod, design
 from floatmoor.uq.taut_string import BUILTIN_MODELS, BuiltinModel
 
 __all__ = ["Study", "Quantity", "load_study", "LINE_STATISTICS", "DOF_STATISTICS", "HISTORY",
-           "MAX_RUNS", "MAX_ORDER", "DEFAULT_SURROGATE_SAMPLES", "nominal_values"]
+           "MAX_RUNS", "MAX_ORDER", "DEFAULT_SURROGATE_SAMPLES", "nominal_values", "MIN_Q_NORM",
+           "MAX_BASIS_SIZE", "MAX_SEED", "hyperbolic_basis_size"]
 
 #: The history statistic: the quantity's samples over a time window (a vector output).
 HISTORY = "history"
@@ -69,6 +72,18 @@ MAX_RUNS = 20000
 #: Highest polynomial order: Gauss rules and orthonormal polynomials lose accuracy in double
 #: precision beyond ~20, and the paper's studies converge by p = 4 to 6.
 MAX_ORDER = 20
+#: Smallest q-norm of a hyperbolic basis. At q <= log 2 / log MAX_ORDER (0.23) the set
+#: {k : ||k||_q <= p} already holds no interaction term (2^(1/q) > p): the main effects alone,
+#: so a smaller q changes nothing, and at q ~ 1e-16 k^q rounds to 1 and OpenTURNS'
+#: enumeration of the set never ends.
+MIN_Q_NORM = 0.1
+#: Most candidate polynomials of a regression basis. Least-angle regression holds the design
+#: matrix of samples x candidates (MAX_RUNS x 5000 doubles: 800 MB) and its work grows with
+#: their product; the paper's buoy study uses 21 (p = 5, d = 2). A full basis of order 20 in 5
+#: inputs already has 53 130: q_norm < 1 or a lower order keeps a large study within it.
+MAX_BASIS_SIZE = 5000
+#: Largest sampling seed: OpenTURNS' generator takes 32-bit seeds (floatmoor.uq.designs).
+MAX_SEED = 2**32 - 1
 #: Surrogate samples for densities and bands (gpc paper section 4: 3000 for every study).
 DEFAULT_SURROGATE_SAMPLES = 3000
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
@@ -156,6 +171,7 @@ def load_study(path: str | FilePath) -> Study:
                      'them)', "both case and model" if has_case else "neither")
     inputs = _inputs(root)
     method = _method(root.table("method"), len(inputs))
+    _probe_inputs(root, inputs, method.order)
     samples = root.integer("surrogate_samples", ge=100, le=1_000_000,
                            default=DEFAULT_SURROGATE_SAMPLES)
     if has_model:
@@ -222,11 +238,54 @@ def _method(t: TableReader, dimension: int) -> QuadratureMethod | RegressionMeth
                           f"{dimension} with {dimension} inputs)", f"{order} ({runs} runs)")
         t.finish()
         return QuadratureMethod(order)
-    q_norm = t.number("q_norm", unit="", gt=0.0, le=1.0)
+    q_norm = t.number("q_norm", unit="", ge=MIN_Q_NORM, le=1.0)
+    size = hyperbolic_basis_size(dimension, order, q_norm, MAX_BASIS_SIZE)
+    if size <= MAX_BASIS_SIZE:  # small enough to enumerate: OpenTURNS' own count (its strata
+        # may add a few indices at the boundary)
+        size = ot.HyperbolicAnisotropicEnumerateFunction(
+            dimension, q_norm).getBasisSizeFromTotalDegree(order)
+    if size > MAX_BASIS_SIZE:
+        raise _error(t, "order", f"an order and q_norm giving at most {MAX_BASIS_SIZE} basis "
+                     f"polynomials with {dimension} inputs (floatmoor.uq.study.MAX_BASIS_SIZE)",
+                     f"order {order} with q_norm {q_norm:g} (more than {MAX_BASIS_SIZE})")
     samples = t.integer("samples", ge=2, le=MAX_RUNS)
-    seed = t.integer("seed", ge=0)
+    seed = t.integer("seed", ge=0, le=MAX_SEED)
     t.finish()
     return RegressionMethod(order, q_norm, samples, seed)
+
+
+def _probe_inputs(root: TableReader, inputs: Sequence[UncertainInput], order: int) -> None:
+    """Each input's distribution, Gauss rule and basis must be computable (probe_input)."""
+    for i, inp in enumerate(inputs):
+        problem = probe_input(inp, order)
+        if problem:
+            raise _error(root, ("inputs", i), f"{inp.distribution} parameters whose "
+                         f"distribution, Gauss rule and basis of order {order} are finite "
+                         "in double precision", ", ".join(f"{k} = {v:g}" for k, v in
+                                                          inp.parameters.items())
+                         + f": {problem}")
+
+
+def hyperbolic_basis_size(dimension: int, order: int, q_norm: float, limit: int) -> int:
+    """The number of multi-indices k of ``dimension`` entries with ||k||_q <= ``order``
+    (sum k_j^q <= order^q), counted up to ``limit + 1`` and no further (so that the count of a
+    huge basis stops early). Counted depth first; a branch of zeros is one path, so the work
+    is about ``dimension`` x the count."""
+    budget = float(order) ** q_norm * (1.0 + 1e-12)  # the boundary belongs to the set
+    count = 0
+    stack = [(0, 0.0)]  # (entries fixed, sum of k_j^q so far)
+    while stack and count <= limit:
+        fixed, used = stack.pop()
+        if fixed == dimension:
+            count += 1
+            continue
+        stack.append((fixed + 1, used))  # k_j = 0
+        for k in range(1, order + 1):
+            total = used + float(k) ** q_norm
+            if total > budget:
+                break
+            stack.append((fixed + 1, total))
+    return count
 
 
 def _model(root: TableReader, inputs: Sequence[UncertainInput]) -> tuple[str, dict[str, float]]:

@@ -77,6 +77,19 @@ BAD = [
      "nothing (the key is missing)"),
     ("q_norm_above_one", ('kind = "quadrature"', 'kind = "regression"\nq_norm = 1.5\n'
                           'samples = 10\nseed = 1'), "method.q_norm", "<= 1", "1.5"),
+    ("q_norm_tiny", ('kind = "quadrature"', 'kind = "regression"\nq_norm = 1e-300\n'
+                     'samples = 10\nseed = 1'), "method.q_norm", ">= 0.1", "1e-300"),
+    ("seed_beyond_32_bits", ('kind = "quadrature"', 'kind = "regression"\nq_norm = 1.0\n'
+                             'samples = 10\nseed = 99999999999999999999'), "method.seed",
+     "<= 4294967295", "99999999999999999999"),
+    ("uniform_bounds_overflow", ("lower = 1.25\nupper = 3.75", "lower = -1e308\nupper = 1e308"),
+     "inputs[0]", "finite in double precision", "OpenTURNS refuses them"),
+    ("gamma_shape_huge", ('distribution = "uniform"\nlower = 1.25\nupper = 3.75',
+                          'distribution = "gamma"\nshape = 1e300\nrate = 1e-10\nlocation = 1.0'),
+     "inputs[0]", "finite in double precision", "shape = 1e+300"),
+    ("beta_exponents_tiny", ('distribution = "uniform"', 'distribution = "beta"\n'
+                             'alpha = 1e-300\nbeta = 1e-300'), "inputs[0]",
+     "finite in double precision", "alpha = 1e-300"),
     ("unknown_line", ('line = "chain"\nstatistic = "mean_cycle_max"',
                       'line = "rope"\nstatistic = "mean_cycle_max"'), "quantities[0].line",
      '"chain"', 'the string "rope"'),
@@ -207,3 +220,36 @@ def test_shipped_studies_load():
     for path in paths:
         study = load_study(path)
         assert study.quantities, path
+
+
+def test_a_regression_basis_is_bounded_before_it_is_built(tmp_path):
+    """Four inputs at order 20 ask for 10 626 candidate polynomials (more than
+    MAX_BASIS_SIZE): refused at load, before any run, naming the order."""
+    from floatmoor.uq.study import MAX_BASIS_SIZE
+
+    keys = ["normal_drag_coefficient", "tangential_drag_coefficient", "added_mass_coefficient",
+            "mass_per_length"]
+    inputs = "".join(f'[[inputs]]\nkey = "line_types.chain.{k}"\ndistribution = "uniform"\n'
+                     f"lower = 0.05\nupper = 0.1\n\n" for k in keys)
+    text = GOOD.replace(GOOD[GOOD.index("[[inputs]]"):GOOD.index("[method]")], inputs)
+    text = text.replace('kind = "quadrature"\norder = 2', 'kind = "regression"\norder = 20\n'
+                        "q_norm = 1.0\nsamples = 100\nseed = 1")
+    with pytest.raises(CaseError) as info:
+        load_study(_write(tmp_path, text))
+    assert info.value.key == "method.order"
+    assert f"at most {MAX_BASIS_SIZE} basis polynomials" in info.value.expected
+    study = load_study(_write(tmp_path, text.replace("q_norm = 1.0", "q_norm = 0.5")))
+    assert study.method.q_norm == 0.5  # a hyperbolic basis keeps the same order within it
+
+
+@pytest.mark.parametrize("dimension, order, q_norm", [(1, 5, 1.0), (2, 5, 1.0), (3, 7, 1.0),
+                                                      (6, 20, 0.1), (4, 6, 0.4)])
+def test_the_basis_count_matches_openturns(dimension, order, q_norm):
+    import openturns as ot
+
+    from floatmoor.uq.study import hyperbolic_basis_size
+
+    size = ot.HyperbolicAnisotropicEnumerateFunction(dimension, q_norm)
+    assert hyperbolic_basis_size(dimension, order, q_norm, 10_000) == \
+        size.getBasisSizeFromTotalDegree(order)
+    assert hyperbolic_basis_size(50, 20, 1.0, 100) == 101  # stops past the limit

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import DynamicSettings, Environment, Line, Seabed
-from floatmoor.errors import SolverError
+from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
@@ -27,7 +27,8 @@ from floatmoor.mooring.dg.reference import ReferenceElement, reference_element
 from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["CableProperties", "DynamicLine", "DynamicLineState", "SettleReport",
-           "SETTLE_RATE_TAU", "SETTLE_CHUNK_TAU", "SETTLE_MAX_TIME_TAU", "SETTLE_TOLERANCE"]
+           "SETTLE_RATE_TAU", "SETTLE_CHUNK_TAU", "SETTLE_MAX_TIME_TAU", "SETTLE_TOLERANCE",
+           "MAX_DYNAMIC_STEPS"]
 
 #: The initial relaxation runs on the line's own time scale tau = sqrt(L / g) (L unstretched,
 #: :meth:`DynamicLine.settle_time_scale`), so that a line scaled by dynamic similitude
@@ -41,6 +42,10 @@ SETTLE_CHUNK_TAU = 0.05
 SETTLE_MAX_TIME_TAU = 11.0
 #: Relative change of the end tensions over one chunk below which the line counts as settled.
 SETTLE_TOLERANCE = 1e-6
+#: Most explicit steps of one dynamic line for its settle or a run (duration / step, estimated
+#: before the first step): the shipped cases need at most 6.4e6 (the buoy's chains, 60 s at
+#: 9.4 us); a mistyped cfl = 1e-6 asked for 4e10 steps, a run that never ends.
+MAX_DYNAMIC_STEPS = 1.0e8
 #: Settled lines remembered per process (oldest dropped first).
 _SETTLED_SIZE = 64
 _SETTLED: dict = {}
@@ -207,6 +212,20 @@ class DynamicLine(PathStepper):
                               "m/s; the axial stiffness or mass per length is out of range")
         return dt
 
+    def refuse_long_work(self, duration: float, what: str, source: str = "") -> None:
+        """Raise a CaseError at the line's ``dynamic.cfl``, with the estimate, if stepping
+        explicitly over ``duration`` [s] (``what``: "the run", ...) takes more than
+        :data:`MAX_DYNAMIC_STEPS` steps; ``source``: the case file, "" where unknown."""
+        dt = self._explicit_step()
+        if self._stepping_implicit() or duration / dt <= MAX_DYNAMIC_STEPS:
+            return  # (adaptive implicit steps: their count follows the accuracy)
+        raise CaseError(source, f"lines.{self.name}.dynamic.cfl", "numerics giving at most "
+                        f"{MAX_DYNAMIC_STEPS:.3g} explicit steps of the dynamic line "
+                        f"'{self.name}' for {what} (floatmoor.mooring.dg.line.MAX_DYNAMIC_STEPS;"
+                        " a larger cfl, fewer elements or time_integration = \"implicit\")",
+                        f"cfl {self.settings.cfl!r}: a step of {dt:.3g} s over {duration:.6g} s,"
+                        f" ~{duration / dt:.3g} steps")
+
     def settle_time_scale(self) -> float:
         """The line's own time scale tau [s] the relaxation runs on: sqrt(L / g), the
         pendulum time of the hanging line (L / c, the axial wave's travel time, without
@@ -251,6 +270,14 @@ class DynamicLine(PathStepper):
         self._settling = True  # ("auto" settles with the explicit steps: _stepping_implicit)
         integ = self.implicit if self._stepping_implicit() else None
         if integ is None:
+            try:  # the relaxation's explicit steps, estimated before the first
+                self.refuse_long_work(max_time, f"the initial settle (at most "
+                                      f"{SETTLE_MAX_TIME_TAU:g} sqrt(L / g) = {max_time:.6g} s,"
+                                      f" L = {self.properties.length:g} m, g = "
+                                      f"{self.properties.gravity:g} m/s^2)")
+            except CaseError:
+                self._settling = False
+                raise
             dt = self._explicit_step()
             chunk = max(int(math.ceil(chunk / dt)), 2) * dt
             prm = self.prm
