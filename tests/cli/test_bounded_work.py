@@ -255,13 +255,16 @@ def test_the_radiation_kernel_samples_are_bounded_before_allocation():
         info.value.expected
 
 
-def test_moordyn_import_escapes_the_deck_text_it_lists(tmp_path, capsys):
-    """The 'not mapped' list quotes the deck (an unknown option's name): escaped."""
+def test_moordyn_import_escapes_the_deck_text_it_quotes(tmp_path, capsys):
+    """A deck line with a terminal escape is refused (a text deck has no control characters:
+    floatmoor.io.moordyn.parser), and the refusal quotes it escaped, in one line."""
     deck = (REPO / "tests" / "data" / "moordyn" / "oc3_hywind_lines.txt").read_text()
     assert "writeLog" in deck
     path = tmp_path / "deck.txt"
     path.write_text(deck.replace("writeLog", "write\x1b]0;owned\x07Log"))
-    assert main(["import", "moordyn", str(path), "-o", str(tmp_path / "case.toml")]) == 0
-    out = capsys.readouterr().out
-    assert "\x1b" not in out and "\x07" not in out
-    assert "option write\\x1b]0;owned\\x07Log = 2" in out
+    assert main(["import", "moordyn", str(path), "-o", str(tmp_path / "case.toml")]) == 2
+    captured = capsys.readouterr()
+    assert "\x1b" not in captured.err and "\x07" not in captured.err
+    assert "write\\x1b]0;owned\\x07Log" in captured.err
+    assert len(captured.err.strip().splitlines()) == 1
+    assert not (tmp_path / "case.toml").exists()
