@@ -28,6 +28,7 @@ from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.hydro.state_space_file import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.system_statics import case_statics
@@ -78,19 +79,21 @@ def start_positions(case: Case) -> dict[str, NDArray[np.float64]] | None:
     return moved or None
 
 
-def refuse_long_runs(case: Case, models: Sequence[LineModel | None]) -> None:
-    """Refuse, before the first step, a dynamic line whose explicit steps over the run
-    would exceed ``MAX_DYNAMIC_STEPS`` (:meth:`DynamicLine.refuse_long_work`).
+def refuse_long_runs(case: Case, models: Sequence[LineModel | None],
+                     groups: Sequence[SystemGroup] = ()) -> None:
+    """Refuse, before the first step, a dynamic line (or a system's line with the shortest
+    step) whose explicit steps over the run would exceed ``MAX_DYNAMIC_STEPS``
+    (:meth:`DynamicLine.refuse_long_work`).
 
     Raises
     ------
     CaseError
     """
-    for model in models:
-        if isinstance(model, DynamicLine):
-            model.refuse_long_work(case.simulation.duration,
-                                   f"the run (simulation.duration {case.simulation.duration:g} s)",
-                                   case.source)
+    what = f"the run (simulation.duration {case.simulation.duration:g} s)"
+    solvers = [g.solver for g in groups if isinstance(g.solver, DynamicSystem)]
+    for model in [*models, *solvers]:
+        if isinstance(model, (DynamicLine, DynamicSystem)):
+            model.refuse_long_work(case.simulation.duration, what, case.source)
 
 
 def key_origin(case: Case, key: str) -> str:
@@ -250,9 +253,9 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     """
     if case.floater is None:
         models = build_line_models(case)
-        refuse_long_runs(case, models)
-        return MooredSystem(case=case, points=case.points, line_models=models,
-                            groups=system_groups(case, start_positions(case)))
+        groups = system_groups(case, start_positions(case))
+        refuse_long_runs(case, models, groups)
+        return MooredSystem(case=case, points=case.points, line_models=models, groups=groups)
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
     env = case.environment

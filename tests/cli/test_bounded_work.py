@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import re
 import time
 
 import pytest
@@ -187,6 +188,24 @@ def test_a_dynamic_line_step_count_is_bounded_before_it_starts(capsys, tmp_path,
     assert "lines.chain.dynamic.cfl: expected numerics giving at most " \
         f"{MAX_DYNAMIC_STEPS:.3g} explicit steps" in line
     assert what in line and "steps" in line.split("found")[-1]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_dynamic_systems_step_count_is_bounded_before_it_settles(capsys, tmp_path):
+    """The same for lines of several sections joined at points (a DG system), named by the
+    case's line whose section has the shortest step."""
+    from floatmoor.mooring.dg.line import MAX_DYNAMIC_STEPS
+
+    system = LINDAHL_CASE.parents[1] / "systems" / "three_line_clump_buoy.toml"
+    out = tmp_path / "out.nc"
+    start = time.perf_counter()
+    line = _status_2_one_line(capsys, ["run", str(system), "-o", str(out), "--quiet", "--set",
+                                       'lines.*.model="dynamic"', "--set",
+                                       "lines.*.dynamic.cfl=1e-6"])
+    assert time.perf_counter() - start < 60.0
+    assert re.search(r"lines\.line\d\.dynamic\.cfl: expected numerics giving at most "
+                     + re.escape(f"{MAX_DYNAMIC_STEPS:.3g} explicit steps"), line), line
+    assert "the system's initial settle" in line
     assert list(tmp_path.iterdir()) == []
 
 

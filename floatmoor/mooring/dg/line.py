@@ -212,14 +212,16 @@ class DynamicLine(PathStepper):
                               "m/s; the axial stiffness or mass per length is out of range")
         return dt
 
-    def refuse_long_work(self, duration: float, what: str, source: str = "") -> None:
+    def refuse_long_work(self, duration: float, what: str, source: str = "",
+                         line: str | None = None) -> None:
         """Raise a CaseError at the line's ``dynamic.cfl``, with the estimate, if stepping
         explicitly over ``duration`` [s] (``what``: "the run", ...) takes more than
-        :data:`MAX_DYNAMIC_STEPS` steps; ``source``: the case file, "" where unknown."""
+        :data:`MAX_DYNAMIC_STEPS` steps; ``source``: the case file, "" where unknown;
+        ``line``: the case's line name (default: this model's name)."""
         dt = self._explicit_step()
         if self._stepping_implicit() or duration / dt <= MAX_DYNAMIC_STEPS:
             return  # (adaptive implicit steps: their count follows the accuracy)
-        raise CaseError(source, f"lines.{self.name}.dynamic.cfl", "numerics giving at most "
+        raise CaseError(source, f"lines.{line or self.name}.dynamic.cfl", "numerics giving at most "
                         f"{MAX_DYNAMIC_STEPS:.3g} explicit steps of the dynamic line "
                         f"'{self.name}' for {what} (floatmoor.mooring.dg.line.MAX_DYNAMIC_STEPS;"
                         " a larger cfl, fewer elements or time_integration = \"implicit\")",

@@ -7,6 +7,9 @@ them from each section's catenary between its ends, settles them, and advances t
 driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
 :meth:`DynamicSystem.advance` once per rigid-body step. Its sections, points and starting
 shape are :mod:`floatmoor.mooring.dg.system_parts`.
+
+Size: the joined sections' layout, settle, stepping and records around one set of kernels
+(_system_kernels.py); split further, each part would need the whole layout.
 """
 
 from __future__ import annotations
@@ -214,6 +217,11 @@ class DynamicSystem:
             return math.sqrt(L / g)
         return L / min(sec.properties.wave_speed for sec in self.sections)
 
+    def refuse_long_work(self, duration: float, what: str, source: str = "") -> None:
+        """:meth:`DynamicLine.refuse_long_work` of the section with the shortest step."""
+        j = min(range(len(self.lines)), key=lambda k: self.lines[k].time_step)
+        self.lines[j].refuse_long_work(duration, what, source, self.sections[j].line)
+
     def settle(self, rate: float | None = None, tolerance: float = SETTLE_TOLERANCE,
                max_time: float | None = None) -> SettleReport:
         """Relax the system to the static equilibrium of its discretisation, body points held.
@@ -240,6 +248,7 @@ class DynamicSystem:
         max_time = max_tau * tau if max_time is None else max_time
         if not (rate >= 0.0 and tolerance > 0.0 and max_time > 0.0):
             raise ValueError("settle needs a rate >= 0 and a positive tolerance and max_time")
+        self.refuse_long_work(max_time, f"the system's initial settle (at most {max_time:.6g} s)")
         start = self.time
         n = max(int(math.ceil(chunk_tau * tau / self.time_step)), 2)
         sub = max(int(round(KINETIC_CHUNK_TAU * tau / self.time_step)), 1) if kinetic else n
