@@ -17,6 +17,9 @@ WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prin
 table (exit 1 when a check fails; the database is written, as by ``build``). A file that
 cannot be read, a bad or missing option, or an existing output without ``--force`` is exit 2
 with one line, and nothing is written. ``hydro info`` says where a database came from.
+
+Size: the five ``hydro`` subcommands share the option parsing, the output checks and the
+checks table; split, each would import the others.
 """
 
 from __future__ import annotations
