@@ -49,6 +49,16 @@ from floatmoor.errors import CaseError, FloatmoorError, SolverError
 from floatmoor.signals import exit_status, interrupt_handling, signal_name
 
 #: What a Ctrl-C before a command has started says (status 130).
+#: ``hydro import --yaw-deg`` (the importer's note says the same of the angle applied,
+#: floatmoor.hydro.importing.yaw_note).
+YAW_HELP = ("the angle [deg] the WAMIT/BEMIO body frame is turned about z into the case's "
+            "frame, positive counter-clockwise seen from above (+x towards +y): the file's "
+            "+x axis points along (cos DEG, sin DEG) of the case; every coefficient turns "
+            "with it, and a wave the file computed at heading BETA (travelling towards BETA) "
+            "is the case's wave travelling towards BETA + DEG (waves.direction_deg). "
+            "Example: --yaw-deg 180 for a hull with an offset column on the file's -x that "
+            "the case puts on +x; the file's heading 0 is then the case's direction_deg = "
+            "180 (waves from +x). Default 0")
 STARTUP_INTERRUPTED = "floatmoor: interrupted while starting; nothing was run or written"
 try:  # the numerical libraries load here: a Ctrl-C during it gets one line, no traceback
     from floatmoor.case.load import load_case
@@ -168,27 +178,35 @@ def _parser() -> argparse.ArgumentParser:
     hbuild.add_argument("-o", "--output", metavar="PATH.nc",
                         help="database file (default: hydrodb/NAME.nc of the case)")
     hbuild.add_argument("--quiet", action="store_true", help="no progress reports")
-    himport = hsub.add_parser("import", help="make a database from WAMIT (.1 .3 .hst .3fk "
-                              ".3sc) or WEC-Sim BEMIO (.h5) files, and check it")
+    himport = hsub.add_parser(
+        "import", help="make a database from WAMIT (.1 .3 .hst .3fk .3sc .out) or WEC-Sim "
+        "BEMIO (.h5) files, and check it",
+        description="WAMIT needs the .1 (added mass, damping) and .hst (hydrostatic "
+        "stiffness); a .3 gives the wave excitation; the run's .out states the gravity, ULEN, "
+        "water depth, displaced volume and centre of buoyancy, which otherwise are options. "
+        "Everything missing is listed at once.")
     himport.add_argument("files", nargs="+", metavar="FILE", help="the BEM result files")
     himport.add_argument("-o", "--output", metavar="PATH.nc", required=True,
-                         help="database file (a case names hydrodb/NAME.nc as NAME)")
+                         help="database file; a case names it by its path relative to the "
+                         "case file ([hydro] database, source = \"imported\")")
     himport.add_argument("--water-density", metavar="RHO", help="[kg/m^3] (WAMIT: required)")
-    himport.add_argument("--gravity", metavar="G", help="[m/s^2] (WAMIT: required)")
-    himport.add_argument("--length-scale", metavar="ULEN", help="WAMIT's ULEN [m] (default 1)")
+    himport.add_argument("--gravity", metavar="G",
+                         help="[m/s^2] (WAMIT: required unless a .out is given)")
+    himport.add_argument("--length-scale", metavar="ULEN", help="WAMIT's ULEN [m] (default: "
+                         "the .out's, else 1)")
     himport.add_argument("--water-depth", metavar="DEPTH",
-                         help="the BEM's water depth [m] or 'infinite' (WAMIT: required)")
+                         help="the BEM's water depth [m] or 'infinite' (WAMIT: required "
+                         "unless a .out is given)")
     himport.add_argument("--reference-point", nargs=3, metavar=("X", "Y", "Z"),
                          help="where the file's reference point (WAMIT: its origin) lies: the "
                          "case's floater.reference_point [m] (default 0 0 0)")
     himport.add_argument("--displaced-volume", metavar="V",
-                         help="[m^3] (WAMIT: required, its files do not give it)")
+                         help="[m^3] (WAMIT: required unless a .out is given)")
     himport.add_argument("--centre-of-buoyancy", nargs=3, metavar=("X", "Y", "Z"),
-                         help="[m], case coordinates (WAMIT: required)")
+                         help="[m], case coordinates (WAMIT: required unless a .out is given)")
     himport.add_argument("--body", metavar="N", help="BEMIO: the body (1-based) of a "
                          "multi-body file")
-    himport.add_argument("--yaw-deg", metavar="DEG", help="rotation of the file's body frame "
-                         "about z into the case's [deg] (default 0)")
+    himport.add_argument("--yaw-deg", metavar="DEG", help=YAW_HELP)
     himport.add_argument("--force", action="store_true", help="overwrite an existing file")
     hcheck = hsub.add_parser("check", help="run the database checks")
     hcheck.add_argument("database", metavar="NAME_OR_PATH",

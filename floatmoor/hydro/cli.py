@@ -234,10 +234,11 @@ def _import(args: argparse.Namespace) -> int:
     print(f"{output}: imported from {ds.attrs['source']} files, {len(omega)} frequencies "
           f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf {ds.attrs['added_mass_infinite_source']}"
           f"; excitation: {ds.attrs['excitation']}")
-    from floatmoor.hydro.importing import RUN_SUMMARY_NOTE
+    from floatmoor.hydro.importing import RUN_SUMMARY_NOTE, YAW_NOTE
 
     for note in json.loads(ds.attrs["import_notes_json"]):
-        if note.startswith(RUN_SUMMARY_NOTE):  # values the options did not give
+        # values the options did not give, and the orientation
+        if note.startswith((RUN_SUMMARY_NOTE, YAW_NOTE)):
             print(f"  {note}")
     print(_checks_table(output, ds, "as imported", results))
     if failed:
