@@ -371,7 +371,7 @@ def _check_mesh(case: Case) -> list[str]:
     so that ``check`` refuses what the build would refuse without solving
     (:class:`floatmoor.io.bem_data.BemFileError`); the build's summary of the mesh."""
     if case.floater is None or case.hydro is None or case.hydro.source != "bem" \
-            or case.floater.geometry.kind != "mesh":
+            or case.floater.geometry is None or case.floater.geometry.kind != "mesh":
         return []
     from floatmoor.hydro.build import checked_mesh
     from floatmoor.hydro.mesh_checks import summary_lines
@@ -481,12 +481,16 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     if case.floater is not None:
         fl = case.floater
         geo = fl.geometry
-        kind = (f"mesh {geo.file} ({geo.format}, {geo.length_unit}, SHA-256 {geo.sha256[:12]}, "
-                f"symmetry {', '.join(geo.symmetry) or 'none'}, {len(geo.columns)} Morison "
-                f"columns, {len(geo.members)} members)") if geo.kind == "mesh" else geo.kind
+        if geo is None:
+            kind = "no hull geometry (hydrostatics from the imported database)"
+        else:
+            kind = (f"mesh {geo.file} ({geo.format}, {geo.length_unit}, SHA-256 "
+                    f"{geo.sha256[:12]}, symmetry {', '.join(geo.symmetry) or 'none'}, "
+                    f"{len(geo.columns)} Morison columns, {len(geo.members)} members)") \
+                if geo.kind == "mesh" else geo.kind
         rows.append(f"  floater: {fl.name}, {kind}, mass {fl.mass:.6g} kg, centre of "
                     f"mass z = {fl.centre_of_mass[2]:.6g} m"
-                    + (f", draft {fl.geometry.draft:.6g} m" if fl.geometry.kind == "cylinder"
+                    + (f", draft {geo.draft:.6g} m" if geo is not None and geo.kind == "cylinder"
                        else "") + f", radiation {fl.radiation}")
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
@@ -494,7 +498,9 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         built = (f"{len(case.hydro.frequencies)} frequencies, {len(case.hydro.directions)} "
                  "directions" if case.hydro.source == "bem" else "imported (floatmoor hydro "
                  "import)")
-        rows.append(f"  hydro: database {case.hydro.database}, {built}"
+        from floatmoor.hydro.database import database_path
+
+        rows.append(f"  hydro: database {case.hydro.database} ({database_path(case)}), {built}"
                     + (f"; accepts failed checks: {', '.join(accepted)}" if accepted else ""))
         if case.hydro.source == "bem" and case.floater is not None:
             from floatmoor.hydro.checks import haskind_requirement

@@ -126,8 +126,10 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     motion = _motion(root.table("motion"), base_dir or FilePath("."), simulation) \
         if root.has("motion") else None
     campaign = _campaign(root.table("campaign")) if root.has("campaign") else None
-    floater = read_floater(root.table("floater"), environment, base_dir) if has_floater \
-        else None
+    hydro_raw = raw.get("hydro")
+    imported = isinstance(hydro_raw, dict) and hydro_raw.get("source") == "imported"
+    floater = read_floater(root.table("floater"), environment, base_dir,
+                           imported=imported) if has_floater else None
     if root.has("hydro") and not has_floater:
         raise root.error("hydro", "a [floater] table for the [hydro] settings to apply to",
                          {})
