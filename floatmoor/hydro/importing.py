@@ -30,6 +30,9 @@ What the files lack and the layout needs:
 T = blockdiag(R, R) (exact), an excitation vector T X and its wave direction beta + yaw
 (the set moved by whole turns so that it starts in [-180, 180) degrees: 0-180 deg turned by
 180 deg is -180-0 deg; the excitation interpolation takes directions modulo 360 deg).
+
+Size: reading the options against the files, labelling, the yaw and the derived A_inf are one
+import's steps sharing its options and notes; split, each would import the others.
 """
 
 from __future__ import annotations
