@@ -271,3 +271,16 @@ def test_a_floater_without_geometry_moves_as_the_one_with_it_when_drag_is_off(tm
         assert float(a["body_displacement"].isel(time=-1, dof=0)) < 16.58  # it moved
         for name in ("body_displacement", "fairlead_tension"):
             assert np.array_equal(a[name].values, b[name].values), name
+
+
+def test_a_campaign_bundle_carries_an_imported_database_named_by_path(tmp_path):
+    """The bundle a cluster campaign ships holds the database named by path under its file
+    name, and the workers' copy of the case finds it there."""
+    from floatmoor.campaign.bundle import load_bundled_case, make_bundle, materialise
+
+    case = load_case(NO_GEOMETRY_CASE)
+    bundle, blobs = make_bundle([case])
+    folder = materialise(bundle, blobs, tmp_path / "worker")
+    bundled, database = load_bundled_case(bundle, folder, [])
+    assert bundled.floater.geometry is None and database.name == "deepcwind_wamit.nc"
+    assert database.read_bytes() == (REPO / "hydrodb" / "deepcwind_wamit.nc").read_bytes()
