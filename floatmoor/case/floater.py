@@ -294,14 +294,14 @@ def read_hydro(t: TableReader) -> HydroSettings:
                           "'-', '_' and '.') or the path of the .nc file 'floatmoor hydro "
                           "import' made, relative to the case file's folder", database)
         return _imported_hydro(t, database)
-    if not _is_name(database):
-        raise t.error("database", "a file name of letters, digits, '-', '_' and '.' (a path "
-                      "to a .nc file only with source = \"imported\")", database)
     if not t.has("source") and not any(t.has(key) for key in BEM_BUILD_KEYS):
         raise t.error("source", 'source = "imported" for a database made by \'floatmoor '
                       'hydro import\' (probably missing: [hydro] gives no BEM build key), or '
                       "the BEM build keys (frequency_ranges or frequencies, directions_deg, "
                       "panel_size) for 'floatmoor hydro build'", MISSING)
+    if not _is_name(database):
+        raise t.error("database", "a file name of letters, digits, '-', '_' and '.' (a path "
+                      "to a .nc file only with source = \"imported\")", database)
     omegas: list[float] = []
     if t.has("frequency_ranges"):
         ranges = t.claim("frequency_ranges", "array of [first, last, count]", unit="rad/s",

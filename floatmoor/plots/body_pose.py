@@ -38,7 +38,8 @@ class BodyModel:
     Attributes
     ----------
     surface
-        The floater's panels at rest, or None for a forced-motion run (points only).
+        The floater's panels at rest, or None for a forced-motion run or a floater without
+        [floater.geometry] (points only).
     centre
         The rotation centre at rest c0 [m].
     offset

@@ -253,6 +253,9 @@ def test_a_hydro_table_without_source_or_build_keys_says_source_imported_is_miss
     assert info.value.expected.startswith('source = "imported" for a database made by '
                                           "'floatmoor hydro import' (probably missing")
     assert "frequency ranges" not in str(info.value)
+    with pytest.raises(CaseError) as info:  # said first, even without a hull
+        load_case(NO_GEOMETRY_CASE, ['hydro={database = "../../../hydrodb/deepcwind_wamit.nc"}'])
+    assert info.value.key == "hydro.source"
 
 
 def test_a_floater_without_geometry_moves_as_the_one_with_it_when_drag_is_off(tmp_path):
@@ -271,6 +274,10 @@ def test_a_floater_without_geometry_moves_as_the_one_with_it_when_drag_is_off(tm
         assert float(a["body_displacement"].isel(time=-1, dof=0)) < 16.58  # it moved
         for name in ("body_displacement", "fairlead_tension"):
             assert np.array_equal(a[name].values, b[name].values), name
+        from floatmoor.plots.body_pose import body_model
+
+        model = body_model(load_case(NO_GEOMETRY_CASE), a)  # the views: fairleads, no hull
+        assert model is not None and model.surface is None and len(model.points) == 3
 
 
 def test_a_campaign_bundle_carries_an_imported_database_named_by_path(tmp_path):
