@@ -12,11 +12,12 @@ inspected (``hydro check``, ``hydro info``); the build then exits with 1, and a 
 the database unless its case accepts those checks (``[hydro] accept_failed_checks``; a check
 the case accepts is shown as such and does not make the build fail).
 
-``hydro import FILE... -o PATH.nc`` makes a database from WAMIT (.1, .3, .hst, .3fk, .3sc) or
-WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prints the same
-table (exit 1 when a check fails; the database is written, as by ``build``). A file that
-cannot be read, a bad or missing option, or an existing output without ``--force`` is exit 2
-with one line, and nothing is written. ``hydro info`` says where a database came from.
+``hydro import FILE... -o PATH.nc`` makes a database from WAMIT (.1, .3, .hst, .3fk, .3sc,
+.out) or WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prints the
+same table (exit 1 when a check fails; the database is written, as by ``build``), the values
+taken from a WAMIT .out and the orientation applied (``--yaw-deg``). A file that cannot be
+read, a bad option, everything missing (all listed in one line), or an existing output without
+``--force`` is exit 2 with one line, and nothing is written. ``hydro info`` says where a database came from.
 
 Size: the five ``hydro`` subcommands share the option parsing, the output checks and the
 checks table; split, each would import the others.
