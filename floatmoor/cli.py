@@ -52,6 +52,16 @@ from floatmoor.signals import exit_status, interrupt_handling, signal_name
 from floatmoor.terminal_text import MESSAGE_LIMIT, shown
 
 #: What a Ctrl-C before a command has started says (status 130).
+#: ``hydro import --yaw-deg`` (the importer's note says the same of the angle applied,
+#: floatmoor.hydro.importing.yaw_note).
+YAW_HELP = ("the angle [deg] the WAMIT/BEMIO body frame is turned about z into the case's "
+            "frame, positive counter-clockwise seen from above (+x towards +y): the file's "
+            "+x axis points along (cos DEG, sin DEG) of the case; every coefficient turns "
+            "with it, and a wave the file computed at heading BETA (travelling towards BETA) "
+            "is the case's wave travelling towards BETA + DEG (waves.direction_deg). "
+            "Example: --yaw-deg 180 for a hull with an offset column on the file's -x that "
+            "the case puts on +x; the file's heading 0 is then the case's direction_deg = "
+            "180 (waves from +x). Default 0")
 STARTUP_INTERRUPTED = "floatmoor: interrupted while starting; nothing was run or written"
 try:  # the numerical libraries load here: a Ctrl-C during it gets one line, no traceback
     from floatmoor.case.load import load_case
@@ -174,27 +184,35 @@ def _parser() -> argparse.ArgumentParser:
     hbuild.add_argument("-o", "--output", metavar="PATH.nc",
                         help="database file (default: hydrodb/NAME.nc of the case)")
     hbuild.add_argument("--quiet", action="store_true", help="no progress reports")
-    himport = hsub.add_parser("import", help="make a database from WAMIT (.1 .3 .hst .3fk "
-                              ".3sc) or WEC-Sim BEMIO (.h5) files, and check it")
+    himport = hsub.add_parser(
+        "import", help="make a database from WAMIT (.1 .3 .hst .3fk .3sc .out) or WEC-Sim "
+        "BEMIO (.h5) files, and check it",
+        description="WAMIT needs the .1 (added mass, damping) and .hst (hydrostatic "
+        "stiffness); a .3 gives the wave excitation; the run's .out states the gravity, ULEN, "
+        "water depth, displaced volume and centre of buoyancy, which otherwise are options. "
+        "Everything missing is listed at once.")
     himport.add_argument("files", nargs="+", metavar="FILE", help="the BEM result files")
     himport.add_argument("-o", "--output", metavar="PATH.nc", required=True,
-                         help="database file (a case names hydrodb/NAME.nc as NAME)")
+                         help="database file; a case names it by its path relative to the "
+                         "case file ([hydro] database, source = \"imported\")")
     himport.add_argument("--water-density", metavar="RHO", help="[kg/m^3] (WAMIT: required)")
-    himport.add_argument("--gravity", metavar="G", help="[m/s^2] (WAMIT: required)")
-    himport.add_argument("--length-scale", metavar="ULEN", help="WAMIT's ULEN [m] (default 1)")
+    himport.add_argument("--gravity", metavar="G",
+                         help="[m/s^2] (WAMIT: required unless a .out is given)")
+    himport.add_argument("--length-scale", metavar="ULEN", help="WAMIT's ULEN [m] (default: "
+                         "the .out's, else 1)")
     himport.add_argument("--water-depth", metavar="DEPTH",
-                         help="the BEM's water depth [m] or 'infinite' (WAMIT: required)")
+                         help="the BEM's water depth [m] or 'infinite' (WAMIT: required "
+                         "unless a .out is given)")
     himport.add_argument("--reference-point", nargs=3, metavar=("X", "Y", "Z"),
                          help="where the file's reference point (WAMIT: its origin) lies: the "
                          "case's floater.reference_point [m] (default 0 0 0)")
     himport.add_argument("--displaced-volume", metavar="V",
-                         help="[m^3] (WAMIT: required, its files do not give it)")
+                         help="[m^3] (WAMIT: required unless a .out is given)")
     himport.add_argument("--centre-of-buoyancy", nargs=3, metavar=("X", "Y", "Z"),
-                         help="[m], case coordinates (WAMIT: required)")
+                         help="[m], case coordinates (WAMIT: required unless a .out is given)")
     himport.add_argument("--body", metavar="N", help="BEMIO: the body (1-based) of a "
                          "multi-body file")
-    himport.add_argument("--yaw-deg", metavar="DEG", help="rotation of the file's body frame "
-                         "about z into the case's [deg] (default 0)")
+    himport.add_argument("--yaw-deg", metavar="DEG", help=YAW_HELP)
     himport.add_argument("--force", action="store_true", help="overwrite an existing file")
     hcheck = hsub.add_parser("check", help="run the database checks")
     hcheck.add_argument("database", metavar="NAME_OR_PATH",
@@ -370,7 +388,7 @@ def _check_mesh(case: Case) -> list[str]:
     so that ``check`` refuses what the build would refuse without solving
     (:class:`floatmoor.io.bem_data.BemFileError`); the build's summary of the mesh."""
     if case.floater is None or case.hydro is None or case.hydro.source != "bem" \
-            or case.floater.geometry.kind != "mesh":
+            or case.floater.geometry is None or case.floater.geometry.kind != "mesh":
         return []
     from floatmoor.hydro.build import checked_mesh
     from floatmoor.hydro.mesh_checks import summary_lines
@@ -480,12 +498,16 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     if case.floater is not None:
         fl = case.floater
         geo = fl.geometry
-        kind = (f"mesh {geo.file} ({geo.format}, {geo.length_unit}, SHA-256 {geo.sha256[:12]}, "
-                f"symmetry {', '.join(geo.symmetry) or 'none'}, {len(geo.columns)} Morison "
-                f"columns, {len(geo.members)} members)") if geo.kind == "mesh" else geo.kind
+        if geo is None:
+            kind = "no hull geometry (hydrostatics from the imported database)"
+        else:
+            kind = (f"mesh {geo.file} ({geo.format}, {geo.length_unit}, SHA-256 "
+                    f"{geo.sha256[:12]}, symmetry {', '.join(geo.symmetry) or 'none'}, "
+                    f"{len(geo.columns)} Morison columns, {len(geo.members)} members)") \
+                if geo.kind == "mesh" else geo.kind
         rows.append(f"  floater: {fl.name}, {kind}, mass {fl.mass:.6g} kg, centre of "
                     f"mass z = {fl.centre_of_mass[2]:.6g} m"
-                    + (f", draft {fl.geometry.draft:.6g} m" if fl.geometry.kind == "cylinder"
+                    + (f", draft {geo.draft:.6g} m" if geo is not None and geo.kind == "cylinder"
                        else "") + f", radiation {fl.radiation}")
         rows.append("  (line fairleads: body-fixed points at rest)")
     if case.hydro is not None:
@@ -493,7 +515,9 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
         built = (f"{len(case.hydro.frequencies)} frequencies, {len(case.hydro.directions)} "
                  "directions" if case.hydro.source == "bem" else "imported (floatmoor hydro "
                  "import)")
-        rows.append(f"  hydro: database {case.hydro.database}, {built}"
+        from floatmoor.hydro.database import database_path
+
+        rows.append(f"  hydro: database {case.hydro.database} ({database_path(case)}), {built}"
                     + (f"; accepts failed checks: {', '.join(accepted)}" if accepted else ""))
         if case.hydro.source == "bem" and case.floater is not None:
             from floatmoor.hydro.checks import haskind_requirement

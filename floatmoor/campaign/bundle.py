@@ -86,7 +86,7 @@ def _written_name(case: Case, keys: Sequence[str]) -> str:
 
 def _case_files(case: Case) -> dict[str, Path]:
     """Bundle-relative path -> the client's file, of every file ``case`` reads."""
-    from floatmoor.hydro.database import database_path
+    from floatmoor.hydro.database import database_file_name, database_path
 
     named: list[tuple[str, str]] = []  # (name as written, resolved path)
     if isinstance(case.motion, (TableMotion, BodyTableMotion)):
@@ -97,7 +97,7 @@ def _case_files(case: Case) -> dict[str, Path]:
         named.append((geometry.file, geometry.path))
     files = {_inside(CASE_FOLDER, name): Path(path) for name, path in named}
     if case.floater is not None and case.hydro is not None:
-        files[_inside(DATABASE_FOLDER, f"{case.hydro.database}.nc")] = database_path(case)
+        files[_inside(DATABASE_FOLDER, database_file_name(case.hydro))] = database_path(case)
     return files
 
 
@@ -204,5 +204,7 @@ def load_bundled_case(bundle: RunBundle, folder: Path, overrides: Sequence[str]
                       overrides=tuple(overrides), base_dir=folder / CASE_FOLDER)
     database = None
     if case.floater is not None and case.hydro is not None:
-        database = folder / _inside(DATABASE_FOLDER, f"{case.hydro.database}.nc")
+        from floatmoor.hydro.database import database_file_name
+
+        database = folder / _inside(DATABASE_FOLDER, database_file_name(case.hydro))
     return case, database

@@ -24,7 +24,12 @@ of K(t), ``floatmoor hydro fit-state-space``), and ``[floater.geometry]``:
   and be readable, and hashed (SHA-256), here; it is parsed when the database is built
   (floatmoor.hydro.mesh_file). ``[floater.drag]`` needs columns or members.
 
-``[hydro]``: ``database`` (name of ``hydrodb/NAME.nc``), the frequencies as
+Without ``[floater.geometry]`` (allowed only when ``[hydro] source = "imported"``) the floater
+is its mass properties and its imported database: the hydrostatics come from the database,
+nothing is checked against a hull, there is no ``[floater.drag]`` and the views draw no hull.
+
+``[hydro]``: ``database`` (name of ``hydrodb/NAME.nc``; with ``source = "imported"`` also
+a path to the ``.nc``, see :func:`floatmoor.hydro.database.database_path`), the frequencies as
 ``frequency_ranges = [[first, last, count], ...]`` [rad/s] and/or ``frequencies = [...]``
 [rad/s], ``directions_deg`` [deg], ``panel_size`` [m], and optionally ``lid`` (default true),
 ``lid_depth`` [m] (default: wavenumber x depth = 0.15 at the top frequency), ``symmetry``
@@ -55,7 +60,8 @@ from floatmoor.case.schema import (
 )
 from floatmoor.file_hash import file_sha256
 
-__all__ = ["read_floater", "read_hydro", "check_panel_size", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS"]
+__all__ = ["read_floater", "read_hydro", "check_panel_size", "MAX_FREQUENCIES", "IMPORTED_HYDRO_KEYS",
+           "BEM_BUILD_KEYS", "is_database_path"]
 
 #: More frequencies than this is a typing error rather than a plan (a 400-frequency buoy
 #: database took 84 s with capytaine 3.0 on one core).
@@ -63,9 +69,11 @@ MAX_FREQUENCIES = 2000
 
 
 def read_floater(t: TableReader, environment: Environment,
-                 base_dir: Path | None = None) -> Floater:
+                 base_dir: Path | None = None, *, imported: bool = False) -> Floater:
     """Read ``[floater]``; files it names (a hull mesh) are found in ``base_dir``, the case
-    file's folder (default the current folder)."""
+    file's folder (default the current folder). ``imported``: the case's database is
+    imported (``[hydro] source = "imported"``), so ``[floater.geometry]`` is optional (a
+    drag model still needs its members)."""
     name = t.name()
     mass = t.number("mass", unit="kg", gt=0.0)
     com = t.vector("centre_of_mass", size=3, unit="m")
@@ -89,9 +97,14 @@ def read_floater(t: TableReader, environment: Environment,
                       "about the reference point are finite in double precision",
                       mass if key == "mass" else list(com))
     radiation = t.string("radiation", choices=RADIATION_METHODS, default="convolution")
-    geometry = _geometry(t.table("geometry"), mass, environment, base_dir or Path("."))
+    geometry = _geometry(t.table("geometry"), mass, environment, base_dir or Path(".")) \
+        if t.has("geometry") or not imported else None
     drag = _drag(t.table("drag")) if t.has("drag") else None
     t.finish()
+    if drag is not None and geometry is None:
+        raise t.error("drag", "a [floater.geometry] whose members carry the drag (a cylinder, "
+                      "or columns and members; an imported database needs no hull otherwise)",
+                      _Found("a [floater.drag] table without [floater.geometry]"))
     if drag is not None and isinstance(geometry, MeshGeometry) and not (geometry.columns
                                                                         or geometry.members):
         raise t.error("drag", "Morison elements to put the drag on: [[floater.geometry."
@@ -259,14 +272,44 @@ def _member(t: TableReader, environment: Environment) -> Member:
 IMPORTED_HYDRO_KEYS = ("database", "source", "accept_failed_checks")
 
 
+#: The keys of ``[hydro]`` that only a built database takes (a ``[hydro]`` without any of
+#: them and without ``source`` has probably forgotten ``source = "imported"``).
+BEM_BUILD_KEYS = ("frequency_ranges", "frequencies", "directions_deg", "panel_size", "lid",
+                  "lid_depth", "infinite_depth", "symmetry", "radial_panels")
+
+
+def _is_name(text: str) -> bool:
+    """A database name (``hydrodb/NAME.nc``): letters, digits, '-', '_' and '.'."""
+    return bool(text) and all(ch.isalnum() or ch in "-_." for ch in text) \
+        and not text.startswith(".")
+
+
+def is_database_path(text: str) -> bool:
+    """``[hydro] database`` names a file by path (a ``/`` in it, or ending in ``.nc``)
+    rather than ``hydrodb/NAME.nc`` by name."""
+    return "/" in text or "\\" in text or text.endswith(".nc")
+
+
 def read_hydro(t: TableReader) -> HydroSettings:
     """Read ``[hydro]``."""
     database = t.string("database")
-    if not all(ch.isalnum() or ch in "-_." for ch in database) or database.startswith("."):
-        raise t.error("database", "a file name of letters, digits, '-', '_' and '.'", database)
     source = t.string("source", choices=HYDRO_SOURCES, default="bem")
     if source == "imported":
+        if not (_is_name(database) or (is_database_path(database)
+                                       and database.endswith(".nc")
+                                       and database.isprintable())):
+            raise t.error("database", "a database name (hydrodb/NAME.nc: letters, digits, "
+                          "'-', '_' and '.') or the path of the .nc file 'floatmoor hydro "
+                          "import' made, relative to the case file's folder", database)
         return _imported_hydro(t, database)
+    if not t.has("source") and not any(t.has(key) for key in BEM_BUILD_KEYS):
+        raise t.error("source", 'source = "imported" for a database made by \'floatmoor '
+                      'hydro import\' (probably missing: [hydro] gives no BEM build key), or '
+                      "the BEM build keys (frequency_ranges or frequencies, directions_deg, "
+                      "panel_size) for 'floatmoor hydro build'", MISSING)
+    if not _is_name(database):
+        raise t.error("database", "a file name of letters, digits, '-', '_' and '.' (a path "
+                      "to a .nc file only with source = \"imported\")", database)
     omegas: list[float] = []
     if t.has("frequency_ranges"):
         ranges = t.claim("frequency_ranges", "array of [first, last, count]", unit="rad/s",

@@ -251,7 +251,10 @@ _CASE = {
     "floater.radiation": "Radiation memory: `convolution` of the retardation kernel K(t) "
                          "with the velocity history, or `state-space` (the realisation stored "
                          "in the database by `floatmoor hydro fit-state-space`).",
-    "floater.geometry": "Hull of the body, meshed for the BEM database.",
+    "floater.geometry": "Hull of the body, meshed for the BEM database; optional with "
+                        "`hydro.source = \"imported\"` (the hydrostatics come from the "
+                        "database), where it only carries `floater.drag` and the views' hull "
+                        "(guide/hydro_databases.md).",
     "floater.geometry.kind": "`cylinder`, `semisubmersible` (columns and members) or `mesh` "
                              "(a hull mesh file).",
     "floater.geometry.diameter": "Diameter of a cylinder (`cylinder`).",
@@ -310,7 +313,10 @@ _CASE = {
     "hydro": "The hydrodynamic database of the floater (`hydrodb/NAME.nc`): how `floatmoor "
              "hydro build` computes it with the BEM, or that it was imported "
              "(theory/hydrodynamics.md).",
-    "hydro.database": "Name of the database file in `hydrodb/`.",
+    "hydro.database": "Name of the database file in `hydrodb/` (`NAME` for "
+                      "`hydrodb/NAME.nc`); with `source = \"imported\"` also the path of "
+                      "the `.nc` that `floatmoor hydro import` made (a `/` in it or ending in "
+                      "`.nc`), relative to the case file's folder.",
     "hydro.source": "`bem` (built from the keys below) or `imported` (made by `floatmoor "
                     "hydro import` from WAMIT or BEMIO files; then no build keys).",
     "hydro.frequency_ranges": "BEM frequencies as [first, last, count] triples, evenly "
@@ -386,6 +392,7 @@ _CASE_DEFAULTS = {
     "motion.phase_deg": "default 0 (every axis)",
     "waves.ramp_duration": "two (peak) periods",
     "floater.drag.<coefficient>": "the preset's",
+    "floater.geometry": "required unless `hydro.source = \"imported\"`",
     "floater.geometry.draft": "from the mass",
     "floater.geometry.format": "from the file's extension",
     "floater.geometry.symmetry": "none",

@@ -18,7 +18,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
-from floatmoor.case.floater import check_panel_size, read_floater, read_hydro
+from floatmoor.case.floater import BEM_BUILD_KEYS, check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
     MAX_GRAVITY, MAX_NESTING_DEPTH, MIN_GRAVITY, check_sizes, nesting_depth, parse_toml,
 )
@@ -126,8 +126,14 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
     motion = _motion(root.table("motion"), base_dir or FilePath("."), simulation) \
         if root.has("motion") else None
     campaign = _campaign(root.table("campaign")) if root.has("campaign") else None
-    floater = read_floater(root.table("floater"), environment, base_dir) if has_floater \
-        else None
+    hydro_raw = raw.get("hydro")
+    imported = isinstance(hydro_raw, dict) and hydro_raw.get("source") == "imported"
+    if has_floater and isinstance(hydro_raw, dict) and "source" not in hydro_raw \
+            and not any(key in hydro_raw for key in BEM_BUILD_KEYS):
+        read_hydro(root.table("hydro"))  # refuses it: says source = "imported" is missing,
+        # before a floater without geometry is refused for want of a hull
+    floater = read_floater(root.table("floater"), environment, base_dir,
+                           imported=imported) if has_floater else None
     if root.has("hydro") and not has_floater:
         raise root.error("hydro", "a [floater] table for the [hydro] settings to apply to",
                          {})

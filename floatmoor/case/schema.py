@@ -502,7 +502,9 @@ class Floater:
     #: inertia tensor about the centre of mass, (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) [kg m^2]
     inertia: tuple[float, float, float, float, float, float]
     reference_point: tuple[float, float, float]  #: rotation centre of the DOFs [m]
-    geometry: FloaterGeometry
+    #: the hull (``[floater.geometry]``); None for a floater whose database is imported and
+    #: that gives none (its hydrostatics come from the database; no drag members)
+    geometry: FloaterGeometry | None
     #: Morison drag on the members (``[floater.drag]``: floatmoor.body.morison.DragSettings)
     drag: Any = None
     #: radiation memory path (one of :data:`RADIATION_METHODS`)

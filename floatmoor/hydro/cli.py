@@ -12,14 +12,15 @@ inspected (``hydro check``, ``hydro info``); the build then exits with 1, and a 
 the database unless its case accepts those checks (``[hydro] accept_failed_checks``; a check
 the case accepts is shown as such and does not make the build fail).
 
-``hydro import FILE... -o PATH.nc`` makes a database from WAMIT (.1, .3, .hst, .3fk, .3sc) or
-WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prints the same
-table (exit 1 when a check fails; the database is written, as by ``build``). A file that
-cannot be read, a bad or missing option, or an existing output without ``--force`` is exit 2
-with one line, and nothing is written. ``hydro info`` says where a database came from.
+``hydro import FILE... -o PATH.nc`` makes a database from WAMIT (.1, .3, .hst, .3fk, .3sc,
+.out) or WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prints the
+same table (exit 1 when a check fails; the database is written, as by ``build``), the values
+taken from a WAMIT .out and the orientation applied (``--yaw-deg``). A file that cannot be
+read, a bad option, everything missing (all listed in one line), or an existing output without
+``--force`` is exit 2 with one line, and nothing is written. ``hydro info`` says where a database came from.
 
-Size: the five ``hydro`` subcommands with their option checks, which must all be one-line
-errors before any work; their shared printing of check tables lives here too.
+Size: the five ``hydro`` subcommands share the option parsing, the output checks and the
+checks table; split, each would import the others.
 """
 
 from __future__ import annotations
@@ -234,10 +235,11 @@ def _import(args: argparse.Namespace) -> int:
     print(f"{output}: imported from {ds.attrs['source']} files, {len(omega)} frequencies "
           f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s; A_inf {ds.attrs['added_mass_infinite_source']}"
           f"; excitation: {ds.attrs['excitation']}")
-    from floatmoor.hydro.importing import RUN_SUMMARY_NOTE
+    from floatmoor.hydro.importing import RUN_SUMMARY_NOTE, YAW_NOTE
 
     for note in json.loads(ds.attrs["import_notes_json"]):
-        if note.startswith(RUN_SUMMARY_NOTE):  # values the options did not give
+        # values the options did not give, and the orientation
+        if note.startswith((RUN_SUMMARY_NOTE, YAW_NOTE)):
             print(f"  {note}")
     print(_checks_table(output, ds, "as imported", results))
     if failed:

@@ -76,7 +76,7 @@ __all__ = [
     "is_imported", "has_excitation", "labelled_variable", "database_coords", "stale_keys",
     "stale_message", "source_mismatch", "file_sha256", "source_files", "located_source_file",
     "changed_source_files", "REIMPORT_ADVICE", "MAX_DATABASE_BYTES", "project_folder",
-    "inside_project", "recorded_json",
+    "inside_project", "recorded_json", "database_file_name", "IMPORT_ADVICE",
 ]
 
 #: Largest database file read [bytes]: the shipped ones are 0.1-0.3 MB and a database of 2000
@@ -353,7 +353,8 @@ def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
     except InputFileError as err:
         if err.found == "no such file":
             raise HydroDatabaseError(f"{p}: no hydrodynamic database (build it with "
-                                     f"'floatmoor hydro build CASE')") from None
+                                     "'floatmoor hydro build CASE', or import one with "
+                                     "'floatmoor hydro import')") from None
         raise HydroDatabaseError(f"{p}: expected a hydrodynamic database (a regular netCDF "
                                  f"file of at most {MAX_DATABASE_BYTES} bytes), found "
                                  f"{err.found}") from None
@@ -399,14 +400,40 @@ def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
 
 
 def database_path(case: Case) -> Path:
-    """``hydrodb/NAME.nc`` in the nearest folder above the case file that has a ``hydrodb``
-    folder (the repository root for the shipped cases), else in the current folder."""
+    """The case's database file (docs/guide/hydro_databases.md#naming-the-database).
+
+    ``[hydro] database`` is a name or, with ``source = "imported"``, may be a path (a ``/``
+    in it, or ending in ``.nc``: :func:`floatmoor.case.floater.is_database_path`): a path
+    is relative to the case file's folder (absolute allowed); a name is ``hydrodb/NAME.nc``
+    in the nearest folder above the case file that has a ``hydrodb`` folder (the repository
+    root for the shipped cases), else in the current folder.
+    """
+    from floatmoor.case.floater import is_database_path
+
     assert case.hydro is not None
+    if case.hydro.source == "imported" and is_database_path(case.hydro.database):
+        given = Path(case.hydro.database)
+        return given if given.is_absolute() else Path(case.source).parent / given
     name = f"{case.hydro.database}.nc"
     for parent in Path(case.source).resolve().parents:
         if (parent / "hydrodb").is_dir():
             return parent / "hydrodb" / name
     return Path("hydrodb") / name
+
+
+def database_file_name(hydro: HydroSettings) -> str:
+    """The file name of ``hydro``'s database (``NAME.nc``, or the last part of its path)."""
+    from floatmoor.case.floater import is_database_path
+
+    if hydro.source == "imported" and is_database_path(hydro.database):
+        return Path(hydro.database).name
+    return f"{hydro.database}.nc"
+
+
+#: What to do about a missing imported database (a case cannot build one).
+IMPORT_ADVICE = ("import it with 'floatmoor hydro import FILE... -o PATH.nc' (WAMIT .1 .hst "
+                 "[.3] [.out], or a BEMIO .h5) and name that PATH.nc in [hydro] database, "
+                 "relative to the case file")
 
 
 def source_mismatch(ds: xr.Dataset, case: Case) -> str | None:
@@ -597,6 +624,10 @@ def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,
     if case.floater is None or case.hydro is None:
         raise HydroDatabaseError(f"{case.source}: the case has no [floater] and [hydro] tables")
     p = Path(path) if path is not None else database_path(case)
+    if case.hydro.source == "imported" and not os.path.lexists(p):
+        raise HydroDatabaseError(f"{p}: no hydrodynamic database, which {case.source} names "
+                                 f"([hydro] database = '{shown(case.hydro.database, 200)}', "
+                                 f"source = \"imported\"): {IMPORT_ADVICE}")
     ds = read_database(p)
     mismatch = source_mismatch(ds, case)
     if mismatch:

@@ -11,7 +11,10 @@ importer's version and time, and the reader's notes (``import_notes_json``).
 What the files lack and the layout needs:
 
 * displaced volume and centre of buoyancy: BEMIO files give them, WAMIT's numeric files do
-  not (``--displaced-volume``, ``--centre-of-buoyancy``; an error names them when missing);
+  not: its run summary (``.out``) does (:func:`floatmoor.io.wamit.read_wamit_out`), else
+  ``--displaced-volume``, ``--centre-of-buoyancy``. Whatever a WAMIT import lacks (options
+  and the ``.1`` and ``.hst`` files) is refused in one message listing each with the file
+  that would state it (:data:`WAMIT_NEEDS`);
 * waterplane area = C33 / (rho g) of the file's hydrostatic stiffness;
 * rotation centre = the given reference point: the point the file's coefficients are about
   (its origin for WAMIT) is placed there;
@@ -27,6 +30,9 @@ What the files lack and the layout needs:
 T = blockdiag(R, R) (exact), an excitation vector T X and its wave direction beta + yaw
 (the set moved by whole turns so that it starts in [-180, 180) degrees: 0-180 deg turned by
 180 deg is -180-0 deg; the excitation interpolation takes directions modulo 360 deg).
+
+Size: reading the options against the files, labelling, the yaw and the derived A_inf are one
+import's steps sharing its options and notes; split, each would import the others.
 """
 
 from __future__ import annotations
@@ -56,6 +62,7 @@ __all__ = [
     "imported_dataset", "import_database", "source_file_records", "yaw_transform",
     "decay_tail_exponents", "derived_infinite_added_mass", "TAIL_FIT_FRACTION",
     "TAIL_FIT_MIN_POINTS", "SAME_VALUE_RTOL", "SAME_POINT_ATOL", "RUN_SUMMARY_NOTE",
+    "WAMIT_NEEDS", "YAW_NOTE", "yaw_note",
 ]
 
 #: File extensions of WAMIT's numeric output: added mass and damping, excitation (total,
@@ -228,20 +235,20 @@ def _read_source(kind: str, paths: Sequence[str], options: ImportOptions) -> Imp
     if kind == "wamit":
         from floatmoor.io.wamit import read_wamit
 
-        options, adopted = _with_run_summary(paths, options)
-        missing = [flag for flag, value in (("--water-density", options.water_density),
-                                            ("--gravity", options.gravity)) if value is None]
-        if missing:
-            raise CaseError(" and ".join(missing), "", "the water density [kg/m^3] and gravity "
-                            "[m/s^2] of the WAMIT run (its non-dimensional values need them; "
-                            "its numeric files do not state them)", "nothing")
         if options.body is not None:
             raise CaseError("--body", "", "no --body with WAMIT files (one body per file "
                             "set)", str(options.body))
+        options, adopted, summary = _with_run_summary(paths, options)
+        _refuse_missing_wamit(paths, options, summary)
+        assert options.water_density is not None and options.gravity is not None
         bem = read_wamit(list(map(str, paths)), water_density=options.water_density,
                          gravity=options.gravity,
                          length_scale=1.0 if options.length_scale is None
                          else options.length_scale, water_depth=options.water_depth)
+        if summary is not None:  # the body's volume and centre of buoyancy, as the file's
+            bem = replace(bem, disp_volume=summary.disp_volume,
+                          center_of_buoyancy=None if summary.center_of_buoyancy is None
+                          else np.asarray(summary.center_of_buoyancy, float))
         return replace(bem, notes=bem.notes + tuple(adopted)) if adopted else bem
     from floatmoor.io.bemio import read_bemio
 
@@ -263,10 +270,64 @@ def _read_source(kind: str, paths: Sequence[str], options: ImportOptions) -> Imp
 RUN_SUMMARY_NOTE = "From the WAMIT run summary"
 
 
+#: What a WAMIT import needs besides the .1, in the order a missing-options message lists
+#: them: (option or file kind, what it is, the field of the .out's WamitRunSummary that
+#: states it or None). A WAMIT .3 is optional (without it the database has no excitation).
+WAMIT_NEEDS = (
+    ("--water-density RHO", "the water density of the WAMIT run [kg/m^3]", None),
+    ("--gravity G", "the gravity of the run [m/s^2]", "gravity"),
+    ("--water-depth DEPTH", "the run's water depth [m] or 'infinite'", "water_depth"),
+    ("--displaced-volume V", "the displaced volume [m^3]", "disp_volume"),
+    ("--centre-of-buoyancy X Y Z", "the centre of buoyancy [m] (an option is in the case's "
+     "coordinates; the .out's is in the WAMIT body frame, placed by --reference-point and "
+     "turned by --yaw-deg)", "center_of_buoyancy"),
+)
+
+
+def _refuse_missing_wamit(paths: Sequence[str], options: ImportOptions,
+                          summary: Any) -> None:
+    """One CaseError listing everything a WAMIT import lacks (options, and the .1 and .hst
+    files), each with the file that would state it, instead of one per attempt."""
+    kinds = {Path(p).suffix.lower() for p in paths}
+    lacking: list[tuple[str, str]] = []
+    for option, what, field in WAMIT_NEEDS:
+        if getattr(options, _OPTION_FIELDS[option]) is not None:
+            continue
+        if field is not None and summary is not None and getattr(summary, field) is not None:
+            continue
+        if field is None:
+            where = "no WAMIT file states it"
+        elif summary is None:
+            where = "stated by the run's .out: give the .out among the files, or the option"
+        else:
+            where = f"{summary.path} does not state it: give the option"
+        lacking.append((option.split()[0], f"{option} ({what}; {where})"))
+    for kind, what in ((".1", "the added mass and damping"),
+                       (".hst", "the hydrostatic stiffness")):
+        if kind not in kinds:
+            lacking.append((kind, f"a {kind} file ({what}; no option gives it)"))
+    if lacking:
+        raise CaseError(" ".join(map(str, paths)), ", ".join(name for name, _ in lacking),
+                        "everything a WAMIT import needs (the .out, when given, states "
+                        "gravity, ULEN, water depth, displaced volume and centre of buoyancy; "
+                        "the .hst the hydrostatic stiffness; the .1 added mass and damping; "
+                        "an optional .3 the wave excitation): "
+                        + "; ".join(text for _, text in lacking),
+                        f"{len(lacking)} missing")
+
+
+#: The ImportOptions field of each option of :data:`WAMIT_NEEDS`.
+_OPTION_FIELDS = {"--water-density RHO": "water_density", "--gravity G": "gravity",
+                  "--water-depth DEPTH": "water_depth",
+                  "--displaced-volume V": "disp_volume",
+                  "--centre-of-buoyancy X Y Z": "centre_of_buoyancy"}
+
+
 def _with_run_summary(paths: Sequence[str], options: ImportOptions
-                      ) -> tuple[ImportOptions, list[str]]:
+                      ) -> tuple[ImportOptions, list[str], Any]:
     """The options with the gravity, ULEN and water depth a WAMIT ``.out`` among ``paths``
-    states where they were not given, and a note for each so taken.
+    states where they were not given, a note for each so taken, and the run summary (None
+    without a ``.out``).
 
     Raises
     ------
@@ -278,7 +339,7 @@ def _with_run_summary(paths: Sequence[str], options: ImportOptions
 
     out = next((p for p in paths if Path(p).suffix.lower() == ".out"), None)
     if out is None:
-        return options, []
+        return options, [], None
     summary = read_wamit_out(out)
     adopted, notes = {}, []
     for what, flag, field, unit in (("water depth", "--water-depth", "water_depth", "m"),
@@ -291,7 +352,15 @@ def _with_run_summary(paths: Sequence[str], options: ImportOptions
             adopted[field] = stated
             notes.append(f"{RUN_SUMMARY_NOTE} {out}: {what} {_text(stated)}"
                          + ("" if math.isinf(stated) else f" {unit}") + f" (no {flag} given).")
-    return (replace(options, **adopted) if adopted else options), notes
+    _agree(str(out), "displaced volume", "--displaced-volume", options.disp_volume,
+           summary.disp_volume)
+    if summary.disp_volume is not None:
+        notes.append(f"{RUN_SUMMARY_NOTE} {out}: displaced volume {_text(summary.disp_volume)} "
+                     "m^3 (its VOLZ).")
+    if summary.center_of_buoyancy is not None:
+        notes.append(f"{RUN_SUMMARY_NOTE} {out}: centre of buoyancy "
+                     f"({_point(summary.center_of_buoyancy)}) m in the WAMIT body frame.")
+    return (replace(options, **adopted) if adopted else options), notes, summary
 
 
 def source_file_records(paths: Sequence[str], project: str | os.PathLike[str] | None = None
@@ -543,10 +612,7 @@ def _importer_notes(bem: ImportedBem, options: ImportOptions, ref: NDArray[np.fl
     """What the importer did, one sentence each (after the reader's notes)."""
     notes = [f"Rotation centre: the file's reference point placed at "
              f"({', '.join(f'{v:g}' for v in ref)}) m, the case's floater.reference_point."]
-    if options.yaw_deg:
-        notes.append(f"Turned by {options.yaw_deg:g} deg about z from the file's body frame "
-                     "into the case's: 6x6 matrices T M T^T, excitation T X at wave direction "
-                     f"+ {options.yaw_deg:g} deg.")
+    notes.append(yaw_note(options.yaw_deg))
     given = [what for what, option, stated in (
         ("displaced volume", options.disp_volume, bem.disp_volume),
         ("centre of buoyancy", options.centre_of_buoyancy, bem.center_of_buoyancy))
@@ -556,6 +622,28 @@ def _importer_notes(bem: ImportedBem, options: ImportOptions, ref: NDArray[np.fl
                      "do not give them).")
     notes.append(f"Waterplane area = C33 / (rho g) = {waterplane:.6g} m^2.")
     return notes
+
+
+#: How the note on the orientation begins (``hydro import`` prints it).
+YAW_NOTE = "Orientation"
+
+
+def yaw_note(yaw_deg: float) -> str:
+    """What ``--yaw-deg`` did, in the case's terms (the CLI's help says the same)."""
+    if not yaw_deg:
+        return (f"{YAW_NOTE}: the file's body axes are the case's (--yaw-deg 0); its wave "
+                "heading BETA is the case's waves.direction_deg = BETA.")
+    c, s = yaw_transform(yaw_deg)[:2, 0]
+    return (f"{YAW_NOTE}: the file's body frame turned by {yaw_deg:g} deg about z "
+            "(counter-clockwise seen from above) into the case's: the file's +x axis is the "
+            f"case's ({c + 0.0:.4g}, {s + 0.0:.4g}, 0); 6x6 matrices T M T^T, forces T X; its "
+            f"wave heading BETA (travelling towards BETA) is the case's waves.direction_deg = "
+            f"BETA + {yaw_deg:g} (its heading 0 travels towards {_wrap_deg(yaw_deg):g} deg).")
+
+
+def _wrap_deg(angle: float) -> float:
+    """``angle`` [deg] in [-180, 180)."""
+    return (angle + 180.0) % 360.0 - 180.0
 
 
 #: Where each format gives A_inf.

@@ -1,5 +1,6 @@
 """WAMIT numeric output files (``.1``, ``.3``, ``.3fk``, ``.3sc``, ``.hst``) -> ImportedBem;
-the run's summary (``.out``) for the gravity, ULEN and water depth it states.
+the run's summary (``.out``) for the gravity, ULEN, water depth, displaced volume and centre
+of buoyancy it states.
 
 A small strict reader of WAMIT's non-dimensional numeric files, one rigid body (six modes),
 zero forward speed, the first column a wave period (WAMIT's default ``IPEROUT``). The
@@ -24,9 +25,15 @@ e^{-i omega t}, the complex conjugate. The hydrostatic matrix keeps WAMIT's (for
 order, as floatmoor's does.
 
 ``.out`` The run's summary, of which only its header lines ``Gravity: G  Length scale: ULEN``
-        and ``Water depth: H`` (or ``infinite``) are read (:func:`read_wamit_out`): the
-        numeric files state none of the three, and a depth given to the importer that is
-        not the run's (deep-water coefficients taken as finite-depth ones) is an error.
+        and ``Water depth: H`` (or ``infinite``) and its body's ``Volumes (VOLX,VOLY,VOLZ):
+        VX VY VZ`` and ``Center of Buoyancy (Xb,Yb,Zb): X Y Z`` are read
+        (:func:`read_wamit_out`): the numeric files state none of them, and a depth given to
+        the importer that is not the run's (deep-water coefficients taken as finite-depth
+        ones) is an error. WAMIT prints the volumes and the centre of buoyancy dimensional (the
+        geometry file's length unit, not divided by ULEN) in the body coordinate system, the
+        frame its coefficients are about; the displaced volume taken is VOLZ (the integral
+        of z n_z, the one WEC-Sim's BEMIO takes; the three differ only by the panelling). A
+        summary of more than one body is refused (one rigid body per import).
 
 Anything that is not a well-formed file of its kind raises :class:`BemFileError` naming the
 file and line: a wrong number of columns, a non-number, NaN or inf, a mode index outside
@@ -37,8 +44,8 @@ The files are data from elsewhere (docs/guide/safeguards.md#files-from-elsewhere
 regular files of at most :data:`MAX_FILE_BYTES` are read (a FIFO or a device is refused before
 it is opened), and quoted tokens are shown with :func:`floatmoor.terminal_text.shown`.
 
-Size: one reader per WAMIT file kind sharing one strict line table and its bounds (file
-size, periods, directions); the ``.out`` header reader uses the same table.
+Size: one strict reader per WAMIT file kind sharing the line table (:class:`_Table`), the
+period matching and the scaling conventions above; split, each part would import the others.
 """
 
 from __future__ import annotations
@@ -112,6 +119,11 @@ _KIND_NAMES = {".1": "added mass and damping (.1)", ".3": "exciting force (.3)",
 #: Length scale:        1.00000``, ``Water depth:        200.000000`` or ``infinite``).
 _OUT_FIELDS = {"gravity": "Gravity:", "length_scale": "Length scale:",
                "water_depth": "Water depth:"}
+#: The body lines of a ``.out`` read, as WAMIT prints them (``Volumes (VOLX,VOLY,VOLZ):
+#: 13917.4  13917.4  13917.4``, ``Center of Buoyancy (Xb,Yb,Zb):  0.000000  0.000000
+#: -13.150000``), each three numbers.
+_OUT_BODY_FIELDS = {"volumes": "Volumes (VOLX,VOLY,VOLZ):",
+                    "center_of_buoyancy": "Center of Buoyancy (Xb,Yb,Zb):"}
 
 
 @dataclass(frozen=True)
@@ -122,21 +134,48 @@ class WamitRunSummary:
     gravity: float | None  #: [m/s^2]
     length_scale: float | None  #: ULEN [m]
     water_depth: float | None  #: [m], inf for infinite depth
+    disp_volume: float | None = None  #: [m^3], VOLZ of ``Volumes (VOLX,VOLY,VOLZ):``
+    #: [m] in the body coordinate system (the frame of the coefficients)
+    center_of_buoyancy: tuple[float, float, float] | None = None
+    #: (VOLX, VOLY, VOLZ) [m^3] as printed
+    volumes: tuple[float, float, float] | None = None
 
 
 def read_wamit_out(path: str | Path) -> WamitRunSummary:
-    """Read the gravity, ULEN and water depth from a WAMIT ``.out`` file's header.
+    """Read the gravity, ULEN and water depth from a WAMIT ``.out`` file's header, and the
+    displaced volume and centre of buoyancy from its body parameters (when printed).
 
     Raises
     ------
     BemFileError
-        No such file, no ``Water depth:`` line, or a field that is not a number > 0 (the
-        depth may be ``infinite``).
+        No such file, no ``Water depth:`` line, a field that is not a number > 0 (the depth
+        may be ``infinite``), a volumes or centre of buoyancy line without three numbers, a
+        volume that is not > 0, or the lines of a second body.
     """
     table = _Table(Path(path), ".out")
     found: dict[str, float] = {}
+    body: dict[str, tuple[float, float, float]] = {}
+    body_lines: dict[str, int] = {}
     for lineno, parts in table.rows:
         line = " ".join(parts)
+        for name, label in _OUT_BODY_FIELDS.items():
+            at = line.find(label)
+            if at < 0:
+                continue
+            if name in body:
+                raise table.error(lineno, f"one body's '{label}' line (one rigid body per "
+                                  "import; multi-body WAMIT runs are not supported)",
+                                  f"a second one (first at line {body_lines[name]})")
+            rest = line[at + len(label):].split()
+            if len(rest) != 3:
+                raise table.error(lineno, f"three numbers after '{label}'",
+                                  f"'{shown(' '.join(rest) or 'nothing', 80)}'")
+            unit = "m^3" if name == "volumes" else "m"
+            values = tuple(table.number(lineno, token, f"{label} [{unit}]") for token in rest)
+            if name == "volumes" and not values[2] > 0.0:
+                raise table.error(lineno, f"a volume VOLZ > 0 after '{label}'",
+                                  f"'{rest[2]}'")
+            body[name], body_lines[name] = values, lineno  # type: ignore[assignment]
         for name, label in _OUT_FIELDS.items():
             at = line.find(label)
             if name in found or at < 0:
@@ -152,13 +191,15 @@ def read_wamit_out(path: str | Path) -> WamitRunSummary:
                 raise table.error(lineno, f"a number > 0 after '{label}'",
                                   f"'{token or 'nothing'}'")
             found[name] = value
-        if len(found) == len(_OUT_FIELDS):
-            break
     if "water_depth" not in found:
         raise BemFileError(table.name, "water depth", "a WAMIT run summary with its "
                            "'Water depth:' line", "none")
+    volumes = body.get("volumes")
     return WamitRunSummary(table.name, found.get("gravity"), found.get("length_scale"),
-                           found["water_depth"])
+                           found["water_depth"],
+                           disp_volume=None if volumes is None else volumes[2],
+                           center_of_buoyancy=body.get("center_of_buoyancy"),
+                           volumes=volumes)
 
 
 def _exponent_radiation(i: int, j: int) -> int:

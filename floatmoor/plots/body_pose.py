@@ -38,7 +38,8 @@ class BodyModel:
     Attributes
     ----------
     surface
-        The floater's panels at rest, or None for a forced-motion run (points only).
+        The floater's panels at rest, or None for a forced-motion run or a floater without
+        [floater.geometry] (points only).
     centre
         The rotation centre at rest c0 [m].
     offset
@@ -128,6 +129,12 @@ def body_model(case: Case, dataset: xr.Dataset) -> BodyModel | None:
         For a mesh hull whose file cannot be read or changed since the case was read.
     """
     names, rest = _body_points(case)
+    if case.floater is not None and case.floater.geometry is None:
+        # a floater of an imported database without a hull: its fairleads, when drawn
+        if "body_displacement" in dataset and names and "point_position" in dataset:
+            centre = np.asarray(case.floater.reference_point, dtype=float)
+            return BodyModel(None, centre, np.zeros(6), names)
+        return None
     if case.floater is not None and "body_displacement" in dataset:
         centre = np.asarray(case.floater.reference_point, dtype=float)
         return BodyModel(body_surface(case.floater), centre,

@@ -154,6 +154,8 @@ def body_surface(floater: Floater) -> BodySurface:
         For a mesh hull whose file cannot be read or changed since the case was read.
     """
     geometry = floater.geometry
+    if geometry is None:
+        raise ValueError(f"floater {floater.name}: no [floater.geometry], no surface to draw")
     if isinstance(geometry, CylinderGeometry):
         return _cylinder(geometry, floater.reference_point)
     if isinstance(geometry, SemisubmersibleGeometry):

@@ -41,6 +41,9 @@ def test_import_checks_and_records_where_the_data_came_from(oc4_copy, capsys):
     assert "498 frequencies" in out and "A_inf file (WAMIT .1, PER = 0)" in out
     assert "haskind         n/a" in out and "hydrostatics    n/a" in out
     assert "all checks pass (2 not applicable)" in out
+    # the orientation said in the case's terms (printed whether or not the files have waves)
+    assert "the file's +x axis is the case's (-1, 0, 0)" in out
+    assert "waves.direction_deg = BETA + 180 (its heading 0 travels towards -180 deg)" in out
     ds = read_database(oc4_copy / "hydrodb" / "w.nc")
     assert ds.attrs["source"] == "wamit" and ds.attrs["checks_failed"] == "none"
     files = json.loads(ds.attrs["source_files_json"])
@@ -58,7 +61,7 @@ def test_import_checks_and_records_where_the_data_came_from(oc4_copy, capsys):
     assert f"marin_semi.1  494496 bytes  SHA-256 {files[0]['sha256']}" in info
     assert "A_inf: file (WAMIT .1, PER = 0)" in info
     assert "excitation: none" in info and "source files unchanged" in info
-    assert "Turned by 180 deg" in info
+    assert "Orientation: the file's body frame turned by 180 deg about z" in info
 
 
 def test_info_says_where_a_built_database_came_from(capsys):
@@ -136,10 +139,11 @@ def test_bad_options_exit_2(oc4_copy, capsys, change, message):
 
 
 @pytest.mark.parametrize("drop, message", [
-    ("--displaced-volume", "--displaced-volume: expected the displaced volume"),
-    ("--centre-of-buoyancy", "--centre-of-buoyancy: expected the displaced volume"),
-    ("--water-density", "--water-density: expected the water density"),
-    ("--water-depth", "--water-depth: expected the water depth of the WAMIT run"),
+    ("--displaced-volume", "marin_semi.hst: --displaced-volume: expected everything a WAMIT "
+     "import needs"),
+    ("--centre-of-buoyancy", ": --centre-of-buoyancy: expected everything"),
+    ("--water-density", ": --water-density: expected everything"),
+    ("--water-depth", ": --water-depth: expected everything"),
 ])
 def test_missing_options_are_named(oc4_copy, capsys, monkeypatch, drop, message):
     i = OPTIONS.index(drop)
@@ -147,8 +151,63 @@ def test_missing_options_are_named(oc4_copy, capsys, monkeypatch, drop, message)
     monkeypatch.setattr(f"{__name__}.OPTIONS", OPTIONS[:i] + OPTIONS[i + 1 + n:])
     assert _import(oc4_copy) == 2
     err = capsys.readouterr().err
-    assert message in err
+    assert message in err and err.rstrip().endswith("found 1 missing")
+
+
+def test_everything_missing_is_listed_at_once_with_the_file_that_states_it(
+        oc4_copy, capsys, monkeypatch):
+    """No options and no .hst: one status-2 line naming all five options and the .hst, each
+    with where it comes from (the .out for all but the density), not one per attempt."""
+    monkeypatch.setattr(f"{__name__}.OPTIONS", [])
+    assert _import(oc4_copy, files=("marin_semi.1",)) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("floatmoor: error: "), err
+    line = err[0]
+    assert (": --water-density, --gravity, --water-depth, --displaced-volume, "
+            "--centre-of-buoyancy, .hst: expected everything a WAMIT import needs") in line
+    assert "--water-density RHO (the water density of the WAMIT run [kg/m^3]; no WAMIT file " \
+        "states it)" in line
+    for option in ("--gravity G", "--water-depth DEPTH", "--displaced-volume V",
+                   "--centre-of-buoyancy X Y Z"):
+        assert f"{option} (" in line
+    assert line.count("stated by the run's .out: give the .out among the files, or the "
+                      "option") == 4
+    assert "a .hst file (the hydrostatic stiffness; no option gives it)" in line
+    assert line.endswith("found 6 missing")
     assert list((oc4_copy / "hydrodb").iterdir()) == []
+
+
+#: The body parameters of the OC4 run as a WAMIT .out prints them (tests/io/test_wamit.py
+#: OUT_EXCERPT), the header given by OUT_HEADER.
+OUT_BODY = """
+ XBODY =    0.0000 YBODY =    0.0000 ZBODY =    0.0000 PHIBODY =   0.0
+ Volumes (VOLX,VOLY,VOLZ):     13917.4     13916.9     13917.0
+ Center of Buoyancy (Xb,Yb,Zb):     -0.000000    0.000000  -13.170000
+"""
+
+
+def test_the_run_summary_gives_volume_and_centre_of_buoyancy(oc4_copy, capsys, monkeypatch):
+    """With the .out only the density is asked; the volume and the centre of buoyancy (placed
+    and turned by the yaw) come from it and are printed as such."""
+    (oc4_copy / "marin_semi.out").write_text(OUT_HEADER.replace("DEPTH", "200.000000")
+                                             + OUT_BODY)
+    monkeypatch.setattr(f"{__name__}.OPTIONS", ["--yaw-deg", "180"])
+    files = ("marin_semi.1", "marin_semi.hst", "marin_semi.out")
+    assert _import(oc4_copy, files=files) == 2
+    err = capsys.readouterr().err
+    assert ": --water-density: expected" in err and err.rstrip().endswith("found 1 missing")
+    assert _import(oc4_copy, "--water-density", "1025", files=files) == 0
+    out = capsys.readouterr().out
+    assert "displaced volume 13917 m^3 (its VOLZ)" in out
+    assert "centre of buoyancy (-0, 0, -13.17) m in the WAMIT body frame" in out
+    ds = read_database(oc4_copy / "hydrodb" / "w.nc")
+    assert float(ds["disp_volume"]) == 13917.0
+    assert ds["center_of_buoyancy"].values.tolist() == pytest.approx([0.0, 0.0, -13.17])
+    # a value given must be the one the file states
+    assert _import(oc4_copy, "--water-density", "1025", "--displaced-volume", "13000",
+                   "--force", files=files) == 2
+    assert "marin_semi.out: displaced volume: expected the --displaced-volume given (13000), " \
+        "found 13917 in the file" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("files", [("marin_semi.1", "marin_semi.h5"),

@@ -175,3 +175,119 @@ def test_a_run_with_waves_on_a_database_without_excitation_exits_2(buoy_imported
     assert "the hydrodynamic database has no excitation forces (imported from wamit files " \
         f"({source}) that give none)" in err[0]
     assert not out.exists()
+
+
+# --- an imported floater needs mass properties, not a hull (docs/guide/hydro_databases.md) ---
+
+NO_GEOMETRY_CASE = REPO / "tests" / "data" / "imported_floater" / "deepcwind_no_geometry.toml"
+
+
+def _without_geometry(text: str) -> str:
+    """A case's text without its [floater.geometry] table."""
+    return re.sub(r"\[floater\.geometry\]\n.*?(?=\n\[hydro\])", "", text, flags=re.S)
+
+
+def test_an_imported_floater_needs_no_geometry_and_is_not_checked_against_one(buoy_imported):
+    """No [floater.geometry]: the case loads (no draft-from-mass check: a mass no 0.515 m
+    cylinder 0.401 m high could float is fine), its database too; a built database still
+    needs the hull, and drag still needs members."""
+    case_path, _ = buoy_imported
+    case_path.write_text(_without_geometry(case_path.read_text()))
+    case = load_case(case_path, ["floater.mass=200.0"])
+    assert case.floater.geometry is None
+    load_for_case(load_case(case_path), checks=False)
+    with pytest.raises(CaseError) as info:
+        load_case(case_path, ['floater.drag={preset = "deepcwind_oc4"}'])
+    assert info.value.key == "floater.drag" and "[floater.geometry]" in info.value.expected
+    with pytest.raises(CaseError) as info:
+        load_case(case_path,
+                  ['hydro={database = "cylinder_buoy", frequency_ranges = [[0.8, 9.2, 5]], '
+                   'directions_deg = [0.0], panel_size = 0.05}'])
+    assert info.value.key == "floater.geometry"
+
+
+def test_an_imported_database_is_named_by_its_path_relative_to_the_case(buoy_imported,
+                                                                       tmp_path):
+    """database = a path to the .nc (relative to the case file's folder, or absolute), with
+    no hydrodb/ folder search; a bare name still finds hydrodb/NAME.nc."""
+    from floatmoor.hydro.database import database_path
+
+    case_path, _ = buoy_imported
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    moved = elsewhere / "case.toml"
+    moved.write_text(case_path.read_text())
+    relative = load_case(moved, ['hydro.database="../hydrodb/buoy_imported.nc"'])
+    assert database_path(relative) == elsewhere / ".." / "hydrodb" / "buoy_imported.nc"
+    load_for_case(relative, checks=False)
+    absolute = str(tmp_path / "hydrodb" / "buoy_imported.nc")
+    load_for_case(load_case(moved, [f'hydro.database="{absolute}"']), checks=False)
+    assert database_path(load_case(case_path)) == tmp_path / "hydrodb" / "buoy_imported.nc"
+    with pytest.raises(CaseError) as info:  # a path only for an imported database
+        load_case(BUOY_CASE, ['hydro.database="../hydrodb/cylinder_buoy.nc"'])
+    assert info.value.key == "hydro.database"
+
+
+def test_a_missing_imported_database_says_import_it(buoy_imported, tmp_path, capsys):
+    case_path, _ = buoy_imported
+    case = load_case(case_path, ['hydro.database="db/missing.nc"'])
+    with pytest.raises(HydroDatabaseError) as info:
+        load_for_case(case)
+    message = str(info.value)
+    assert message.startswith(f"{case_path.parent / 'db' / 'missing.nc'}: no hydrodynamic "
+                              "database")
+    assert "import it with 'floatmoor hydro import FILE... -o PATH.nc'" in message
+    assert "hydro build" not in message
+    out = tmp_path / "run.nc"
+    assert main(["run", str(case_path), "--quiet", "-o", str(out), "--set",
+                 'hydro.database="db/missing.nc"', *[a for o in QUICK for a in ("--set", o)]]) \
+        == 2
+    err = capsys.readouterr().err
+    assert "import it with 'floatmoor hydro import" in err and not out.exists()
+
+
+def test_a_hydro_table_without_source_or_build_keys_says_source_imported_is_missing():
+    with pytest.raises(CaseError) as info:
+        load_case(WAMIT_CASE, ['hydro={database = "deepcwind_wamit"}'])
+    assert info.value.key == "hydro.source"
+    assert info.value.expected.startswith('source = "imported" for a database made by '
+                                          "'floatmoor hydro import' (probably missing")
+    assert "frequency ranges" not in str(info.value)
+    with pytest.raises(CaseError) as info:  # said first, even without a hull
+        load_case(NO_GEOMETRY_CASE, ['hydro={database = "../../../hydrodb/deepcwind_wamit.nc"}'])
+    assert info.value.key == "hydro.source"
+
+
+def test_a_floater_without_geometry_moves_as_the_one_with_it_when_drag_is_off(tmp_path):
+    """tests/data/imported_floater/deepcwind_no_geometry.toml (no hull, database by path)
+    against the shipped WAMIT case with its drag off: the same decay, bit for bit."""
+    import numpy as np
+    import xarray as xr
+
+    quick = ["simulation.duration=1.0"]
+    bare, full = tmp_path / "bare.nc", tmp_path / "full.nc"
+    assert main(["run", str(NO_GEOMETRY_CASE), "--quiet", "-o", str(bare),
+                 *[a for o in quick for a in ("--set", o)]]) == 0
+    assert main(["run", str(WAMIT_CASE), "--quiet", "-o", str(full),
+                 *[a for o in quick + ['floater.drag.preset="none"'] for a in ("--set", o)]]) == 0
+    with xr.open_dataset(bare) as a, xr.open_dataset(full) as b:
+        assert float(a["body_displacement"].isel(time=-1, dof=0)) < 16.58  # it moved
+        for name in ("body_displacement", "fairlead_tension"):
+            assert np.array_equal(a[name].values, b[name].values), name
+        from floatmoor.plots.body_pose import body_model
+
+        model = body_model(load_case(NO_GEOMETRY_CASE), a)  # the views: fairleads, no hull
+        assert model is not None and model.surface is None and len(model.points) == 3
+
+
+def test_a_campaign_bundle_carries_an_imported_database_named_by_path(tmp_path):
+    """The bundle a cluster campaign ships holds the database named by path under its file
+    name, and the workers' copy of the case finds it there."""
+    from floatmoor.campaign.bundle import load_bundled_case, make_bundle, materialise
+
+    case = load_case(NO_GEOMETRY_CASE)
+    bundle, blobs = make_bundle([case])
+    folder = materialise(bundle, blobs, tmp_path / "worker")
+    bundled, database = load_bundled_case(bundle, folder, [])
+    assert bundled.floater.geometry is None and database.name == "deepcwind_wamit.nc"
+    assert database.read_bytes() == (REPO / "hydrodb" / "deepcwind_wamit.nc").read_bytes()

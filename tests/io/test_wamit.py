@@ -402,6 +402,55 @@ def test_run_summary_errors_name_file_and_line(tmp_path, lines, message):
     assert message in str(err.value)
 
 
+#: A WAMIT run summary's header and body parameters as WAMIT prints them (the lines WEC-Sim's
+#: BEMIO and OpenFAST's tools read: "Volumes (VOLX,VOLY,VOLZ):", "Center of Buoyancy
+#: (Xb,Yb,Zb):"), for the OC4 semisubmersible; the period tables that follow are not read.
+OUT_EXCERPT = """ WAMIT  Version 7.3
+ Gravity:     9.80665                Length scale:        1.00000
+ Water depth:        200.000000    Water density:      1025.00000
+ Logarithmic singularity index:              ILOG =     1
+
+ Body number: N= 1   Total panels:  5400    Waterline panels:   240      Symmetries: none
+ Irregular frequency index: IRR = 0
+
+ XBODY =    0.0000 YBODY =    0.0000 ZBODY =    0.0000 PHIBODY =   0.0
+ Volumes (VOLX,VOLY,VOLZ):     13917.4     13916.9     13917.0
+ Center of Buoyancy (Xb,Yb,Zb):     -0.000000    0.000000  -13.150000
+ Hydrostatic and gravitational restoring coefficients:
+ C(3,3),C(3,4),C(3,5):   380.06     0.0000     0.0000
+"""
+
+
+def test_run_summary_states_volume_and_centre_of_buoyancy(tmp_path):
+    """The body parameters of a .out: VOLZ as the displaced volume, the centre of buoyancy in
+    the body frame, as printed (dimensional)."""
+    summary = read_wamit_out(_write(tmp_path, "m.out", OUT_EXCERPT.splitlines()))
+    assert summary.volumes == (13917.4, 13916.9, 13917.0)
+    assert summary.disp_volume == 13917.0
+    assert summary.center_of_buoyancy == (-0.0, 0.0, -13.15)
+    assert (summary.water_depth, summary.gravity, summary.length_scale) == (200.0, 9.80665, 1.0)
+    header = read_wamit_out(_write(tmp_path, "h.out", OUT_EXCERPT.splitlines()[:3]))
+    assert header.disp_volume is None and header.center_of_buoyancy is None
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: t.replace("  -13.150000", ""),
+     "m.out: line 11: expected three numbers after 'Center of Buoyancy (Xb,Yb,Zb):', found "
+     "'-0.000000 0.000000'"),
+    (lambda t: t.replace("13917.0", "0.0"),
+     "m.out: line 10: expected a volume VOLZ > 0 after 'Volumes (VOLX,VOLY,VOLZ):'"),
+    (lambda t: t.replace("13916.9", "big"), "m.out: line 10: expected a number"),
+    (lambda t: t + " Volumes (VOLX,VOLY,VOLZ):  10.0 10.0 10.0\n",
+     "m.out: line 14: expected one body's 'Volumes (VOLX,VOLY,VOLZ):' line (one rigid body "
+     "per import; multi-body WAMIT runs are not supported), found a second one (first at "
+     "line 10)"),
+])
+def test_run_summary_body_lines_are_strict(tmp_path, edit, message):
+    with pytest.raises(BemFileError) as err:
+        read_wamit_out(_write(tmp_path, "m.out", edit(OUT_EXCERPT).splitlines()))
+    assert message in str(err.value)
+
+
 # --- files from elsewhere (docs/guide/safeguards.md#files-from-elsewhere) ------------------
 
 def test_oversized_file_is_refused_before_reading(tmp_path, monkeypatch):
