@@ -50,7 +50,6 @@ period matching and the scaling conventions above; split, each part would import
 
 from __future__ import annotations
 
-import functools
 import io
 import math
 from array import array
@@ -541,29 +540,6 @@ def _sort_files(paths: Sequence[str | Path]) -> dict[str, Path]:
 
 
 
-def _refuse_overflow(what: str, path, values) -> None:
-    """Refuse dimensional coefficients that are not finite: a file value near the largest
-    float times rho g ULEN^k overflows (the readers accept any finite number)."""
-    if values is None or path is None:
-        return
-    with np.errstate(invalid="ignore"):
-        finite = np.all(np.isfinite(values))
-    if not finite:
-        raise BemFileError(str(path), what, "coefficients that stay finite once made "
-                           "dimensional (rho, g, ULEN^k times the file's values)",
-                           "a value that overflows (the file's numbers are too large)")
-
-def _overflow_checked(read):
-    """``read`` with NumPy's overflow and invalid warnings off: what overflows is refused by
-    :func:`_refuse_overflow` in one line, not warned about first."""
-    @functools.wraps(read)
-    def checked(*args, **kwargs):
-        with np.errstate(over="ignore", invalid="ignore"):
-            return read(*args, **kwargs)
-    return checked
-
-
-@_overflow_checked
 def read_wamit(paths: Sequence[str | Path], *, water_density: float,
                gravity: float = 9.80665, length_scale: float = 1.0,
                water_depth: float | None = None) -> ImportedBem:
@@ -705,14 +681,6 @@ def read_wamit(paths: Sequence[str | Path], *, water_density: float,
     notes.append(f"Dimensional with rho = {rho:g} kg/m^3, g = {g:g} m/s^2, ULEN = {ulen:g} m "
                  "(given to the importer; WAMIT's numeric files do not state them).")
 
-    for what, path, values in (
-            ("added mass", files[".1"], added_mass), ("radiation damping", files[".1"], damping),
-            ("added mass at omega = 0", files[".1"], a_zero),
-            ("added mass at omega = infinity", files[".1"], a_inf),
-            *((f"excitation ({kind})", files.get(kind), forces.get(kind))
-              for kind in (".3", ".3fk", ".3sc")),
-            ("hydrostatic stiffness", files.get(".hst"), stiffness)):
-        _refuse_overflow(what, path, values)
     return ImportedBem(
         format="wamit", files=tuple(read), omega=omega, added_mass=added_mass,
         radiation_damping=damping, water_density=rho, gravity=g,

@@ -131,7 +131,8 @@ def _decoy(folder: Path) -> None:
 
 @pytest.mark.parametrize("name", ["marin_semi.1", "marin_semi.hst"])
 def test_wamit_mutants(tmp_path, name, opened):
-    from floatmoor.io.wamit import read_wamit
+    # through the importer's reading (what `hydro import` runs): its overflow checks included
+    from floatmoor.hydro.importing import ImportOptions, read_source
 
     source = REPO / "tests" / "data" / "wamit_oc4" / name
     _decoy(tmp_path)
@@ -140,8 +141,11 @@ def test_wamit_mutants(tmp_path, name, opened):
     for k, (description, text) in enumerate(_text_mutants(source.read_text(), name)):
         path = tmp_path / name
         path.write_text(text, encoding="utf-8", errors="surrogateescape")
-        _judge(lambda: read_wamit([tmp_path / "marin_semi.1", tmp_path / "marin_semi.hst"],
-                                  water_density=1025.0, water_depth=200.0),
+        _judge(lambda: read_source([str(tmp_path / "marin_semi.1"),
+                                    str(tmp_path / "marin_semi.hst")],
+                                   ImportOptions(water_density=1025.0, gravity=9.80665,
+                                                 water_depth=200.0, disp_volume=1.0e4,
+                                                 centre_of_buoyancy=(0.0, 0.0, -10.0))),
                f"{name} mutant {k}: {description}", opened)
 
 

@@ -500,17 +500,3 @@ def test_distinct_periods_and_directions_are_bounded(tmp_path, monkeypatch):
     assert "m.3: line 2: expected at most 1 distinct wave directions, found one more, 90" \
         in str(err)
 
-
-def test_coefficients_that_overflow_once_dimensional_are_one_line(tmp_path):
-    # found by the reader corpus: 1e308 in the .hst times rho g overflowed (a NumPy
-    # overflow error under the tests' floating-point rules, a warning and inf outside them)
-    source = Path(__file__).parents[1] / "data" / "wamit_oc4"
-    (tmp_path / "m.1").write_text((source / "marin_semi.1").read_text())
-    lines = (source / "marin_semi.hst").read_text().splitlines()
-    i, j, _ = lines[20].split()
-    lines[20] = f"{i} {j} 1.0E+308"
-    (tmp_path / "m.hst").write_text("\n".join(lines) + "\n")
-    with pytest.raises(BemFileError, match="hydrostatic stiffness.*overflows") as info:
-        read_wamit([tmp_path / "m.1", tmp_path / "m.hst"], water_density=1025.0,
-                   water_depth=200.0)
-    assert "\n" not in str(info.value)
