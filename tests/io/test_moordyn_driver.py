@@ -224,7 +224,8 @@ def test_motion_output_replaces_only_a_motion_table(tmp_path, capsys):
     other.write_text("a,b\n1,2\n")
     code, _, err = _import(tmp_path, "md_5MW_OC4Semi", capsys, "--motion-output", str(other),
                            "--force")
-    assert code == 2 and "another file" in err and other.read_text() == "a,b\n1,2\n"
+    assert code == 2 and "--motion-output" in err and "not a body-motion table" in err
+    assert other.read_text() == "a,b\n1,2\n"
     assert not (tmp_path / "md_5MW_OC4Semi.toml").exists()
 
 

@@ -62,15 +62,16 @@ def add_moordyn_parsers(
     return isub
 
 
-def _check_output(text: str, force: bool, source: str, kind: tuple) -> Path:
+def _check_output(text: str, force: bool, source: str, kind: tuple,
+                  option: str = "-o/--output") -> Path:
     """The checked output: the checks of every command's output (writable folder with room,
     not the input file, not a link or device, only a file of its own kind replaced:
     :func:`floatmoor.io.output_files.check_output_file`), and a new file unless ``--force``."""
     path = Path(text)
     if os.path.lexists(path) and not path.is_dir() and not force:
-        raise CaseError("-o/--output", "", "a new file (--force replaces an existing one)",
+        raise CaseError(option, "", "a new file (--force replaces an existing one)",
                         f"'{text}', which exists")
-    return check_output_file(text, "-o/--output", kind=kind,
+    return check_output_file(text, option, kind=kind,
                              protected={"input file": source}).path
 
 
@@ -130,15 +131,15 @@ def _import_with_driver(args: argparse.Namespace, output: Path) -> int:
                         "driver's InputsFile)", "no --driver")
     table_name = (args.motion_output if args.motion_output is not None
                   else str(output.with_name(output.stem + "_motion.csv")))
-    table = _check_output(table_name, args.force, args.deck)
+    motion_table = ("body-motion table", (b"",), lambda path: None if _is_motion_table(
+        Path(path), MOTION_TABLE_HEADER) else f"not a body-motion table (header "
+        f"{MOTION_TABLE_HEADER})")
+    table = _check_output(table_name, args.force, args.deck, motion_table, "--motion-output")
     for other in (args.driver, str(output)):
         if table.exists() and table.resolve() == Path(other).resolve() or \
                 Path(table_name).absolute() == Path(other).absolute():
             raise CaseError("--motion-output", "", "a file other than the case and the "
                             "inputs", f"'{table_name}'")
-    if table.exists() and not _is_motion_table(table, MOTION_TABLE_HEADER):
-        raise CaseError("--motion-output", "", "a new file or a body-motion table to replace "
-                        f"(header {MOTION_TABLE_HEADER})", f"'{table_name}', another file")
     try:  # a case reads its tables from its own folder only (docs/guide/safeguards.md)
         relative = table.resolve().relative_to(output.resolve().parent).as_posix()
     except ValueError:
