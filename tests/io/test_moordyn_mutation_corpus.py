@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import math
 import os
-import random
-import re
 import subprocess
 import sys
 import time
@@ -25,6 +23,7 @@ from floatmoor.errors import CaseError
 from floatmoor.io.moordyn.importer import import_deck
 from floatmoor.io.moordyn.parser import parse_deck
 from tests.io.moordyn_decks import DECKS, IMPORTABLE, REPO
+from tests.io.text_mutants import text_mutants
 
 #: A mutant's value may be valid but implausible (a diameter of 1e-9 m): the loader then warns,
 #: naming the key (floatmoor.case.plausibility), which is an outcome the corpus accepts.
@@ -48,29 +47,7 @@ VALUES = ("1e308", "-1e308", "1e-300", "-1e-300", "0", "-0", "-1", "1e9", "2e9",
 
 def _mutants(name: str) -> list[tuple[str, str]]:
     """(description, text) of the seeded mutants of deck ``name``."""
-    text = (DECKS / name).read_text()
-    tokens = [m.span() for m in re.finditer(r"\S+", text)]
-    lines = text.splitlines(keepends=True)
-    rng = random.Random(f"{SEED}-{name}")
-    out = []
-    for _ in range(SAMPLES):
-        kind = rng.random()
-        if kind < 0.7:
-            a, b = rng.choice(tokens)
-            value = rng.choice(VALUES)
-            out.append((f"token {text[a:b]!r} at {a} -> {value[:20]!r}",
-                        text[:a] + value + text[b:]))
-        elif kind < 0.8:
-            k = rng.randrange(len(lines))
-            out.append((f"line {k + 1} dropped", "".join(lines[:k] + lines[k + 1:])))
-        elif kind < 0.9:
-            k = rng.randrange(len(lines))
-            out.append((f"line {k + 1} repeated", "".join(lines[:k + 1] + lines[k:])))
-        else:
-            (a, b), (c, d) = sorted(rng.sample(tokens, 2))
-            out.append((f"tokens at {a} and {c} swapped",
-                        text[:a] + text[c:d] + text[b:c] + text[a:b] + text[d:]))
-    return out
+    return text_mutants((DECKS / name).read_text(), f"{SEED}-{name}", SAMPLES, VALUES)
 
 
 def _finite(value) -> bool:

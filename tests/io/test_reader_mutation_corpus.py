@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import dataclasses
 import random
-import re
 import shutil
 import sys
 import time
@@ -26,6 +25,7 @@ import pytest
 
 from floatmoor.errors import FloatmoorError
 from tests.conftest import CASES
+from tests.io.text_mutants import text_mutants
 
 pytestmark = pytest.mark.slow
 
@@ -45,28 +45,7 @@ DECOY = "decoy_secret.txt"
 
 def _text_mutants(text: str, key: str, samples: int = SAMPLES) -> list[tuple[str, str]]:
     """(description, text) of the seeded mutants of ``text``."""
-    tokens = [m.span() for m in re.finditer(r"\S+", text)]
-    lines = text.splitlines(keepends=True)
-    rng = random.Random(f"{SEED}-{key}")
-    out = []
-    for _ in range(samples):
-        kind = rng.random()
-        if kind < 0.7:
-            a, b = rng.choice(tokens)
-            value = rng.choice(VALUES)
-            out.append((f"token {text[a:b][:20]!r} at {a} -> {value[:20]!r}",
-                        text[:a] + value + text[b:]))
-        elif kind < 0.8:
-            k = rng.randrange(len(lines))
-            out.append((f"line {k + 1} dropped", "".join(lines[:k] + lines[k + 1:])))
-        elif kind < 0.9:
-            k = rng.randrange(len(lines))
-            out.append((f"line {k + 1} repeated", "".join(lines[:k + 1] + lines[k:])))
-        else:
-            (a, b), (c, d) = sorted(rng.sample(tokens, 2))
-            out.append((f"tokens at {a} and {c} swapped",
-                        text[:a] + text[c:d] + text[b:c] + text[a:b] + text[d:]))
-    return out
+    return text_mutants(text, f"{SEED}-{key}", samples, VALUES)
 
 
 def _nan_free(value, seen=None) -> bool:
