@@ -28,8 +28,8 @@ from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_li
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.simulation.validity import ValidityMonitor
 
-__all__ = ["RunResult", "run_forced_motion", "check_forced_case", "check_line_accuracy", "output_times",
-           "body_points_state"]
+__all__ = ["RunResult", "run_forced_motion", "check_forced_case", "check_line_accuracy",
+           "output_times", "body_points_state"]
 
 #: Output samples solved per chunk between progress reports and checks: large enough to make
 #: the per-chunk Python overhead negligible, small enough to report progress every ~0.1 s.

@@ -29,11 +29,11 @@ from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.dg.resolution import MAX_AUTO_ELEMENTS
-from floatmoor.motion import table_state
+from floatmoor.motion import ramp, ramp_rate, table_state
 
-__all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line",
-           "describe", "estimate_error_along", "accuracy_error",
-           "RunProbe", "NOT_YET_ESTIMATED", "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS"]
+__all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line", "describe",
+           "estimate_error_along", "accuracy_error", "RunProbe", "NOT_YET_ESTIMATED",
+           "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS"]
 
 #: Cycles of the motion run after its ramp in a probe: the first lets the start from rest
 #: pass through the line (its axial and transverse waves cross a chain in well under a
@@ -146,8 +146,6 @@ def estimate_error_along(line: Line, environment: Environment, seabed: Seabed,
     jumps would pull with twice the force (their lifting scales as 1 / h), a jolt of many times
     the tension on a stiff chain.
     """
-    from floatmoor.motion import ramp, ramp_rate
-
     settings = line.dynamic
     start = path[0]
     s = time - time[0]
