@@ -22,7 +22,7 @@ from floatmoor.case.overrides import resolve_key
 from floatmoor.case.reader import Path
 from floatmoor.errors import CaseError
 
-__all__ = ["render_title", "REMOVED", "MAX_SPEC_FIELD", "MAX_TITLE_CHARS"]
+__all__ = ["render_title", "literal_title", "REMOVED", "MAX_SPEC_FIELD", "MAX_TITLE_CHARS"]
 
 #: What a placeholder reads when an override removed its key.
 REMOVED = "n/a"
@@ -40,6 +40,12 @@ _SPEC = re.compile(r"(?:.?[<>=^])?[-+ ]?z?#?0?(?P<width>\d*)[,_]?(?:\.(?P<precis
 
 _EXPECTED = ("a title whose {...} placeholders each name one key path of the case, such as "
              "{motion.period} or {motion.period:.2f} ({{ and }} write braces)")
+
+
+def literal_title(text: str) -> str:
+    """``text`` as a title template that reads as ``text`` itself: its braces doubled, so
+    none is taken for a placeholder (an importer's title quoting a file name or deck title)."""
+    return text.replace("{", "{{").replace("}", "}}")
 
 
 def render_title(template: str, original: dict[str, Any], raw: dict[str, Any],

@@ -120,3 +120,12 @@ def test_printed_lists_escape_bidi_controls_of_deck_text(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "\u202e" not in printed and "output flags 'p\\u202e'" in printed
     assert "output flags 'p\u202e'" in out.read_text()  # the file keeps the text
+
+
+def test_braces_in_the_deck_title_are_read_as_text(tmp_path, capsys):
+    # a title's {...} are placeholders (floatmoor.case.title): the deck's braces are doubled
+    text = OC3.replace("MoorDyn input file of the mooring system for OC3-Hywind",
+                       "OC3-Hywind {rev 2}", 1)
+    code, err, out = _import(tmp_path, text, capsys)
+    assert code == 0, err
+    assert load_case(out).title == "OC3-Hywind {rev 2}"

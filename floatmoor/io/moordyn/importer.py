@@ -42,6 +42,7 @@ from floatmoor._version import __version__
 from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import DEFAULT_DG_ORDER, parse_case
 from floatmoor.case.naming import toml_text
+from floatmoor.case.title import literal_title
 from floatmoor.errors import CaseError
 from floatmoor.io.moordyn.deck import (POINT_BODY, POINT_COUPLED, POINT_FIXED, Deck,
                                        DeckLine, DeckLineType, DeckOption)
@@ -176,7 +177,7 @@ class _Importer:
         w("# Items of the deck it could not map are listed at the end of this file.")
         w("")
         title = deck.title or f"MoorDyn deck {self.source}"
-        w(f"title = {toml_text(title)}")
+        w(f"title = {toml_text(literal_title(title))}")
         w(f"description = {toml_text('Imported from the MoorDyn input file ' + self.source)}")
         w("")
         g, g_from = self.number("g", positive=True, default=MOORDYN_DEFAULTS["g"])

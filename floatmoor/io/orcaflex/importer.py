@@ -28,6 +28,7 @@ from typing import Any
 from floatmoor._version import __version__
 from floatmoor.case.load import DEFAULT_DG_ORDER
 from floatmoor.case.naming import toml_text
+from floatmoor.case.title import literal_title
 from floatmoor.errors import CaseError
 from floatmoor.io.orcaflex.values import Values, plain
 from floatmoor.terminal_text import shown
@@ -602,9 +603,7 @@ class _Importer:
           "value's origin.")
         w("# What was not imported is listed at the end of this file.")
         w("")
-        # a title's {...} are placeholders (floatmoor.case.title): the file name's braces doubled
-        literal = self.source.replace("{", "{{").replace("}", "}}")
-        w(f"title = {toml_text('OrcaFlex model ' + literal)}")
+        w(f"title = {toml_text(literal_title('OrcaFlex model ' + self.source))}")
         w(f"description = {toml_text('Imported from the OrcaFlex text data file ' + self.source)}")
         w("")
         w("[environment]")
