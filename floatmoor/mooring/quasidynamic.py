@@ -55,6 +55,7 @@ floater can use either.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -66,6 +67,7 @@ from floatmoor.mooring import _quasidynamic_kernels as _k
 from floatmoor.mooring._catenary_kernels import N_OUT_3D
 from floatmoor.mooring._catenary_profile import catenary_profile_3d
 from floatmoor.mooring.catenary import describe_failure, solve_catenary
+from floatmoor.mooring.dg._kernels import hermite
 from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["QuasiDynamicLine", "QuasiDynamicLineState", "SHAPE_NODES"]
@@ -107,7 +109,7 @@ class QuasiDynamicLine(PathStepper):
         ``line.quasi_static.seabed_friction`` is true.
     time
         Time of the initial state [s]: the line at rest in the static catenary of its mean
-        fairlead position ``line.fairlead``.
+        fairlead position ``line.fairlead`` (:meth:`start_moving` starts it in motion).
 
     Raises
     ------
@@ -216,6 +218,74 @@ class QuasiDynamicLine(PathStepper):
         self.cur[_k.C_SLOT] = 0.0
         self.cur[_k.C_LO:_k.C_LO + 3] = 1.0  # no station evaluated at any level
         self.cur[_k.C_HI:_k.C_HI + 3] = 0.0
+
+    def start_moving(self, path_state: Callable[[NDArray[np.float64]],
+                                                tuple[NDArray[np.float64], NDArray[np.float64]]],
+                     sample_interval: float) -> bool:
+        """Start on a fairlead path already moving at the line's time, as if the fairlead had
+        followed it before (docs/theory/quasi_dynamic.md#the-start-of-a-run).
+
+        The fairlead's positions one and two steps before the start are those of the cubic
+        Hermite curve of its positions and velocities at the start and one sample later (the
+        curve the model follows between samples), extrapolated back; the line steps from rest
+        there to its start. The backward differences of the first steps and k_QD at the start
+        are then those of a path in motion, not of a line at rest (k_QD = 1) whose first step
+        meets the whole fairlead velocity at once. A fairlead at rest at the start (zero
+        velocity) keeps the start at rest, bit for bit.
+
+        Parameters
+        ----------
+        path_state
+            Fairlead positions [m] and velocities [m/s], (n, 3) each, at times (n,) [s]; at
+            the line's time its position is the line's fairlead.
+        sample_interval
+            Time between the samples the line will be stepped along [s], > 0; the history's
+            step is that of the first interval (split by ``max_time_step``).
+
+        Returns
+        -------
+        bool
+            Whether the fairlead moves at the start (and the history was set).
+
+        Raises
+        ------
+        SolverError
+            When a static catenary before the start has no solution.
+        ValueError
+            When the line has already been stepped, or the interval is not positive.
+        """
+        if self.cur[_k.C_DT] != 0.0:
+            raise ValueError(f"line '{self.name}' (quasi-dynamic): start_moving before the "
+                             "first step only")
+        interval = float(sample_interval)
+        if not interval > 0.0:
+            raise ValueError(f"sample_interval must be > 0, got {sample_interval!r}")
+        t0 = self.time
+        positions, velocities = path_state(np.array([t0, t0 + interval]))
+        v0 = np.array(velocities[0], dtype=float)
+        if not np.any(v0 != 0.0):
+            return False
+        p1 = np.array(positions[1], dtype=float)
+        v1 = np.array(velocities[1], dtype=float)
+        steps = 1  # the kernel's split of a sample interval (quasi_dynamic_series)
+        if self.max_time_step is not None and interval > self.max_time_step:
+            steps = int(np.ceil(interval / self.max_time_step * (1.0 - 1e-12)))
+        dt = interval / steps
+        times = np.array([t0 - 2.0 * dt, t0 - dt, t0])
+        path = np.zeros((3, 3))
+        velocity = np.zeros((3, 3))
+        for i in range(2):
+            hermite(t0, t0 + interval, self.fairlead, v0, p1, v1, times[i], path[i],
+                    velocity[i])
+        path[2], velocity[2] = self.fairlead, v0
+        self._start_at_rest(path[0], self._static(path[0]))
+        self.time = float(times[0])
+        self.fairlead[:] = path[0]
+        self.fairlead_velocity[:] = velocity[0]
+        n = 2
+        self.solve_path(times[1:], path[1:], velocity[1:], np.zeros((n, 3)), np.zeros((n, 3)),
+                        np.zeros(n), np.zeros(n))
+        return True
 
     # -- stepping ------------------------------------------------------------------------------
     def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],

@@ -56,9 +56,20 @@ def build_line_models(case: Case) -> list[LineModel | None]:
     """One model object per independent line (one section from a fixed to a body point), as
     the case chooses; None for the lines of a system group (:mod:`.groups`). Each starts with
     its fairlead where the case's motion puts it at t = 0 (:func:`~floatmoor.body_motion.
-    start_line`)."""
-    return [_MODELS[line.model](start_line(case.motion, line), case.environment, case.seabed)
-            if case.is_independent(line) else None for line in case.lines]
+    start_line`); a quasi-dynamic line whose fairlead moves then starts in that motion
+    (:meth:`QuasiDynamicLine.start_moving`, docs/theory/quasi_dynamic.md#the-start-of-a-run)."""
+    models: list[LineModel | None] = []
+    for line in case.lines:
+        if not case.is_independent(line):
+            models.append(None)
+            continue
+        model = _MODELS[line.model](start_line(case.motion, line), case.environment,
+                                    case.seabed)
+        if isinstance(model, QuasiDynamicLine) and case.motion is not None:
+            model.start_moving(lambda t, line=line: prescribed_fairlead_state(case.motion, line, t),
+                               case.simulation.output_interval)
+        models.append(model)
+    return models
 
 
 def start_positions(case: Case) -> dict[str, NDArray[np.float64]] | None:

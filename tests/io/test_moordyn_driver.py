@@ -285,16 +285,22 @@ def test_oc4_fairlead_tensions_match_moordyn_c_at_20_s(tmp_path, capsys, model):
     _oc4_against_moordyn(tmp_path, capsys, model, start=model != "quasi-dynamic")
 
 
-@pytest.mark.xfail(strict=True, reason="the quasi-dynamic model's tension steps 1.4 % down "
-                   "on the first step of the OC4 motion (k_QD leaves 1 at once), then follows "
-                   "MoorDyn within 0.6 %; not the import's (a constant table at the same pose "
-                   "has no step)")
 def test_oc4_quasi_dynamic_starts_without_a_step(tmp_path, capsys):
+    """The platform moves at t = 0: the quasi-dynamic lines start with the history of that
+    motion (docs/theory/quasi_dynamic.md#the-start-of-a-run), so their first step moves the
+    tension as the motion does (observed 0.26 %, line 1, then 0.26 % and 0.21 % on the next
+    steps); started at rest, k_QD left 1 at once and the first step moved it 1.07 % (line 2,
+    1.4 % over two steps). The first step is the one the start decides: from t = 2 dt on the
+    backward differences reach back no further than t = 0, and the tension, the same for any
+    start, follows the motion by 0.9 % over 0.2 to 0.5 s (line 2), more than
+    START_RTOL, so START_RTOL bounds the first step, not the whole first 0.5 s."""
     assert _import(tmp_path, "md_5MW_OC4Semi", capsys)[0] == 0
     case = load_case(tmp_path / "md_5MW_OC4Semi.toml", ["simulation.duration=0.5"] + [
         f'lines.line{i}.model="quasi-dynamic"' for i in (1, 2, 3)])
-    tension = run_forced_motion(case).dataset["fairlead_tension"].values
-    assert (np.abs(tension - tension[:, :1]).max() / tension[:, 0].min()) <= START_RTOL
+    tension = run_forced_motion(case).dataset["fairlead_tension"].values  # (line, time)
+    step = np.abs(tension[:, 1] - tension[:, 0]).max() / tension[:, 0].min()
+    print(f"\nquasi-dynamic OC4: first step {step:.3%}")
+    assert step <= START_RTOL
 
 
 @pytest.mark.slow  # the dynamic lines (a few seconds once compiled, a minute to compile)

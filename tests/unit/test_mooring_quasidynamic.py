@@ -1,6 +1,7 @@
 """The quasi-dynamic line model: the compiled kernel against the plain NumPy oracle
 (tests/oracles/quasidynamic_numpy.py), the step API shared with the dynamic line (pieces equal
-one path, state round trip, sub-steps), failure reporting, case settings and shape output."""
+one path, state round trip, sub-steps), failure reporting, case settings, shape output, and
+the start of a fairlead already moving at t = 0."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ from floatmoor.mooring._quasidynamic_kernels import CHAIN_STEPS
 from floatmoor.mooring.dg._kernels import hermite
 from floatmoor.mooring.quasidynamic import SHAPE_NODES, QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.simulation.assembly import build_line_models
 from floatmoor.simulation.forced import run_forced_motion
 from tests.conftest import CASES, LINDAHL_CASE
 from tests.oracles import quasidynamic_numpy as oracle
@@ -32,6 +34,15 @@ QD = 'lines.chain.model="quasi-dynamic"'
 KERNEL_VS_ORACLE_TOL = 1e-10
 #: Oracle step [s]: coarse enough to keep the round-off amplification above small.
 ORACLE_DT = 0.01
+#: A line started on a fairlead moving at t = 0 against the same line run along the same path
+#: from a period earlier, on k_QD and relative on the fairlead tension over the first samples.
+#: The start takes the fairlead one and two steps back on the cubic Hermite curve of the
+#: first sample interval, whose error (~A (omega dt)^4) eq. (4) divides by dt^2: observed
+#: 1.7e-7 in k_QD (with sub-steps 6.8e-8) and 1.4e-7 in tension. Started at rest, k_QD was 0.2
+#: off at t = 0 and 12.8 on the first step.
+MOVING_START_TOL = 1e-6
+#: Steps per period of the moving-start tests: the output interval T / 360 (~2.5 ms, case B's).
+STEPS_PER_PERIOD = 360
 
 _ORACLE_CASES = {
     # touchdown, frictionless seabed, horizontal motion (the verification case B line)
@@ -233,3 +244,72 @@ def test_shape_output_of_a_forced_run():
         np.testing.assert_allclose(tension[j, -1], ds["fairlead_tension"].values[0, i],
                                    rtol=1e-9)
     assert np.all(np.isfinite(positions)) and np.all(tension >= 0.0)
+
+
+def _moving_case(overrides=()):
+    """Case B without its ramp: x = A sin(omega t), the fairlead a quarter period (pi/2) past
+    its extreme at t = 0, at its largest velocity; the output interval a whole fraction of
+    the period. Returns the case, its line, the step and the path's exact state at any t."""
+    period = float(load_case(CASE_B).motion.period[0])
+    dt = period / STEPS_PER_PERIOD
+    case = load_case(CASE_B, ["motion.ramp_duration=0.0", f"simulation.output_interval={dt!r}",
+                              f"simulation.duration={10 * dt!r}", *overrides])
+    line = case.lines[0]
+    return case, line, dt, lambda t: fairlead_state(case.motion, line, np.asarray(t))
+
+
+def _steady_reference(case, line, dt, samples):
+    """The line run from rest one period before t = 0 (the same pose: the same stations) to
+    ``samples`` steps after it: k_QD and fairlead tension at t = 0, dt, ..., whose two-step
+    memory has long forgotten that start."""
+    model = QuasiDynamicLine(line, case.environment, case.seabed,
+                             time=-STEPS_PER_PERIOD * dt)
+    t = (np.arange(STEPS_PER_PERIOD + samples) - STEPS_PER_PERIOD) * dt
+    out = _run(model, t, *fairlead_state(case.motion, line, t))
+    tension = np.linalg.norm(out["ff"], axis=1)
+    return out["k"][STEPS_PER_PERIOD:], tension[STEPS_PER_PERIOD:]
+
+
+@pytest.mark.parametrize("max_step", [None, 0.001])
+def test_a_fairlead_moving_at_the_start_starts_with_its_history(max_step):
+    """start_moving gives the line the history of the path it is on: k_QD from t = 0 on is
+    that of the line long in motion, with or without sub-steps; a fairlead at rest at the
+    start keeps the start at rest bit for bit; once stepped, the history is the line's own."""
+    extra = [] if max_step is None else [f"lines.chain.quasi_dynamic.max_time_step={max_step}"]
+    case, line, dt, state = _moving_case(extra)
+    k_ref, _ = _steady_reference(case, line, dt, 11)
+    model = QuasiDynamicLine.from_case(line, case.environment, case.seabed)
+    assert model.start_moving(state, dt)
+    assert model.time == 0.0 and np.array_equal(model.fairlead, line.fairlead)
+    t = np.arange(11) * dt
+    out = _run(model, t, *state(t))
+    error = np.abs(out["k"] - k_ref).max()
+    print(f"moving start (max_time_step {max_step}): k_QD(0) = {out['k'][0]:.6f}, "
+          f"against the steady run {error:.1e}")
+    assert abs(k_ref[0] - 1.0) > 0.1  # the motion loads the line at t = 0 already
+    assert error <= MOVING_START_TOL
+    with pytest.raises(ValueError, match="before the first step"):
+        model.start_moving(state, dt)
+    # at rest at the start (a velocity of zero): nothing changes
+    still = QuasiDynamicLine.from_case(line, case.environment, case.seabed)
+    fresh = still.state_arrays()
+    assert not still.start_moving(lambda t: (state(t)[0], np.zeros((np.size(t), 3))), dt)
+    for key, value in still.state_arrays().items():
+        np.testing.assert_array_equal(value, fresh[key])
+
+
+def test_a_forced_run_starts_a_moving_fairlead_in_motion():
+    """run_forced_motion builds the quasi-dynamic line on the motion it follows: its tension
+    from t = 0 is the steady one, with no step at the start; with the case's ramp (at rest at
+    t = 0) the line is built at rest as before, bit for bit."""
+    case, line, dt, _ = _moving_case()
+    _, tension_ref = _steady_reference(case, line, dt, 11)
+    tension = run_forced_motion(case).dataset["fairlead_tension"].values[0]
+    error = np.abs(tension - tension_ref).max() / tension_ref.min()
+    print(f"forced run started in motion: tension against the steady run {error:.1e}")
+    assert error <= MOVING_START_TOL
+    ramped = load_case(CASE_B)
+    (model,) = build_line_models(ramped)
+    fresh = QuasiDynamicLine.from_case(ramped.lines[0], ramped.environment, ramped.seabed)
+    for key, value in model.state_arrays().items():
+        np.testing.assert_array_equal(value, fresh.state_arrays()[key])
