@@ -39,6 +39,11 @@ Model choices (the paper leaves them open; see :mod:`floatmoor.mooring._quasidyn
   fairlead on the cubic Hermite curve between samples. Unequal steps use
   a = (v_n - v_{n-1}) / ((dt_n + dt_{n-1}) / 2), eq. 4 when they are equal. The catenary's
   tolerance enters the accelerations as about tol L / dt^2: keep dt above ~1e-4 s for chain.
+* **Start.** At rest (k_QD = 1, the two earlier static lines the initial one), or with
+  :meth:`QuasiDynamicLine.start_moving` on a fairlead already moving: the line steps from rest
+  two steps back on the fairlead's path (extrapolated on the cubic Hermite curve of the first
+  sample interval) to its start, so that its first differences are those of a line in motion
+  (docs/theory/quasi_dynamic.md#the-start-of-a-run).
 * **End forces.** The fairlead force is k_QD times the static one (its direction unchanged). The
   anchor force is that of the same apparent-weight catenary: k_QD times the static force for a
   fully suspended line, and with a resting length L_B the horizontal tension k_QD H at touchdown
