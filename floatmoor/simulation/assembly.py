@@ -66,8 +66,9 @@ def build_line_models(case: Case) -> list[LineModel | None]:
         model = _MODELS[line.model](start_line(case.motion, line), case.environment,
                                     case.seabed)
         if isinstance(model, QuasiDynamicLine) and case.motion is not None:
-            model.start_moving(lambda t, line=line: prescribed_fairlead_state(case.motion, line, t),
-                               case.simulation.output_interval)
+            model.start_moving(
+                lambda t, line=line: prescribed_fairlead_state(case.motion, line, t),
+                case.simulation.output_interval)
         models.append(model)
     return models
 
