@@ -23,7 +23,8 @@ from floatmoor.body_motion import (body_motion_state, is_body_motion, prescribed
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.assembly import LineModel, assemble
-from floatmoor.simulation.line_accuracy import LineAccuracy, checked_line, describe
+from floatmoor.simulation.line_accuracy import (LineAccuracy, checked_line, describe,
+                                                probe_frequency)
 from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_line
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.simulation.validity import ValidityMonitor
@@ -169,13 +170,20 @@ def check_line_accuracy(case: Case, models: list[LineModel | None]) -> tuple[Lin
             continue
         # built as the run builds it: its fairlead where the motion starts
         resolved = replace(start_line(motion, line), dynamic=model.settings)
+        table = getattr(motion, "time", None)  # a table's rows: the motion ends at the last
+        omega = probe_frequency(resolved, None if table is None else float(table[-1]),
+                                motion.ramp_duration)
+        # probed over cycles of omega: shorter than the motion's when its table ends first
+        probed = replace(resolved, dynamic=replace(resolved.dynamic, motion_frequency=omega))
 
         def path_state(t: NDArray[np.float64], line: Line = line
                        ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
             return prescribed_fairlead_state(motion, line, t)
 
-        checked, result = checked_line(resolved, case.environment, case.seabed, path_state,
+        checked, result = checked_line(probed, case.environment, case.seabed, path_state,
                                        motion.ramp_duration)
+        omega = model.settings.motion_frequency  # the run's, as the rule and its steps use
+        checked = replace(checked, dynamic=replace(checked.dynamic, motion_frequency=omega))
         if checked.dynamic != model.settings:
             models[i] = DynamicLine.from_case(checked, case.environment, case.seabed)
         results.append(result)

@@ -22,6 +22,13 @@ by :data:`REFINEMENT` (an under-resolved chain can ring chaotically where a fine
 not); one still that sensitive when the check gives up stops the run with a
 :class:`LineSensitivityError` that says so, as does a coupled run's line (whose numerics are
 not changed as the run goes).
+
+A motion table that ends before the probe's window (:func:`probe_end`) would leave the probe
+judging a fairlead held at the table's last row, whose quiet ring-down says nothing of the
+run's error. The probe's cycles are then shortened to end with the table (a table has no
+period: they are windows; :func:`probe_frequency`), so the probe judges the motion the run
+follows (a case's table reaches past its ramp: it covers the run, which is longer than the
+ramp).
 """
 
 from __future__ import annotations
@@ -43,7 +50,8 @@ from floatmoor.motion import ramp, ramp_rate, table_state
 __all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line", "describe",
            "estimate_error_along", "accuracy_error", "RunProbe", "NOT_YET_ESTIMATED",
            "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS",
-           "LineSensitivityError", "NUDGE", "SENSITIVE_SHARE"]
+           "LineSensitivityError", "NUDGE", "SENSITIVE_SHARE", "probe_end",
+           "probe_frequency"]
 
 #: Cycles of the motion run after its ramp in a probe: the first lets the start from rest
 #: pass through the line (its axial and transverse waves cross a chain in well under a
@@ -75,6 +83,9 @@ SENSITIVE_SHARE = 0.5
 #: Smallest STD against which an STD error is judged, as a share of the mean tension: a line
 #: whose tension varies by less than this has no STD worth a relative error.
 STD_FLOOR = 0.01
+#: Slack on the comparison of a motion table's end with the probe's [s]: round-off of the
+#: table's times.
+TIME_SLACK = 1e-9
 
 
 class LineAccuracyError(SolverError):
@@ -340,6 +351,24 @@ def checked_line(line: Line, environment: Environment, seabed: Seabed,
         refinements += 1
     return line, LineAccuracy(line.name, elements, order, std_error, maxima_error, accuracy,
                               refinements, _time.perf_counter() - start)
+
+
+def probe_end(ramp: float, motion_frequency: float) -> float:
+    """When the probe of a forced run's line ends [s]: the motion's ramp and
+    :data:`PROBE_CYCLES` cycles of 2 pi / ``motion_frequency`` (:func:`estimate_error`)."""
+    return ramp + PROBE_CYCLES * 2.0 * math.pi / motion_frequency
+
+
+def probe_frequency(line: Line, motion_end: float | None, ramp: float) -> float:
+    """The frequency [rad/s] whose :data:`PROBE_CYCLES` cycles after the ramp the probe of
+    ``line`` (settings resolved, ``motion_frequency`` > 0) runs along a motion ending at
+    ``motion_end`` [s] (a table's last row, after ``ramp``; None for a motion without an end):
+    the line's ``motion_frequency``, or for a table ending before those cycles, the frequency
+    whose cycles end with it (module docstring)."""
+    omega = line.dynamic.motion_frequency
+    if motion_end is None or motion_end >= probe_end(ramp, omega) - TIME_SLACK:
+        return omega
+    return PROBE_CYCLES * 2.0 * math.pi / (motion_end - ramp)
 
 
 def describe(result: LineAccuracy) -> str:
