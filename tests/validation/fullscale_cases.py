@@ -3,7 +3,8 @@
 folder of the test's: a test helper, not a test file (test_fullscale_accuracy.py uses it).
 
 - OC4: OpenFAST's MoorDyn r-test md_5MW_OC4Semi (three 835 m chains in 200 m of water),
-  imported with its driver, under its own 60 s platform motion (a transient: no period);
+  imported with its driver, under its own 60 s platform motion (a transient: no period), or
+  the first 40 s of it (a table shorter than the check's probe of 60 s's);
 - DeepCwind: the three LC34 lines alone (tests/data/references/deepcwind_lines_forced.toml)
   each under its recorded fairlead path (deepcwind_lc34_fairleads_600s.nc, 600 s of an
   irregular sea) as a motion table of its own;
@@ -59,9 +60,21 @@ def _import(folder: Path, deck: str, name: str) -> Path:
     return out
 
 
-def oc4_case(folder: Path) -> Path:
-    """The OC4 r-test case, imported into ``folder``."""
-    return _import(folder, "md_5MW_OC4Semi", "oc4")
+def oc4_case(folder: Path, end: float | None = None) -> Path:
+    """The OC4 r-test case, imported into ``folder``; with ``end``, its motion table and run
+    cut at the last row at or before ``end`` [s]."""
+    path = _import(folder, "md_5MW_OC4Semi", "oc4")
+    if end is None:
+        return path
+    table = folder / "oc4_motion.csv"
+    rows = table.read_text().splitlines()
+    kept = [r for r in rows if not r[:1].isdigit() or float(r.split(",")[0]) <= end]
+    table.write_text("\n".join(kept) + "\n")
+    last = float(kept[-1].split(",")[0])
+    text = path.read_text()
+    assert "duration = 60.0  #" in text
+    path.write_text(text.replace("duration = 60.0  #", f"duration = {last!r}  #"))
+    return path
 
 
 def n20_case(folder: Path) -> Path:

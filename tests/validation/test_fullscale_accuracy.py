@@ -40,6 +40,12 @@ ACCURACY = 0.01
 #: 1536563.1, line3 24445.7 / 999398.5 (-0.04 % to +0.006 % from floatmoor's).
 OC4_CONVERGED = {"line1": (23482.5, 998342.2), "line2": (87230.0, 1536502.3),
                  "line3": (24454.9, 999337.1)}
+#: The same with the motion table cut at 40 s (its omega 0.504 rad/s, 3 cycles of 12.47 s):
+#: floatmoor 32 x p5 explicit. The defaults (19, 8, 14 x p3) are -0.98, +0.57, -0.11 % off in
+#: STD: line 1's 19 x p3 is -0.85 % with explicit steps, the rest the implicit steps' (which
+#: the check does not estimate), and its estimate 0.93 %: the thinnest margin of these cases.
+OC4_CUT_CONVERGED = {"line1": (14288.6, 984718.8), "line2": (50822.1, 1586675.2),
+                     "line3": (14370.9, 985646.7)}
 #: DeepCwind LC34 lines, each under its recorded path, from 60 s to 600 s, cycles of 2 pi /
 #: omega = 13.60 s (39 cycles). floatmoor 32 x p5 explicit (line 3 mirrors line 1: same
 #: figures); MoorDyn-C 160 segments RK4, dtM 0.35 ms: line1 100195.1 / 1245674.6 (-0.03 %,
@@ -73,11 +79,20 @@ def _run_checked(path, lines):
 
 @pytest.mark.slow
 def test_oc4_rtest_defaults_meet_the_accuracy(tmp_path):
-    # before the check the rule's 8 x p3 put the STD of lines 1 and 3 5.5-5.6 % off; the check
-    # raises them to 15, 12, 15 elements of order 3
+    # the rule's 8 x p3 put the STD of lines 1 and 3 5.5-5.6 % off; the check raises them to
+    # 15 elements (line 2 stays at 8: +0.5 %)
     case, result = _run_checked(oc4_case(tmp_path), ["line1", "line2", "line3"])
-    assert all(a.refinements >= 1 for a in result.line_accuracy)
+    assert [a.refinements >= 1 for a in result.line_accuracy] == [True, False, True]
     _assert_within(case, result.dataset, WINDOW_START["oc4"], OC4_CONVERGED)
+
+
+@pytest.mark.slow
+def test_oc4_rtest_cut_at_40_s_defaults_meet_the_accuracy(tmp_path):
+    # its table (omega 0.504 rad/s: probe of 3 x 12.47 s = 37.4 s) fits the probe; judged
+    # over the last two cycles only (before the start-up was judged), the check kept line 3 at
+    # 19 x p3, 1.20 % low in STD; judged from the start, 14 x p3 (-0.11 %)
+    case, result = _run_checked(oc4_case(tmp_path, end=40.0), ["line1", "line2", "line3"])
+    _assert_within(case, result.dataset, WINDOW_START["oc4"], OC4_CUT_CONVERGED)
 
 
 @pytest.mark.slow
