@@ -47,10 +47,11 @@ OC4_CONVERGED = {"line1": (23482.5, 998342.2), "line2": (87230.0, 1536502.3),
 OC4_CUT_CONVERGED = {"line1": (14288.6, 984718.8), "line2": (50822.1, 1586675.2),
                      "line3": (14370.9, 985646.7)}
 #: DeepCwind LC34 lines, each under its recorded path, from 60 s to 600 s, cycles of 2 pi /
-#: omega = 13.60 s (39 cycles). floatmoor 32 x p5 explicit (line 3 mirrors line 1: same
-#: figures); MoorDyn-C 160 segments RK4, dtM 0.35 ms: line1 100195.1 / 1245674.6 (-0.03 %,
-#: -0.003 %), line2 in the validation page.
-DEEPCWIND_CONVERGED = {"line1": (100228.3, 1245709.5), "line2": (306657.8, 1508485.6),
+#: omega of its path (13.598 s for lines 1 and 3, 13.600 s for line 2; 39 cycles). floatmoor
+#: 32 x p5 explicit (line 3 mirrors line 1: same figures); MoorDyn-C 160 segments RK4, dtM
+#: 0.35 ms, line1 100195.1 / 1245674.6 (-0.03 %, -0.003 %), line 2 (cycles of 13.598 s) in
+#: the validation page.
+DEEPCWIND_CONVERGED = {"line1": (100228.3, 1245709.5), "line2": (306657.8, 1508912.1),
                        "line3": (100228.3, 1245709.5)}
 #: md_Node_Check_N20's chain, its top surged 5 m at 10 s, after the 20 s ramp (6 cycles).
 #: floatmoor 32 x p5 explicit; MoorDyn-C in the validation page.
