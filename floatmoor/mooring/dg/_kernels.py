@@ -694,7 +694,7 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
     laid[0] = _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
                       weights, fair_force[0], anch_force[0])
     steps[0] = 0.0
-    n_shape = 0
+    n_shape = np.int64(0)  # not the literal 0: _record_shape compiles for int64 only
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
             # N holds the axial force of the state at sample s (from its _record)
