@@ -116,10 +116,7 @@ class DynamicLine(PathStepper):
         self.settings = settings
         self.name = name
         self.anchor = np.array(anchor, dtype=float)
-        # read-only, like the anchor velocity the kernels pass (_kernels._ZERO3, a constant):
-        # the gradient kernel then has one argument type for both ends and compiles once
-        # (docs/validation/performance.md#first-run)
-        self.anchor.flags.writeable = False
+        self.anchor.flags.writeable = False  # as _k._ZERO3 is: kernels compile for one type
         K, p = settings.elements, settings.order
         self.element: ReferenceElement = reference_element(p)
         self.element_length = properties.length / K
