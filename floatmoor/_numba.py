@@ -22,6 +22,7 @@ from typing import Any, Callable
 
 import numba
 from numba.core import event as _event
+from numba.core.caching import NullCache as _NullCache
 from numba.core.registry import CPUDispatcher as _CPUDispatcher
 
 __all__ = ["jit", "numba_info", "watch_compilation"]
@@ -45,6 +46,8 @@ def jit(func: Callable[..., Any] | None = None, **options: Any) -> Any:
 
 #: Name suffix of the Python-callable twin of a private kernel (its own cache files).
 _PYTHON_ENTRY = "__python_entry"
+#: Target options of a private kernel that its twin does not take (``njit`` sets nopython).
+_KERNEL_ONLY = ("nopython", "no_cpython_wrapper", "no_cfunc_wrapper")
 
 
 class _KernelOnlyDispatcher(_CPUDispatcher):
@@ -63,8 +66,9 @@ class _KernelOnlyDispatcher(_CPUDispatcher):
             twin.__qualname__ = func.__qualname__ + _PYTHON_ENTRY
             twin.__module__ = func.__module__
             twin.__doc__ = func.__doc__
-            options = {k: v for k, v in self._floatmoor_settings.items()}
-            self._python_entry = numba.njit(**options)(twin)
+            options = {k: v for k, v in self.targetoptions.items() if k not in _KERNEL_ONLY}
+            cached = not isinstance(self._cache, _NullCache)
+            self._python_entry = numba.njit(cache=cached, **options)(twin)
         return self._python_entry
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
@@ -82,7 +86,6 @@ def _compile(func: Callable[..., Any], settings: dict[str, Any]) -> Any:
     options.update(nopython=True, boundscheck=options.get("boundscheck"),
                    no_cpython_wrapper=True, no_cfunc_wrapper=True)
     dispatcher = _KernelOnlyDispatcher(py_func=func, locals={}, targetoptions=options)
-    dispatcher._floatmoor_settings = settings
     if cache:
         dispatcher.enable_caching()
     return dispatcher
