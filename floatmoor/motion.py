@@ -41,8 +41,8 @@ def _spline_coefficients(time: NDArray[np.float64], values: NDArray[np.float64]
     # it; a case's arrays are never changed in place (a changed table is a new motion)
     if hit is not None and hit[0] is time and hit[1] is values:
         return hit[2]
-    # here, not at import: scipy.interpolate (0.6 s) is needed by tables only, and the
-    # quick start's circular motion loads none of scipy (docs/validation/performance.md#first-run)
+    # here, not at import: scipy.interpolate (0.6 s of start-up) is needed by tables only, not
+    # by the quick start's circular motion (docs/validation/performance.md#first-run)
     from scipy.interpolate import CubicSpline
 
     # one column at a time, so that a column's numbers do not depend on the others (a body
