@@ -41,7 +41,7 @@ def _spline_coefficients(time: NDArray[np.float64], values: NDArray[np.float64]
     # it; a case's arrays are never changed in place (a changed table is a new motion)
     if hit is not None and hit[0] is time and hit[1] is values:
         return hit[2]
-    # here, not at import: scipy.interpolate (0.6 s of start-up) is needed by tables only, not
+    # here, not at import: scipy.interpolate (0.6 s to import) is needed by tables only, not
     # by the quick start's circular motion (docs/validation/performance.md#first-run)
     from scipy.interpolate import CubicSpline
 
