@@ -4,17 +4,26 @@ Every numerical kernel in floatmoor is decorated with :func:`jit`, which fixes t
 project-wide policy: compiled once and cached on disk (``cache=True``), no ``fastmath``
 (NaN and infinity checks must keep working, they are how kernels report failure),
 ``nogil`` so kernels can run in threads.
+
+A private kernel (its name starts with ``_``) is a helper of other kernels: it is compiled
+without the CPython and C entry points that only calls from Python need (building them is
+about a sixth of the compile time of a first run, docs/validation/performance.md#first-run).
+A call from Python (a test, a model's occasional direct call) goes to a twin compiled with
+them on first use, cached on disk under its own name; the machine code is the same.
 """
 
 from __future__ import annotations
 
 import time as _time
+import types as _types
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any, Callable
 
 import numba
 from numba.core import event as _event
+from numba.core.caching import NullCache as _NullCache
+from numba.core.registry import CPUDispatcher as _CPUDispatcher
 
 __all__ = ["jit", "numba_info", "watch_compilation"]
 
@@ -31,8 +40,55 @@ def jit(func: Callable[..., Any] | None = None, **options: Any) -> Any:
     """
     settings = {"cache": True, "fastmath": False, "nogil": True, **options}
     if func is None:
-        return lambda f: numba.njit(**settings)(f)
-    return numba.njit(**settings)(func)
+        return lambda f: _compile(f, settings)
+    return _compile(func, settings)
+
+
+#: Name suffix of the Python-callable twin of a private kernel (its own cache files).
+_PYTHON_ENTRY = "__python_entry"
+#: Target options of a private kernel that its twin does not take (``njit`` sets nopython).
+_KERNEL_ONLY = ("nopython", "no_cpython_wrapper", "no_cfunc_wrapper")
+
+
+class _KernelOnlyDispatcher(_CPUDispatcher):
+    """Dispatcher of a private kernel, compiled without entry points for Python: kernels
+    call it directly; a call from Python goes to :attr:`python_entry`."""
+
+    _python_entry: Any = None
+
+    @property
+    def python_entry(self) -> Any:
+        """The same kernel compiled with the CPython entry point (built on first use)."""
+        if self._python_entry is None:
+            func = self.py_func
+            twin = _types.FunctionType(func.__code__, func.__globals__, func.__name__,
+                                       func.__defaults__, func.__closure__)
+            twin.__qualname__ = func.__qualname__ + _PYTHON_ENTRY
+            twin.__module__ = func.__module__
+            twin.__doc__ = func.__doc__
+            options = {k: v for k, v in self.targetoptions.items() if k not in _KERNEL_ONLY}
+            cached = not isinstance(self._cache, _NullCache)
+            self._python_entry = numba.njit(cache=cached, **options)(twin)
+        return self._python_entry
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        # the compiled overloads of this dispatcher have no CPython entry: calling them from
+        # Python would jump to a null address
+        return self.python_entry(*args, **kwargs)
+
+
+def _compile(func: Callable[..., Any], settings: dict[str, Any]) -> Any:
+    """``numba.njit(**settings)(func)``; a private kernel without its Python entry points."""
+    if not func.__name__.startswith("_") or numba.config.DISABLE_JIT:
+        return numba.njit(**settings)(func)
+    options = dict(settings)
+    cache = options.pop("cache")
+    options.update(nopython=True, boundscheck=options.get("boundscheck"),
+                   no_cpython_wrapper=True, no_cfunc_wrapper=True)
+    dispatcher = _KernelOnlyDispatcher(py_func=func, locals={}, targetoptions=options)
+    if cache:
+        dispatcher.enable_caching()
+    return dispatcher
 
 
 def numba_info() -> dict[str, str]:

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import CubicSpline
 
 from floatmoor.case.schema import CircularMotion, HarmonicMotion, Line, Motion, TableMotion
 
@@ -42,6 +41,10 @@ def _spline_coefficients(time: NDArray[np.float64], values: NDArray[np.float64]
     # it; a case's arrays are never changed in place (a changed table is a new motion)
     if hit is not None and hit[0] is time and hit[1] is values:
         return hit[2]
+    # here, not at import: scipy.interpolate (0.6 s to import) is needed by tables only, not
+    # by the quick start's circular motion (docs/validation/performance.md#first-run)
+    from scipy.interpolate import CubicSpline
+
     # one column at a time, so that a column's numbers do not depend on the others (a body
     # table without rotations gives a line table's path bit for bit)
     coefficients = np.empty((4, time.size - 1, values.shape[1]))

@@ -560,11 +560,16 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
     # reduce the accuracy of the end force to first order.
     g = bcd
     _hermite_derivatives(t0, t1, p0, w0, p1, w1, t, g)
+    # dg_rhs's two parts called here, not dg_rhs: a kernel in between would compile and
+    # optimise both once more (docs/validation/performance.md#first-run)
+    cint = prm[P_CINT] if prm[P_IMPLICIT_DAMPING] == 0.0 else 0.0
     # stage 1: data at t
     for c in range(3):
         fpos[c] = g[0, c]
         fvel[c] = g[1, c]
-    dg_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    _tension_field(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                   slack, cint)
+    _acceleration(r, v, prm, D, LIFT, q, N, Nstar, a)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
@@ -574,7 +579,9 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
     for c in range(3):
         fpos[c] = g[0, c] + dt * g[1, c]
         fvel[c] = g[1, c] + dt * g[2, c]
-    dg_rhs(r1, v1, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    _tension_field(r1, v1, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                   slack, cint)
+    _acceleration(r1, v1, prm, D, LIFT, q, N, Nstar, a)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
@@ -584,7 +591,9 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
     for c in range(3):
         fpos[c] = g[0, c] + 0.5 * dt * g[1, c] + 0.25 * dt * dt * g[2, c]
         fvel[c] = g[1, c] + 0.5 * dt * g[2, c] + 0.25 * dt * dt * g[3, c]
-    dg_rhs(r2, v2, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    _tension_field(r2, v2, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                   slack, cint)
+    _acceleration(r2, v2, prm, D, LIFT, q, N, Nstar, a)
     third, two_thirds = 1.0 / 3.0, 2.0 / 3.0
     for k in range(K):
         for i in range(Np):
@@ -691,10 +700,12 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
     for c in range(3):
         fpos[c] = path[0, c]
         fvel[c] = velocity[0, c]
-    laid[0] = _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
-                      weights, fair_force[0], anch_force[0])
+    # _record_ends, not its one-line wrapper _record: each kernel between two others compiles
+    # (and optimises) everything below it once more (docs/validation/performance.md#first-run)
+    laid[0] = _record_ends(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar,
+                           faces, slack, weights, fair_force[0], anch_force[0])
     steps[0] = 0.0
-    n_shape = 0
+    n_shape = np.int64(0)  # not the literal 0: _record_shape compiles for int64 only
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
             # N holds the axial force of the state at sample s (from its _record)
@@ -714,8 +725,9 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
         for c in range(3):
             fpos[c] = path[s + 1, c]
             fvel[c] = velocity[s + 1, c]
-        laid[s + 1] = _record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
-                              slack, weights, fair_force[s + 1], anch_force[s + 1])
+        laid[s + 1] = _record_ends(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N,
+                                   Nstar, faces, slack, weights, fair_force[s + 1],
+                                   anch_force[s + 1])
         steps[s + 1] = n_sub
         status = _check(r, v, q, prm, where)
         if status != DG_OK:

@@ -116,6 +116,7 @@ class DynamicLine(PathStepper):
         self.settings = settings
         self.name = name
         self.anchor = np.array(anchor, dtype=float)
+        self.anchor.flags.writeable = False  # as _k._ZERO3 is: kernels compile for one type
         K, p = settings.elements, settings.order
         self.element: ReferenceElement = reference_element(p)
         self.element_length = properties.length / K
