@@ -22,8 +22,12 @@ from typing import Any, Callable
 
 import numba
 from numba.core import event as _event
-from numba.core.caching import NullCache as _NullCache
-from numba.core.registry import CPUDispatcher as _CPUDispatcher
+
+try:  # numba internals (as of 0.68): without them every kernel keeps its Python entry
+    from numba.core.caching import NullCache as _NullCache
+    from numba.core.registry import CPUDispatcher as _CPUDispatcher
+except ImportError:  # pragma: no cover - a numba that moved them
+    _NullCache = _CPUDispatcher = None
 
 __all__ = ["jit", "numba_info", "watch_compilation"]
 
@@ -50,7 +54,7 @@ _PYTHON_ENTRY = "__python_entry"
 _KERNEL_ONLY = ("nopython", "no_cpython_wrapper", "no_cfunc_wrapper")
 
 
-class _KernelOnlyDispatcher(_CPUDispatcher):
+class _KernelOnlyDispatcher(_CPUDispatcher or object):  # type: ignore[misc]
     """Dispatcher of a private kernel, compiled without entry points for Python: kernels
     call it directly; a call from Python goes to :attr:`python_entry`."""
 
@@ -79,7 +83,8 @@ class _KernelOnlyDispatcher(_CPUDispatcher):
 
 def _compile(func: Callable[..., Any], settings: dict[str, Any]) -> Any:
     """``numba.njit(**settings)(func)``; a private kernel without its Python entry points."""
-    if not func.__name__.startswith("_") or numba.config.DISABLE_JIT:
+    if (not func.__name__.startswith("_") or numba.config.DISABLE_JIT
+            or _CPUDispatcher is None):
         return numba.njit(**settings)(func)
     options = dict(settings)
     cache = options.pop("cache")
