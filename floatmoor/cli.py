@@ -158,6 +158,16 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("--workers", type=int, default=1, help="local worker processes")
     study.add_argument("--quick", action="store_true",
                        help="reduced subset (one amplitude, two accelerations per configuration)")
+    study.add_argument("--dynamic-elements", metavar="N", default=None,
+                       help="elements (order 5) of the dynamic reference (default: the "
+                       "study's, docs/cases/qd_verification.md)")
+    study.add_argument("--amplitudes", metavar="LIST", default=None,
+                       help="subset of the amplitudes, e.g. A1,A3,A5 (default: all five)")
+    study.add_argument("--alphas", metavar="LIST", default=None,
+                       help="subset of the accelerations, e.g. 0.1,0.2,0.6 (default: all six)")
+    study.add_argument("--resume", action="store_true",
+                       help="continue an interrupted study in the same folder: the runs it "
+                       "finished (kept in DIR/runs) are not computed again")
     study.add_argument("--quiet", action="store_true", help="no progress reports")
     uq = sub.add_parser("uq", help="run an uncertainty-quantification study (gPC surrogates "
                         "of quantities of interest)")
@@ -981,22 +991,31 @@ def _study(args: argparse.Namespace) -> int:
     output = check_owned_folder(args.output, "-o/--output", "study qd-verification")
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+    options = qd_verification.study_options(args.dynamic_elements, args.amplitudes,
+                                            args.alphas, quick=args.quick)
 
     def progress(done: int, total: int) -> None:
         if not args.quiet:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
+    runs = qd_verification.qd_runs.RUNS_DIR
     try:
-        with output_lock(output.resolve()), OwnedFolder(output, "study qd-verification"):
+        with output_lock(output.resolve()), OwnedFolder(output, "study qd-verification",
+                                                        keep=(runs,)):
             ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                           progress=progress)
+                                           progress=progress, resume=args.resume, **options)
     except KeyboardInterrupt as stop:
-        print(f"floatmoor: {signal_name(stop)}; nothing written (the study writes its results "
-              "at the end)", file=sys.stderr)
+        kept = qd_verification.qd_runs.count_runs(output)
+        said = (f"{kept} finished runs kept in {output / runs} (--resume continues the study)"
+                if kept else "nothing written")
+        print(f"floatmoor: {signal_name(stop)}; {said}; the dataset, summary and figures are "
+              "written at the end", file=sys.stderr)
         return exit_status(stop)
     except OutputWriteError as err:
-        print(f"floatmoor: study failed: {err}; the files it wrote were removed",
-              file=sys.stderr)
+        kept = qd_verification.qd_runs.count_runs(output)
+        print(f"floatmoor: study failed: {err}; the files it wrote were removed"
+              + (f" but its {kept} finished runs, kept in {output / runs} for --resume"
+                 if kept else ""), file=sys.stderr)
         return EXIT_FAILED
     print(qd_verification.summary(ds))
     print(f"results in {output}")
