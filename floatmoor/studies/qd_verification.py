@@ -315,6 +315,9 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
                    alphas=alphas)
     out = None if output is None else Path(output)
     stored: dict = {}
+    if out is not None:
+        with write_errors(out):
+            out.mkdir(exist_ok=True)  # its parent exists (the command checked)
     if out is not None and resume:
         stored = qd_runs.stored_runs(out, specs, [AMPLITUDE_NAMES[s.amplitude_index]
                                                   for s in specs], _constants())

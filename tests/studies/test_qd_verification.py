@@ -142,7 +142,7 @@ def test_study_with_a_failed_run_exits_1_naming_it(tmp_path, capsys, monkeypatch
     from floatmoor.errors import SolverError
 
     specs = [qdv.RunSpec("C11", 0, 2), qdv.RunSpec("C12", 0, 2)]
-    monkeypatch.setattr(qdv, "design", lambda quick=False, configs=qdv.CONFIGS: specs)
+    monkeypatch.setattr(qdv, "design", lambda *args, **kwargs: specs)
 
     def tensions(spec):
         if spec.config == "C12":
@@ -166,6 +166,121 @@ def test_study_with_a_failed_run_exits_1_naming_it(tmp_path, capsys, monkeypatch
     assert ds["run_error"].sel(config="C11").item() == ""
     assert np.isfinite(ds["rmse_qd"].sel(config="C11").item())
     assert qdv.failed_runs(ds) == [("C12 A1 alpha 0.3", lines[1].split(": ", 1)[1])]
+
+
+@pytest.fixture
+def no_figures(monkeypatch):
+    """The study's figures replaced by a small text file (their cost is not under test)."""
+    def plot(ds, path, *args):
+        path.write_text("figure\n")
+        return path
+
+    monkeypatch.setattr(qdv, "plot_cycles", plot)
+    monkeypatch.setattr(qdv, "plot_errors", plot)
+
+
+def _synthetic_tensions(calls):
+    """Replacement of qdv.tensions: a steady cycle depending on the combination and on the
+    dynamic resolution, each call recorded in ``calls``."""
+    def tensions(spec):
+        calls.append(spec)
+        t = np.arange(0.0, 7 * spec.period, qdv.OUTPUT_INTERVAL)
+        w = 2 * np.pi * t / spec.period
+        base = 100.0 + 10.0 * spec.amplitude_index + spec.alpha_index
+        qs = base + 10.0 * np.sin(w)
+        dyn = qs + (1.0 + 0.1 * spec.alpha) * np.sin(2 * w) + 1.0 / spec.dynamic_elements
+        return t, {"quasi-static": qs, "quasi-dynamic": qs + 0.3 * np.cos(w), "dynamic": dyn}
+    return tensions
+
+
+def test_resumed_study_skips_finished_runs_and_gives_the_same_dataset(tmp_path, capsys,
+                                                                       monkeypatch, no_figures):
+    """Interrupted after 3 of the 12 quick runs: 3 run files kept, exit 130 naming them;
+    ``--resume`` computes only the other 9 and writes the dataset an uninterrupted study
+    writes (but for its own wall time and count of resumed runs). The model runs are
+    replaced by synthetic cycles."""
+    calls = []
+    monkeypatch.setattr(qdv, "tensions", _synthetic_tensions(calls))
+    whole = tmp_path / "whole"
+    assert main(["study", "qd-verification", "-o", str(whole), "--quick", "--quiet",
+                 "--dynamic-elements", "7"]) == 0
+    assert len(calls) == 12 and {s.dynamic_elements for s in calls} == {7}
+    assert len(list((whole / "runs").glob("*.json"))) == 12
+
+    real_evaluate = qdv.evaluate
+
+    def evaluate(spec):
+        if len(calls) == 15:
+            raise KeyboardInterrupt
+        return real_evaluate(spec)
+
+    monkeypatch.setattr(qdv, "evaluate", evaluate)
+    out = tmp_path / "out"
+    args = ["study", "qd-verification", "-o", str(out), "--quick", "--quiet",
+            "--dynamic-elements", "7"]
+    capsys.readouterr()
+    assert main(args) == 130
+    err = capsys.readouterr().err
+    assert err.startswith(f"floatmoor: interrupted; 3 finished runs kept in {out / 'runs'}")
+    assert "Traceback" not in err and not (out / "qd_verification.nc").exists()
+    kept = sorted(p.name for p in (out / "runs").glob("*.json"))
+    assert kept == ["C11_A1_alpha0.3.json", "C11_A1_alpha0.6.json", "C12_A1_alpha0.3.json"]
+    del calls[:]
+    assert main(args + ["--resume"]) == 0
+    assert len(calls) == 9 and all(s.config != "C11" for s in calls)
+    assert ("C12", 0, 2) not in {(s.config, s.amplitude_index, s.alpha_index) for s in calls}
+    a = xr.load_dataset(whole / "qd_verification.nc")
+    b = xr.load_dataset(out / "qd_verification.nc")
+    assert b.attrs["resumed_runs"] == 3 and a.attrs["resumed_runs"] == 0
+    assert a.attrs["dynamic_elements"] == 7
+    for ds in (a, b):
+        for name in ("wall_time_s", "resumed_runs", "run_time_s", "run_cpu_time_s"):
+            del ds.attrs[name]
+    xr.testing.assert_identical(a, b)
+    # the stored run is the fresh one, value for value
+    assert (out / "runs" / "C11_A1_alpha0.3.json").read_text().split('"seconds"')[0] == (
+        whole / "runs" / "C11_A1_alpha0.3.json").read_text().split('"seconds"')[0]
+
+
+def test_resume_refuses_runs_of_another_dynamic_resolution(tmp_path, capsys, monkeypatch,
+                                                           no_figures):
+    """A folder whose runs were computed with 7 elements is not resumed at 9: status 2 before
+    any run, naming the option, the file and both resolutions; a fresh study (no --resume)
+    replaces those runs."""
+    calls = []
+    monkeypatch.setattr(qdv, "tensions", _synthetic_tensions(calls))
+    out = tmp_path / "out"
+    base = ["study", "qd-verification", "-o", str(out), "--quiet", "--amplitudes", "A2",
+            "--alphas", "0.4"]
+    assert main(base + ["--dynamic-elements", "7"]) == 0
+    assert len(calls) == 6
+    capsys.readouterr()
+    assert main(base + ["--dynamic-elements", "9", "--resume"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("floatmoor: error: --resume: expected the runs of the same study in "
+                          "the output folder (dynamic_elements 9 (--dynamic-elements))")
+    assert "C11_A2_alpha0.4.json computed with dynamic_elements 7" in err
+    assert len(calls) == 6 and "\n" not in err
+    assert main(base + ["--dynamic-elements", "9"]) == 0
+    assert len(calls) == 12
+    ds = xr.load_dataset(out / "qd_verification.nc")
+    assert ds.attrs["dynamic_elements"] == 9 and dict(ds.sizes)["alpha"] == 1
+    assert ds.attrs["design"] == "subset: amplitudes A2; alpha 0.4"
+
+
+@pytest.mark.parametrize("option, value", [
+    ("--dynamic-elements", "0"), ("--dynamic-elements", "-3"), ("--dynamic-elements", "2.5"),
+    ("--dynamic-elements", "ten"), ("--dynamic-elements", ""), ("--amplitudes", "A6"),
+    ("--amplitudes", "A1,A1"), ("--amplitudes", ""), ("--alphas", "0.7"),
+    ("--alphas", "0.1,,0.2"), ("--alphas", "nan"),
+])
+def test_study_refuses_bad_option_values(tmp_path, capsys, option, value):
+    """Strict options: status 2, one line naming the option and the value, nothing written."""
+    out = tmp_path / "out"
+    assert main(["study", "qd-verification", "-o", str(out), option, value]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"floatmoor: error: {option}: expected ") and repr(value) in err
+    assert len(err.strip().splitlines()) == 1 and not out.exists()
 
 
 def test_interrupted_study_exits_130_without_traceback(tmp_path, capsys, monkeypatch):
