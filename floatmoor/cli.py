@@ -991,8 +991,8 @@ def _study(args: argparse.Namespace) -> int:
     output = check_owned_folder(args.output, "-o/--output", "study qd-verification")
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
-    options = qd_verification.study_options(args.dynamic_elements, args.amplitudes,
-                                            args.alphas, quick=args.quick)
+    options = _study_options(args.dynamic_elements, args.amplitudes, args.alphas,
+                             quick=args.quick)
 
     def progress(done: int, total: int) -> None:
         if not args.quiet:
@@ -1024,6 +1024,56 @@ def _study(args: argparse.Namespace) -> int:
         report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _study_options(dynamic_elements: str | None, amplitudes: str | None, alphas: str | None,
+                  quick: bool = False) -> dict:
+    """The keyword arguments of ``qd_verification.run_study`` from the command line's texts
+    (``--dynamic-elements 20``, ``--amplitudes A1,A3,A5``, ``--alphas 0.1,0.2,0.6``).
+
+    Raises
+    ------
+    CaseError
+        Naming the option, what it takes and what it was given.
+    """
+    from floatmoor.studies.qd_verification import ALPHAS, AMPLITUDE_NAMES
+
+    out: dict = {}
+    if dynamic_elements is not None:
+        text = dynamic_elements.strip()
+        if not (text.isascii() and text.isdigit()) or int(text) < 1:
+            raise CaseError("--dynamic-elements", "", "a whole number >= 1", repr(dynamic_elements))
+        out["dynamic_elements"] = int(text)
+    if quick and (amplitudes is not None or alphas is not None):
+        raise CaseError("--quick", "", "no --amplitudes or --alphas beside it (it picks its own)",
+                        "--amplitudes" if amplitudes is not None else "--alphas")
+    if amplitudes is not None:
+        out["amplitudes"] = _study_pick("--amplitudes", amplitudes, AMPLITUDE_NAMES,
+                                  "amplitude names among " + ", ".join(AMPLITUDE_NAMES))
+    if alphas is not None:
+        names = tuple(f"{a:g}" for a in ALPHAS)
+        out["alphas"] = _study_pick("--alphas", alphas, names,
+                              "accelerations among " + ", ".join(names))
+    return out
+
+
+def _study_pick(option: str, text: str, names: Sequence[str], expected: str) -> list[int]:
+    """Indices into ``names`` of the comma-separated items of ``text`` (each once)."""
+    items = [item.strip() for item in text.split(",")]
+    picked = []
+    for item in items:
+        key = item.upper() if option == "--amplitudes" else item
+        if option == "--alphas":
+            try:
+                key = f"{float(item):g}"
+            except ValueError:
+                key = item
+        if key not in names or names.index(key) in picked:
+            why = "repeated" if key in names else "unknown"
+            raise CaseError(option, "", f"a comma-separated list of distinct {expected}",
+                            f"{repr(text)} ({why} item {repr(item)})")
+        picked.append(names.index(key))
+    return picked
 
 
 def _uq(args: argparse.Namespace) -> int:

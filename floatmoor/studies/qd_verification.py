@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from floatmoor.case.load import load_case
-from floatmoor.errors import CaseError, FloatmoorError
+from floatmoor.errors import FloatmoorError
 from floatmoor.io.output_files import atomic_target, write_errors
 from floatmoor.simulation.forced import run_forced_motion
 from floatmoor.studies import qd_runs
@@ -197,54 +197,6 @@ def design(quick: bool = False, configs: Sequence[str] = CONFIGS, *,
         QUICK_ALPHAS if quick else range(len(ALPHAS)))
     return [RunSpec(c, i, j, dynamic_elements) for c in configs for i in sorted(set(amps))
             for j in sorted(set(alpha_idx))]
-
-
-def study_options(dynamic_elements: str | None, amplitudes: str | None, alphas: str | None,
-                  quick: bool = False) -> dict:
-    """The keyword arguments of :func:`run_study` from the command line's texts
-    (``--dynamic-elements 20``, ``--amplitudes A1,A3,A5``, ``--alphas 0.1,0.2,0.6``).
-
-    Raises
-    ------
-    CaseError
-        Naming the option, what it takes and what it was given.
-    """
-    out: dict = {}
-    if dynamic_elements is not None:
-        text = dynamic_elements.strip()
-        if not (text.isascii() and text.isdigit()) or int(text) < 1:
-            raise CaseError("--dynamic-elements", "", "a whole number >= 1", repr(dynamic_elements))
-        out["dynamic_elements"] = int(text)
-    if quick and (amplitudes is not None or alphas is not None):
-        raise CaseError("--quick", "", "no --amplitudes or --alphas beside it (it picks its own)",
-                        "--amplitudes" if amplitudes is not None else "--alphas")
-    if amplitudes is not None:
-        out["amplitudes"] = _pick("--amplitudes", amplitudes, AMPLITUDE_NAMES,
-                                  "amplitude names among " + ", ".join(AMPLITUDE_NAMES))
-    if alphas is not None:
-        names = tuple(f"{a:g}" for a in ALPHAS)
-        out["alphas"] = _pick("--alphas", alphas, names,
-                              "accelerations among " + ", ".join(names))
-    return out
-
-
-def _pick(option: str, text: str, names: Sequence[str], expected: str) -> list[int]:
-    """Indices into ``names`` of the comma-separated items of ``text`` (each once)."""
-    items = [item.strip() for item in text.split(",")]
-    picked = []
-    for item in items:
-        key = item.upper() if option == "--amplitudes" else item
-        if option == "--alphas":
-            try:
-                key = f"{float(item):g}"
-            except ValueError:
-                key = item
-        if key not in names or names.index(key) in picked:
-            why = "repeated" if key in names else "unknown"
-            raise CaseError(option, "", f"a comma-separated list of distinct {expected}",
-                            f"{repr(text)} ({why} item {repr(item)})")
-        picked.append(names.index(key))
-    return picked
 
 
 def _constants() -> dict:

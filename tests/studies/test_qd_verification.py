@@ -268,6 +268,42 @@ def test_resume_refuses_runs_of_another_dynamic_resolution(tmp_path, capsys, mon
     assert ds.attrs["design"] == "subset: amplitudes A2; alpha 0.4"
 
 
+def test_reference_change_between_two_resolutions():
+    """Largest and median change of each judged statistic over the runs both datasets hold,
+    and the runs that change class (10 %, 20 %), on hand-made datasets."""
+    from floatmoor.studies.qd_convergence import reference_change
+
+    def dataset(rmse_qd, e_tmin, alphas):
+        shape = (len(qdv.CONFIGS), 1, len(alphas))
+        zero = np.zeros(shape)
+        return xr.Dataset(
+            {"rmse_qd": (("config", "amplitude", "alpha"), np.reshape(rmse_qd, shape)),
+             "rmse_s": (("config", "amplitude", "alpha"), zero + 0.3),
+             "e_tmin": (("config", "amplitude", "alpha"), np.reshape(e_tmin, shape)),
+             "e_tmax": (("config", "amplitude", "alpha"), zero + 0.05)},
+            coords={"config": list(qdv.CONFIGS), "amplitude": [0.018],
+                    "amplitude_name": ("amplitude", ["A3"]), "alpha": list(alphas)})
+
+    coarse = dataset(np.linspace(0.05, 0.30, 12), np.full(12, 0.09), [0.2, 0.6])
+    rmse = np.linspace(0.05, 0.30, 12).copy()
+    rmse[3] += 0.004  # C12 alpha 0.6: 0.1182 -> 0.1222, same class
+    rmse[1] -= 0.03   # C11 alpha 0.6: 0.0727 -> 0.0427, same class
+    e_tmin = np.full((6, 3), 0.09)
+    e_tmin[0, 0] = 0.105  # C11 alpha 0.2 crosses 10 %
+    # the finer one also holds alpha 0.4, which the coarse one lacks: left out
+    fine = dataset(np.insert(rmse.reshape(6, 2), 1, 1.0, axis=1), e_tmin, [0.2, 0.4, 0.6])
+    change = reference_change(coarse, fine)
+    assert change["rmse_qd"]["runs"] == 12
+    assert change["rmse_qd"]["max"] == pytest.approx(0.03, abs=1e-12)
+    assert change["rmse_qd"]["max_run"] == "C11 A3 alpha 0.6"
+    assert change["rmse_qd"]["median"] == pytest.approx(0.0, abs=1e-12)
+    assert change["rmse_qd"]["class_changes"] == []
+    assert change["e_tmin"]["max"] == pytest.approx(0.015, abs=1e-12)
+    assert change["e_tmin"]["class_changes"] == ["C11 A3 alpha 0.2"]
+    assert change["peak_qd"]["class_changes"] == ["C11 A3 alpha 0.2"]
+    assert change["rmse_s"]["max"] == 0.0
+
+
 @pytest.mark.parametrize("option, value", [
     ("--dynamic-elements", "0"), ("--dynamic-elements", "-3"), ("--dynamic-elements", "2.5"),
     ("--dynamic-elements", "ten"), ("--dynamic-elements", ""), ("--amplitudes", "A6"),
