@@ -985,8 +985,8 @@ def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) ->
 def _study(args: argparse.Namespace) -> int:
     from floatmoor.studies import qd_verification
 
-    from floatmoor.io.output_files import OutputWriteError, output_lock
-    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
+    from floatmoor.io.output_files import OutputWriteError, output_lock, write_errors
+    from floatmoor.io.output_folders import MANIFEST_NAME, OwnedFolder, check_owned_folder
 
     output = check_owned_folder(args.output, "-o/--output", "study qd-verification")
     if args.workers < 1:
@@ -1001,9 +1001,14 @@ def _study(args: argparse.Namespace) -> int:
     runs = qd_verification.qd_runs.RUNS_DIR
     try:
         with output_lock(output.resolve()), OwnedFolder(output, "study qd-verification",
-                                                        keep=(runs,)):
+                                                        keep=(runs,)) as folder:
+            def kept() -> None:  # a run file stays the study's even if the process is killed
+                with write_errors(output / MANIFEST_NAME):
+                    folder.record_written()
+
             ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                           progress=progress, resume=args.resume, **options)
+                                           progress=progress, resume=args.resume, kept=kept,
+                                           **options)
     except KeyboardInterrupt as stop:
         kept = qd_verification.qd_runs.count_runs(output)
         said = (f"{kept} finished runs kept in {output / runs} (--resume continues the study)"

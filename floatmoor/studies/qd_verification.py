@@ -205,21 +205,25 @@ def _constants() -> dict:
             "output_interval": OUTPUT_INTERVAL, "phase_points": PHASE_POINTS}
 
 
-def _store(output: Path | None, res: dict) -> None:
-    """Write a finished run's result to its run file (a failed run is not stored)."""
+def _store(output: Path | None, res: dict, kept: Callable[[], None] | None) -> None:
+    """Write a finished run's result to its run file (a failed run is not stored), then call
+    ``kept``."""
     if output is not None and not res["error"]:
         s = res["spec"]
         qd_runs.write_run(qd_runs.run_file(output, s, AMPLITUDE_NAMES[s.amplitude_index]),
                           qd_runs.identity(s, _constants()), res)
+        if kept:
+            kept()
 
 
 def _compute(specs: list[RunSpec], output: Path | None, workers: int, done: int, total: int,
-             progress: Callable[[int, int], None] | None) -> list[dict]:
+             progress: Callable[[int, int], None] | None,
+             kept: Callable[[], None] | None) -> list[dict]:
     """Evaluate ``specs``, each result stored as soon as it is finished."""
     results = []
 
     def finished(res: dict) -> None:
-        _store(output, res)
+        _store(output, res, kept)
         results.append(res)
         if progress:
             progress(done + len(results), total)
@@ -241,7 +245,8 @@ def _compute(specs: list[RunSpec], output: Path | None, workers: int, done: int,
 def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = False,
               progress: Callable[[int, int], None] | None = None, *,
               dynamic_elements: int = DYNAMIC_ELEMENTS, resume: bool = False,
-              amplitudes: Sequence[int] | None = None, alphas: Sequence[int] | None = None):
+              amplitudes: Sequence[int] | None = None, alphas: Sequence[int] | None = None,
+              kept: Callable[[], None] | None = None):
     """Run the study; returns the xarray dataset (written to OUTPUT/qd_verification.nc with
     summary.txt and the figures when ``output`` is given).
 
@@ -250,7 +255,8 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
     removes them first), and the dataset is the one an uninterrupted study gives, except the
     attributes ``wall_time_s`` (this invocation's) and ``resumed_runs``.
     ``dynamic_elements``: elements (order 5) of the dynamic reference; ``amplitudes``,
-    ``alphas``: indices of a subset of the design (the full design by default).
+    ``alphas``: indices of a subset of the design (the full design by default); ``kept``:
+    called after each run file is written (the command lists it in its folder's manifest).
 
     A combination whose run fails is recorded and the study goes on: its error measures are
     NaN, ``run_error`` holds the message, the attribute ``failed_runs`` counts them and
@@ -280,7 +286,7 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
         progress(len(stored), len(specs))
     todo = [s for s in specs if s not in stored]
     results = [{**stored[s], "spec": s, "error": None} for s in specs if s in stored]
-    results += _compute(todo, out, workers, len(stored), len(specs), progress)
+    results += _compute(todo, out, workers, len(stored), len(specs), progress, kept)
     elapsed = time.perf_counter() - started
 
     amp_idx = sorted({s.amplitude_index for s in specs})

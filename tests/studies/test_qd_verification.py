@@ -268,6 +268,38 @@ def test_resume_refuses_runs_of_another_dynamic_resolution(tmp_path, capsys, mon
     assert ds.attrs["design"] == "subset: amplitudes A2; alpha 0.4"
 
 
+def test_study_killed_without_cleanup_resumes(tmp_path, capsys, monkeypatch, no_figures):
+    """A study killed outright (no exit handler runs: SIGKILL, a power cut) has listed each
+    run file in its folder's manifest as it wrote it: ``--resume`` accepts the folder and
+    computes only the missing runs."""
+    from floatmoor.io import output_folders
+
+    calls = []
+    monkeypatch.setattr(qdv, "tensions", _synthetic_tensions(calls))
+    real_evaluate, real_exit = qdv.evaluate, output_folders.OwnedFolder.__exit__
+
+    class Killed(BaseException):
+        pass
+
+    def evaluate(spec):
+        if len(calls) == 2:
+            raise Killed
+        return real_evaluate(spec)
+
+    monkeypatch.setattr(qdv, "evaluate", evaluate)
+    monkeypatch.setattr(output_folders.OwnedFolder, "__exit__", lambda *args: None)
+    out = tmp_path / "out"
+    args = ["study", "qd-verification", "-o", str(out), "--quiet", "--amplitudes", "A1",
+            "--alphas", "0.3"]
+    with pytest.raises(Killed):
+        main(args)
+    monkeypatch.setattr(qdv, "evaluate", real_evaluate)
+    monkeypatch.setattr(output_folders.OwnedFolder, "__exit__", real_exit)
+    del calls[:]
+    assert main(args + ["--resume"]) == 0
+    assert len(calls) == 4 and {s.config for s in calls} == {"C21", "C22", "C31", "C32"}
+
+
 def test_reference_change_between_two_resolutions():
     """Largest and median change of each judged statistic over the runs both datasets hold,
     and the runs that change class (10 %, 20 %), on hand-made datasets."""
