@@ -1010,17 +1010,17 @@ def _study(args: argparse.Namespace) -> int:
                                            progress=progress, resume=args.resume, kept=kept,
                                            **options)
     except KeyboardInterrupt as stop:
-        kept = qd_verification.qd_runs.count_runs(output)
-        said = (f"{kept} finished runs kept in {output / runs} (--resume continues the study)"
-                if kept else "nothing written")
+        n_kept = qd_verification.qd_runs.count_runs(output)
+        said = (f"{n_kept} finished runs kept in {output / runs} (--resume continues the "
+                "study)" if n_kept else "nothing written")
         print(f"floatmoor: {signal_name(stop)}; {said}; the dataset, summary and figures are "
               "written at the end", file=sys.stderr)
         return exit_status(stop)
     except OutputWriteError as err:
-        kept = qd_verification.qd_runs.count_runs(output)
+        n_kept = qd_verification.qd_runs.count_runs(output)
         print(f"floatmoor: study failed: {err}; the files it wrote were removed"
-              + (f" but its {kept} finished runs, kept in {output / runs} for --resume"
-                 if kept else ""), file=sys.stderr)
+              + (f" but its {n_kept} finished runs, kept in {output / runs} for --resume"
+                 if n_kept else ""), file=sys.stderr)
         return EXIT_FAILED
     print(qd_verification.summary(ds))
     print(f"results in {output}")
@@ -1047,18 +1047,19 @@ def _study_options(dynamic_elements: str | None, amplitudes: str | None, alphas:
     if dynamic_elements is not None:
         text = dynamic_elements.strip()
         if not (text.isascii() and text.isdigit()) or int(text) < 1:
-            raise CaseError("--dynamic-elements", "", "a whole number >= 1", repr(dynamic_elements))
+            raise CaseError("--dynamic-elements", "", "a whole number >= 1",
+                            repr(dynamic_elements))
         out["dynamic_elements"] = int(text)
     if quick and (amplitudes is not None or alphas is not None):
         raise CaseError("--quick", "", "no --amplitudes or --alphas beside it (it picks its own)",
                         "--amplitudes" if amplitudes is not None else "--alphas")
     if amplitudes is not None:
         out["amplitudes"] = _study_pick("--amplitudes", amplitudes, AMPLITUDE_NAMES,
-                                  "amplitude names among " + ", ".join(AMPLITUDE_NAMES))
+                                        "amplitude names among " + ", ".join(AMPLITUDE_NAMES))
     if alphas is not None:
         names = tuple(f"{a:g}" for a in ALPHAS)
         out["alphas"] = _study_pick("--alphas", alphas, names,
-                              "accelerations among " + ", ".join(names))
+                                    "accelerations among " + ", ".join(names))
     return out
 
 

@@ -389,7 +389,7 @@ def _design_name(quick: bool, amp_idx: list[int], alpha_idx: list[int]) -> str:
     """The ``design`` attribute: full, the quick subset, or the amplitudes and alphas run."""
     if len(amp_idx) == len(AMPLITUDES) and len(alpha_idx) == len(ALPHAS):
         return "full (6 x 5 x 6 = 180 runs)"
-    if quick and list(amp_idx) == list(QUICK_AMPLITUDES) and list(alpha_idx) == list(QUICK_ALPHAS):
+    if quick and (tuple(amp_idx), tuple(alpha_idx)) == (QUICK_AMPLITUDES, QUICK_ALPHAS):
         return "quick subset"
     return ("subset: amplitudes " + ", ".join(AMPLITUDE_NAMES[i] for i in amp_idx)
             + "; alpha " + ", ".join(f"{ALPHAS[j]:g}" for j in alpha_idx))
@@ -435,8 +435,9 @@ def summary(ds) -> str:
     rows = [f"Quasi-dynamic verification study (docs/cases/qd_verification.md): {n} runs "
             f"({ds.attrs['design']}; failed {ds.attrs['failed_runs']}), "
             f"wall time {ds.attrs['wall_time_s']} s"
-            + (f" (runs' own time {ds.attrs['run_time_s']} s, CPU {ds.attrs['run_cpu_time_s']} s; "
-               f"{ds.attrs['resumed_runs']} runs resumed)" if "run_time_s" in ds.attrs else "")
+            + (f" (runs' own time {ds.attrs['run_time_s']} s, CPU "
+               f"{ds.attrs['run_cpu_time_s']} s; {ds.attrs['resumed_runs']} runs resumed)"
+               if "run_time_s" in ds.attrs else "")
             + f"; dynamic reference {ds.attrs.get('dynamic_elements', DYNAMIC_ELEMENTS)} "
             "elements of order 5",
             "", f"{'measure':<28}{'< 10 %':>9}{'< 20 %':>9}{'paper < 10 %':>15}"
