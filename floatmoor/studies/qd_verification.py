@@ -17,9 +17,10 @@ at rest before the ramp).
 Dynamic discretisation: 20 elements of order 5 (DYNAMIC_ELEMENTS, 120 nodes; the case files
 have 10, the paper's dynamic model 31 nodes), settled to its own static equilibrium before the
 ramp (DynamicLine.settle: the interpolated catenary rings on undamped in these stiff,
-frictionless chains). 20 elements, because refined to 30 the RMSE measures and the peak errors
-at low alpha move by under 2 percentage points, while from 10 to 20 they move by up to 5 and
-22 (docs/validation/notes.md#convergence-of-the-stored-dynamic-references); the peak errors at
+frictionless chains). 20 elements, because refined to 30, at alpha 0.2 the RMSE measures move
+by under 0.5 percentage point and the peak errors by under 3, while from 10 to 20 they move by
+up to 3.4 and 22 (docs/validation/notes.md#convergence-of-the-stored-dynamic-references); the
+RMSE measures at alpha 0.6 move by 0.1 point in the median (3.3 at most) and the peak errors at
 alpha 0.6 on S2 and S3 do not converge with any resolution tried. ``discretisation_check``
 compares two discretisations on one run, :mod:`qd_convergence` two studies; each run is kept
 as it finishes (:mod:`qd_runs`, ``--resume``).
