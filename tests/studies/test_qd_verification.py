@@ -240,6 +240,12 @@ def test_resumed_study_skips_finished_runs_and_gives_the_same_dataset(tmp_path, 
     # the stored run is the fresh one, value for value
     assert (out / "runs" / "C11_A1_alpha0.3.json").read_text().split('"seconds"')[0] == (
         whole / "runs" / "C11_A1_alpha0.3.json").read_text().split('"seconds"')[0]
+    # a run file that is not a whole one of this format is computed again, and replaced
+    (out / "runs" / "C12_A1_alpha0.3.json").write_text('{"format": "floatmoor qd-verif')
+    del calls[:]
+    assert main(args + ["--resume"]) == 0
+    assert [(s.config, s.alpha_index) for s in calls] == [("C12", 2)]
+    assert xr.load_dataset(out / "qd_verification.nc")["rmse_qd"].equals(a["rmse_qd"])
 
 
 def test_resume_refuses_runs_of_another_dynamic_resolution(tmp_path, capsys, monkeypatch,
