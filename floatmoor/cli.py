@@ -158,6 +158,16 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("--workers", type=int, default=1, help="local worker processes")
     study.add_argument("--quick", action="store_true",
                        help="reduced subset (one amplitude, two accelerations per configuration)")
+    study.add_argument("--dynamic-elements", metavar="N", default=None,
+                       help="elements (order 5) of the dynamic reference (default: the "
+                       "study's, docs/cases/qd_verification.md)")
+    study.add_argument("--amplitudes", metavar="LIST", default=None,
+                       help="subset of the amplitudes, e.g. A1,A3,A5 (default: all five)")
+    study.add_argument("--alphas", metavar="LIST", default=None,
+                       help="subset of the accelerations, e.g. 0.1,0.2,0.6 (default: all six)")
+    study.add_argument("--resume", action="store_true",
+                       help="continue an interrupted study in the same folder: the runs it "
+                       "finished (kept in DIR/runs) are not computed again")
     study.add_argument("--quiet", action="store_true", help="no progress reports")
     uq = sub.add_parser("uq", help="run an uncertainty-quantification study (gPC surrogates "
                         "of quantities of interest)")
@@ -975,28 +985,42 @@ def report_failures(what: str, failed: Sequence[tuple[str, str]], total: int) ->
 def _study(args: argparse.Namespace) -> int:
     from floatmoor.studies import qd_verification
 
-    from floatmoor.io.output_files import OutputWriteError, output_lock
-    from floatmoor.io.output_folders import OwnedFolder, check_owned_folder
+    from floatmoor.io.output_files import OutputWriteError, output_lock, write_errors
+    from floatmoor.io.output_folders import MANIFEST_NAME, OwnedFolder, check_owned_folder
 
     output = check_owned_folder(args.output, "-o/--output", "study qd-verification")
     if args.workers < 1:
         raise CaseError("--workers", "", "a whole number >= 1", str(args.workers))
+    options = _study_options(args.dynamic_elements, args.amplitudes, args.alphas,
+                             quick=args.quick)
 
     def progress(done: int, total: int) -> None:
         if not args.quiet:
             print(f"floatmoor: {done} / {total} runs done", file=sys.stderr, flush=True)
 
+    runs = qd_verification.qd_runs.RUNS_DIR
     try:
-        with output_lock(output.resolve()), OwnedFolder(output, "study qd-verification"):
+        with output_lock(output.resolve()), OwnedFolder(output, "study qd-verification",
+                                                        keep=(runs,)) as folder:
+            def kept() -> None:  # a run file stays the study's even if the process is killed
+                with write_errors(output / MANIFEST_NAME):
+                    folder.record_written()
+
             ds = qd_verification.run_study(output, workers=args.workers, quick=args.quick,
-                                           progress=progress)
+                                           progress=progress, resume=args.resume, kept=kept,
+                                           **options)
     except KeyboardInterrupt as stop:
-        print(f"floatmoor: {signal_name(stop)}; nothing written (the study writes its results "
-              "at the end)", file=sys.stderr)
+        n_kept = qd_verification.qd_runs.count_runs(output)
+        said = (f"{n_kept} finished runs kept in {output / runs} (--resume continues the "
+                "study)" if n_kept else "nothing written")
+        print(f"floatmoor: {signal_name(stop)}; {said}; the dataset, summary and figures are "
+              "written at the end", file=sys.stderr)
         return exit_status(stop)
     except OutputWriteError as err:
-        print(f"floatmoor: study failed: {err}; the files it wrote were removed",
-              file=sys.stderr)
+        n_kept = qd_verification.qd_runs.count_runs(output)
+        print(f"floatmoor: study failed: {err}; the files it wrote were removed"
+              + (f" but its {n_kept} finished runs, kept in {output / runs} for --resume"
+                 if n_kept else ""), file=sys.stderr)
         return EXIT_FAILED
     print(qd_verification.summary(ds))
     print(f"results in {output}")
@@ -1005,6 +1029,57 @@ def _study(args: argparse.Namespace) -> int:
         report_failures("study qd-verification", failed, int(ds.attrs["runs"]))
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _study_options(dynamic_elements: str | None, amplitudes: str | None, alphas: str | None,
+                  quick: bool = False) -> dict:
+    """The keyword arguments of ``qd_verification.run_study`` from the command line's texts
+    (``--dynamic-elements 20``, ``--amplitudes A1,A3,A5``, ``--alphas 0.1,0.2,0.6``).
+
+    Raises
+    ------
+    CaseError
+        Naming the option, what it takes and what it was given.
+    """
+    from floatmoor.studies.qd_verification import ALPHAS, AMPLITUDE_NAMES
+
+    out: dict = {}
+    if dynamic_elements is not None:
+        text = dynamic_elements.strip()
+        if not (text.isascii() and text.isdigit()) or int(text) < 1:
+            raise CaseError("--dynamic-elements", "", "a whole number >= 1",
+                            repr(dynamic_elements))
+        out["dynamic_elements"] = int(text)
+    if quick and (amplitudes is not None or alphas is not None):
+        raise CaseError("--quick", "", "no --amplitudes or --alphas beside it (it picks its own)",
+                        "--amplitudes" if amplitudes is not None else "--alphas")
+    if amplitudes is not None:
+        out["amplitudes"] = _study_pick("--amplitudes", amplitudes, AMPLITUDE_NAMES,
+                                        "amplitude names among " + ", ".join(AMPLITUDE_NAMES))
+    if alphas is not None:
+        names = tuple(f"{a:g}" for a in ALPHAS)
+        out["alphas"] = _study_pick("--alphas", alphas, names,
+                                    "accelerations among " + ", ".join(names))
+    return out
+
+
+def _study_pick(option: str, text: str, names: Sequence[str], expected: str) -> list[int]:
+    """Indices into ``names`` of the comma-separated items of ``text`` (each once)."""
+    items = [item.strip() for item in text.split(",")]
+    picked = []
+    for item in items:
+        key = item.upper() if option == "--amplitudes" else item
+        if option == "--alphas":
+            try:
+                key = f"{float(item):g}"
+            except ValueError:
+                key = item
+        if key not in names or names.index(key) in picked:
+            why = "repeated" if key in names else "unknown"
+            raise CaseError(option, "", f"a comma-separated list of distinct {expected}",
+                            f"{repr(text)} ({why} item {repr(item)})")
+        picked.append(names.index(key))
+    return picked
 
 
 def _uq(args: argparse.Namespace) -> int:

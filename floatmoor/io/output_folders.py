@@ -166,6 +166,7 @@ class OwnedFolder:
                 if not any(rel == k or rel.startswith(k.rstrip("/") + "/") for k in self.keep):
                     (self.folder / rel).unlink(missing_ok=True)
                     written.discard(rel)
+                    self._owned.discard(rel)
             self._remove_empty_folders()
             if not self._existed and not any(self.folder.iterdir()):
                 self.folder.rmdir()
@@ -178,6 +179,21 @@ class OwnedFolder:
         except OSError:
             if exc is None:
                 raise
+
+    def record_written(self) -> None:
+        """List in the manifest now the files written so far in the block (a long command's
+        results kept as it goes, e.g. a study's finished runs), so that they stay the
+        command's even if the process is killed before the block ends.
+
+        Raises
+        ------
+        OSError
+            When the manifest cannot be written.
+        """
+        now, _ = _entries(self.folder)
+        written = {f for f, state in now.items() if self._before.get(f) != state}
+        self._owned = (self._owned | written) & set(now)
+        _write_manifest(self.folder, self.command, sorted(self._owned))
 
     def _remove_empty_folders(self) -> None:
         """Remove the folders under the output folder that the block made and left empty."""

@@ -14,10 +14,16 @@ compared with the dynamic one by the paper's error measures:
 with T_S0 the initial static fairlead tension (the quasi-static tension at t = 0, the fairlead
 at rest before the ramp).
 
-Dynamic discretisation: 10 elements of order 5 (DYNAMIC_ELEMENTS, 60 nodes, as the case files;
-the paper's dynamic model 31 nodes), settled to its own static equilibrium before the ramp
-(DynamicLine.settle: the interpolated catenary rings on undamped in these stiff, frictionless
-chains). ``discretisation_check`` compares two discretisations.
+Dynamic discretisation: 20 elements of order 5 (DYNAMIC_ELEMENTS, 120 nodes; the case files
+have 10, the paper's dynamic model 31 nodes), settled to its own static equilibrium before the
+ramp (DynamicLine.settle: the interpolated catenary rings on undamped in these stiff,
+frictionless chains). 20 elements, because refined to 30, at alpha 0.2 the RMSE measures move
+by under 0.5 percentage point and the peak errors by under 3, while from 10 to 20 they move by
+up to 3.4 and 22 (docs/validation/notes.md#convergence-of-the-stored-dynamic-references); the
+RMSE measures at alpha 0.6 move by 0.1 point in the median (3.3 at most) and the peak errors at
+alpha 0.6 on S2 and S3 do not converge with any resolution tried. ``discretisation_check``
+compares two discretisations on one run, :mod:`qd_convergence` two studies; each run is kept
+as it finishes (:mod:`qd_runs`, ``--resume``).
 
 The study's findings against the paper's, and the sensitivity of the dynamic reference behind
 them, are in docs/validation/notes.md.
@@ -28,7 +34,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -38,6 +44,7 @@ from floatmoor.case.load import load_case
 from floatmoor.errors import FloatmoorError
 from floatmoor.io.output_files import atomic_target, write_errors
 from floatmoor.simulation.forced import run_forced_motion
+from floatmoor.studies import qd_runs
 
 #: Folder of the six case files (s1_d1.toml ... s3_d2.toml).
 CASE_DIR = Path(__file__).resolve().parents[2] / "cases" / "qd_verification"
@@ -68,8 +75,9 @@ PAPER = {"rmse_qd": (0.48, 0.84), "rmse_s": (0.02, 0.18), "peak_qd": (0.67, 0.90
 #: periods: the cheapest runs).
 QUICK_AMPLITUDES = (0,)
 QUICK_ALPHAS = (2, 5)
-#: Elements (order 5) of the dynamic model in the study (see the module docstring).
-DYNAMIC_ELEMENTS = 10
+#: Elements (order 5) of the dynamic model in the study: converged for the RMSE measures
+#: (docs/validation/notes.md#convergence-of-the-stored-dynamic-references; module docstring).
+DYNAMIC_ELEMENTS = 20
 
 
 def case_path(config: str) -> Path:
@@ -162,7 +170,7 @@ def tensions(spec: RunSpec) -> tuple[np.ndarray, dict[str, np.ndarray]]:
 def evaluate(spec: RunSpec) -> dict:
     """Run one combination and return its error measures and its steady cycle (on a phase
     grid of PHASE_POINTS samples, phase 0 at the start of the last cycle)."""
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.process_time()
     try:
         t, tension = tensions(spec)
     except FloatmoorError as err:  # recorded as a failed run, not fatal to the study
@@ -179,40 +187,113 @@ def evaluate(spec: RunSpec) -> dict:
         "rmse_qd": rmse(dyn, qd, t_s0), "rmse_s": rmse(dyn, qs, t_s0),
         "e_tmin": e_tmin(dyn, qd, t_s0), "e_tmax": e_tmax(dyn, qd),
         "cycle": cycle, "seconds": time.perf_counter() - started,
+        "cpu_seconds": time.process_time() - cpu,
     }
 
 
-def design(quick: bool = False, configs: Sequence[str] = CONFIGS) -> list[RunSpec]:
-    """The 180 combinations (or the quick subset: A1 x alpha 0.3, 0.6 per configuration)."""
-    amps = QUICK_AMPLITUDES if quick else range(len(AMPLITUDES))
-    alphas = QUICK_ALPHAS if quick else range(len(ALPHAS))
-    return [RunSpec(c, i, j) for c in configs for i in amps for j in alphas]
+def design(quick: bool = False, configs: Sequence[str] = CONFIGS, *,
+           dynamic_elements: int | None = DYNAMIC_ELEMENTS,
+           amplitudes: Sequence[int] | None = None,
+           alphas: Sequence[int] | None = None) -> list[RunSpec]:
+    """The 180 combinations (or the quick subset: A1 x alpha 0.3, 0.6 per configuration, or
+    the subset of the ``amplitudes`` and ``alphas`` indices given), the dynamic model with
+    ``dynamic_elements`` elements of order 5."""
+    amps = amplitudes if amplitudes is not None else (
+        QUICK_AMPLITUDES if quick else range(len(AMPLITUDES)))
+    alpha_idx = alphas if alphas is not None else (
+        QUICK_ALPHAS if quick else range(len(ALPHAS)))
+    return [RunSpec(c, i, j, dynamic_elements) for c in configs for i in sorted(set(amps))
+            for j in sorted(set(alpha_idx))]
+
+
+def _constants() -> dict:
+    """The study's cycle and sampling constants a stored run depends on (qd_runs.identity)."""
+    return {"ramp_cycles": RAMP_CYCLES, "steady_cycles": STEADY_CYCLES,
+            "output_interval": OUTPUT_INTERVAL, "phase_points": PHASE_POINTS}
+
+
+def _store(output: Path | None, res: dict, kept: Callable[[], None] | None) -> None:
+    """Write a finished run's result to its run file (a failed run is not stored), then call
+    ``kept``."""
+    if output is not None and not res["error"]:
+        s = res["spec"]
+        qd_runs.write_run(qd_runs.run_file(output, s, AMPLITUDE_NAMES[s.amplitude_index]),
+                          qd_runs.identity(s, _constants()), res)
+        if kept:
+            kept()
+
+
+def _compute(specs: list[RunSpec], output: Path | None, workers: int, done: int, total: int,
+             progress: Callable[[int, int], None] | None,
+             kept: Callable[[], None] | None) -> list[dict]:
+    """Evaluate ``specs``, each result stored as soon as it is finished."""
+    results = []
+
+    def finished(res: dict) -> None:
+        _store(output, res, kept)
+        results.append(res)
+        if progress:
+            progress(done + len(results), total)
+
+    if workers > 1 and len(specs) > 1:
+        pool = ProcessPoolExecutor(max_workers=workers)
+        try:
+            futures = [pool.submit(evaluate, s) for s in specs]
+            for future in as_completed(futures):
+                finished(future.result())
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
+    else:
+        for spec in specs:
+            finished(evaluate(spec))
+    return results
 
 
 def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = False,
-              progress: Callable[[int, int], None] | None = None):
+              progress: Callable[[int, int], None] | None = None, *,
+              dynamic_elements: int = DYNAMIC_ELEMENTS, resume: bool = False,
+              amplitudes: Sequence[int] | None = None, alphas: Sequence[int] | None = None,
+              kept: Callable[[], None] | None = None):
     """Run the study; returns the xarray dataset (written to OUTPUT/qd_verification.nc with
     summary.txt and the figures when ``output`` is given).
 
+    With ``output``, each finished run is written at once to OUTPUT/runs/ (module qd_runs);
+    ``resume`` takes the runs stored there instead of computing them again (a fresh study
+    removes them first), and the dataset is the one an uninterrupted study gives, except the
+    attributes ``wall_time_s`` (this invocation's) and ``resumed_runs``.
+    ``dynamic_elements``: elements (order 5) of the dynamic reference; ``amplitudes``,
+    ``alphas``: indices of a subset of the design (the full design by default); ``kept``:
+    called after each run file is written (the command lists it in its folder's manifest).
+
     A combination whose run fails is recorded and the study goes on: its error measures are
     NaN, ``run_error`` holds the message, the attribute ``failed_runs`` counts them and
-    :func:`failed_runs` lists them (``floatmoor study`` then exits with status 1)."""
+    :func:`failed_runs` lists them (``floatmoor study`` then exits with status 1).
+
+    Raises
+    ------
+    CaseError
+        With ``resume``, when the stored runs were computed otherwise (qd_runs.stored_runs).
+    """
     import xarray as xr
 
-    specs = design(quick)
+    specs = design(quick, dynamic_elements=dynamic_elements, amplitudes=amplitudes,
+                   alphas=alphas)
+    out = None if output is None else Path(output)
+    stored: dict = {}
+    if out is not None:
+        with write_errors(out):
+            out.mkdir(exist_ok=True)  # its parent exists (the command checked)
+    if out is not None and resume:
+        stored = qd_runs.stored_runs(out, specs, [AMPLITUDE_NAMES[s.amplitude_index]
+                                                  for s in specs], _constants())
+    elif out is not None:
+        qd_runs.clear_runs(out)
     started = time.perf_counter()
-    results = []
-    if workers > 1:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            for k, res in enumerate(pool.map(evaluate, specs, chunksize=1), 1):
-                results.append(res)
-                if progress:
-                    progress(k, len(specs))
-    else:
-        for k, spec in enumerate(specs, 1):
-            results.append(evaluate(spec))
-            if progress:
-                progress(k, len(specs))
+    if stored and progress:
+        progress(len(stored), len(specs))
+    todo = [s for s in specs if s not in stored]
+    results = [{**stored[s], "spec": s, "error": None} for s in specs if s in stored]
+    results += _compute(todo, out, workers, len(stored), len(specs), progress, kept)
     elapsed = time.perf_counter() - started
 
     amp_idx = sorted({s.amplitude_index for s in specs})
@@ -220,6 +301,8 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
     shape = (len(CONFIGS), len(amp_idx), len(alpha_idx))
     names = ("rmse_qd", "rmse_s", "e_tmin", "e_tmax", "t_s0", "period", "z_m")
     arrays = {n: np.full(shape, np.nan) for n in names}
+    run_seconds = sum(r.get("seconds", 0.0) for r in results if not r["error"])
+    run_cpu = sum(r.get("cpu_seconds", 0.0) for r in results if not r["error"])
     cycles = np.full(shape + (len(MODELS), PHASE_POINTS), np.nan)
     errors = np.full(shape, "", dtype=object)
     failures = []
@@ -278,20 +361,22 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
             "reference": "Trubat, Molins & Gironella, quasi-dynamic mooring model, section 4, "
                          "Tables 2-4, eqs. 5-9",
             "case_files": ", ".join(case_path(c).name for c in CONFIGS),
-            "design": "quick subset" if quick else "full (6 x 5 x 6 = 180 runs)",
+            "design": _design_name(quick, amp_idx, alpha_idx),
             "cycle": f"ramp {RAMP_CYCLES} periods, {STEADY_CYCLES} steady cycles; measures over "
                      "the last cycle, samples with t > t_end - T at the output step "
                      f"{OUTPUT_INTERVAL} s",
             "static_tension": "T_S0 = quasi-static fairlead tension at t = 0",
-            "dynamic_discretisation": f"{DYNAMIC_ELEMENTS} elements of order 5 (the case "
+            "dynamic_discretisation": f"{dynamic_elements} elements of order 5 (the case "
                                       "files' cfl and seabed contact)",
+            "dynamic_elements": dynamic_elements,
             "runs": len(specs), "failed_runs": len(failures),
             "failures": "; ".join(failures) or "none",
             "wall_time_s": round(elapsed, 1), "workers": workers,
+            "run_time_s": round(run_seconds, 1), "run_cpu_time_s": round(run_cpu, 1),
+            "resumed_runs": len(stored),
         },
     )
-    if output is not None:
-        out = Path(output)
+    if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         with atomic_target(out / "qd_verification.nc") as tmp:
             ds.to_netcdf(tmp)
@@ -305,6 +390,16 @@ def run_study(output: str | Path | None = None, workers: int = 1, quick: bool = 
             with write_errors(out / name):  # disk full: one line naming the file
                 plot(out / name)
     return ds
+
+
+def _design_name(quick: bool, amp_idx: list[int], alpha_idx: list[int]) -> str:
+    """The ``design`` attribute: full, the quick subset, or the amplitudes and alphas run."""
+    if len(amp_idx) == len(AMPLITUDES) and len(alpha_idx) == len(ALPHAS):
+        return "full (6 x 5 x 6 = 180 runs)"
+    if quick and (tuple(amp_idx), tuple(alpha_idx)) == (QUICK_AMPLITUDES, QUICK_ALPHAS):
+        return "quick subset"
+    return ("subset: amplitudes " + ", ".join(AMPLITUDE_NAMES[i] for i in amp_idx)
+            + "; alpha " + ", ".join(f"{ALPHAS[j]:g}" for j in alpha_idx))
 
 
 def run_label(spec: RunSpec) -> str:
@@ -346,7 +441,12 @@ def summary(ds) -> str:
     n = int(np.isfinite(ds["rmse_qd"].values).sum())
     rows = [f"Quasi-dynamic verification study (docs/cases/qd_verification.md): {n} runs "
             f"({ds.attrs['design']}; failed {ds.attrs['failed_runs']}), "
-            f"wall time {ds.attrs['wall_time_s']} s",
+            f"wall time {ds.attrs['wall_time_s']} s"
+            + (f" (runs' own time {ds.attrs['run_time_s']} s, CPU "
+               f"{ds.attrs['run_cpu_time_s']} s; {ds.attrs['resumed_runs']} runs resumed)"
+               if "run_time_s" in ds.attrs else "")
+            + f"; dynamic reference {ds.attrs.get('dynamic_elements', DYNAMIC_ELEMENTS)} "
+            "elements of order 5",
             "", f"{'measure':<28}{'< 10 %':>9}{'< 20 %':>9}{'paper < 10 %':>15}"
             f"{'paper < 20 %':>15}"]
     labels = {"rmse_qd": "RMSE_QD (eq. 6)", "rmse_s": "RMSE_S (eq. 7)",

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import functools
 import os
+import re
 from typing import Any
 
 import numpy as np
@@ -56,6 +57,9 @@ BASELINE = load_baseline()
 LINDAHL = {(c["radius"], c["period"]): c for c in BASELINE["lindahl"]["cases"]}
 QD_KEY = "qd_full" if os.environ.get("FLOATMOOR_UNCHANGED_QD_FULL") == "1" else "qd_quick"
 QD = {r["label"]: r for r in BASELINE[QD_KEY]["runs"]}
+#: The dynamic resolution the baseline's QD runs were computed with (its "how"; the study's
+#: own reference may since have been refined).
+QD_ELEMENTS = int(re.search(r"dynamic (\d+) elements", BASELINE[QD_KEY]["how"]).group(1))
 
 
 def _relative(now: float, before: float) -> float:
@@ -114,7 +118,8 @@ def test_lindahl_measured_cycle_comparison_unchanged(radius, period):
 @pytest.mark.parametrize("label", list(QD))
 def test_qd_study_run_unchanged(label):
     before = QD[label]
-    spec = qdv.RunSpec(before["config"], before["amplitude_index"], before["alpha_index"])
+    spec = qdv.RunSpec(before["config"], before["amplitude_index"], before["alpha_index"],
+                       QD_ELEMENTS)
     now = qd_figures(spec)
     name = f"QD study {label}"
     failures: list[str] = []
