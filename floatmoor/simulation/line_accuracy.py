@@ -201,12 +201,24 @@ def _relative_errors(coarse: NDArray[np.float64], fine: NDArray[np.float64], ord
                      cycles: int = JUDGED_CYCLES) -> tuple[float, float]:
     """Estimated relative errors (STD, mean cycle maximum) of the coarse probe's tension from
     the two probes' last ``cycles`` cycles (module docstring)."""
-    coarse_stats = _statistics(coarse, cycles)
-    mean, std, maxima = _statistics(fine, cycles)
     richardson = 1.0 - REFINEMENT ** -(order + 1.0)
-    std_error = abs(coarse_stats[1] - std) / max(std, STD_FLOOR * abs(mean), 1e-300)
-    maxima_error = abs(coarse_stats[2] - maxima) / max(abs(maxima), 1e-300)
+    std_error, maxima_error = _relative_differences(coarse, fine, cycles)
     return std_error / richardson, maxima_error / richardson
+
+
+def _onto_path(line: Line, time: NDArray[np.float64], path: NDArray[np.float64],
+               velocity: NDArray[np.float64]) -> tuple[Line, NDArray[np.float64],
+                                                        NDArray[np.float64], NDArray[np.float64]]:
+    """A recorded path's probe (:func:`estimate_error_along`): ``line`` with its fairlead where
+    the path starts, the probe's times from 0, and the path and velocity brought on over the
+    first of the :data:`PROBE_CYCLES` cycles by the cosine ramp."""
+    start = path[0]
+    s = time - time[0]
+    duration = (time[-1] - time[0]) / PROBE_CYCLES
+    factor, rate = ramp(s, duration)[:, None], ramp_rate(s, duration)[:, None]
+    at_start = replace(line, fairlead=(float(start[0]), float(start[1]), float(start[2])))
+    return (at_start, s, start + factor * (path - start),
+            factor * velocity + rate * (path - start))
 
 
 def estimate_error_along(line: Line, environment: Environment, seabed: Seabed,
@@ -223,13 +235,7 @@ def estimate_error_along(line: Line, environment: Environment, seabed: Seabed,
     the tension on a stiff chain.
     """
     settings = line.dynamic
-    start = path[0]
-    s = time - time[0]
-    duration = (time[-1] - time[0]) / PROBE_CYCLES
-    factor, rate = ramp(s, duration)[:, None], ramp_rate(s, duration)[:, None]
-    ramped = start + factor * (path - start)
-    ramped_velocity = factor * velocity + rate * (path - start)
-    at_start = replace(line, fairlead=(float(start[0]), float(start[1]), float(start[2])))
+    at_start, s, ramped, ramped_velocity = _onto_path(line, time, path, velocity)
     tensions = []
     for k in (1, REFINEMENT):
         probe = replace(at_start, dynamic=replace(settings, elements=settings.elements * k))
@@ -243,15 +249,9 @@ def path_sensitivity_along(line: Line, environment: Environment, seabed: Seabed,
     """Relative changes (STD, mean per-cycle maximum) of the fairlead tension of ``line`` at its
     resolved numerics when the probe's path of :func:`estimate_error_along` is shifted by
     :data:`NUDGE` of the line's length (module docstring)."""
-    s = time - time[0]
-    duration = (time[-1] - time[0]) / PROBE_CYCLES
-    factor, rate = ramp(s, duration)[:, None], ramp_rate(s, duration)[:, None]
     tensions = []
     for shifted in (path, _nudged(path, line.length)):
-        begin = shifted[0]
-        ramped = begin + factor * (shifted - begin)
-        ramped_velocity = factor * velocity + rate * (shifted - begin)
-        at_start = replace(line, fairlead=(float(begin[0]), float(begin[1]), float(begin[2])))
+        at_start, s, ramped, ramped_velocity = _onto_path(line, time, shifted, velocity)
         tensions.append(_probe_tension(at_start, environment, seabed, s, ramped,
                                        ramped_velocity))
     return _relative_differences(tensions[1], tensions[0])
