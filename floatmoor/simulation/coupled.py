@@ -38,6 +38,7 @@ from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.case.schema import Case, Environment, Line, Seabed
 from floatmoor.errors import CaseError
 from floatmoor.mooring.catenary import solve_catenary
+from floatmoor.mooring.dg.batch import DynamicLineBatch
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
@@ -164,6 +165,12 @@ class MooredBody:
         self.external = external if external is not None else (lambda t, x, v: np.zeros(6))
         self.models: list[PathStepper | None] = []
         self._qs: list[QuasiStaticLine | None] = []
+        #: the dynamic lines (built by :meth:`start`), advanced and evaluated together, and
+        #: their indices among the lines
+        self._batch: DynamicLineBatch | None = None
+        self._batch_index = np.zeros(0, dtype=np.int64)
+        #: whether the stages take the dynamic lines' states at the step's middle sample
+        self._at_mid = False
         #: laid length of each line at its last evaluation [m]
         self.laid_length = np.zeros(len(self.lines))
         #: one-sample outputs of a memory line's step (time, fairlead force, anchor force, laid
@@ -206,6 +213,10 @@ class MooredBody:
             else:
                 self.models.append(None)
                 self._qs.append(QuasiStaticLine.from_case(moved, self.environment, self.seabed))
+        dynamic = [i for i, m in enumerate(self.models) if isinstance(m, DynamicLine)]
+        self._batch_index = np.array(dynamic, dtype=np.int64)
+        self._batch = DynamicLineBatch([self.models[i] for i in dynamic]) if dynamic else None
+        self._at_mid = False
 
     # -- state ---------------------------------------------------------------------------
     def state_arrays(self) -> dict[str, NDArray]:
@@ -237,6 +248,8 @@ class MooredBody:
         for g, group in enumerate(self.groups):
             group.set_state_arrays(part(f"group{g}/"))
         self.laid_length[:] = arrays["laid_length"]
+        if self._batch is not None:
+            self._batch.sync()
 
     # -- line shapes -----------------------------------------------------------------------
     def shape_arc_lengths(self) -> list[NDArray[np.float64]]:
@@ -277,6 +290,7 @@ class MooredBody:
         pos, vel = points_state(x, np.zeros(6) if v is None else v, self.arms, self.centre)
         ff = np.zeros((len(self.lines), 3))
         af = np.zeros((len(self.lines), 3))
+        batch = self._batch if v is not None else None
         for i, model in enumerate(self.models):
             if not self.independent[i]:  # recorded from its group (group_samples)
                 continue
@@ -284,8 +298,13 @@ class MooredBody:
                 ff[i], af[i] = self._quasi_static(i, pos[i])
             elif v is None:
                 ff[i], af[i] = model.end_forces()
-            else:
+            elif batch is None or not isinstance(model, DynamicLine):
                 ff[i], af[i] = model.end_forces_moving(vel[i])
+        if batch is not None:  # the dynamic lines' end_forces_moving, in one kernel call
+            rows = self._batch_index
+            fb, ab = np.empty((rows.size, 3)), np.empty((rows.size, 3))
+            batch.end_forces(vel[rows], self._at_mid, fb, ab)
+            ff[rows], af[rows] = fb, ab
         return ff, af
 
     def group_samples(self, x: NDArray[np.float64], v: NDArray[np.float64]
@@ -312,21 +331,35 @@ class MooredBody:
         return f
 
     def _advance_memory_lines(self, time: float, x: NDArray, v: NDArray) -> None:
-        """Advance the lines with memory to ``time``, the fairleads moving to where the body
-        state (x, v) puts them."""
+        """Advance the groups and the quasi-dynamic lines to ``time``, the fairleads moving to
+        where the body state (x, v) puts them (the dynamic lines: :meth:`_advance_dynamic`)."""
         for group, arms in zip(self.groups, self.group_arms):
             pos, vel = points_state(x, v, arms, self.centre)
             group.advance(time, pos, vel)
-        if not any(m is not None for m in self.models):
+        if not any(m is not None and not isinstance(m, DynamicLine) for m in self.models):
             return
         pos, vel = points_state(x, v, self.arms, self.centre)
         times, ff, af, lb, steps = self._sample
         times[0] = time
         for i, model in enumerate(self.models):
-            if model is None:
+            if model is None or isinstance(model, DynamicLine):
                 continue
             model.solve_path(times, pos[i:i + 1], vel[i:i + 1], ff, af, lb, steps)
             self.laid_length[i] = lb[0]
+
+    def _advance_dynamic(self, t_mid: float, x_mid: NDArray, v_mid: NDArray, t_end: float,
+                         x_end: NDArray, v_end: NDArray) -> None:
+        """Advance the dynamic lines over the step's two samples in one go (to ``t_mid``,
+        the body state (x_mid, v_mid) placing the fairleads, and on to ``t_end``), keeping
+        their states at ``t_mid`` for stages 1 and 2."""
+        batch = self._batch
+        if batch is None:
+            return
+        arms = self.arms[self._batch_index]
+        pos_mid, vel_mid = points_state(x_mid, v_mid, arms, self.centre)
+        pos_end, vel_end = points_state(x_end, v_end, arms, self.centre)
+        batch.advance(t_mid, t_end, pos_mid, vel_mid, pos_end, vel_end)
+        self.laid_length[self._batch_index] = batch.laid_length
 
     # -- stepping --------------------------------------------------------------------------
     def step(self) -> None:
@@ -341,14 +374,22 @@ class MooredBody:
                 a0 = (v - v0) / (0.5 * dt)
                 predicted["a"] = a0
                 h = 0.5 * dt
-                self._advance_memory_lines(t + h, x0 + v0 * h + 0.5 * a0 * h * h, v0 + a0 * h)
+                x_mid, v_mid = x0 + v0 * h + 0.5 * a0 * h * h, v0 + a0 * h
+                self._advance_memory_lines(t + h, x_mid, v_mid)
+                self._advance_dynamic(t + h, x_mid, v_mid, t + dt,
+                                      x0 + v0 * dt + 0.5 * a0 * dt * dt, v0 + a0 * dt)
+                self._at_mid = True
             elif stage == 3:
                 a0 = predicted["a"]
                 self._advance_memory_lines(t + dt, x0 + v0 * dt + 0.5 * a0 * dt * dt,
                                            v0 + a0 * dt)
+                self._at_mid = False
             f = self.external(t + tau, x, v)
             if len(self.lines):
                 f = f + self.mooring_force(x, v)
             return f
 
-        body.step(force)
+        try:
+            body.step(force)
+        finally:
+            self._at_mid = False

@@ -2,9 +2,12 @@
 
 :class:`DynamicLine` owns the DG state of one line (node positions and velocities), starts it
 from the quasi-static catenary, and advances it with the fairlead driven by a prescribed
-position and velocity. Forced-motion runs call :meth:`DynamicLine.solve_path`; a floater
-will call :meth:`DynamicLine.advance` once per rigid-body step. It is built from the
-physical properties of :mod:`floatmoor.mooring.dg.cable`.
+position and velocity. Forced-motion runs call :meth:`DynamicLine.solve_path`; coupled runs
+advance their dynamic lines through :mod:`floatmoor.mooring.dg.batch` (:meth:`run_kernel`).
+It is built from the physical properties of :mod:`floatmoor.mooring.dg.cable`.
+
+Size: the one class of a line's state (settle, stepping along a path, the kernel entry of
+coupled runs, checkpoints) and its workspace; its methods share the class's private state.
 """
 
 from __future__ import annotations
@@ -49,6 +52,9 @@ MAX_DYNAMIC_STEPS = 1.0e8
 #: Settled lines remembered per process (oldest dropped first).
 _SETTLED_SIZE = 64
 _SETTLED: dict = {}
+#: The kernels' shape outputs when no shapes are recorded.
+_NO_SHAPE_R = np.zeros((1, 1, 3))
+_NO_SHAPE_T = np.zeros((1, 1))
 
 
 @dataclass(frozen=True)
@@ -385,11 +391,7 @@ class DynamicLine(PathStepper):
         steps[:done - first] = st[first:done]
         if status != _k.DG_OK:
             self.failed_index = index - first
-            k, i = int(w.where[0]), int(w.where[1])
-            s = self.arc_length[k * (self.settings.order + 1) + i]
-            raise SolverError(f"line '{self.name}' (dynamic): {_STATUS_TEXT[status]} at arc "
-                              f"length s = {s:.4g} m, t = {time[index]:.6g} s; the solution "
-                              f"went unstable ({self._step_text()})")
+            raise self.unstable(status, float(time[index]))
         self.failed_index = -1
         self.time = float(time[-1])
         self.fairlead = np.array(path[-1], dtype=float)
@@ -423,7 +425,6 @@ class DynamicLine(PathStepper):
         """One kernel call over samples ``i0`` to ``i1`` (its first sample, the state the
         previous call ended in, is recorded again: the earlier record is kept); the status
         and the failing sample's index in the whole path."""
-        w = self._work
         seg = slice(i0, i1 + 1)
         kept = (ff[i0].copy(), af[i0].copy(), lb[i0], st[i0]) if i0 > 0 else None
         every = shape_every
@@ -431,21 +432,58 @@ class DynamicLine(PathStepper):
         if every > 0:
             shapes_r, shapes_t = sr[i0 // every:], sten[i0 // every:]
         t, x, u = (np.ascontiguousarray(a[seg]) for a in (time, path, velocity))
-        if implicit:
-            status, index = self.implicit.run(
-                self.r, self.v, t, x, u, self.anchor, self._implicit_prm, self.element, w,
-                ff[seg], af[seg], lb[seg], st[seg], every, shapes_r, shapes_t)
-        else:
-            status, index = _k.dg_run_path(
-                self.r, self.v, t, x, u, self.anchor, self.prm,
-                self.element.differentiation, self.element.lift, self.element.filter,
-                self.element.weights, self._explicit_step(), ff[seg], af[seg], lb[seg], st[seg],
-                every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
-                w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
-                w.damping if self._implicit_damping() else None)
+        status, index = self.run_kernel(implicit, t, x, u, ff[seg], af[seg], lb[seg], st[seg],
+                                        every, shapes_r, shapes_t)
         if kept is not None:
             ff[i0], af[i0], lb[i0], st[i0] = kept
         return status, i0 + index
+
+    def run_kernel(self, implicit: bool, t: NDArray[np.float64], x: NDArray[np.float64],
+                   u: NDArray[np.float64], ff: NDArray[np.float64], af: NDArray[np.float64],
+                   lb: NDArray[np.float64], st: NDArray[np.float64], every: int = 0,
+                   shapes_r: NDArray[np.float64] = _NO_SHAPE_R,
+                   shapes_t: NDArray[np.float64] = _NO_SHAPE_T) -> tuple[int, int]:
+        """One kernel call (implicit or explicit) on the line's state and workspace: samples
+        ``t`` (the first the current state), fairlead ``x``, ``u``, outputs ``ff`` ... ``st``
+        (C-contiguous); the status and the failing sample's index. No bookkeeping: the line's
+        time, fairlead and ``"auto"`` windows are the caller's (:meth:`solve_path`, or the
+        coupled runs' :mod:`floatmoor.mooring.dg.batch`)."""
+        w = self._work
+        if implicit:
+            return self.implicit.run(
+                self.r, self.v, t, x, u, self.anchor, self._implicit_prm, self.element, w,
+                ff, af, lb, st, every, shapes_r, shapes_t)
+        return _k.dg_run_path(
+            self.r, self.v, t, x, u, self.anchor, self.prm,
+            self.element.differentiation, self.element.lift, self.element.filter,
+            self.element.weights, self._explicit_step(), ff, af, lb, st,
+            every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
+            w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
+            w.damping if self._implicit_damping() else None)
+
+    def plain_steps_until(self, t_end: float) -> bool | None:
+        """Whether the steps from now to ``t_end`` [s] are implicit, when :meth:`run_kernel`
+        may take them with no ``"auto"`` decision on the way (no window of it ends by
+        ``t_end``: :meth:`solve_path` would run them in one segment and not switch); None
+        when a window ends (only :meth:`solve_path` decides there)."""
+        implicit = self._stepping_implicit()
+        auto = self.auto
+        if not implicit or auto is None:
+            return implicit
+        if auto.counters is None or not (t_end - auto.window_start < auto.window
+                                         and t_end < auto.window_start + auto.window):
+            return None
+        return True
+
+    def unstable(self, status: int, time: float) -> SolverError:
+        """The error of a kernel's failing ``status`` at ``time`` [s] (the element and node
+        in the workspace's ``where``), naming the line, the arc length and the step."""
+        w = self._work
+        k, i = int(w.where[0]), int(w.where[1])
+        s = self.arc_length[k * (self.settings.order + 1) + i]
+        return SolverError(f"line '{self.name}' (dynamic): {_STATUS_TEXT[status]} at arc "
+                           f"length s = {s:.4g} m, t = {time:.6g} s; the solution "
+                           f"went unstable ({self._step_text()})")
 
     def _stepping_implicit(self) -> bool:
         """Whether the next steps are implicit ("auto": until it went explicit, and not while

@@ -1,0 +1,172 @@
+"""The dynamic lines of a coupled run taken together: each advanced once per body step over the
+step's two fairlead samples, their end forces evaluated in one kernel call per stage
+(docs/theory/floater.md#coupling-scheme).
+
+A body step [t, t + dt] predicts one fairlead path for the step, sampled at t + dt / 2 and
+t + dt. :meth:`DynamicLineBatch.advance` takes each line along it in one go, keeping the
+line's state at t + dt / 2 (its nodes' positions and velocities) for the Runge-Kutta stages 1
+and 2; :meth:`DynamicLineBatch.end_forces` then gives any stage the lines' end forces in the
+state it needs, with the stage's own fairlead velocities (``DynamicLine.end_forces_moving``'s
+operations, ``_batch_kernels.dg_end_forces_batch``). The kernels run the same steps in the
+same order as two :meth:`DynamicLine.solve_path` calls would (one to each sample): the
+results are the same to the last bit; only the Python work around the kernels is gone.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from floatmoor.mooring.dg import _kernels as _k
+from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch
+from floatmoor.mooring.dg.line import DynamicLine
+
+__all__ = ["DynamicLineBatch"]
+
+
+class _Discretisation:
+    """The lines of one element count and order: their states stacked (the lines' own ``r``
+    and ``v`` are views of ``r`` and ``v``), the states at the step's middle sample, and the
+    kernel's inputs and outputs."""
+
+    def __init__(self, lines: Sequence[DynamicLine], members: list[int]) -> None:
+        first = lines[members[0]]
+        m = len(members)
+        shape = (m,) + first.r.shape
+        self.members = members
+        #: the batch's rows of these lines: a slice when they are consecutive
+        self.rows: slice | NDArray[np.int64] = (
+            slice(members[0], members[-1] + 1) if members == list(range(members[0],
+                                                                        members[-1] + 1))
+            else np.array(members))
+        self.r, self.v = np.zeros(shape), np.zeros(shape)
+        self.r_mid, self.v_mid = np.zeros(shape), np.zeros(shape)
+        self.anchors = np.array([lines[j].anchor for j in members], dtype=float).reshape(m, 3)
+        self.prm = np.array([lines[j].prm for j in members], dtype=float)
+        self.element = first.element
+        K, Np = first.r.shape[0], first.r.shape[1]
+        self.q, self.qt, self.N = (np.zeros((K, Np, 3)) for _ in range(3))
+        self.Nstar, self.faces = np.zeros((K + 1, 3)), np.zeros((K + 1, 3))
+        self.slack = np.zeros(K)
+        self.fair_now, self.fair_mid = np.zeros((m, 3)), np.zeros((m, 3))
+        self.fvel = np.zeros((m, 3))
+        self.ff, self.af, self.laid = np.zeros((m, 3)), np.zeros((m, 3)), np.zeros(m)
+        self.bind(lines)
+
+    def bind(self, lines: Sequence[DynamicLine]) -> None:
+        """Make the lines' states views of the stacked arrays (values kept) and take their
+        fairleads."""
+        for row, j in enumerate(self.members):
+            line = lines[j]
+            if line.r.base is not self.r:
+                self.r[row] = line.r
+                line.r = self.r[row]
+            if line.v.base is not self.v:
+                self.v[row] = line.v
+                line.v = self.v[row]
+            self.fair_now[row] = line.fairlead
+
+
+class DynamicLineBatch:
+    """The dynamic lines of a coupled run, advanced and evaluated together.
+
+    Parameters
+    ----------
+    lines
+        The lines (their states become views of the batch's arrays: values unchanged).
+    """
+
+    def __init__(self, lines: Sequence[DynamicLine]) -> None:
+        self.lines = list(lines)
+        n = len(self.lines)
+        #: each line's path of a step: its time and fairlead now, then the two samples
+        self._time = np.zeros((n, 3))
+        self._path = np.zeros((n, 3, 3))
+        self._velocity = np.zeros((n, 3, 3))
+        self._ff, self._af = np.zeros((n, 3, 3)), np.zeros((n, 3, 3))
+        self._laid, self._steps = np.zeros((n, 3)), np.zeros((n, 3))
+        #: laid length of each line at the end of its last advance [m]
+        self.laid_length = np.zeros(n)
+        shapes: dict[tuple[int, ...], list[int]] = {}
+        for j, line in enumerate(self.lines):
+            shapes.setdefault(line.r.shape, []).append(j)
+        self._groups = [_Discretisation(self.lines, members) for members in shapes.values()]
+        #: where each line sits: its group and row there
+        self._where = [(g, row) for g in self._groups for row in range(len(g.members))]
+        self._where.sort(key=lambda gr: gr[0].members[gr[1]])
+
+    def sync(self) -> None:
+        """Take the lines' states and fairleads again (after they were restored in place or
+        replaced)."""
+        for g in self._groups:
+            g.bind(self.lines)
+
+    def advance(self, t_mid: float, t_end: float, pos_mid: NDArray[np.float64],
+                vel_mid: NDArray[np.float64], pos_end: NDArray[np.float64],
+                vel_end: NDArray[np.float64]) -> None:
+        """Advance every line from its time to ``t_mid`` and on to ``t_end``, its fairlead on
+        the cubic Hermite curve through its current position and velocity and the samples
+        ``pos_mid``, ``vel_mid`` and ``pos_end``, ``vel_end`` ((n, 3) each), keeping its state
+        at ``t_mid`` for :meth:`end_forces` (``mid=True``).
+
+        Raises
+        ------
+        SolverError
+            As :meth:`DynamicLine.solve_path` (the line, time and quantity).
+        """
+        T, P, U = self._time, self._path, self._velocity
+        T[:, 1], T[:, 2] = t_mid, t_end
+        P[:, 1], P[:, 2] = pos_mid, pos_end
+        U[:, 1], U[:, 2] = vel_mid, vel_end
+        ff, af, lb, st = self._ff, self._af, self._laid, self._steps
+        for j, line in enumerate(self.lines):
+            g, row = self._where[j]
+            implicit = line.plain_steps_until(t_end)
+            if implicit is None:  # an "auto" window may end: solve_path decides there
+                line.solve_path(T[j, 1:2], P[j, 1:2], U[j, 1:2], ff[j, 1:2], af[j, 1:2],
+                                lb[j, 1:2], st[j, 1:2])
+                g.r_mid[row] = line.r
+                g.v_mid[row] = line.v
+                line.solve_path(T[j, 2:3], P[j, 2:3], U[j, 2:3], ff[j, 2:3], af[j, 2:3],
+                                lb[j, 2:3], st[j, 2:3])
+            else:
+                T[j, 0] = line.time
+                P[j, 0] = line.fairlead
+                U[j, 0] = line.fairlead_velocity
+                for first in (0, 1):  # to the middle sample, then on to the end
+                    seg = slice(first, first + 2)
+                    status, index = line.run_kernel(implicit, T[j, seg], P[j, seg], U[j, seg],
+                                                    ff[j, seg], af[j, seg], lb[j, seg],
+                                                    st[j, seg])
+                    if status != _k.DG_OK:
+                        line.failed_index = 0
+                        raise line.unstable(status, float(T[j, first + index]))
+                    if first == 0:
+                        g.r_mid[row] = line.r
+                        g.v_mid[row] = line.v
+                line.failed_index = -1
+                line.time = float(T[j, 2])
+                line.fairlead[:] = P[j, 2]
+                line.fairlead_velocity[:] = U[j, 2]
+            g.fair_mid[row] = P[j, 1]
+            g.fair_now[row] = P[j, 2]
+            self.laid_length[j] = lb[j, 2]
+
+    def end_forces(self, fairlead_velocity: NDArray[np.float64], mid: bool,
+                   fairlead_force: NDArray[np.float64], anchor_force: NDArray[np.float64]
+                   ) -> None:
+        """Each line's end forces [N] in its current state (``mid`` False) or the state its
+        last :meth:`advance` kept at the middle sample (``mid`` True), its fairlead moving at
+        ``fairlead_velocity`` (n, 3): ``DynamicLine.end_forces_moving``'s values, into
+        ``fairlead_force`` and ``anchor_force`` (n, 3)."""
+        for g in self._groups:
+            g.fvel[:] = fairlead_velocity[g.rows]
+            el = g.element
+            dg_end_forces_batch(g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
+                                g.fair_mid if mid else g.fair_now, g.fvel, g.prm,
+                                el.differentiation, el.lift, el.weights, g.q, g.qt, g.N,
+                                g.Nstar, g.faces, g.slack, g.ff, g.af, g.laid)
+            fairlead_force[g.rows] = g.ff
+            anchor_force[g.rows] = g.af
