@@ -1,9 +1,11 @@
 """The step API shared by the line models with memory (dynamic, quasi-dynamic).
 
-A floater advances each line once per rigid-body step with :meth:`PathStepper.advance`; the
-models implement ``solve_path`` (a whole fairlead path at once), and ``advance`` is that path
-with one sample. Forced-motion runs pass these models the fairlead velocity, and record their
-shape from their current state (``r``, ``tension()`` at ``arc_length``).
+The models implement ``solve_path`` (a whole fairlead path at once); :meth:`PathStepper.advance`
+is that path with one sample. A coupled run advances a quasi-dynamic line with one-sample paths
+to the half and the full body step, and its dynamic lines once per body step over both samples
+(:mod:`floatmoor.mooring.dg.batch`; docs/theory/floater.md#coupling-scheme). Forced-motion
+runs pass these models the fairlead velocity, and record their shape from their current state
+(``r``, ``tension()`` at ``arc_length``).
 """
 
 from __future__ import annotations

@@ -1,13 +1,16 @@
 """Coupled runs: a floating body integrated with the Cummins equation, sub-stepped with its
-mooring lines (docs/theory/floater.md; issue 6).
+mooring lines (docs/theory/floater.md#coupling-scheme; issue 6).
 
 Coupling scheme, per body step [t_n, t_n + dt] (classical RK4 for the body):
 
 * from the stage-0 acceleration a_n the body's motion over the step is predicted to second
   order, x(tau) = x_n + v_n tau + a_n tau^2 / 2, and each line with memory (dynamic,
-  quasi-dynamic) is advanced along the fairlead path that prediction gives: to t_n + dt / 2
-  before stage 1, on to t_n + dt before stage 3 (a dynamic line at its own stable step, the
-  fairlead on the cubic Hermite curve between those samples);
+  quasi-dynamic) is advanced along the fairlead path that prediction gives, sampled at
+  t_n + dt / 2 and t_n + dt (a dynamic line at its own steps, the fairlead on the cubic Hermite
+  curve between the samples): a dynamic line once per step, before stage 1, over both samples,
+  keeping its state at t_n + dt / 2 for stages 1 and 2 (:mod:`floatmoor.mooring.dg.batch`, the
+  same steps as two advances, the same bits); a quasi-dynamic line and a group to
+  t_n + dt / 2 before stage 1, on to t_n + dt before stage 3;
 * every stage takes the lines' forces in the state they have reached (t_n for stage 0,
   t_n + dt / 2 for stages 1 and 2, t_n + dt for stage 3), evaluated with the stage's own
   fairlead velocity (``PathStepper.end_forces_moving``): the dynamic line's end flux
@@ -34,6 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.cummins import CumminsBody
+from floatmoor.body._kinematics_kernels import points_state_into
 from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.case.schema import Case, Environment, Line, Seabed
 from floatmoor.errors import CaseError
@@ -171,6 +175,15 @@ class MooredBody:
         self._batch_index = np.zeros(0, dtype=np.int64)
         #: whether the stages take the dynamic lines' states at the step's middle sample
         self._at_mid = False
+        #: the lines each stage solves (quasi-static) or evaluates one by one (quasi-dynamic)
+        self._solved: list[int] = []
+        self._evaluated: list[int] = []
+        #: the fairleads' positions and velocities of a stage, and of the dynamic lines' two
+        #: samples of a step (work arrays)
+        n = len(self.lines)
+        self._pos, self._vel = np.zeros((n, 3)), np.zeros((n, 3))
+        self._samples = tuple(np.zeros((0, 3)) for _ in range(4))
+        self._batch_arms = np.zeros((0, 3))
         #: laid length of each line at its last evaluation [m]
         self.laid_length = np.zeros(len(self.lines))
         #: one-sample outputs of a memory line's step (time, fairlead force, anchor force, laid
@@ -217,6 +230,12 @@ class MooredBody:
         self._batch_index = np.array(dynamic, dtype=np.int64)
         self._batch = DynamicLineBatch([self.models[i] for i in dynamic]) if dynamic else None
         self._at_mid = False
+        self._solved = [i for i, solo in enumerate(self.independent)
+                        if solo and self.models[i] is None]
+        self._evaluated = [i for i, m in enumerate(self.models)
+                           if m is not None and not isinstance(m, DynamicLine)]
+        self._batch_arms = np.ascontiguousarray(self.arms[self._batch_index])
+        self._samples = tuple(np.zeros((len(dynamic), 3)) for _ in range(4))
 
     # -- state ---------------------------------------------------------------------------
     def state_arrays(self) -> dict[str, NDArray]:
@@ -287,23 +306,24 @@ class MooredBody:
         ``v`` (default: the memory lines' own fairlead velocities): the memory lines' current
         states with their fairleads moving with the body (``end_forces_moving``), the
         quasi-static ones solved at the position."""
-        pos, vel = points_state(x, np.zeros(6) if v is None else v, self.arms, self.centre)
+        pos, vel = self._pos, self._vel
+        points_state_into(np.ascontiguousarray(x, dtype=float),
+                          np.zeros(6) if v is None else np.ascontiguousarray(v, dtype=float),
+                          self.arms, self.centre, pos, vel)
         ff = np.zeros((len(self.lines), 3))
         af = np.zeros((len(self.lines), 3))
-        batch = self._batch if v is not None else None
-        for i, model in enumerate(self.models):
-            if not self.independent[i]:  # recorded from its group (group_samples)
-                continue
-            if model is None:
-                ff[i], af[i] = self._quasi_static(i, pos[i])
-            elif v is None:
-                ff[i], af[i] = model.end_forces()
-            elif batch is None or not isinstance(model, DynamicLine):
-                ff[i], af[i] = model.end_forces_moving(vel[i])
-        if batch is not None:  # the dynamic lines' end_forces_moving, in one kernel call
+        for i in self._solved:  # (the lines of groups: recorded from them, group_samples)
+            ff[i], af[i] = self._quasi_static(i, pos[i])
+        if v is None:
+            for i in (*self._evaluated, *self._batch_index):
+                ff[i], af[i] = self.models[i].end_forces()
+            return ff, af
+        for i in self._evaluated:
+            ff[i], af[i] = self.models[i].end_forces_moving(vel[i])
+        if self._batch is not None:  # the dynamic lines' end_forces_moving, in one call
             rows = self._batch_index
             fb, ab = np.empty((rows.size, 3)), np.empty((rows.size, 3))
-            batch.end_forces(vel[rows], self._at_mid, fb, ab)
+            self._batch.end_forces(vel[rows], self._at_mid, fb, ab)
             ff[rows], af[rows] = fb, ab
         return ff, af
 
@@ -355,9 +375,9 @@ class MooredBody:
         batch = self._batch
         if batch is None:
             return
-        arms = self.arms[self._batch_index]
-        pos_mid, vel_mid = points_state(x_mid, v_mid, arms, self.centre)
-        pos_end, vel_end = points_state(x_end, v_end, arms, self.centre)
+        pos_mid, vel_mid, pos_end, vel_end = self._samples
+        points_state_into(x_mid, v_mid, self._batch_arms, self.centre, pos_mid, vel_mid)
+        points_state_into(x_end, v_end, self._batch_arms, self.centre, pos_end, vel_end)
         batch.advance(t_mid, t_end, pos_mid, vel_mid, pos_end, vel_end)
         self.laid_length[self._batch_index] = batch.laid_length
 

@@ -96,6 +96,11 @@ class DynamicLineBatch:
         #: where each line sits: its group and row there
         self._where = [(g, row) for g in self._groups for row in range(len(g.members))]
         self._where.sort(key=lambda gr: gr[0].members[gr[1]])
+        #: each line's kernel arguments of its two calls a step (views)
+        arrays = (self._time, self._path, self._velocity, self._ff, self._af, self._laid,
+                  self._steps)
+        self._calls = [tuple(tuple(a[j, first:first + 2] for a in arrays) for first in (0, 1))
+                       for j in range(n)]
 
     def sync(self) -> None:
         """Take the lines' states and fairleads again (after they were restored in place or
@@ -135,11 +140,8 @@ class DynamicLineBatch:
                 T[j, 0] = line.time
                 P[j, 0] = line.fairlead
                 U[j, 0] = line.fairlead_velocity
-                for first in (0, 1):  # to the middle sample, then on to the end
-                    seg = slice(first, first + 2)
-                    status, index = line.run_kernel(implicit, T[j, seg], P[j, seg], U[j, seg],
-                                                    ff[j, seg], af[j, seg], lb[j, seg],
-                                                    st[j, seg])
+                for first, args in enumerate(self._calls[j]):  # to the middle, to the end
+                    status, index = line.run_kernel(implicit, *args)
                     if status != _k.DG_OK:
                         line.failed_index = 0
                         raise line.unstable(status, float(T[j, first + index]))
