@@ -9,6 +9,7 @@ import pytest
 from numpy.typing import NDArray
 
 from floatmoor.case.load import load_case
+from floatmoor.errors import SolverError
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch
 from floatmoor.mooring.dg.line import DynamicLine
@@ -126,6 +127,21 @@ def test_restored_states_are_the_batch_states() -> None:
     fresh, _ = _system(MooredBody)
     ff0, _ = fresh.moored.line_forces(fresh.moored.body.x, fresh.moored.body.v)
     assert np.array_equal(ff, ff0)
+
+
+@pytest.mark.parametrize("line", [0, 1])
+def test_a_failing_line_fails_as_before(line: int) -> None:
+    """A line whose state is not finite stops the step with the error the two advances gave
+    (the line, the quantity, the arc length and the time), explicit (0) or implicit (1)."""
+    messages = []
+    for scheme in (MooredBody, TwoCallScheme):
+        system, _ = _system(scheme)
+        system.moored.models[line].v[1, 2, 0] = np.nan
+        with pytest.raises(SolverError) as err:
+            system.moored.step()
+        messages.append(str(err.value))
+    assert messages[0] == messages[1]
+    assert f"line 'line{line + 1}' (dynamic)" in messages[0]
 
 
 @pytest.mark.parametrize("c_int", [0.0, 50.0])
