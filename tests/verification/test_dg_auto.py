@@ -108,9 +108,11 @@ def test_smooth_lines_stay_implicit() -> None:
 
 def test_snapping_then_smooth_goes_back_to_implicit() -> None:
     """DeepCwind line 2 surging 20 m at T = 10 s (it goes slack and snaps at 7.5 times its
-    pretension; implicit 2.6 times dearer than explicit there) for 40 s, then 2 m: auto steps
-    the snaps explicitly and, probing, is back on implicit steps for the smooth motion."""
-    period, split, end = 10.0, 40.0, 120.0
+    pretension; implicit 2.6 times dearer than explicit there) for 60 s, then 2 m: auto steps
+    the snaps explicitly (from its second window; probes at 20 and 50 s, dearer by a quarter
+    of a window in) and, probing again at 100 s, is back on implicit steps for the smooth
+    motion."""
+    period, split, end = 10.0, 60.0, 130.0
     omega = 2.0 * np.pi / period
     case, line = _deepcwind_line2("auto", omega)
     t = np.arange(0.0, end + 1e-9, 0.5)
@@ -131,5 +133,7 @@ def test_snapping_then_smooth_goes_back_to_implicit() -> None:
                   np.zeros(n), steps)
     explicit_per_sample = 0.5 / dg.auto.explicit_step
     assert dg.auto.switches >= 1 and not dg.auto.switched, dg.auto
-    assert steps[(t > 20.0) & (t < split)].min() >= 0.99 * explicit_per_sample  # explicit
-    assert steps[t > end - 20.0].max() < 0.1 * explicit_per_sample  # implicit
+    for a, b in ((10.0, 20.0), (25.0, 50.0), (55.0, 100.0)):  # explicit
+        assert steps[(t > a) & (t <= b)].min() >= 0.99 * explicit_per_sample, (a, b)
+    assert steps[t > 100.0].max() < 0.25 * explicit_per_sample  # implicit (8 to 24 steps)
+    assert dg.auto.switches == 3 and dg.auto.explicit_windows == 9

@@ -26,9 +26,9 @@ of a step is estimated from the change of the acceleration variable,
 e_r = dt^2 |beta - 1/6| (a1 - a0) (Zienkiewicz & Xie 1991, Earthq. Eng. Struct. Dyn. 20,
 871-887), mapped to the fairlead force through the end node's tangent stiffness
 (|dN/dq . de/ds|); a step whose force error exceeds the tolerance is redone at half the step
-(L + 1), and after two steps well inside it the step doubles again (L - 1). Snap loads, whose
-axial waves carry the force, so get the small steps they need and the rest of the run the
-steps its fairlead motion needs.
+(L + 1), and after ``GOOD_STEPS`` steps well inside it the step doubles again (L - 1). Snap
+loads, whose axial waves carry the force, so get the small steps they need and the rest of the
+run the steps its fairlead motion needs.
 
 Slack elements are filtered after each step as in the explicit scheme (``_kernels``).
 """
@@ -459,6 +459,11 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
 #: Newton iterations above which the factored Jacobian counts as stale and is rebuilt at the
 #: next step (a fresh one converges in 2 to 3 on the cases of tests/verification).
 SLOW_ITERATIONS = 4
+#: Consecutive steps well inside the tolerance (``ip[IP_GROW]``) before the step doubles: every
+#: change of the step refactors the Jacobian, and a doubled step that fails is redone. 4
+#: against 2: DeepCwind line 2 on its LC34 path (600 s, 8 x p3) 13 % less CPU time (1/3
+#: fewer rejections and step changes, 1/4 fewer factorisations), STD and max the same to 0.03 %.
+GOOD_STEPS = 4
 
 
 @jit
@@ -583,7 +588,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                 cs[CS_GOOD] += 1.0
             else:
                 cs[CS_GOOD] = 0.0
-            if cs[CS_GOOD] >= 2.0 and L > level_min and m % 2 == 0:
+            if cs[CS_GOOD] >= GOOD_STEPS and L > level_min and m % 2 == 0:
                 L -= 1
                 m //= 2
                 cs[CS_GOOD] = 0.0
