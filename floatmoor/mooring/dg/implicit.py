@@ -30,10 +30,9 @@ RHO_INFINITY = 0.5
 #: Newton stops when its last position correction would move the end force by less than this
 #: fraction of the force tolerance (through the axial stiffness EA / smallest node spacing).
 #: 0.1 against 0.01: DeepCwind lines on their recorded paths 15 % faster, STD and max the same
-#: to 1e-4. 0.3 against 0.1: DeepCwind line 2 on its LC34 path (600 s, 8 x p3) 11 % less CPU
-#: time (12 % fewer iterations, 16 % fewer factorisations), STD and max the same to 0.03 %; the
-#: Lindahl chain's snaps (implicit, T = 1.25 s) the same to 0.02 %. 1 was 23 % cheaper still on
-#: DeepCwind but put the Lindahl chain's mean cycle maximum 5 % above explicit steps'.
+#: to 1e-4. Not looser: 0.3 cost DeepCwind line 2 on its LC34 path (600 s, 8 x p3) 11 % less
+#: CPU time, STD and max the same to 0.03 %, but single snap peaks of the Lindahl chain
+#: (implicit, T = 1.25 s) came out up to 5 % above the explicit steps' (0.1: within 1.4 %).
 NEWTON_FRACTION = 0.1
 #: Most halvings of one sample interval (2^24 steps: below any snap's resolution need).
 LEVEL_MAX = 24

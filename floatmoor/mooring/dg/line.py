@@ -69,8 +69,8 @@ _STATUS_TEXT = {
 #: Share of the accepted error (``accuracy`` of the fairlead tension) given to the local error
 #: of one implicit step: the global error is the accumulation of local ones, damped by the
 #: line's drag. A quarter: DeepCwind line 2 on its LC34 path within 0.32 % (STD) of 16 x p5
-#: explicit (0.38 % at 1, 19 % less CPU), but the Lindahl chain's snaps (T = 1.25 s) 0.6 %
-#: above explicit steps' mean cycle maximum, 1.0 % at 1/2 and 5 to 10 % at 1.
+#: explicit (at 1: 0.38 %, 19 % less CPU time), the Lindahl chain's snaps (T = 1.25 s) 0.6 %
+#: above the explicit steps' mean cycle maximum (at 1/2: 1.0 %, the whole accuracy).
 IMPLICIT_ERROR_SHARE = 0.25
 
 
