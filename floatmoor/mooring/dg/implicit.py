@@ -42,8 +42,7 @@ LEVEL_MAX = 24
 #: step refactors the Jacobian, and a doubled step that fails is redone. 4 against 2: DeepCwind
 #: line 2 on its LC34 path (600 s, 8 x p3) 8 % less CPU time (29 % fewer rejections, 19 % fewer
 #: factorisations), STD and max the same to 0.03 % (6 and 8, with a looser Newton and error
-#: share, no cheaper than 4). 0.05 and 0.2 against
-#: 0.1 (with 2 steps): 4 % and 6 % dearer.
+#: share, no cheaper than 4). 0.05 and 0.2 against 0.1 (with 2 steps): 4 % and 6 % dearer.
 GROW_RATIO = 0.1
 #: Newton iterations per attempt of a step.
 MAX_ITERATIONS = 8
