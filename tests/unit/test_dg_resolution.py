@@ -167,23 +167,28 @@ def _explicit_until_probe(auto: rs.AutoIntegration, time: float, steps: float) -
 
 def test_probes_bring_implicit_back_and_back_off_while_dearer() -> None:
     """Explicit windows are probed with implicit steps: a probe dearer than the whole window's
-    explicit steps goes explicit at its next quarter (the rest of the window explicit) and
-    doubles the gap to the next probe, up to MAX_PROBE_GAP; a probe within them keeps the line
-    implicit (never a permanent switch)."""
+    explicit steps, or CLEARLY_OVER_BUDGET times those up to a check, goes explicit at that
+    check (the rest of the window explicit) and doubles the gap to the next probe, up to
+    MAX_PROBE_GAP; a probe within them keeps the line implicit (never a permanent switch)."""
     auto = rs.AutoIntegration.for_line(2.0 * math.pi / 1.25, 1e-4, 4)
     auto.update(0.0, _counters(0.0))
     steps = _window_steps(4.0, auto)
     assert auto.update(auto.window, _counters(steps)) and auto.switched
+    part = auto.window / rs.PROBE_CHECKS
     time, gaps = auto.window, []
-    for _ in range(5):  # snapping: every probe dearer
+    for k in range(5):  # snapping: every probe dearer
         start = _explicit_until_probe(auto, time, steps)
         gaps.append(round((start - time) / auto.window))
-        quarter = start + auto.window / rs.PROBE_CHECKS
-        assert auto.next_check() == pytest.approx(quarter)
-        steps += _window_steps(0.5, auto)  # half the window's explicit work in a quarter
-        assert not auto.update(quarter, _counters(steps))
-        steps += _window_steps(0.75, auto)
-        assert auto.update(quarter + auto.window / rs.PROBE_CHECKS, _counters(steps))
+        assert auto.next_check() == pytest.approx(start + part)
+        if k % 2 == 0:  # dearer than the whole window's explicit steps at the second check
+            steps += _window_steps(0.3, auto)  # (0.3 < 3 / PROBE_CHECKS: on)
+            assert not auto.update(start + part, _counters(steps))
+            assert auto.next_check() == pytest.approx(start + 2 * part)
+            steps += _window_steps(0.8, auto)
+            assert auto.update(start + 2 * part, _counters(steps))
+        else:  # clearly dearer so far at the first check
+            steps += _window_steps(0.5, auto)
+            assert auto.update(start + part, _counters(steps))
         assert auto.switched and not auto.probing
         assert auto.next_check() == pytest.approx(start + auto.window)
         time = start + auto.window
@@ -193,7 +198,7 @@ def test_probes_bring_implicit_back_and_back_off_while_dearer() -> None:
     start = _explicit_until_probe(auto, time, steps)  # smooth again: a probe at half the work
     for q in range(1, rs.PROBE_CHECKS + 1):
         steps += _window_steps(0.5, auto, 1.0 / rs.PROBE_CHECKS)
-        assert not auto.update(start + q * auto.window / rs.PROBE_CHECKS, _counters(steps))
+        assert not auto.update(start + q * part, _counters(steps))
     assert not auto.switched and not auto.probing and auto.gap == 1
     assert auto.switches == 6 and auto.explicit_windows >= 5 + sum(gaps)
 

@@ -109,9 +109,9 @@ def test_smooth_lines_stay_implicit() -> None:
 def test_snapping_then_smooth_goes_back_to_implicit() -> None:
     """DeepCwind line 2 surging 20 m at T = 10 s (it goes slack and snaps at 7.5 times its
     pretension; implicit 2.6 times dearer than explicit there) for 60 s, then 2 m: auto steps
-    the snaps explicitly (from its second window; probes at 20 and 50 s, dearer by a quarter
-    of a window in) and, probing again at 100 s, is back on implicit steps for the smooth
-    motion."""
+    the snaps explicitly (from its second window; probes at 20 and 50 s, found dearer within
+    a quarter of a window) and, probing again at 100 s, is back on implicit steps for the
+    smooth motion."""
     period, split, end = 10.0, 60.0, 130.0
     omega = 2.0 * np.pi / period
     case, line = _deepcwind_line2("auto", omega)

@@ -179,8 +179,11 @@ CLEARLY_OVER_BUDGET = 3.0
 #: one window's explicit work (below), 1 / 8 of the explicit run's at the longest gap.
 MAX_PROBE_GAP = 8
 #: A probe window is checked this many times: as soon as its implicit work exceeds what the
-#: explicit steps of the whole window cost, the rest of the window steps explicitly.
-PROBE_CHECKS = 4
+#: explicit steps of the whole window cost, or ``CLEARLY_OVER_BUDGET`` times what they cost up
+#: to the check, the rest of the window steps explicitly. On the Lindahl chain (implicit 5 to 9
+#: times dearer) a probe so costs 5 / 8 to 9 / 8 of a window's explicit work beside the
+#: explicit steps it replaces.
+PROBE_CHECKS = 8
 
 
 def implicit_work(steps: float, iterations: float, factorisations: float, nodes: int) -> float:
@@ -207,7 +210,8 @@ class AutoIntegration:
     the line steps explicitly from the next window on. While explicit, every ``gap``-th window
     is a probe: it starts implicit, stays implicit if its implicit work stays within the
     window's explicit work, and goes explicit for the rest of the window as soon as it does
-    not (checked ``PROBE_CHECKS`` times per window), doubling the gap up to ``MAX_PROBE_GAP``.
+    not or is clearly dearer so far (checked ``PROBE_CHECKS`` times per window), doubling the
+    gap up to ``MAX_PROBE_GAP``.
 
     Deterministic (counters, not wall time), so a resumed run switches where the original
     did; :meth:`state` and :meth:`set_state` carry it in checkpoints.
@@ -279,7 +283,9 @@ class AutoIntegration:
                 return False
             while self.check_at <= time:
                 self.check_at += self.window / PROBE_CHECKS
-            if self._spent(counters) > explicit_work(self.window, self.explicit_step):
+            spent = self._spent(counters)
+            if (spent > explicit_work(self.window, self.explicit_step)
+                    or spent > CLEARLY_OVER_BUDGET * explicit_work(elapsed, self.explicit_step)):
                 self._probe_failed(time, 1)  # (the rest of this window is explicit too)
             return self.switched != was
         spent = self._spent(counters)
