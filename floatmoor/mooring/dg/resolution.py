@@ -140,10 +140,10 @@ def resolve_settings(settings: DynamicSettings, length: float, transverse_speed:
 #: ========  ===========  ==============  =====  ==================================
 #: K x p     explicit     Jacobian + LU   solve  implicit run: model / measured CPU
 #: ========  ===========  ==============  =====  ==================================
-#: 8 x p3    3.54         8.0             1.09   0.99 (120 s of LC34)
-#: 12 x p3   3.50         8.9             1.19   0.99
-#: 8 x p4    3.52         10.4            1.20   1.00
-#: 10 x p5   3.45         16.2            1.63   1.01
+#: 8 x p3    3.54         8.0             1.09   1.01 (120 s of LC34)
+#: 12 x p3   3.50         8.9             1.19   0.94
+#: 8 x p4    3.52         10.4            1.20   1.10
+#: 10 x p5   3.45         16.2            1.63   1.04
 #: ========  ===========  ==============  =====  ==================================
 #:
 #: An explicit step is the three SSP-RK3 stages with the slack filter and the backward-Euler
@@ -175,8 +175,8 @@ CLEARLY_OVER_BUDGET = 3.0
 #: Explicit windows are probed again with implicit steps (a window that started implicit
 #: again), first after one explicit window, then after twice as many as before each time the
 #: probe comes out dearer, at most this many: a motion that turns smooth (a storm that abates)
-#: is back on implicit steps within this many windows, and a probe that fails costs at most
-#: one window's explicit work (below), 1 / 8 of the explicit run's at the longest gap.
+#: is back on implicit steps within this many windows, and a probe that fails costs about one
+#: window's explicit work (below), 1 / 8 of the explicit run's at the longest gap.
 MAX_PROBE_GAP = 8
 #: A probe window is checked this many times: as soon as its implicit work exceeds what the
 #: explicit steps of the whole window cost, or ``CLEARLY_OVER_BUDGET`` times what they cost up
