@@ -481,8 +481,8 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
             elif dg.auto is None:
                 steps = implicit
             else:
-                steps = (f"{implicit} while they cost less than explicit steps of "
-                         f"{dg.auto.explicit_step:.3g} s (cfl {st.cfl:g}), those from then on")
+                steps = (f"{implicit} or explicit steps of {dg.auto.explicit_step:.3g} s "
+                         f"(cfl {st.cfl:g}), whichever cost less, period by period")
             chosen = ("" if given.elements is not None and given.order is not None
                       else f", chosen for {100 * st.accuracy:g} % accuracy")
             notes.append(f"  {line.name}: {st.elements} elements of order {st.order} "

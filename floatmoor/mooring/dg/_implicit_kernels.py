@@ -26,9 +26,9 @@ of a step is estimated from the change of the acceleration variable,
 e_r = dt^2 |beta - 1/6| (a1 - a0) (Zienkiewicz & Xie 1991, Earthq. Eng. Struct. Dyn. 20,
 871-887), mapped to the fairlead force through the end node's tangent stiffness
 (|dN/dq . de/ds|); a step whose force error exceeds the tolerance is redone at half the step
-(L + 1), and after two steps well inside it the step doubles again (L - 1). Snap loads, whose
-axial waves carry the force, so get the small steps they need and the rest of the run the
-steps its fairlead motion needs.
+(L + 1), and after ``GOOD_STEPS`` steps well inside it the step doubles again (L - 1). Snap
+loads, whose axial waves carry the force, so get the small steps they need and the rest of the
+run the steps its fairlead motion needs.
 
 Slack elements are filtered after each step as in the explicit scheme (``_kernels``).
 """
@@ -459,6 +459,8 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
 #: Newton iterations above which the factored Jacobian counts as stale and is rebuilt at the
 #: next step (a fresh one converges in 2 to 3 on the cases of tests/verification).
 SLOW_ITERATIONS = 4
+#: Consecutive steps well inside the tolerance before the step doubles (implicit.GROW_RATIO).
+GOOD_STEPS = 4
 
 
 @jit
@@ -579,11 +581,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                     _k._filter_slack(v, F, slack, tmp)
                     dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar,
                                     faces, slack, An)
-            if err < ip[IP_GROW]:
-                cs[CS_GOOD] += 1.0
-            else:
-                cs[CS_GOOD] = 0.0
-            if cs[CS_GOOD] >= 2.0 and L > level_min and m % 2 == 0:
+            cs[CS_GOOD] = cs[CS_GOOD] + 1.0 if err < ip[IP_GROW] else 0.0
+            if cs[CS_GOOD] >= GOOD_STEPS and L > level_min and m % 2 == 0:
                 L -= 1
                 m //= 2
                 cs[CS_GOOD] = 0.0

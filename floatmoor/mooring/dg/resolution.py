@@ -25,12 +25,15 @@ factorisation grows as p^3 per element.
 
 During the run, the integration (``time_integration = "auto"``, :class:`AutoIntegration`): the
 line starts implicit, whose step is bounded by the accuracy of the fairlead force
-(implicit.py), and is switched to the explicit steps for good when, over consecutive
-windows of the motion, the implicit steps' work exceeds what the explicit steps over the same
-time would cost: when snaps or touchdown impacts hold the implicit step near the explicit one (the
-Lindahl chain: implicit 2 to 4 times slower at any period), explicit steps are the cheaper
-way to the same accuracy; when the motion is smooth against the axial wave (DeepCwind:
-implicit steps of 0.05 to 0.5 s against 4 ms explicit) the implicit steps stay.
+(implicit.py), and each window of the motion (a period) is stepped the way that costs less:
+implicit windows whose steps' work, counted by the integrator and priced by operation costs
+measured on the kernels, exceeds what the explicit steps over the same time would cost turn the
+line explicit, and explicit windows are probed with implicit steps again, more rarely while the
+probes come out dearer. When snaps or touchdown impacts hold the implicit step near the
+explicit one (the Lindahl chain: implicit 2 to 4 times dearer at any period), explicit steps
+are the cheaper way to the same accuracy; when the motion is smooth against the axial wave
+(DeepCwind: implicit steps of 0.05 to 0.5 s against 4 ms explicit) the implicit steps stay;
+a motion that turns from one to the other gets the other within ``MAX_PROBE_GAP`` windows.
 
 Lines of several sections (line systems) stay explicit, the implicit step is not built for
 their joints, and keep the discretisation they had (``SYSTEM_ELEMENTS`` of order
@@ -130,51 +133,88 @@ def resolve_settings(settings: DynamicSettings, length: float, transverse_speed:
 
 
 # -- the run-time choice of "auto" -------------------------------------------------------------
-#: Work of the kernels' operations in units of one right-hand side evaluation, measured on
-#: 10 x p5 lines (right-hand side 8 us, Jacobian 35 us, banded factorisation 100 us, banded
-#: solve 17 us, one process): an explicit SSP-RK3 step is three evaluations; an implicit Newton
-#: iteration one evaluation and one solve; a factorisation the Jacobian and its LU, whose cost
-#: grows with the bandwidth (~ p + 1) against the evaluation's.
-EXPLICIT_STEP_WORK = 3.0
-NEWTON_ITERATION_WORK = 1.0 + 17.0 / 8.0
-JACOBIAN_WORK = 35.0 / 8.0
-FACTOR_WORK_PER_NODE = 100.0 / 8.0 / 6.0
-#: An implicit step also evaluates its error estimate: about one evaluation.
-IMPLICIT_STEP_WORK = 1.0
+#: Work of the kernels' operations in units of one right-hand side evaluation (``A`` of the
+#: implicit kernels), measured with numba loops of each kernel on DeepCwind line 2 (CPU time,
+#: one process; rhs 3.2 us at 8 x p3, 5.4 us at 10 x p5):
+#:
+#: ========  ===========  ==============  =====  ==================================
+#: K x p     explicit     Jacobian + LU   solve  implicit run: model / measured CPU
+#: ========  ===========  ==============  =====  ==================================
+#: 8 x p3    3.54         8.0             1.09   1.01 (120 s of LC34)
+#: 12 x p3   3.50         8.9             1.19   0.94
+#: 8 x p4    3.52         10.4            1.20   1.10
+#: 10 x p5   3.45         16.2            1.63   1.04
+#: ========  ===========  ==============  =====  ==================================
+#:
+#: An explicit step is the three SSP-RK3 stages with the slack filter and the backward-Euler
+#: internal damping solve; an implicit Newton iteration one evaluation and one banded solve,
+#: whose cost grows as the bandwidth (~ p + 1) against the evaluation's; a factorisation the
+#: Jacobian and its LU, growing as (p + 1)^2 against it. (The constants before were guessed from
+#: 10 x p5 and put the implicit steps of the p3 lines at 1.75 times their cost against the
+#: explicit ones: DeepCwind line 2 went explicit although implicit was 3.3 times cheaper.)
+EXPLICIT_STEP_WORK = 3.5
+NEWTON_ITERATION_WORK = 1.0
+SOLVE_WORK_PER_NODE = 0.27
+FACTOR_WORK_PER_NODE_SQUARED = 0.5
+#: An implicit attempt also copies the state, interpolates the fairlead and evaluates its
+#: error estimate: the remainder of the measured runs' CPU time after the operations above is
+#: 1.8 to 1.9 evaluations per attempt.
+IMPLICIT_STEP_WORK = 1.9
 #: Shortest window of simulated time over which the two are compared [s]; the window is
 #: otherwise one period of the motion, so that a snap per cycle counts in every window.
 MIN_WINDOW = 1.0
 #: Consecutive windows in which the implicit steps must cost more before the line goes
-#: explicit: a line that snaps every cycle (the Lindahl chain, the buoy's chains) does so in
-#: every window, whereas one steep wave group does not make a sea state snap (DeepCwind LC34
-#: line 2: one window of 14.3 s at 1.03 times the explicit work, 71 s into the run, among
-#: windows at 0.2 to 0.6).
+#: explicit: one steep wave group does not make a sea state snap, whereas a line that snaps
+#: every cycle (the Lindahl chain, the buoy's chains) does so in every window.
 OVER_BUDGET_WINDOWS = 2
 #: A window whose implicit work exceeds the explicit steps' by this factor switches the line at
-#: once: the Lindahl chain's implicit steps cost 2 to 4 times the explicit ones at every period,
-#: whereas the one steep wave group of LC34 line 2 came to 1.03 times.
-CLEARLY_OVER_BUDGET = 1.5
+#: once: the Lindahl chain's implicit windows (12 x p3, T = 1.25 s) cost 5 to 9 times the
+#: explicit steps' from the first on, whereas DeepCwind line 2's dearest window on its LC34
+#: path (the steep wave group 188 s in) costs 2.0 times, between windows at 0.1 to 0.9.
+CLEARLY_OVER_BUDGET = 3.0
+#: Explicit windows are probed again with implicit steps (a window that started implicit
+#: again), first after one explicit window, then after twice as many as before each time the
+#: probe comes out dearer, at most this many: a motion that turns smooth (a storm that abates)
+#: is back on implicit steps within this many windows, and a probe that fails costs about one
+#: window's explicit work (below), 1 / 8 of the explicit run's at the longest gap.
+MAX_PROBE_GAP = 8
+#: A probe window is checked this many times: as soon as its implicit work exceeds what the
+#: explicit steps of the whole window cost, or ``CLEARLY_OVER_BUDGET`` times what they cost up
+#: to the check, the rest of the window steps explicitly. On the Lindahl chain (implicit 5 to 9
+#: times dearer) a probe so costs 5 / 8 to 9 / 8 of a window's explicit work beside the
+#: explicit steps it replaces.
+PROBE_CHECKS = 8
 
 
 def implicit_work(steps: float, iterations: float, factorisations: float, nodes: int) -> float:
-    """Work of implicit steps in right-hand-side units (constants above)."""
-    return (steps * IMPLICIT_STEP_WORK + iterations * NEWTON_ITERATION_WORK
-            + factorisations * (JACOBIAN_WORK + FACTOR_WORK_PER_NODE * nodes))
+    """Work of implicit steps (``steps`` attempts, accepted and rejected) in right-hand-side
+    units (constants above); ``nodes`` per element, p + 1."""
+    return (steps * IMPLICIT_STEP_WORK
+            + iterations * (NEWTON_ITERATION_WORK + SOLVE_WORK_PER_NODE * nodes)
+            + factorisations * FACTOR_WORK_PER_NODE_SQUARED * nodes * nodes)
 
 
 def explicit_work(duration: float, explicit_step: float) -> float:
     """Work of the explicit steps over ``duration`` in right-hand-side units."""
-    return math.ceil(duration / explicit_step) * EXPLICIT_STEP_WORK
+    return math.ceil(duration / explicit_step - 1e-9) * EXPLICIT_STEP_WORK
 
 
 @dataclass
 class AutoIntegration:
-    """The bookkeeping of ``time_integration = "auto"`` on one line: the window's start and the
-    implicit counters there, and whether (and when) the line went explicit.
+    """The bookkeeping of ``time_integration = "auto"`` on one line, window by window of the
+    motion: whether the window steps implicitly or explicitly, and when to try implicit again.
+
+    A window stepped implicitly is compared, at its end, with the explicit steps over the same
+    time (:func:`implicit_work` from the integrator's counters against :func:`explicit_work`);
+    dearer in ``OVER_BUDGET_WINDOWS`` consecutive windows, or by ``CLEARLY_OVER_BUDGET`` in one,
+    the line steps explicitly from the next window on. While explicit, every ``gap``-th window
+    is a probe: it starts implicit, stays implicit if its implicit work stays within the
+    window's explicit work, and goes explicit for the rest of the window as soon as it does
+    not or is clearly dearer so far (checked ``PROBE_CHECKS`` times per window), doubling the
+    gap up to ``MAX_PROBE_GAP``.
 
     Deterministic (counters, not wall time), so a resumed run switches where the original
-    did; :meth:`state` and :meth:`set_state` carry it in checkpoints (same arrays before and
-    after the switch, all finite).
+    did; :meth:`state` and :meth:`set_state` carry it in checkpoints.
     """
 
     window: float  #: [s]
@@ -183,9 +223,14 @@ class AutoIntegration:
     window_start: float = 0.0  #: [s]
     counters: NDArray[np.float64] | None = None  #: ``CS_*`` counters at the window's start
     switched: bool = False  #: whether the line steps explicitly now
-    switched_at: float = 0.0  #: when it went explicit [s]
-    over: int = 0  #: consecutive windows whose implicit work exceeded the explicit steps'
-
+    switched_at: float = 0.0  #: when it last went explicit [s]
+    over: int = 0  #: consecutive implicit windows whose work exceeded the explicit steps'
+    probing: bool = False  #: whether the current window is a probe
+    gap: int = 1  #: explicit windows between a probe that came out dearer and the next one
+    wait: int = 0  #: explicit windows left before the next probe
+    switches: int = 0  #: how many times the line went explicit
+    explicit_windows: int = 0  #: windows that ended explicit (a failed probe among them)
+    check_at: float = 0.0  #: a probe's next check [s]
 
     @classmethod
     def for_line(cls, motion_frequency: float, explicit_step: float,
@@ -198,40 +243,86 @@ class AutoIntegration:
         """Start a window at ``time`` with the integrator's ``counters``."""
         self.window_start = time
         self.counters = counters.copy()
+        self.check_at = time + self.window / PROBE_CHECKS
 
-    def should_switch(self, time: float, counters: NDArray[np.float64]) -> bool:
-        """At the end of a window: whether its implicit work exceeded the explicit steps' in
-        ``OVER_BUDGET_WINDOWS`` consecutive windows, or by ``CLEARLY_OVER_BUDGET`` in this one (then the line is marked explicit and the
-        caller switches); a new window starts otherwise. False inside a window."""
+    def next_check(self) -> float:
+        """Simulated time of the next decision [s]: the window's end, or, in a probe still
+        stepping implicitly, its next check."""
+        end = self.window_start + self.window
+        return min(end, self.check_at) if self.probing and not self.switched else end
+
+    def _spent(self, counters: NDArray[np.float64]) -> float:
+        """Implicit work since the window's start."""
+        d = counters - self.counters
+        return implicit_work(d[_ik.CS_STEPS] + d[_ik.CS_REJECTED], d[_ik.CS_ITERATIONS],
+                             d[_ik.CS_FACTORISATIONS], self.nodes)
+
+    def _go_explicit(self, time: float) -> None:
+        self.switched, self.switched_at, self.switches = True, time, self.switches + 1
+
+    def _probe_failed(self, time: float, rest: int) -> None:
+        """A probe came out dearer: explicit, and the next probe ``gap`` windows later (plus
+        ``rest``, this window's rest)."""
+        self._go_explicit(time)
+        self.probing = False
+        self.gap = min(2 * self.gap, MAX_PROBE_GAP)
+        self.wait = self.gap + rest
+
+    def update(self, time: float, counters: NDArray[np.float64]) -> bool:
+        """At ``time`` [s], with the integrator's ``counters``: end the window if it is over
+        (choosing the next one's integration), or stop a probe already dearer than the whole
+        window's explicit steps; whether the line changes between implicit and explicit steps
+        now (the caller then switches). A first call starts the first window."""
         if self.counters is None:
             self.restart(time, counters)
             return False
+        was = self.switched
         elapsed = time - self.window_start
-        if elapsed < self.window:
-            return False
-        d = counters - self.counters
-        spent = implicit_work(d[_ik.CS_STEPS] + d[_ik.CS_REJECTED], d[_ik.CS_ITERATIONS],
-                              d[_ik.CS_FACTORISATIONS], self.nodes)
+        if elapsed < self.window * (1.0 - 1e-9):  # inside a window: only a probe is checked
+            if not self.probing or self.switched or time < self.check_at:
+                return False
+            while self.check_at <= time:
+                self.check_at += self.window / PROBE_CHECKS
+            spent = self._spent(counters)
+            if (spent > explicit_work(self.window, self.explicit_step)
+                    or spent > CLEARLY_OVER_BUDGET * explicit_work(elapsed, self.explicit_step)):
+                self._probe_failed(time, 1)  # (the rest of this window is explicit too)
+            return self.switched != was
+        spent = self._spent(counters)
         budget = explicit_work(elapsed, self.explicit_step)
-        self.over = self.over + 1 if spent > budget else 0
-        if self.over >= OVER_BUDGET_WINDOWS or spent > CLEARLY_OVER_BUDGET * budget:
-            self.switched, self.switched_at = True, time
-            return True
+        if self.switched:  # an explicit window (or a probe that went explicit)
+            self.explicit_windows += 1
+            self.probing = False
+            self.wait -= 1
+            if self.wait <= 0:
+                self.switched, self.probing = False, True
+        elif self.probing and spent > budget:
+            self._probe_failed(time, 0)
+        elif self.probing:  # within the explicit work to its end: implicit again
+            self.probing, self.gap, self.over = False, 1, 0
+        else:
+            self.over = self.over + 1 if spent > budget else 0
+            if self.over >= OVER_BUDGET_WINDOWS or spent > CLEARLY_OVER_BUDGET * budget:
+                self._go_explicit(time)
+                self.over, self.wait = 0, self.gap
         self.restart(time, counters)
-        return False
+        return self.switched != was
 
     def state(self) -> dict[str, NDArray[np.float64]]:
         """Checkpoint arrays."""
         started = self.counters is not None
-        return {"auto_window": np.array([self.window_start, float(started),
-                                         float(self.switched), self.switched_at,
-                                         float(self.over)]),
+        return {"auto_window": np.array([
+                    self.window_start, float(started), float(self.switched), self.switched_at,
+                    float(self.over), float(self.probing), float(self.gap), float(self.wait),
+                    float(self.switches), float(self.explicit_windows), self.check_at]),
                 "auto_counters": (self.counters.copy() if started else np.zeros(_ik.CS_N))}
 
     def set_state(self, arrays: dict[str, NDArray[np.float64]]) -> None:
         """Restore :meth:`state`."""
-        start, started, switched, at, over = (float(x) for x in arrays["auto_window"])
+        (start, started, switched, at, over, probing, gap, wait, switches, windows,
+         check) = (float(x) for x in arrays["auto_window"])
         self.window_start, self.switched, self.switched_at = start, switched != 0.0, at
-        self.over = int(over)
+        self.over, self.probing, self.gap, self.wait = int(over), probing != 0.0, int(gap), int(wait)
+        self.switches, self.explicit_windows, self.check_at = int(switches), int(windows), check
         self.counters = (np.asarray(arrays["auto_counters"], dtype=float).copy()
                          if started != 0.0 else None)
