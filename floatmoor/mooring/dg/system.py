@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -23,10 +24,12 @@ from numpy.typing import NDArray
 
 from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import SolverError
+from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
 from floatmoor.mooring.dg.line import SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, \
     SETTLE_TOLERANCE, DynamicLine, SettleReport
+from floatmoor.mooring.dg.system_implicit import SystemImplicit, system_integration
 from floatmoor.mooring.dg.system_parts import PointLike, SystemSection, catenary_positions, \
     point_contact, resolved_sections, section_properties, static_start
 
@@ -36,6 +39,7 @@ _STATUS_TEXT = {
     _k.DG_NOT_FINITE: "the position or velocity is not finite",
     _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
     _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
+    _ik.DG_NEWTON: "the implicit step's Newton iteration did not converge at the smallest step",
 }
 #: Settling runs on the system's time scale tau = sqrt(L / g), L its longest line (through
 #: its joints, clumps and buoys: the slowest to settle), which scales x sqrt(lambda) under
@@ -96,8 +100,12 @@ class DynamicSystem:
         self.env[_s.E_RHO_W], self.env[_s.E_G] = pr0.water_density, pr0.gravity
         self.env[_s.E_U:_s.E_U + 3] = pr0.current_velocity
         self.env[_s.E_ZB], self.env[_s.E_VC] = pr0.seabed_z, pr0.slip_speed
-        # per-section layout
-        self.lines = [DynamicLine(sec.properties, sec.settings,
+        #: how the system steps: "explicit" (SSP-RK3 at the smallest section's stable step) or
+        #: "implicit" (generalised-alpha, :mod:`floatmoor.mooring.dg.system_implicit`)
+        self.integration = system_integration([sec.settings for sec in self.sections])
+        # per-section layout (each section's explicit step: the settle and the explicit runs)
+        self.lines = [DynamicLine(sec.properties,
+                                  replace(sec.settings, time_integration="explicit"),
                                   np.zeros(3), np.zeros(3), name=sec.label,
                                   initial_positions=np.zeros(
                                       (sec.settings.elements * (sec.settings.order + 1), 3)))
@@ -149,6 +157,13 @@ class DynamicSystem:
         self.settle_report: SettleReport | None = None
         #: sample index of the last failure in :meth:`solve_path`, -1 if none
         self.failed_index = -1
+        self._settling = False
+        #: the implicit integration, None when the system steps explicitly
+        self.implicit: SystemImplicit | None = None
+        if self.integration == "implicit":
+            sf, ef = self._end_forces(self.body_velocity)
+            self.implicit = SystemImplicit(self, float(max(
+                np.max(np.linalg.norm(sf, axis=1)), np.max(np.linalg.norm(ef, axis=1)))))
 
     @classmethod
     def from_case(cls, case: Any, *, settle: bool | None = None) -> "DynamicSystem":
@@ -218,7 +233,10 @@ class DynamicSystem:
         return L / min(sec.properties.wave_speed for sec in self.sections)
 
     def refuse_long_work(self, duration: float, what: str, source: str = "") -> None:
-        """:meth:`DynamicLine.refuse_long_work` of the section with the shortest step."""
+        """:meth:`DynamicLine.refuse_long_work` of the section with the shortest step (not for
+        the implicit steps, whose count follows the accuracy; the settle steps explicitly)."""
+        if self._stepping_implicit():
+            return
         j = min(range(len(self.lines)), key=lambda k: self.lines[k].time_step)
         self.lines[j].refuse_long_work(duration, what, source, self.sections[j].line)
 
@@ -248,7 +266,13 @@ class DynamicSystem:
         max_time = max_tau * tau if max_time is None else max_time
         if not (rate >= 0.0 and tolerance > 0.0 and max_time > 0.0):
             raise ValueError("settle needs a rate >= 0 and a positive tolerance and max_time")
-        self.refuse_long_work(max_time, f"the system's initial settle (at most {max_time:.6g} s)")
+        self._settling = True  # (explicit steps: the relaxation's tested path)
+        try:
+            self.refuse_long_work(max_time,
+                                  f"the system's initial settle (at most {max_time:.6g} s)")
+        except Exception:
+            self._settling = False
+            raise
         start = self.time
         n = max(int(math.ceil(chunk_tau * tau / self.time_step)), 2)
         sub = max(int(round(KINETIC_CHUNK_TAU * tau / self.time_step)), 1) if kinetic else n
@@ -293,8 +317,11 @@ class DynamicSystem:
                     converged = True
                     break
         finally:
+            self._settling = False
             self.prm[:, _k.P_RELAX] = 0.0
             self.env[_s.E_RELAX] = 0.0
+            if self.implicit is not None:
+                self.implicit.invalidate()
         elapsed = self.time - start
         speed = float(max(np.max(np.linalg.norm(self.v, axis=-1)),
                           np.max(np.linalg.norm(self.u, axis=-1), initial=0.0)))
@@ -381,12 +408,19 @@ class DynamicSystem:
                 raise ValueError("shape output needs time[0] == the system's time")
         else:
             shape_every, sr, sten = 0, np.zeros((1, 1, 3)), np.zeros((1, 1))
-        status, index = _s.dgs_run_path(
-            self.r, self.v, self.x, self.u, time, np.ascontiguousarray(bp),
-            np.ascontiguousarray(bv), self.sec, self.prm, self.ops, self.kind, self.body,
-            self.pprm, self.env, self.time_step, sf, ef, lb, pp, st, shape_every, sr, sten,
-            w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.ppos, w.pvel, w.G,
-            w.Zs, w.tmp, w.bcd, *w.damping, w.coupling, w.where)
+        if self._stepping_implicit():
+            status, index = self.implicit.run(self, time, np.ascontiguousarray(bp),
+                                              np.ascontiguousarray(bv), sf, ef, lb, pp, st,
+                                              shape_every, sr, sten)
+        else:
+            if self.implicit is not None:
+                self.implicit.invalidate()
+            status, index = _s.dgs_run_path(
+                self.r, self.v, self.x, self.u, time, np.ascontiguousarray(bp),
+                np.ascontiguousarray(bv), self.sec, self.prm, self.ops, self.kind, self.body,
+                self.pprm, self.env, self.time_step, sf, ef, lb, pp, st, shape_every, sr,
+                sten, w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.ppos,
+                w.pvel, w.G, w.Zs, w.tmp, w.bcd, *w.damping, w.coupling, w.where)
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         start_force[:done - first] = sf[first:done]
@@ -400,17 +434,28 @@ class DynamicSystem:
             if j < 0:
                 raise SolverError(f"point '{self.points[k].name}' (dynamic system): its position "
                                   f"or velocity is not finite at t = {time[index]:.6g} s; the "
-                                  f"solution went unstable (time step {self.time_step:.3g} s)")
+                                  f"solution went unstable ({self._step_text()})")
             sec = self.sections[j]
             s = self.lines[j].arc_length[k * (sec.settings.order + 1) + i]
             raise SolverError(f"{sec.label} (dynamic): {_STATUS_TEXT[status]} at arc length "
                               f"s = {s:.4g} m from its start, t = {time[index]:.6g} s; the "
-                              f"solution went unstable (time step {self.time_step:.3g} s)")
+                              f"solution went unstable ({self._step_text()})")
         self.failed_index = -1
         self.time = float(time[-1])
         for b, p in enumerate(self.body_points):
             self.x[p] = bp[-1, b]
         self.body_velocity = np.array(bv[-1], dtype=float)
+
+    def _stepping_implicit(self) -> bool:
+        """Whether the next steps are implicit (not while settling: the explicit relaxation)."""
+        return self.implicit is not None and not self._settling
+
+    def _step_text(self) -> str:
+        """The step, as failure messages name it."""
+        if not self._stepping_implicit():
+            return f"time step {self.time_step:.3g} s"
+        return (f"implicit steps of at most {self.implicit.max_step:.3g} s, "
+                f"{int(self.implicit.cs[_ik.CS_REJECTED])} rejected")
 
     def section_slice(self, j: int) -> slice:
         """The nodes of section j in the system's node axis."""
@@ -524,6 +569,8 @@ class DynamicSystem:
                "velocities": self.v.copy(), "point_positions": self.x.copy(),
                "point_velocities": self.u.copy(), "body_velocities": self.body_velocity.copy()}
         out.update({f"damping_{i}": a.copy() for i, a in enumerate(self._w.damping)})
+        if self.implicit is not None:
+            out.update(self.implicit.state_arrays())
         return out
 
     def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
@@ -536,6 +583,8 @@ class DynamicSystem:
         self.body_velocity = np.array(arrays["body_velocities"], dtype=float)
         for i, a in enumerate(self._w.damping):
             a[...] = arrays[f"damping_{i}"]
+        if self.implicit is not None:
+            self.implicit.set_state_arrays(arrays)
 
 
 class _SystemWorkspace:
