@@ -306,3 +306,55 @@ def test_explicit_sections_keep_the_explicit_system() -> None:
     system = DynamicSystem(pts, secs)
     assert system.integration == "explicit" and system.implicit is None
     assert k.DG_OK == 0
+
+
+def _auto_system() -> DynamicSystem:
+    pts = [point(n, kd, pos, **kw) for n, kd, pos, kw in POINTS]
+    secs = [SystemSection("l", i, _props(L, (0.0, 0.0, 0.0), **kw),
+                          replace(_settings(K, p), time_integration="auto"), s, e)
+            for i, (s, e, L, K, p, kw) in enumerate(SECTIONS)]
+    return DynamicSystem(pts, secs)
+
+
+def _run(system: DynamicSystem, t: np.ndarray) -> np.ndarray:
+    n, S, P = t.size, len(system.sections), len(system.points)
+    path = np.array(system.body_positions)[None] + 0.3 * np.sin(t)[:, None, None]
+    vel = 0.3 * np.cos(t)[:, None, None] * np.ones((1, 1, 3))
+    ef = np.zeros((n, S, 3))
+    system.solve_path(t, path, vel, np.zeros((n, S, 3)), ef, np.zeros((n, S)),
+                      np.zeros((n, P, 3)), np.zeros(n))
+    return ef
+
+
+def test_implicit_state_arrays_restore_the_run_bit_for_bit() -> None:
+    system = _system((0.0, 0.0, 0.0))
+    _run(system, np.linspace(0.0, 0.3, 4))
+    saved = system.state_arrays()
+    assert "implicit_schur" in saved
+    first = _run(system, np.linspace(0.3, 0.6, 4))
+    system.set_state_arrays(saved)
+    again = _run(system, np.linspace(0.3, 0.6, 4))
+    assert first.tobytes() == again.tobytes()
+
+
+def test_auto_system_starts_implicit_and_goes_explicit_when_that_is_cheaper() -> None:
+    """``"auto"``: implicit steps (counted) while the explicit ones would cost more; with an
+    explicit step made long enough to be the cheaper (the bookkeeping's step), the system goes
+    explicit at the end of a window and takes no more implicit steps."""
+    system = _auto_system()
+    assert system.integration == "auto" and system._stepping_implicit()
+    _run(system, np.linspace(0.0, 0.5, 6))
+    steps = system.implicit.cs[ik.CS_STEPS]
+    assert steps > 0 and not system.auto.switched
+    system.auto.explicit_step = 10.0  # (the switch's arithmetic only; the run keeps its step)
+    _run(system, np.linspace(0.5, 3.5, 31))
+    assert system.auto.switched and not system._stepping_implicit()
+    switched_at = system.auto.switched_at
+    assert 0.5 < switched_at <= 3.5
+    steps = system.implicit.cs[ik.CS_STEPS]
+    _run(system, np.linspace(3.5, 3.6, 3))
+    assert system.implicit.cs[ik.CS_STEPS] == steps
+    saved = system.state_arrays()
+    again = _auto_system()
+    again.set_state_arrays(saved)
+    assert again.auto.switched and again.auto.switched_at == switched_at

@@ -2,14 +2,17 @@
 
 :class:`DynamicSystem` owns the DG state of every section (node positions and velocities, each
 section with its own elements and order) and the free points' positions and velocities, starts
-them from each section's catenary between its ends, settles them, and advances them together
-(``_system_kernels``) at the smallest of the sections' stable steps, with the body points
-driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
+them from each section's catenary between its ends, settles them, and advances them together,
+explicitly (``_system_kernels``) at the smallest of the sections' stable steps or implicitly
+with generalised-alpha steps (:mod:`floatmoor.mooring.dg.system_implicit`; ``"auto"``:
+implicit until the explicit steps are the cheaper, the single line's rule), with the body
+points driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
 :meth:`DynamicSystem.advance` once per rigid-body step. Its sections, points and starting
 shape are :mod:`floatmoor.mooring.dg.system_parts`.
 
-Size: the joined sections' layout, settle, stepping and records around one set of kernels
-(_system_kernels.py); split further, each part would need the whole layout.
+Size: the joined sections' layout, settle, stepping (explicit, implicit, the "auto" switch in
+segments) and records around one set of kernels (_system_kernels.py); split further, each part
+would need the whole layout.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from floatmoor.errors import SolverError
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
+from floatmoor.mooring.dg.resolution import AutoIntegration
 from floatmoor.mooring.dg.line import SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, \
     SETTLE_TOLERANCE, DynamicLine, SettleReport
 from floatmoor.mooring.dg.system_implicit import SystemImplicit, system_integration
@@ -160,7 +164,13 @@ class DynamicSystem:
         self._settling = False
         #: the implicit integration, None when the system steps explicitly
         self.implicit: SystemImplicit | None = None
-        if self.integration == "implicit":
+        #: the run-time choice of ``time_integration = "auto"``, None otherwise
+        self.auto: AutoIntegration | None = None
+        if self.integration == "auto":
+            omega = max(sec.settings.motion_frequency for sec in self.sections)
+            self.auto = AutoIntegration.for_line(omega, self.time_step,
+                                                 int(self.sec[:, _s.S_NP].max()))
+        if self.integration != "explicit":
             sf, ef = self._end_forces(self.body_velocity)
             self.implicit = SystemImplicit(self, float(max(
                 np.max(np.linalg.norm(sf, axis=1)), np.max(np.linalg.norm(ef, axis=1)))))
@@ -408,19 +418,16 @@ class DynamicSystem:
                 raise ValueError("shape output needs time[0] == the system's time")
         else:
             shape_every, sr, sten = 0, np.zeros((1, 1, 3)), np.zeros((1, 1))
-        if self._stepping_implicit():
-            status, index = self.implicit.run(self, time, np.ascontiguousarray(bp),
-                                              np.ascontiguousarray(bv), sf, ef, lb, pp, st,
-                                              shape_every, sr, sten)
-        else:
-            if self.implicit is not None:
-                self.implicit.invalidate()
-            status, index = _s.dgs_run_path(
-                self.r, self.v, self.x, self.u, time, np.ascontiguousarray(bp),
-                np.ascontiguousarray(bv), self.sec, self.prm, self.ops, self.kind, self.body,
-                self.pprm, self.env, self.time_step, sf, ef, lb, pp, st, shape_every, sr,
-                sten, w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.ppos,
-                w.pvel, w.G, w.Zs, w.tmp, w.bcd, *w.damping, w.coupling, w.where)
+        bp, bv = np.ascontiguousarray(bp), np.ascontiguousarray(bv)
+        outs = (sf, ef, lb, pp, st)
+        i0 = 0
+        while True:  # in segments while "auto" may still switch (_segment_end)
+            i1 = self._segment_end(time, i0, shape_every)
+            status, index = self._run_segment(time, bp, bv, outs, shape_every, sr, sten, i0, i1)
+            if status != _k.DG_OK or i1 >= n - 1:
+                break
+            self._switch_if_dearer(float(time[i1]))
+            i0 = i1
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         start_force[:done - first] = sf[first:done]
@@ -445,10 +452,64 @@ class DynamicSystem:
         for b, p in enumerate(self.body_points):
             self.x[p] = bp[-1, b]
         self.body_velocity = np.array(bv[-1], dtype=float)
+        self._switch_if_dearer(self.time)
+
+    def _run_segment(self, time: NDArray, bp: NDArray, bv: NDArray, outs: tuple, shape_every: int,
+                     sr: NDArray, sten: NDArray, i0: int, i1: int) -> tuple[int, int]:
+        """One kernel call over samples ``i0`` to ``i1`` (its first sample, the state the
+        previous call ended in, is recorded again: the earlier record is kept); the status
+        and the failing sample's index in the whole path."""
+        w = self._w
+        seg = slice(i0, i1 + 1)
+        kept = tuple(a[i0].copy() for a in outs) if i0 > 0 else None
+        if shape_every > 0:
+            sr, sten = sr[i0 // shape_every:], sten[i0 // shape_every:]
+        t, x, u = (np.ascontiguousarray(a[seg]) for a in (time, bp, bv))
+        sf, ef, lb, pp, st = (a[seg] for a in outs)
+        if self._stepping_implicit():
+            status, index = self.implicit.run(self, t, x, u, sf, ef, lb, pp, st, shape_every,
+                                              sr, sten)
+        else:
+            if self.implicit is not None:
+                self.implicit.invalidate()
+            status, index = _s.dgs_run_path(
+                self.r, self.v, self.x, self.u, t, x, u, self.sec, self.prm, self.ops,
+                self.kind, self.body, self.pprm, self.env, self.time_step, sf, ef, lb, pp, st,
+                shape_every, sr, sten, w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces,
+                w.slack, w.ppos, w.pvel, w.G, w.Zs, w.tmp, w.bcd, *w.damping, w.coupling,
+                w.where)
+        if kept is not None:
+            for a, k in zip(outs, kept):
+                a[i0] = k
+        return status, i0 + index
+
+    def _segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int) -> int:
+        """Last sample of the kernel call starting at ``i0``: the path's end, or, while
+        ``"auto"`` still steps implicitly, the first sample at or after the end of its window
+        (on a shape sample, so the shape records keep their slots)."""
+        n = time.size
+        auto = self.auto
+        if auto is None or not self._stepping_implicit():
+            return n - 1
+        if auto.counters is None:
+            auto.restart(float(time[i0]), self.implicit.cs)
+        k = int(np.searchsorted(time, auto.window_start + auto.window, side="left"))
+        if shape_every > 0:
+            k = -(-k // shape_every) * shape_every
+        return min(max(k, i0 + 1), n - 1)
+
+    def _switch_if_dearer(self, time: float) -> None:
+        """``"auto"`` stepping implicitly: at ``time``, go explicit for good if its windows
+        say so (``resolution.AutoIntegration.should_switch``, the single line's rule)."""
+        if (self.auto is not None and self._stepping_implicit()
+                and self.auto.should_switch(time, self.implicit.cs)):
+            self._w.damping[7][:, 0] = 0.0  # no factored damping system of this state yet
 
     def _stepping_implicit(self) -> bool:
-        """Whether the next steps are implicit (not while settling: the explicit relaxation)."""
-        return self.implicit is not None and not self._settling
+        """Whether the next steps are implicit (not while settling: the explicit relaxation;
+        ``"auto"``: until it went explicit)."""
+        return (self.implicit is not None and not self._settling
+                and not (self.auto is not None and self.auto.switched))
 
     def _step_text(self) -> str:
         """The step, as failure messages name it."""
@@ -571,6 +632,8 @@ class DynamicSystem:
         out.update({f"damping_{i}": a.copy() for i, a in enumerate(self._w.damping)})
         if self.implicit is not None:
             out.update(self.implicit.state_arrays())
+        if self.auto is not None:
+            out.update(self.auto.state())
         return out
 
     def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
@@ -585,6 +648,10 @@ class DynamicSystem:
             a[...] = arrays[f"damping_{i}"]
         if self.implicit is not None:
             self.implicit.set_state_arrays(arrays)
+        if self.auto is not None:
+            self.auto.set_state(arrays)
+            if self.auto.switched:
+                self._w.damping[7][:, 0] = 0.0
 
 
 class _SystemWorkspace:

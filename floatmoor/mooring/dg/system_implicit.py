@@ -28,12 +28,16 @@ __all__ = ["SystemImplicit", "system_integration"]
 
 
 def system_integration(settings: Sequence[DynamicSettings]) -> str:
-    """How a system of sections with these settings steps: "implicit" when any section asks
-    for it (the sections advance together, and the implicit step is stable for all of them
-    where the explicit one must take the smallest section's stable step), else "explicit"
-    (``"auto"`` on a system resolves to explicit before: ``system_parts.resolved_sections``)."""
-    return "implicit" if any(st.time_integration == "implicit" for st in settings) \
-        else "explicit"
+    """How a system of sections with these settings steps (its sections advance together):
+    "explicit" when any section asks for it (SSP-RK3 at the smallest section's stable step),
+    else "implicit" when any asks for it (generalised-alpha, stable for all of them), else
+    "auto" (implicit while its steps cost less than the explicit ones, explicit from then on:
+    ``resolution.AutoIntegration``, the single line's rule)."""
+    modes = {st.time_integration for st in settings}
+    for mode in ("explicit", "implicit"):
+        if mode in modes:
+            return mode
+    return "auto"
 
 
 class SystemImplicit:
