@@ -37,8 +37,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k

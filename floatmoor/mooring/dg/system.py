@@ -26,13 +26,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.disjoint_sets import DisjointSets
-from floatmoor.errors import SolverError
+from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
-from floatmoor.mooring.dg.resolution import AutoIntegration
 from floatmoor.mooring.dg.line import SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, \
     SETTLE_TOLERANCE, DynamicLine, SettleReport
+from floatmoor.mooring.dg.resolution import AutoIntegration
 from floatmoor.mooring.dg.system_implicit import SystemImplicit, system_integration
 from floatmoor.mooring.dg.system_parts import PointLike, SystemSection, catenary_positions, \
     point_contact, resolved_sections, section_properties, static_start
@@ -280,7 +280,7 @@ class DynamicSystem:
         try:
             self.refuse_long_work(max_time,
                                   f"the system's initial settle (at most {max_time:.6g} s)")
-        except Exception:
+        except CaseError:
             self._settling = False
             raise
         start = self.time

@@ -128,7 +128,7 @@ class SystemImplicit:
     def state_arrays(self) -> dict[str, NDArray]:
         """The integrator's state for a checkpoint: accelerations, step level and counters,
         and the factors later steps reuse."""
-        B, C, W = self._flat[:3]
+        C, W = self._flat[1:3]
         return {"implicit_acc": self.st[0].copy(), "implicit_An": self.st[1].copy(),
                 "implicit_pacc": self.st[2].copy(), "implicit_Fn": self.st[3].copy(),
                 "implicit_cs": self.cs.copy(), "implicit_band": self.bands.copy(),
