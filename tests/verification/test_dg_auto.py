@@ -137,3 +137,18 @@ def test_snapping_then_smooth_goes_back_to_implicit() -> None:
         assert steps[(t > a) & (t <= b)].min() >= 0.99 * explicit_per_sample, (a, b)
     assert steps[t > 100.0].max() < 0.25 * explicit_per_sample  # implicit (8 to 24 steps)
     assert dg.auto.switches == 3 and dg.auto.explicit_windows == 9
+
+
+def test_coupled_advance_stops_at_an_explicit_windows_end() -> None:
+    """A coupled run's one-call advance (``DynamicLine.plain_steps_until``) must hand a window's
+    end to ``solve_path`` in explicit windows too: a probe may start implicit steps there (it
+    used to run explicit windows through, so a coupled line never came back to implicit)."""
+    dg, t, path, vel, case = _lindahl("auto", duration=0.1)
+    auto = dg.auto
+    auto.restart(0.0, dg.implicit.cs)
+    auto.switched = True  # an explicit window [0, window)
+    assert dg.plain_steps_until(0.5 * auto.window) is False
+    assert dg.plain_steps_until(auto.window) is None
+    auto.switched, auto.probing = False, True  # a probe: checked at each eighth
+    assert dg.plain_steps_until(0.5 * auto.next_check()) is True
+    assert dg.plain_steps_until(auto.next_check()) is None

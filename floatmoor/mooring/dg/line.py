@@ -467,12 +467,12 @@ class DynamicLine(PathStepper):
         when a window ends (only :meth:`solve_path` decides there)."""
         implicit = self._stepping_implicit()
         auto = self.auto
-        if not implicit or auto is None:
+        if auto is None or self._settling:
             return implicit
-        if auto.counters is None or not (t_end - auto.window_start < auto.window
-                                         and t_end < auto.window_start + auto.window):
+        # (explicit windows end in decisions too: a probe may start implicit steps there)
+        if auto.counters is None or not t_end < auto.next_check() - 1e-9 * auto.window:
             return None
-        return True
+        return implicit
 
     def unstable(self, status: int, time: float) -> SolverError:
         """The error of a kernel's failing ``status`` at ``time`` [s] (the element and node

@@ -2,31 +2,38 @@
 
 :class:`DynamicSystem` owns the DG state of every section (node positions and velocities, each
 section with its own elements and order) and the free points' positions and velocities, starts
-them from each section's catenary between its ends, settles them, and advances them together
-(``_system_kernels``) at the smallest of the sections' stable steps, with the body points
-driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
+them from each section's catenary between its ends, settles them, and advances them together,
+explicitly (``_system_kernels``) at the smallest of the sections' stable steps or implicitly
+with generalised-alpha steps (:mod:`floatmoor.mooring.dg.system_implicit`; ``"auto"``:
+implicit until the explicit steps are the cheaper, the single line's rule), with the body
+points driven by prescribed paths. The forced runs call :meth:`DynamicSystem.solve_path`; a floater
 :meth:`DynamicSystem.advance` once per rigid-body step. Its sections, points and starting
 shape are :mod:`floatmoor.mooring.dg.system_parts`.
 
-Size: the joined sections' layout, settle, stepping and records around one set of kernels
-(_system_kernels.py); split further, each part would need the whole layout.
+Size: the joined sections' layout, settle, stepping (explicit, implicit, the "auto" switch in
+segments) and records around one set of kernels (_system_kernels.py); split further, each part
+would need the whole layout.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.disjoint_sets import DisjointSets
-from floatmoor.errors import SolverError
+from floatmoor.errors import CaseError, SolverError
+from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
 from floatmoor.mooring.dg.line import SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SETTLE_RATE_TAU, \
     SETTLE_TOLERANCE, DynamicLine, SettleReport
+from floatmoor.mooring.dg.resolution import AutoIntegration
+from floatmoor.mooring.dg.system_implicit import SystemImplicit, system_integration
 from floatmoor.mooring.dg.system_parts import PointLike, SystemSection, catenary_positions, \
     point_contact, resolved_sections, section_properties, static_start
 
@@ -36,6 +43,7 @@ _STATUS_TEXT = {
     _k.DG_NOT_FINITE: "the position or velocity is not finite",
     _k.DG_VELOCITY: "a node moves faster than the longitudinal wave speed",
     _k.DG_STRAIN: f"the strain exceeds {_k.MAX_STRAIN:g}",
+    _ik.DG_NEWTON: "the implicit step's Newton iteration did not converge at the smallest step",
 }
 #: Settling runs on the system's time scale tau = sqrt(L / g), L its longest line (through
 #: its joints, clumps and buoys: the slowest to settle), which scales x sqrt(lambda) under
@@ -96,8 +104,12 @@ class DynamicSystem:
         self.env[_s.E_RHO_W], self.env[_s.E_G] = pr0.water_density, pr0.gravity
         self.env[_s.E_U:_s.E_U + 3] = pr0.current_velocity
         self.env[_s.E_ZB], self.env[_s.E_VC] = pr0.seabed_z, pr0.slip_speed
-        # per-section layout
-        self.lines = [DynamicLine(sec.properties, sec.settings,
+        #: how the system steps: "explicit" (SSP-RK3 at the smallest section's stable step) or
+        #: "implicit" (generalised-alpha, :mod:`floatmoor.mooring.dg.system_implicit`)
+        self.integration = system_integration([sec.settings for sec in self.sections])
+        # per-section layout (each section's explicit step: the settle and the explicit runs)
+        self.lines = [DynamicLine(sec.properties,
+                                  replace(sec.settings, time_integration="explicit"),
                                   np.zeros(3), np.zeros(3), name=sec.label,
                                   initial_positions=np.zeros(
                                       (sec.settings.elements * (sec.settings.order + 1), 3)))
@@ -149,6 +161,19 @@ class DynamicSystem:
         self.settle_report: SettleReport | None = None
         #: sample index of the last failure in :meth:`solve_path`, -1 if none
         self.failed_index = -1
+        self._settling = False
+        #: the implicit integration, None when the system steps explicitly
+        self.implicit: SystemImplicit | None = None
+        #: the run-time choice of ``time_integration = "auto"``, None otherwise
+        self.auto: AutoIntegration | None = None
+        if self.integration == "auto":
+            omega = max(sec.settings.motion_frequency for sec in self.sections)
+            self.auto = AutoIntegration.for_line(omega, self.time_step,
+                                                 int(self.sec[:, _s.S_NP].max()))
+        if self.integration != "explicit":
+            sf, ef = self._end_forces(self.body_velocity)
+            self.implicit = SystemImplicit(self, float(max(
+                np.max(np.linalg.norm(sf, axis=1)), np.max(np.linalg.norm(ef, axis=1)))))
 
     @classmethod
     def from_case(cls, case: Any, *, settle: bool | None = None) -> "DynamicSystem":
@@ -218,7 +243,10 @@ class DynamicSystem:
         return L / min(sec.properties.wave_speed for sec in self.sections)
 
     def refuse_long_work(self, duration: float, what: str, source: str = "") -> None:
-        """:meth:`DynamicLine.refuse_long_work` of the section with the shortest step."""
+        """:meth:`DynamicLine.refuse_long_work` of the section with the shortest step (not for
+        the implicit steps, whose count follows the accuracy; the settle steps explicitly)."""
+        if self._stepping_implicit():
+            return
         j = min(range(len(self.lines)), key=lambda k: self.lines[k].time_step)
         self.lines[j].refuse_long_work(duration, what, source, self.sections[j].line)
 
@@ -248,7 +276,13 @@ class DynamicSystem:
         max_time = max_tau * tau if max_time is None else max_time
         if not (rate >= 0.0 and tolerance > 0.0 and max_time > 0.0):
             raise ValueError("settle needs a rate >= 0 and a positive tolerance and max_time")
-        self.refuse_long_work(max_time, f"the system's initial settle (at most {max_time:.6g} s)")
+        self._settling = True  # (explicit steps: the relaxation's tested path)
+        try:
+            self.refuse_long_work(max_time,
+                                  f"the system's initial settle (at most {max_time:.6g} s)")
+        except CaseError:
+            self._settling = False
+            raise
         start = self.time
         n = max(int(math.ceil(chunk_tau * tau / self.time_step)), 2)
         sub = max(int(round(KINETIC_CHUNK_TAU * tau / self.time_step)), 1) if kinetic else n
@@ -293,8 +327,11 @@ class DynamicSystem:
                     converged = True
                     break
         finally:
+            self._settling = False
             self.prm[:, _k.P_RELAX] = 0.0
             self.env[_s.E_RELAX] = 0.0
+            if self.implicit is not None:
+                self.implicit.invalidate()
         elapsed = self.time - start
         speed = float(max(np.max(np.linalg.norm(self.v, axis=-1)),
                           np.max(np.linalg.norm(self.u, axis=-1), initial=0.0)))
@@ -381,12 +418,16 @@ class DynamicSystem:
                 raise ValueError("shape output needs time[0] == the system's time")
         else:
             shape_every, sr, sten = 0, np.zeros((1, 1, 3)), np.zeros((1, 1))
-        status, index = _s.dgs_run_path(
-            self.r, self.v, self.x, self.u, time, np.ascontiguousarray(bp),
-            np.ascontiguousarray(bv), self.sec, self.prm, self.ops, self.kind, self.body,
-            self.pprm, self.env, self.time_step, sf, ef, lb, pp, st, shape_every, sr, sten,
-            w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces, w.slack, w.ppos, w.pvel, w.G,
-            w.Zs, w.tmp, w.bcd, *w.damping, w.coupling, w.where)
+        bp, bv = np.ascontiguousarray(bp), np.ascontiguousarray(bv)
+        outs = (sf, ef, lb, pp, st)
+        i0 = 0
+        while True:  # in segments while "auto" may still switch (_segment_end)
+            i1 = self._segment_end(time, i0, shape_every)
+            status, index = self._run_segment(time, bp, bv, outs, shape_every, sr, sten, i0, i1)
+            if status != _k.DG_OK or i1 >= n - 1:
+                break
+            self._switch_if_dearer(float(time[i1]))
+            i0 = i1
         first = 1 if prepend else 0
         done = index if status != _k.DG_OK else n
         start_force[:done - first] = sf[first:done]
@@ -400,17 +441,84 @@ class DynamicSystem:
             if j < 0:
                 raise SolverError(f"point '{self.points[k].name}' (dynamic system): its position "
                                   f"or velocity is not finite at t = {time[index]:.6g} s; the "
-                                  f"solution went unstable (time step {self.time_step:.3g} s)")
+                                  f"solution went unstable ({self._step_text()})")
             sec = self.sections[j]
             s = self.lines[j].arc_length[k * (sec.settings.order + 1) + i]
             raise SolverError(f"{sec.label} (dynamic): {_STATUS_TEXT[status]} at arc length "
                               f"s = {s:.4g} m from its start, t = {time[index]:.6g} s; the "
-                              f"solution went unstable (time step {self.time_step:.3g} s)")
+                              f"solution went unstable ({self._step_text()})")
         self.failed_index = -1
         self.time = float(time[-1])
         for b, p in enumerate(self.body_points):
             self.x[p] = bp[-1, b]
         self.body_velocity = np.array(bv[-1], dtype=float)
+        self._switch_if_dearer(self.time)
+
+    def _run_segment(self, time: NDArray, bp: NDArray, bv: NDArray, outs: tuple, shape_every: int,
+                     sr: NDArray, sten: NDArray, i0: int, i1: int) -> tuple[int, int]:
+        """One kernel call over samples ``i0`` to ``i1`` (its first sample, the state the
+        previous call ended in, is recorded again: the earlier record is kept); the status
+        and the failing sample's index in the whole path."""
+        w = self._w
+        seg = slice(i0, i1 + 1)
+        kept = tuple(a[i0].copy() for a in outs) if i0 > 0 else None
+        if shape_every > 0:
+            sr, sten = sr[i0 // shape_every:], sten[i0 // shape_every:]
+        t, x, u = (np.ascontiguousarray(a[seg]) for a in (time, bp, bv))
+        sf, ef, lb, pp, st = (a[seg] for a in outs)
+        if self._stepping_implicit():
+            status, index = self.implicit.run(self, t, x, u, sf, ef, lb, pp, st, shape_every,
+                                              sr, sten)
+        else:
+            if self.implicit is not None:
+                self.implicit.invalidate()
+            status, index = _s.dgs_run_path(
+                self.r, self.v, self.x, self.u, t, x, u, self.sec, self.prm, self.ops,
+                self.kind, self.body, self.pprm, self.env, self.time_step, sf, ef, lb, pp, st,
+                shape_every, sr, sten, w.stages, w.pstages, w.q, w.qt, w.N, w.Nstar, w.faces,
+                w.slack, w.ppos, w.pvel, w.G, w.Zs, w.tmp, w.bcd, *w.damping, w.coupling,
+                w.where)
+        if kept is not None:
+            for a, k in zip(outs, kept):
+                a[i0] = k
+        return status, i0 + index
+
+    def _segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int) -> int:
+        """Last sample of the kernel call starting at ``i0``: the path's end, or, while
+        ``"auto"`` still steps implicitly, the first sample at or after the end of its window
+        (on a shape sample, so the shape records keep their slots)."""
+        n = time.size
+        auto = self.auto
+        if auto is None or self._settling:
+            return n - 1
+        if auto.counters is None:
+            auto.restart(float(time[i0]), self.implicit.cs)
+        k = int(np.searchsorted(time, auto.next_check(), side="left"))
+        if shape_every > 0:
+            k = -(-k // shape_every) * shape_every
+        return min(max(k, i0 + 1), n - 1)
+
+    def _switch_if_dearer(self, time: float) -> None:
+        """``"auto"`` (not settling): at ``time``, switch between implicit and explicit steps
+        where its windows say so (``resolution.AutoIntegration.update``, the single line's
+        rule, window by window)."""
+        if (self.auto is not None and not self._settling
+                and self.auto.update(time, self.implicit.cs)):
+            self._w.damping[7][:, 0] = 0.0  # no factored damping system of this state yet
+            self.implicit.invalidate()  # accelerations and factors of an older state
+
+    def _stepping_implicit(self) -> bool:
+        """Whether the next steps are implicit (not while settling: the explicit relaxation;
+        ``"auto"``: until it went explicit)."""
+        return (self.implicit is not None and not self._settling
+                and not (self.auto is not None and self.auto.switched))
+
+    def _step_text(self) -> str:
+        """The step, as failure messages name it."""
+        if not self._stepping_implicit():
+            return f"time step {self.time_step:.3g} s"
+        return (f"implicit steps of at most {self.implicit.max_step:.3g} s, "
+                f"{int(self.implicit.cs[_ik.CS_REJECTED])} rejected")
 
     def section_slice(self, j: int) -> slice:
         """The nodes of section j in the system's node axis."""
@@ -524,6 +632,10 @@ class DynamicSystem:
                "velocities": self.v.copy(), "point_positions": self.x.copy(),
                "point_velocities": self.u.copy(), "body_velocities": self.body_velocity.copy()}
         out.update({f"damping_{i}": a.copy() for i, a in enumerate(self._w.damping)})
+        if self.implicit is not None:
+            out.update(self.implicit.state_arrays())
+        if self.auto is not None:
+            out.update(self.auto.state())
         return out
 
     def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
@@ -536,6 +648,12 @@ class DynamicSystem:
         self.body_velocity = np.array(arrays["body_velocities"], dtype=float)
         for i, a in enumerate(self._w.damping):
             a[...] = arrays[f"damping_{i}"]
+        if self.implicit is not None:
+            self.implicit.set_state_arrays(arrays)
+        if self.auto is not None:
+            self.auto.set_state(arrays)
+            if self.auto.switched:
+                self._w.damping[7][:, 0] = 0.0
 
 
 class _SystemWorkspace:
