@@ -51,10 +51,11 @@ def test_given_keys_override_the_choice() -> None:
     assert rs.resolve_settings(_settings(accuracy=0.2), 1.0, 0.0).elements >= rs.MIN_ELEMENTS
     st = rs.resolve_settings(_settings(accuracy=1e-3, motion_frequency=50.0), 1000.0, 1.0)
     assert st.elements == rs.MAX_AUTO_ELEMENTS
-    # a section of a line system: explicit, the systems' numerics unless given
+    # a section of a line system: the systems' numerics unless given, its integration kept
+    # (the system chooses its steps as one: DynamicSystem)
     st = rs.resolve_settings(_settings(), 50.0, 0.0, several_sections=True)
     assert (st.elements, st.order, st.time_integration) == (
-        rs.SYSTEM_ELEMENTS, rs.SYSTEM_ORDER, "explicit")
+        rs.SYSTEM_ELEMENTS, rs.SYSTEM_ORDER, _settings().time_integration)
     st = rs.resolve_settings(_settings(elements=4), 50.0, 0.0, several_sections=True)
     assert (st.elements, st.order) == (4, rs.SYSTEM_ORDER)
 

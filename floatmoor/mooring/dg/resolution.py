@@ -35,9 +35,10 @@ are the cheaper way to the same accuracy; when the motion is smooth against the 
 (DeepCwind: implicit steps of 0.05 to 0.5 s against 4 ms explicit) the implicit steps stay;
 a motion that turns from one to the other gets the other within ``MAX_PROBE_GAP`` windows.
 
-Lines of several sections (line systems) stay explicit, the implicit step is not built for
-their joints, and keep the discretisation they had (``SYSTEM_ELEMENTS`` of order
-``SYSTEM_ORDER`` per section): the rule's 6 x p3 sections put the clump line 6.05 % of its
+Lines of several sections (line systems) keep the discretisation they had
+(``SYSTEM_ELEMENTS`` of order ``SYSTEM_ORDER`` per section) and the time integration their
+sections ask for (a system of "auto" sections chooses window by window as one:
+``DynamicSystem``): the rule's 6 x p3 sections put the clump line 6.05 % of its
 tension range from converged MoorDyn (10 x p5: 2.16 %) and the lazy wave's joint 0.21 m off
 (tests/peer/test_system_moordyn.py); the rule is not calibrated for joints, clumps and buoys.
 """
@@ -104,7 +105,7 @@ def resolve_settings(settings: DynamicSettings, length: float, transverse_speed:
                      several_sections: bool = False) -> DynamicSettings:
     """``settings`` with the elements and order chosen from its accuracy where the case left
     them out (a given ``elements`` or ``order`` is kept: it overrides the rule); on a line of
-    several sections, ``SYSTEM_ELEMENTS`` x ``SYSTEM_ORDER`` and explicit steps.
+    several sections, ``SYSTEM_ELEMENTS`` x ``SYSTEM_ORDER`` (its time integration kept).
 
     Parameters
     ----------
@@ -118,9 +119,8 @@ def resolve_settings(settings: DynamicSettings, length: float, transverse_speed:
         Whether the line has several sections (module docstring).
     """
     if several_sections:
-        return replace(settings, time_integration=(
-            "explicit" if settings.time_integration == "auto" else settings.time_integration),
-            elements=settings.elements if settings.elements is not None else SYSTEM_ELEMENTS,
+        return replace(
+            settings, elements=settings.elements if settings.elements is not None else SYSTEM_ELEMENTS,
             order=settings.order if settings.order is not None else SYSTEM_ORDER)
     order = settings.order if settings.order is not None else AUTO_ORDER
     elements = settings.elements

@@ -63,10 +63,9 @@ def resolved_sections(sections: list["SystemSection"]) -> list["SystemSection"]:
     (resolution.resolve_settings for a line system's sections: their own discretisation, no
     catenary needed), each keeping the time integration it asks for: a system of "auto"
     sections starts implicit and goes explicit when that is cheaper (``DynamicSystem``)."""
-    return [replace(sec, settings=replace(
-        resolve_settings(sec.settings, sec.properties.length, 0.0, several_sections=True),
-        time_integration=sec.settings.time_integration))
-        if not sec.settings.resolved else sec for sec in sections]
+    return [replace(sec, settings=resolve_settings(sec.settings, sec.properties.length, 0.0,
+                                                   several_sections=True))
+            if not sec.settings.resolved else sec for sec in sections]
 
 
 def section_properties(section: Any, environment: Environment, seabed: Seabed
