@@ -112,7 +112,13 @@ _CASE = {
     "seabed.friction_coefficient": "Coulomb friction coefficient along the seabed; also the "
                                    "quasi-static catenary's friction on its resting length.",
     "seabed.slip_speed": "Sliding speed at which the smoothed friction reaches its full "
-                         "value.",
+                         "value (the \"coulomb\" friction model).",
+    "seabed.friction_model": "Seabed friction law of dynamic lines: \"coulomb\", the "
+                             "Coulomb force regularised by the slip speed, or "
+                             "\"stick_spring\", a spring of the seabed's normal stiffness to "
+                             "a friction anchor per node, capped at the friction coefficient "
+                             "times the normal contact force, the anchor moved by return "
+                             "mapping at committed steps (theory/cable.md).",
     # line types
     "line_types": "The line materials, one table per name (`[line_types.chain]`); lines and "
                   "sections name them with `type`.",
