@@ -535,7 +535,8 @@ def _jumped_transition(e0, s0, e1, s1, dt, EA, tol):
     """Whether a step from fairlead strain (e0, rate s0) to (e1, s1) crosses the slack-taut
     transition with more than the force tolerance ``tol`` on its taut side: the step's largest
     tension EA max(e0, e1, the strain's cubic Hermite interpolant inside the step) exceeds
-    ``tol`` while the end node is slack at either end or both (docs/theory/dynamic_line.md#events)."""
+    ``tol`` while the end node is slack at either end or both
+    (docs/theory/dynamic_line.md#slack-taut-events-and-seabed-friction)."""
     if e0 > 0.0 and e1 > 0.0:
         return False
     peak = max(e0, e1)
