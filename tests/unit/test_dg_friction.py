@@ -116,3 +116,68 @@ def test_rhs_with_stick_spring_matches_oracle(rng) -> None:
     a_ref = a_ref + (f - ft[..., None] * t) / mn[..., None] + (ft / mt)[..., None] * t
     assert np.any(bed) and np.any(~bed)
     assert np.max(np.abs(dv - a_ref)) <= 1e-10 * np.max(np.abs(a_ref))
+
+
+def test_system_lines_refuse_stick_spring() -> None:
+    """The DG system (sections, free points) has the Coulomb law only: a case asking it for
+    the stick spring is refused at the key, before any run."""
+    import pytest
+
+    from floatmoor.case.load import load_case
+    from floatmoor.errors import CaseError
+    from tests.conftest import CASES
+
+    with pytest.raises(CaseError, match=r"seabed\.friction_model.*stick_spring"):
+        load_case(CASES / "systems" / "three_line_clump_buoy.toml",
+                  ['lines.*.model="dynamic"', 'seabed.friction_model="stick_spring"'])
+    load_case(CASES / "systems" / "three_line_clump_buoy.toml",
+              ['lines.*.model="dynamic"', 'seabed.friction_model="coulomb"'])
+
+
+def _dragged_line(integration: str):
+    """A chain lying on the seabed, its fairlead (on the seabed too) dragged sideways."""
+    from floatmoor.mooring.dg.line import CableProperties, DynamicLine
+
+    props = CableProperties(length=10.0, mass_per_length=1.5, axial_stiffness=1e5,
+                            diameter=0.03, material_density=5000.0, seabed_z=-10.0,
+                            seabed_stiffness=3e6, seabed_damping_ratio=1.0,
+                            friction_coefficient=0.5, normal_drag_coefficient=1.0,
+                            friction_model="stick_spring")
+    settings = DynamicSettings(elements=4, order=3, cfl=0.8, max_time_step=0.005,
+                               slack_filter=True, seabed_contact="implicit",
+                               time_integration=integration)
+    line = DynamicLine(props, settings, np.array([0.0, 0.0, -10.0]),
+                       np.array([9.9, 0.0, -9.9]))
+    line.settle()
+    t = np.linspace(0.0, 0.4, 41)
+    path = np.c_[9.9 + 0 * t, 0.5 * np.sin(np.pi * t / 0.4) ** 2, -9.9 + 0 * t]
+    vel = np.gradient(path, t, axis=0)
+    return line, t, path, vel
+
+
+def test_anchors_are_state_and_resume_bit_identical() -> None:
+    """The friction anchors move where the chain slides, travel in state_arrays, and a run
+    restored from them continues bit-identically (implicit steps)."""
+    line, t, path, vel = _dragged_line("implicit")
+    start = line.friction_anchors.copy()
+    n = t.size
+    half = n // 2
+
+    def run(dg, a, b):
+        m = b - a
+        ff = np.zeros((m, 3))
+        dg.solve_path(t[a:b], path[a:b], vel[a:b], ff, np.zeros((m, 3)), np.zeros(m),
+                      np.zeros(m))
+        return ff
+
+    run(line, 0, half + 1)
+    saved = {k: np.array(v, copy=True) for k, v in line.state_arrays().items()}
+    assert "friction_anchors" in saved
+    moved = np.abs(saved["friction_anchors"] - start).max()
+    assert moved > 1e-3  # the chain slid, dragging its anchors
+    first = run(line, half, n)
+    other, *_ = _dragged_line("implicit")
+    other.set_state_arrays(saved)
+    np.testing.assert_array_equal(other.friction_anchors, saved["friction_anchors"])
+    second = run(other, half, n)
+    np.testing.assert_array_equal(first, second)
