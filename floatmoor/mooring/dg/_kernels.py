@@ -570,9 +570,10 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
                   N, Nstar, faces, slack, fpos, fvel, tmp, bcd, damp, fa):
     """One SSP-RK3 step of (r, v) from t to t + dt, then contact, internal damping (when
     implicit) and slack filtering; the stick-spring friction's anchors ``fa`` (or None) are
-    held through the stages and committed after the step (``_friction_kernels.return_map``). ``damp`` holds the work arrays of the damping system
-    (tangents, inverse masses, coefficients, Y, band, right-hand side), or is None when the
-    line has no implicit internal damping."""
+    held through the stages and committed after the step (``_friction_kernels.return_map``).
+    ``damp`` holds the work arrays of the damping system (tangents, inverse masses,
+    coefficients, Y, band, right-hand side), or is None when the line has no implicit internal
+    damping."""
     r1, v1, r2, v2, a = work3[0], work3[1], work3[2], work3[3], work3[4]
     K, Np = r.shape[0], r.shape[1]
     # Stage-consistent fairlead data (Carpenter, Gottlieb, Abarbanel & Don 1995): the SSP-RK3

@@ -450,7 +450,7 @@ class DynamicLine(PathStepper):
             status, index = self.implicit.run(
                 self.r, self.v, t, x, u, self.anchor, self._implicit_prm, self.element, w,
                 ff[seg], af[seg], lb[seg], st[seg], every, shapes_r, shapes_t,
-                self.friction_anchors)
+                self._anchors_for_kernels())
         else:
             status, index = _k.dg_run_path(
                 self.r, self.v, t, x, u, self.anchor, self.prm,
@@ -458,10 +458,16 @@ class DynamicLine(PathStepper):
                 self.element.weights, self._explicit_step(), ff[seg], af[seg], lb[seg], st[seg],
                 every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
                 w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
-                w.damping if self._implicit_damping() else None, self.friction_anchors)
+                w.damping if self._implicit_damping() else None, self._anchors_for_kernels())
         if kept is not None:
             ff[i0], af[i0], lb[i0], st[i0] = kept
         return status, i0 + index
+
+    def _anchors_for_kernels(self) -> NDArray[np.float64] | None:
+        """The friction anchors with the stick-spring law, None with the Coulomb law (whose
+        kernels then compile without the friction kernels:
+        docs/validation/performance.md#first-run)."""
+        return self.friction_anchors if self.properties.stick_stiffness > 0.0 else None
 
     def _stepping_implicit(self) -> bool:
         """Whether the next steps are implicit ("auto": until it went explicit, and not while
