@@ -520,10 +520,9 @@ def _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT):
 
 
 #: Halvings of the largest step (the sample interval or ``IP_DT_MAX``) a slack-taut transition
-#: of the fairlead is located to at most: beyond 2^-8 of the step the accuracy chose for the
-#: smooth motion, a transition that still carries more than the force tolerance is a chatter
-#: of the end node about zero strain (measured: a weightless line at zero strain, 1e6 steps in
-#: one 50 ms interval without this bound), left to the error estimate.
+#: of the fairlead is located to at most: an end node chattering about zero strain crosses it
+#: at every step, and each crossing may cost this many rejected steps, no more; below 2^-8 of
+#: the largest step the error estimate alone decides.
 EVENT_LEVELS = 8
 #: Points of the step (fractions) where the cubic Hermite interpolant of the fairlead strain is
 #: checked for an excursion into tension that both ends of the step miss (a snap jumped over).
