@@ -105,8 +105,8 @@ _CASE = {
     "environment.current_velocity": "Steady, uniform current [x, y, z], in the drag of the "
                                     "lines and of a floater's Morison members.",
     # seabed
-    "seabed": "Seabed contact of the lines: a normal spring-damper and smoothed Coulomb "
-              "friction (theory/dynamic_line.md).",
+    "seabed": "Seabed contact of the lines: a normal spring-damper and friction, smoothed "
+              "Coulomb or a stick spring (theory/dynamic_line.md, theory/cable.md).",
     "seabed.stiffness": "Normal stiffness of the seabed per unit contact area.",
     "seabed.damping_ratio": "Damping ratio of the normal contact spring-damper.",
     "seabed.friction_coefficient": "Coulomb friction coefficient along the seabed; also the "

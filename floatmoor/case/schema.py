@@ -69,7 +69,8 @@ class Environment:
 
 @dataclass(frozen=True)
 class Seabed:
-    """Seabed contact (gpc paper eq. 7): normal spring-damper and smoothed Coulomb friction."""
+    """Seabed contact (gpc paper eq. 7): normal spring-damper and friction, smoothed Coulomb
+    or a stick spring (docs/theory/cable.md#seabed-friction)."""
 
     stiffness: float  #: normal stiffness per unit contact area [Pa/m]
     damping_ratio: float  #: of the normal contact [-]
