@@ -105,14 +105,20 @@ _CASE = {
     "environment.current_velocity": "Steady, uniform current [x, y, z], in the drag of the "
                                     "lines and of a floater's Morison members.",
     # seabed
-    "seabed": "Seabed contact of the lines: a normal spring-damper and smoothed Coulomb "
-              "friction (theory/dynamic_line.md).",
+    "seabed": "Seabed contact of the lines: a normal spring-damper and friction, smoothed "
+              "Coulomb or a stick spring (theory/dynamic_line.md, theory/cable.md).",
     "seabed.stiffness": "Normal stiffness of the seabed per unit contact area.",
     "seabed.damping_ratio": "Damping ratio of the normal contact spring-damper.",
     "seabed.friction_coefficient": "Coulomb friction coefficient along the seabed; also the "
                                    "quasi-static catenary's friction on its resting length.",
     "seabed.slip_speed": "Sliding speed at which the smoothed friction reaches its full "
-                         "value.",
+                         "value (the \"coulomb\" friction model).",
+    "seabed.friction_model": "Seabed friction law of dynamic lines: \"coulomb\", the "
+                             "Coulomb force regularised by the slip speed, or "
+                             "\"stick_spring\", a spring of the seabed's normal stiffness to "
+                             "a friction anchor per node, capped at the friction coefficient "
+                             "times the normal contact force, the anchor moved by return "
+                             "mapping at committed steps (theory/cable.md).",
     # line types
     "line_types": "The line materials, one table per name (`[line_types.chain]`); lines and "
                   "sections name them with `type`.",

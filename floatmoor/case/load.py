@@ -30,7 +30,7 @@ from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.schema import (
-    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, INTERNAL_DAMPING_METHODS, LINE_MODELS,
+    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, FRICTION_MODELS, INTERNAL_DAMPING_METHODS, LINE_MODELS,
     POINT_KINDS, SEABED_CONTACT_METHODS, TIME_INTEGRATIONS, Case, CircularMotion, DynamicSettings, Environment,
     HarmonicMotion, Line, LineType, Motion, Point, Section,
     QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
@@ -187,6 +187,7 @@ def _seabed(t: TableReader) -> Seabed:
         damping_ratio=t.number("damping_ratio", unit="-", ge=0.0),
         friction_coefficient=t.number("friction_coefficient", unit="-", ge=0.0),
         slip_speed=t.number("slip_speed", unit="m/s", gt=0.0),
+        friction_model=t.string("friction_model", choices=FRICTION_MODELS, default="coulomb"),
     )
     t.finish()
     return seabed

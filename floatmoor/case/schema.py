@@ -20,7 +20,7 @@ __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
     "AVAILABLE_LINE_MODELS", "CIRCULAR_SENSES", "DynamicSettings", "INTERNAL_DAMPING_METHODS",
-    "SEABED_CONTACT_METHODS", "TIME_INTEGRATIONS",
+    "SEABED_CONTACT_METHODS", "TIME_INTEGRATIONS", "FRICTION_MODELS",
     "QuasiDynamicSettings", "DEFAULT_QUASI_DYNAMIC", "CylinderGeometry", "Column", "Member",
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
     "MeshGeometry", "MESH_FORMATS", "MESH_LENGTH_UNITS", "MESH_SYMMETRY_PLANES",
@@ -34,6 +34,9 @@ LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 AVAILABLE_LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 #: Treatments of the seabed's normal spring-damper in the dynamic model.
 SEABED_CONTACT_METHODS = ("implicit", "explicit")
+#: Seabed friction laws of the dynamic model (docs/theory/cable.md#seabed-friction): Coulomb
+#: regularised by the slip speed, or a stick spring to an anchor per node (return mapping).
+FRICTION_MODELS = ("coulomb", "stick_spring")
 #: Treatments of the dynamic model's Kelvin-Voigt internal damping.
 INTERNAL_DAMPING_METHODS = ("implicit", "explicit")
 #: Time integration of a dynamic line: explicit SSP-RK3 at the axial wave's stability limit,
@@ -66,12 +69,16 @@ class Environment:
 
 @dataclass(frozen=True)
 class Seabed:
-    """Seabed contact (gpc paper eq. 7): normal spring-damper and smoothed Coulomb friction."""
+    """Seabed contact (gpc paper eq. 7): normal spring-damper and friction, smoothed Coulomb
+    or a stick spring (docs/theory/cable.md#seabed-friction)."""
 
     stiffness: float  #: normal stiffness per unit contact area [Pa/m]
     damping_ratio: float  #: of the normal contact [-]
     friction_coefficient: float  #: Coulomb, also the quasi-static catenary's C_B [-]
     slip_speed: float  #: speed at which full friction is reached [m/s]
+    #: dynamic lines' friction law: "coulomb" (regularised by slip_speed) or "stick_spring"
+    #: (an anchor per node, return mapping; docs/theory/cable.md#seabed-friction)
+    friction_model: str = "coulomb"
 
 
 @dataclass(frozen=True)

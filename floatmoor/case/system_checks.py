@@ -45,7 +45,8 @@ def check_system(case: Case, context: ReadContext, paths: dict[str, dict[str, An
     """Refuse a mooring system no model can solve: a line or section from a point to itself,
     a point no line uses, a group of free points held by no fixed or body point, a free point
     joining lines of different models, a quasi-dynamic line that is not one section from a
-    fixed to a body point."""
+    fixed to a body point, a dynamic line solved in a system (sections, free points) with the
+    stick-spring friction (the system kernels have the Coulomb law only)."""
     kinds = {p.name: p.kind for p in case.points}
     user_index = {p.name: i for i, p in enumerate(user_points)}
     used: dict[str, list[Section]] = {p.name: [] for p in case.points}
@@ -65,6 +66,14 @@ def check_system(case: Case, context: ReadContext, paths: dict[str, dict[str, An
                                 "sections or free points",
                                 f'"quasi-dynamic" on a line of {len(line.sections)} section(s) '
                                 f"from a {kinds[line.start]} point to a {kinds[line.end]} point")
+        if (line.model == "dynamic" and case.seabed.friction_model == "stick_spring"
+                and (len(line.sections) != 1 or kinds[line.start] != "fixed"
+                     or kinds[line.end] != "body")):
+            raise context.error(("seabed", "friction_model"), '"coulomb" for a case whose '
+                                "dynamic lines have sections or free points (the DG system "
+                                'has the Coulomb law only)', f'"stick_spring" with line '
+                                f'"{line.name}" of {len(line.sections)} section(s) from a '
+                                f"{kinds[line.start]} point to a {kinds[line.end]} point")
     for name, sections in used.items():
         if sections or name not in user_index:
             continue

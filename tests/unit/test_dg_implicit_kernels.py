@@ -66,12 +66,14 @@ def _implicit_prm(pr, K: int, p: int) -> np.ndarray:
     return implicit_parameters(pr.packed(settings, pr.length / K))
 
 
-def _force(r, v, anchor, fpos, fvel, prm, D, LIFT):
-    """F = M_eff A, the force per length the Jacobian differentiates."""
+def _force(r, v, anchor, fpos, fvel, prm, D, LIFT, fa=None):
+    """F = M_eff A, the force per length the Jacobian differentiates (``fa``: the
+    stick-spring friction's anchors)."""
     K, Np = r.shape[:2]
     q, qt, N, a, out = (np.zeros((K, Np, 3)) for _ in range(5))
     Nstar, faces, slack = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K)
-    ik.dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a)
+    ik.dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a,
+                       fa)
     ik._mass_times(r, q, prm, a, out)
     return out, q, qt
 
@@ -132,6 +134,51 @@ def test_jacobian_matches_central_differences(label, kind, overrides, contact, p
         err = np.max(np.abs(J - num)) / np.max(np.abs(num))
         print(f"{label} p={p} d/d{which}: {err:.1e}")
         assert err <= JACOBIAN_RTOL, (which, err)
+
+
+@pytest.mark.parametrize("p", [1, 3])
+def test_jacobian_with_stick_spring_matches_central_differences(p, rng) -> None:
+    """The stick-spring friction's exact tangent in J (dF/dr at rest, as above): nodes on the
+    seabed with anchors half (stick) or twice (slip) the sliding displacement away."""
+    K = 3
+    pr = make_properties(dict(friction_coefficient=0.6, seabed_stiffness=1e3 / 0.05,
+                              seabed_damping_ratio=0.7, seabed_z=-10.0,
+                              friction_model="stick_spring"))
+    ref = reference_element(p)
+    D, LIFT = ref.differentiation, ref.lift
+    r, _, anchor, fpos, _ = make_state("seabed", K, p, pr.length, rng)
+    r[0, 0, 2] -= 1e-3  # off the contact kink at z = z_b
+    prm = _implicit_prm(pr, K, p)
+    assert prm[k.P_KS] > 0.0
+    cap = prm[k.P_MU] * prm[k.P_KB] * np.maximum(-10.0 - r[..., 2], 0.0)
+    angle = rng.uniform(0.0, 2.0 * np.pi, size=r.shape[:2])
+    factor = np.where(rng.uniform(size=r.shape[:2]) < 0.5, 0.5, 2.0)
+    fa = r[..., :2] + (factor * cap / prm[k.P_KS])[..., None] * np.stack(
+        [np.cos(angle), np.sin(angle)], axis=-1)
+    Np = p + 1
+    n = 3 * K * Np
+    E, Dg = np.zeros((K, Np, 3, 3)), np.zeros((K, Np, 3, 3))
+    band = np.zeros((n, 9 * Np + 2))
+    v, fvel = np.zeros_like(r), np.zeros(3)
+    _, q, qt = _force(r, v, anchor, fpos, fvel, prm, D, LIFT, fa)
+    ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 0.0, 1.0, 0.0, E, Dg, band, fa)
+    J = _dense(band, Np)
+    num = np.zeros((n, n))
+    # the slip nodes' caps are ~1e-2 of the stick forces' scale: h well inside every kink
+    h = 1e-9
+    for j in range(n):
+        e = np.zeros(n)
+        e[j] = h
+        e = e.reshape(r.shape)
+        fp = _force(r + e, v, anchor, fpos, fvel, prm, D, LIFT, fa)[0]
+        fm = _force(r - e, v, anchor, fpos, fvel, prm, D, LIFT, fa)[0]
+        num[:, j] = -(fp - fm).reshape(-1) / (2.0 * h)
+    err = np.max(np.abs(J - num)) / np.max(np.abs(num))
+    print(f"stick spring p={p}: {err:.1e}")
+    assert err <= JACOBIAN_RTOL, err
+    # without the anchors' tangent the same matrix is off by the stick stiffness
+    ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 0.0, 1.0, 0.0, E, Dg, band)
+    assert np.max(np.abs(_dense(band, Np) - num)) / np.max(np.abs(num)) > 100 * JACOBIAN_RTOL
 
 
 _STEP_CASES = [c for c in CASES if c[0] in ("taut-water-drag", "seabed-explicit",

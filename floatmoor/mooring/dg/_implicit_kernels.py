@@ -31,6 +31,9 @@ loads, whose axial waves carry the force, so get the small steps they need and t
 run the steps its fairlead motion needs.
 
 Slack elements are filtered after each step as in the explicit scheme (``_kernels``).
+
+Size: the generalised-alpha step, its Jacobian and its step control share the private
+operators of one DG cable; splitting them would pass a dozen work arrays across modules.
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ import numpy as np
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
+from floatmoor.mooring.dg._friction_kernels import return_map, stick_tangent
 
 __all__ = ["IP_N", "CS_N", "dg_acceleration", "dg_jacobian", "dg_run_path_implicit",
            "generalised_alpha"]
@@ -59,7 +63,10 @@ IP_LEVEL_MAX = 8  #: most halvings of a sample interval (2^LEVEL_MAX steps)
 IP_GROW = 9  #: error ratio below which a step counts as "well inside" the tolerance
 #: 1: rebuild the Jacobian when a node changes state (else on slow contraction only)
 IP_FLAG_REFACTOR = 10
-IP_N = 11
+#: 1: reject a step that jumps a slack-taut transition of the fairlead (:func:`_jumped_transition`;
+#: the lines' default), 0: the error estimate alone decides (as the systems' implicit step does)
+IP_FLAG_EVENTS = 11
+IP_N = 12
 
 # -- integrator state ``cs`` (carried between calls and checkpointed) ------------------------
 CS_LEVEL = 0  #: current halving level L of a sample interval
@@ -86,13 +93,15 @@ def generalised_alpha(rho_inf: float) -> tuple[float, float, float, float]:
 
 
 @jit
-def dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, out):
+def dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, out,
+                    fa=None):
     """A = M_eff^-1 F of the semi-discrete cable with every term in the right-hand side: the
     Kelvin-Voigt damping always, the seabed spring-damper when ``prm[P_IMPLICIT_CONTACT]`` is 0
-    (the implicit integrator's parameter vector has it 0)."""
+    (the implicit integrator's parameter vector has it 0); the stick-spring friction on the
+    anchors ``fa`` when given and ``prm[P_KS]`` > 0."""
     _k._tension_field(r, v, anchor, _k._ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
                       slack, prm[_k.P_CINT])
-    _k._acceleration(r, v, prm, D, LIFT, q, N, Nstar, out)
+    _k._acceleration(r, v, prm, D, LIFT, q, N, Nstar, out, fa)
 
 
 @jit
@@ -117,10 +126,11 @@ def _mass_times(r, q, prm, x, out):
 
 
 @jit
-def _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg):
+def _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg, fa=None):
     """Per node: ``E`` = kc dN/dq + cc dN/dq_t (the tension's tangent blocks, 3 x 3) and
     ``Dg`` = acoef M_eff - kc df/dr - cc df/dv (the local blocks: mass, seabed, drag,
-    friction, relaxation)."""
+    friction, relaxation); the stick-spring friction's exact tangent on the anchors ``fa``
+    when given and ``prm[P_KS]`` > 0."""
     K, Np = r.shape[0], r.shape[1]
     EA = prm[_k.P_EA]
     cint = prm[_k.P_CINT]
@@ -132,6 +142,11 @@ def _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg):
     friction = prm[_k.P_MU] * prm[_k.P_WSUB]
     vc = prm[_k.P_VC]
     relax = prm[_k.P_RELAX]
+    ks = prm[_k.P_KS]
+    mu_kb = prm[_k.P_MU] * prm[_k.P_KB]
+    stick = False
+    if fa is not None:
+        stick = ks > 0.0
     for k in range(K):
         for i in range(Np):
             ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
@@ -185,7 +200,17 @@ def _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg):
                 Dg[k, i, 2, 2] += kc * prm[_k.P_KB]
                 if v[k, i, 2] < 0.0:
                     Dg[k, i, 2, 2] += cc * prm[_k.P_CB]
-                if friction > 0.0:
+                if stick and mu_kb > 0.0:  # -df/dr of the stick spring, exact
+                    txx, txy, tyx, tyy, txz, tyz = stick_tangent(
+                        fa[k, i, 0] - r[k, i, 0], fa[k, i, 1] - r[k, i, 1],
+                        mu_kb * (zb - r[k, i, 2]), ks, mu_kb)
+                    Dg[k, i, 0, 0] += kc * txx
+                    Dg[k, i, 0, 1] += kc * txy
+                    Dg[k, i, 1, 0] += kc * tyx
+                    Dg[k, i, 1, 1] += kc * tyy
+                    Dg[k, i, 0, 2] += kc * txz
+                    Dg[k, i, 1, 2] += kc * tyz
+                elif friction > 0.0 and not stick:
                     vx, vy = v[k, i, 0], v[k, i, 1]
                     speed = math.sqrt(vx * vx + vy * vy)
                     # -df/dv of f = -mu W sin(pi s / (2 max(vc, s))) v / s in the seabed plane
@@ -222,7 +247,7 @@ def _add_diagonal(band, kl, row_node, col_node, value):
 
 
 @jit
-def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band):
+def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band, fa=None):
     """The Newton matrix J = acoef M_eff - kc dF/dr - cc dF/dv of the DG cable in band storage
     (``_banded_kernels``), node-major with the three components interleaved:
     kl = 3 Np + 2 sub- and ku = 6 Np - 1 super-diagonals.
@@ -233,7 +258,7 @@ def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band):
     penalty and f the external forces. ``q`` and ``qt`` must hold the state's tangent and its
     rate (:func:`dg_acceleration` leaves them). The dependence of the mass, buoyancy and drag
     on the tangent and of the damping tension on the direction is left out (Newton converges
-    with it, a little more slowly).
+    with it, a little more slowly). ``fa``: the stick-spring friction's anchors, or None.
     """
     K, Np = r.shape[0], r.shape[1]
     n = 3 * K * Np
@@ -242,7 +267,7 @@ def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band):
     for row in range(n):
         for col in range(band.shape[1]):
             band[row, col] = 0.0
-    _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg)
+    _node_blocks(r, v, q, qt, prm, kc, cc, acoef, E, Dg, fa)
     for k in range(K):
         for i in range(Np):
             node = k * Np + i
@@ -361,10 +386,12 @@ def _set_flags(r, q, N, prm, flags):
 
 @jit
 def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D, LIFT, ip, cs,
-             q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R, MR, E, Dg, band, x, flags):
+             q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R, MR, E, Dg, band, x, flags,
+             fa=None):
     """One generalised-alpha step of (r, v, acc) from t to t + dt; ``a0`` holds ``acc`` at the
     start and ``An`` the acceleration A of the start state. On success ``An`` holds A of the
-    end state.
+    end state. The stick-spring friction's anchors ``fa`` stay where the last committed step
+    left them (the caller commits them).
 
     The Jacobian is reused while Newton contracts (and, with ``ip[IP_FLAG_REFACTOR]``, while
     the nodes keep the taut / seabed / submerged states it was built with, ``flags``); a
@@ -404,13 +431,13 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     grew = False
     for it in range(max_iter + 1):
         dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
-                        A1)
+                        A1, fa)
         if converged or it == max_iter:
             break
         if cs[CS_FACTOR_DT] != dt or grew or (ip[IP_FLAG_REFACTOR] != 0.0
                                                and _flags_changed(r, q, N, prm, flags)):
             _set_flags(r, q, N, prm, flags)
-            dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band)
+            dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band, fa)
             cs[CS_FACTORISATIONS] += 1.0
             fresh = True
             if band_factor(band, n, kl, ku) >= 0:
@@ -464,6 +491,71 @@ GOOD_STEPS = 4
 
 
 @jit
+def _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT):
+    """(eps, d eps/dt) of the fairlead end node: its strain |q| - 1 and the strain's rate
+    q . q_t / |q|, from the DG gradient of r and v on the last element (traces from the anchor
+    side, the fairlead's position and velocity at the end)."""
+    K, Np = r.shape[0], r.shape[1]
+    jac = 2.0 / prm[_k.P_H]
+    k, i = K - 1, Np - 1
+    qx, qy, qz, wx, wy, wz = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    for j in range(Np):
+        qx += D[i, j] * r[k, j, 0]
+        qy += D[i, j] * r[k, j, 1]
+        qz += D[i, j] * r[k, j, 2]
+        wx += D[i, j] * v[k, j, 0]
+        wy += D[i, j] * v[k, j, 1]
+        wz += D[i, j] * v[k, j, 2]
+    lx, ly, lz = anchor[0], anchor[1], anchor[2]
+    ux, uy, uz = 0.0, 0.0, 0.0
+    if K > 1:
+        lx, ly, lz = r[k - 1, Np - 1, 0], r[k - 1, Np - 1, 1], r[k - 1, Np - 1, 2]
+        ux, uy, uz = v[k - 1, Np - 1, 0], v[k - 1, Np - 1, 1], v[k - 1, Np - 1, 2]
+    l0, l1 = LIFT[i, 0], LIFT[i, 1]
+    qx = jac * (qx - l0 * (lx - r[k, 0, 0]) + l1 * (fpos[0] - r[k, i, 0]))
+    qy = jac * (qy - l0 * (ly - r[k, 0, 1]) + l1 * (fpos[1] - r[k, i, 1]))
+    qz = jac * (qz - l0 * (lz - r[k, 0, 2]) + l1 * (fpos[2] - r[k, i, 2]))
+    wx = jac * (wx - l0 * (ux - v[k, 0, 0]) + l1 * (fvel[0] - v[k, i, 0]))
+    wy = jac * (wy - l0 * (uy - v[k, 0, 1]) + l1 * (fvel[1] - v[k, i, 1]))
+    wz = jac * (wz - l0 * (uz - v[k, 0, 2]) + l1 * (fvel[2] - v[k, i, 2]))
+    ql = math.sqrt(qx * qx + qy * qy + qz * qz)
+    if ql <= 0.0:
+        return -1.0, 0.0
+    return ql - 1.0, (qx * wx + qy * wy + qz * wz) / ql
+
+
+#: Halvings of the largest step (the sample interval or ``IP_DT_MAX``) a slack-taut transition
+#: of the fairlead is located to at most: an end node chattering about zero strain crosses it
+#: at every step, and each crossing may cost this many rejected steps, no more; below 2^-8 of
+#: the largest step the error estimate alone decides.
+EVENT_LEVELS = 8
+#: Points of the step (fractions) where the cubic Hermite interpolant of the fairlead strain is
+#: checked for an excursion into tension that both ends of the step miss (a snap jumped over).
+EVENT_SAMPLES = 8
+
+
+@jit
+def _jumped_transition(e0, s0, e1, s1, dt, EA, tol):
+    """Whether a step from fairlead strain (e0, rate s0) to (e1, s1) crosses the slack-taut
+    transition with more than the force tolerance ``tol`` on its taut side: the step's largest
+    tension EA max(e0, e1, the strain's cubic Hermite interpolant inside the step) exceeds
+    ``tol`` while the end node is slack at either end or both
+    (docs/theory/dynamic_line.md#slack-taut-events-and-seabed-friction)."""
+    if e0 > 0.0 and e1 > 0.0:
+        return False
+    peak = max(e0, e1)
+    for m in range(1, EVENT_SAMPLES):
+        x = m / EVENT_SAMPLES
+        x2 = x * x
+        x3 = x2 * x
+        e = ((2.0 * x3 - 3.0 * x2 + 1.0) * e0 + (x3 - 2.0 * x2 + x) * dt * s0
+             + (-2.0 * x3 + 3.0 * x2) * e1 + (x3 - x2) * dt * s1)
+        if e > peak:
+            peak = e
+    return EA * peak > tol
+
+
+@jit
 def _copy(src, dst):
     K, Np = src.shape[0], src.shape[1]
     for k in range(K):
@@ -476,7 +568,7 @@ def _copy(src, dst):
 def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LIFT, F, weights,
                          ip, cs, fair_force, anch_force, laid, steps, shape_every, shape_r,
                          shape_t, q, qt, N, Nstar, faces, slack, fpos, fvel, tmp, where, r0, v0,
-                         a0, An0, A1, R, MR, E, Dg, band, x, tmp3, flags):
+                         a0, An0, A1, R, MR, E, Dg, band, x, tmp3, flags, fa=None):
     """Advance the line along a fairlead path with the generalised-alpha method, recording its
     end forces at every sample (the implicit counterpart of ``_kernels.dg_run_path``, same
     outputs; ``steps`` gets the number of steps taken in each interval).
@@ -484,7 +576,14 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
     ``acc`` is the acceleration variable of the method and ``An`` the acceleration A of the
     state; both are computed from the state first when ``cs[CS_ACC_VALID]`` is 0. ``prm`` must
     have ``P_IMPLICIT_CONTACT`` and ``P_IMPLICIT_DAMPING`` 0 (contact and damping in the
-    right-hand side, inside the implicit solve).
+    right-hand side, inside the implicit solve). ``fa``: the stick-spring friction's anchors
+    (K, Np, 2), moved by return mapping after every accepted step only, or None.
+
+    A step is accepted when Newton converged, its error estimate is inside the tolerance and
+    it does not jump a slack-taut transition of the fairlead end node with a tension above the
+    force tolerance (:func:`_jumped_transition`); otherwise it is redone at half the step
+    (until ``ip[IP_LEVEL_MAX]``), so a snap's onset is located to within the time its tension
+    takes to reach the force tolerance.
 
     Returns
     -------
@@ -499,7 +598,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
         fvel[c] = velocity[0, c]
     if cs[CS_ACC_VALID] == 0.0:
         dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
-                        An)
+                        An, fa)
         _copy(An, acc)
         cs[CS_ACC_VALID] = 1.0
     laid[0] = _k._record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
@@ -508,6 +607,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
     err_coef = abs(ip[IP_BETA] - 1.0 / 6.0)
     dt_max = ip[IP_DT_MAX]
     level_max = int(ip[IP_LEVEL_MAX])
+    EA = prm[_k.P_EA]
+    e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
     n_shape = 0
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
@@ -533,7 +634,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
             ok, its, fresh = _ga_step(r, v, acc, a0, An, t0, t1, path[s], velocity[s],
                                       path[s + 1], velocity[s + 1], t, dt, anchor, prm, D, LIFT,
                                       ip, cs, q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R,
-                                      MR, E, Dg, band, x, flags)
+                                      MR, E, Dg, band, x, flags, fa)
             if not ok and not fresh:  # factors of an older state: rebuild them and retry
                 _copy(r0, r)
                 _copy(v0, v)
@@ -543,7 +644,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                 ok, its, fresh = _ga_step(r, v, acc, a0, An, t0, t1, path[s], velocity[s],
                                           path[s + 1], velocity[s + 1], t, dt, anchor, prm, D,
                                           LIFT, ip, cs, q, qt, N, Nstar, faces, slack, fpos,
-                                          fvel, A1, R, MR, E, Dg, band, x, flags)
+                                          fvel, A1, R, MR, E, Dg, band, x, flags, fa)
             cs[CS_ITERATIONS] += its
             err = 0.0
             if ok:
@@ -553,7 +654,13 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                         for c in range(3):
                             R[k, i, c] = c2 * (acc[k, i, c] - a0[k, i, c])
                 err = _end_force_error(R, q, N, prm, D, LIFT, faces, MR, tmp3) / ip[IP_FORCE_TOL]
-            if not ok or (err > 1.0 and L < level_max):
+            jumped = False
+            if (ok and err <= 1.0 and ip[IP_FLAG_EVENTS] != 0.0
+                    and L < min(level_max, level_min + EVENT_LEVELS)):
+                e_end, s_end = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
+                jumped = _jumped_transition(e_start, s_start, e_end, s_end, dt, EA,
+                                            ip[IP_FORCE_TOL])
+            if not ok or jumped or (err > 1.0 and L < level_max):
                 _copy(r0, r)
                 _copy(v0, v)
                 _copy(a0, acc)
@@ -580,7 +687,10 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                 if filtered:
                     _k._filter_slack(v, F, slack, tmp)
                     dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar,
-                                    faces, slack, An)
+                                    faces, slack, An, fa)
+            if fa is not None:  # (the force at the committed state, so An, stays the same)
+                return_map(r, fa, prm[_k.P_KS], prm[_k.P_MU] * prm[_k.P_KB], prm[_k.P_ZB])
+            e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
             cs[CS_GOOD] = cs[CS_GOOD] + 1.0 if err < ip[IP_GROW] else 0.0
             if cs[CS_GOOD] >= GOOD_STEPS and L > level_min and m % 2 == 0:
                 L -= 1

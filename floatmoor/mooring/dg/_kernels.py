@@ -47,6 +47,7 @@ import numpy as np
 
 from floatmoor._numba import jit
 from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
+from floatmoor.mooring.dg._friction_kernels import return_map, stick_force
 
 __all__ = ["N_PRM", "dg_rhs", "dg_tension_field", "dg_run_path", "hermite"]
 
@@ -76,7 +77,10 @@ P_C = 23  #: longitudinal wave speed sqrt(EA / m) [m/s]
 P_RELAX = 24  #: relaxation damping rate gamma [1/s]: dv/dt gets -gamma v (settling only; 0)
 P_IMPLICIT_DAMPING = 25  #: 1.0: the Kelvin-Voigt term takes a backward-Euler step after each step
 P_DAMPING_TOL = 26  #: tangent turn [rad] that makes the factored damping system stale
-N_PRM = 27
+#: stick stiffness of the stick-spring friction per length [N/m^2]; 0: the regularised
+#: Coulomb law (docs/theory/cable.md#seabed-friction)
+P_KS = 27
+N_PRM = 28
 
 # -- statuses of dg_run_path ----------------------------------------------------------------
 DG_OK = 0
@@ -242,19 +246,22 @@ def _tension_field(r, v, anchor, avel, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar
 def dg_rhs(r: np.ndarray, v: np.ndarray, anchor: np.ndarray, fpos: np.ndarray,
            fvel: np.ndarray, prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray, q: np.ndarray,
            qt: np.ndarray, N: np.ndarray, Nstar: np.ndarray, faces: np.ndarray,
-           slack: np.ndarray, dv: np.ndarray) -> None:
+           slack: np.ndarray, dv: np.ndarray, fa: np.ndarray | None = None) -> None:
     """Acceleration dv/dt of every node (dr/dt = v needs no computation); without the
-    internal damping when it is implicit (``P_IMPLICIT_DAMPING``, :func:`_implicit_damping`)."""
+    internal damping when it is implicit (``P_IMPLICIT_DAMPING``, :func:`_implicit_damping`);
+    ``fa`` the friction anchors (K, Np, 2) of the stick-spring law (``P_KS`` > 0)."""
     cint = prm[P_CINT] if prm[P_IMPLICIT_DAMPING] == 0.0 else 0.0
     _tension_field(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
                    slack, cint)
-    _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv)
+    _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa)
 
 
 @jit
-def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv):
+def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
     """dv/dt from the tangent q, nodal force N and face fluxes N* of :func:`_tension_field`
-    (the part of :func:`dg_rhs` after the tension field; ``dv`` may not alias them)."""
+    (the part of :func:`dg_rhs` after the tension field; ``dv`` may not alias them). Seabed
+    friction: the stick-spring law on the anchors ``fa`` (K, Np, 2) when given and
+    ``prm[P_KS]`` > 0 (``_friction_kernels``), else the regularised Coulomb law."""
     K, Np = r.shape[0], r.shape[1]
     jac = 2.0 / prm[P_H]
     m = prm[P_M]
@@ -268,6 +275,8 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv):
     friction = prm[P_MU] * prm[P_WSUB]
     vc = prm[P_VC]
     relax = prm[P_RELAX]
+    ks = prm[P_KS]
+    mu_kb = prm[P_MU] * prm[P_KB]
     _strong_derivative(N, Nstar, D, LIFT, jac, dv)  # dN/ds, the fluxes as face values
     for k in range(K):
         for i in range(Np):
@@ -294,9 +303,20 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv):
                 fy += scale * (cdt * abs(vt) * vt * ty + cdn * vn * vny)
                 fz += scale * (cdt * abs(vt) * vt * tz + cdn * vn * vnz)
             if z < zb:
-                # Coulomb friction, ramped in up to the slip speed (docs/theory/cable.md)
+                stick = False
+                if fa is not None:
+                    stick = ks > 0.0
                 vx, vy = v[k, i, 0], v[k, i, 1]
-                speed = math.sqrt(vx * vx + vy * vy)
+                speed = 0.0
+                if stick:
+                    if mu_kb > 0.0:  # stick spring to the anchor, capped at mu N
+                        sx, sy = stick_force(fa[k, i, 0] - r[k, i, 0], fa[k, i, 1] - r[k, i, 1],
+                                             mu_kb * (zb - z), ks)
+                        fx += sx
+                        fy += sy
+                else:
+                    # Coulomb friction, ramped in up to the slip speed (docs/theory/cable.md)
+                    speed = math.sqrt(vx * vx + vy * vy)
                 if speed > 0.0:
                     mag = friction * math.sin(0.5 * math.pi * speed / max(vc, speed))
                     fx -= mag * vx / speed
@@ -547,11 +567,13 @@ def _filter_slack(u: np.ndarray, F: np.ndarray, slack: np.ndarray, tmp: np.ndarr
 
 @jit
 def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, work3, q, qt,
-                  N, Nstar, faces, slack, fpos, fvel, tmp, bcd, damp):
+                  N, Nstar, faces, slack, fpos, fvel, tmp, bcd, damp, fa):
     """One SSP-RK3 step of (r, v) from t to t + dt, then contact, internal damping (when
-    implicit) and slack filtering. ``damp`` holds the work arrays of the damping system
-    (tangents, inverse masses, coefficients, Y, band, right-hand side), or is None when the
-    line has no implicit internal damping."""
+    implicit) and slack filtering; the stick-spring friction's anchors ``fa`` (or None) are
+    held through the stages and committed after the step (``_friction_kernels.return_map``).
+    ``damp`` holds the work arrays of the damping system (tangents, inverse masses,
+    coefficients, Y, band, right-hand side), or is None when the line has no implicit internal
+    damping."""
     r1, v1, r2, v2, a = work3[0], work3[1], work3[2], work3[3], work3[4]
     K, Np = r.shape[0], r.shape[1]
     # Stage-consistent fairlead data (Carpenter, Gottlieb, Abarbanel & Don 1995): the SSP-RK3
@@ -569,7 +591,7 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
         fvel[c] = g[1, c]
     _tension_field(r, v, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
                    slack, cint)
-    _acceleration(r, v, prm, D, LIFT, q, N, Nstar, a)
+    _acceleration(r, v, prm, D, LIFT, q, N, Nstar, a, fa)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
@@ -581,7 +603,7 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
         fvel[c] = g[1, c] + dt * g[2, c]
     _tension_field(r1, v1, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
                    slack, cint)
-    _acceleration(r1, v1, prm, D, LIFT, q, N, Nstar, a)
+    _acceleration(r1, v1, prm, D, LIFT, q, N, Nstar, a, fa)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
@@ -593,7 +615,7 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
         fvel[c] = g[1, c] + 0.5 * dt * g[2, c] + 0.25 * dt * dt * g[3, c]
     _tension_field(r2, v2, anchor, _ZERO3, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
                    slack, cint)
-    _acceleration(r2, v2, prm, D, LIFT, q, N, Nstar, a)
+    _acceleration(r2, v2, prm, D, LIFT, q, N, Nstar, a, fa)
     third, two_thirds = 1.0 / 3.0, 2.0 / 3.0
     for k in range(K):
         for i in range(Np):
@@ -612,6 +634,8 @@ def _ssp_rk3_step(r, v, t, dt, t0, t1, p0, w0, p1, w1, anchor, prm, D, LIFT, F, 
             _damping_solve(v, fvel, prm, D, LIFT, dt, qt, N, faces, tng, minv, cn, band, e)
     if prm[P_FILTER] != 0.0:
         _filter_slack(v, F, slack, tmp)
+    if fa is not None:
+        return_map(r, fa, prm[P_KS], prm[P_MU] * prm[P_KB], prm[P_ZB])
 
 
 @jit
@@ -681,13 +705,15 @@ def _record_shape(r, N, shape_r, shape_t, index):
 @jit
 def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt_max,
                 fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, work3, q,
-                qt, N, Nstar, faces, slack, fpos, fvel, tmp, bcd, where, damp):
+                qt, N, Nstar, faces, slack, fpos, fvel, tmp, bcd, where, damp, fa=None):
     """Advance the line along a fairlead path and record its end forces at every sample.
 
     ``time`` (n,), ``path`` and ``velocity`` (n, 3) give the fairlead at the output times;
     the state (r, v) must be the one at ``time[0]``. Sample 0 is recorded from it, then each
     interval is split into equal steps no longer than ``dt_max``. Every ``shape_every``-th
-    sample (if > 0) the node positions and tensions go to ``shape_r``/``shape_t``.
+    sample (if > 0) the node positions and tensions go to ``shape_r``/``shape_t``. ``fa``:
+    the friction anchors (K, Np, 2) of the stick-spring law (``P_KS`` > 0), updated at
+    every step, or None.
 
     Returns
     -------
@@ -721,7 +747,7 @@ def dg_run_path(r, v, time, path, velocity, anchor, prm, D, LIFT, F, weights, dt
         for j in range(n_sub):
             _ssp_rk3_step(r, v, t0 + j * dt, dt, t0, t1, path[s], velocity[s], path[s + 1],
                           velocity[s + 1], anchor, prm, D, LIFT, F, work3, q, qt, N, Nstar,
-                          faces, slack, fpos, fvel, tmp, bcd, damp)
+                          faces, slack, fpos, fvel, tmp, bcd, damp, fa)
         for c in range(3):
             fpos[c] = path[s + 1, c]
             fvel[c] = velocity[s + 1, c]

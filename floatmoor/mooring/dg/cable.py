@@ -55,6 +55,8 @@ class CableProperties:
     seabed_damping_ratio: float = 0.0
     friction_coefficient: float = 0.0
     slip_speed: float = 0.01  #: [m/s]
+    #: "coulomb" (regularised by the slip speed) or "stick_spring" (docs/theory/cable.md)
+    friction_model: str = "coulomb"
 
     @classmethod
     def from_case(cls, line: Line, environment: Environment, seabed: Seabed) -> "CableProperties":
@@ -90,7 +92,15 @@ class CableProperties:
                    seabed_z=environment.seabed_z, seabed_stiffness=seabed.stiffness,
                    seabed_damping_ratio=seabed.damping_ratio,
                    friction_coefficient=seabed.friction_coefficient,
-                   slip_speed=seabed.slip_speed)
+                   slip_speed=seabed.slip_speed, friction_model=seabed.friction_model)
+
+    @property
+    def stick_stiffness(self) -> float:
+        """k_s of the stick-spring friction per length [N/m^2], 0 for the Coulomb law: the
+        seabed's normal stiffness per length k_b (docs/theory/cable.md#seabed-friction)."""
+        if self.friction_model != "stick_spring":
+            return 0.0
+        return self.seabed_stiffness * self.diameter
 
     @property
     def material_area(self) -> float:
@@ -148,6 +158,11 @@ class CableProperties:
             # oscillator of ratio xi has its fastest eigenvalue near omega (xi + sqrt(xi^2 + 1))
             xi = self.seabed_damping_ratio
             dt = min(dt, st.cfl * 2.5 / (omega * (xi + math.sqrt(xi * xi + 1.0))))
+        if self.stick_stiffness > 0.0:
+            # the stick spring is in the explicit stages: an undamped oscillator, inside
+            # SSP-RK3's stability region on the imaginary axis up to |lambda dt| = sqrt(3)
+            omega = math.sqrt(self.stick_stiffness / self.mass_per_length)
+            dt = min(dt, st.cfl * math.sqrt(3.0) / omega)
         if st.max_time_step is not None:
             dt = min(dt, st.max_time_step)
         return dt
@@ -182,4 +197,5 @@ class CableProperties:
         prm[_k.P_C] = self.wave_speed
         prm[_k.P_IMPLICIT_DAMPING] = 1.0 if settings.internal_damping == "implicit" else 0.0
         prm[_k.P_DAMPING_TOL] = _k.DAMPING_TANGENT_TOL
+        prm[_k.P_KS] = self.stick_stiffness
         return prm

@@ -92,6 +92,7 @@ class ImplicitIntegrator:
         self.ip[_ik.IP_LEVEL_MAX] = LEVEL_MAX
         self.ip[_ik.IP_GROW] = GROW_RATIO
         self.ip[_ik.IP_FLAG_REFACTOR] = 1.0 if REFACTOR_ON_STATE_CHANGE else 0.0
+        self.ip[_ik.IP_FLAG_EVENTS] = 1.0
         #: integrator state (``_implicit_kernels.CS_*``): step level, factor validity, counters
         self.cs = np.zeros(_ik.CS_N)
         self.acc = np.zeros((K, Np, 3))  #: the method's acceleration variable [m/s^2]
@@ -113,8 +114,9 @@ class ImplicitIntegrator:
     def run(self, r: NDArray, v: NDArray, time: NDArray, path: NDArray, velocity: NDArray,
             anchor: NDArray, prm: NDArray, element, work, fair_force: NDArray,
             anch_force: NDArray, laid: NDArray, steps: NDArray, shape_every: int,
-            shape_r: NDArray, shape_t: NDArray) -> tuple[int, int]:
-        """``_implicit_kernels.dg_run_path_implicit`` on the line's state and workspace."""
+            shape_r: NDArray, shape_t: NDArray, fa: NDArray) -> tuple[int, int]:
+        """``_implicit_kernels.dg_run_path_implicit`` on the line's state and workspace;
+        ``fa`` the line's friction anchors (K, Np, 2)."""
         w = work
         r0, v0, a0, An0, A1, R, MR = self._fields
         E, Dg = self._blocks
@@ -123,7 +125,7 @@ class ImplicitIntegrator:
             element.differentiation, element.lift, element.filter, element.weights, self.ip,
             self.cs, fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, w.q,
             w.qt, w.N, w.Nstar, w.faces, w.slack, w.fpos, w.fvel, w.tmp, w.where, r0, v0, a0,
-            An0, A1, R, MR, E, Dg, self.band, self._x, self._tmp3, self.flags)
+            An0, A1, R, MR, E, Dg, self.band, self._x, self._tmp3, self.flags, fa)
 
     def state_arrays(self) -> dict[str, NDArray]:
         """The integrator's state for a checkpoint: its acceleration variable, the state's

@@ -1,5 +1,8 @@
 """The dynamic line model: a discontinuous Galerkin cable (docs/theory/cable.md and docs/theory/dynamic_line.md).
 
+Size: the line's state (with its friction anchors), set-up, settling, stepping and checkpoint
+in one class; the kernels are elsewhere.
+
 :class:`DynamicLine` owns the DG state of one line (node positions and velocities), starts it
 from the quasi-static catenary, and advances it with the fairlead driven by a prescribed
 position and velocity. Forced-motion runs call :meth:`DynamicLine.solve_path`; coupled runs
@@ -82,13 +85,15 @@ IMPLICIT_ERROR_SHARE = 0.25
 
 @dataclass(frozen=True)
 class DynamicLineState:
-    """A saved state: time, node positions and velocities, fairlead position and velocity."""
+    """A saved state: time, node positions and velocities, fairlead position and velocity,
+    and the friction anchors (None: at the nodes, no stored shear)."""
 
     time: float
     positions: NDArray[np.float64]
     velocities: NDArray[np.float64]
     fairlead: NDArray[np.float64]
     fairlead_velocity: NDArray[np.float64]
+    friction_anchors: NDArray[np.float64] | None = None
 
 
 class DynamicLine(PathStepper):
@@ -135,6 +140,9 @@ class DynamicLine(PathStepper):
         if initial_positions is None:
             initial_positions = self._catenary_positions(np.asarray(fairlead, dtype=float))
         self.r[:] = np.asarray(initial_positions, dtype=float).reshape(K, p + 1, 3)
+        #: the stick-spring friction's anchor of every node in the seabed plane [m]
+        #: (docs/theory/cable.md#seabed-friction): at the nodes, no stored shear, at the start
+        self.friction_anchors = self.r[..., :2].copy()
         self.time = float(time)
         self.fairlead = np.array(fairlead, dtype=float)
         self.fairlead_velocity = np.zeros(3)
@@ -179,6 +187,7 @@ class DynamicLine(PathStepper):
                    tuple(obj.anchor), tuple(obj.fairlead))
             if key in _SETTLED:
                 obj.r[:], obj.settle_report = _SETTLED[key]
+                obj.friction_anchors[...] = obj.r[..., :2]
             else:
                 obj.settle_report = obj.settle()
                 if len(_SETTLED) >= _SETTLED_SIZE:
@@ -303,6 +312,10 @@ class DynamicLine(PathStepper):
         previous = np.array([np.inf, np.inf])
         change, converged = np.inf, False
         prm[_k.P_RELAX] = rate
+        ks = prm[_k.P_KS]
+        # the relaxation finds the frictionless equilibrium: the regularised Coulomb law holds
+        # nothing at rest, a stick spring would hold the line where the relaxation stopped it
+        prm[_k.P_KS] = 0.0
         try:
             while self.time - start < max_time:
                 t = self.time + np.array([0.0, chunk])
@@ -316,6 +329,8 @@ class DynamicLine(PathStepper):
         finally:
             self._settling = False
             prm[_k.P_RELAX] = 0.0
+            prm[_k.P_KS] = ks
+            self.friction_anchors[...] = self.r[..., :2]  # settled: no stored shear
             if integ is not None:
                 integ.ip[:] = saved
                 integ.invalidate()
@@ -451,14 +466,14 @@ class DynamicLine(PathStepper):
         if implicit:
             return self.implicit.run(
                 self.r, self.v, t, x, u, self.anchor, self._implicit_prm, self.element, w,
-                ff, af, lb, st, every, shapes_r, shapes_t)
+                ff, af, lb, st, every, shapes_r, shapes_t, self._anchors_for_kernels())
         return _k.dg_run_path(
             self.r, self.v, t, x, u, self.anchor, self.prm,
             self.element.differentiation, self.element.lift, self.element.filter,
             self.element.weights, self._explicit_step(), ff, af, lb, st,
             every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
             w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
-            w.damping if self._implicit_damping() else None)
+            w.damping if self._implicit_damping() else None, self._anchors_for_kernels())
 
     def plain_steps_until(self, t_end: float) -> bool | None:
         """Whether the steps from now to ``t_end`` [s] are implicit, when :meth:`run_kernel`
@@ -483,6 +498,12 @@ class DynamicLine(PathStepper):
         return SolverError(f"line '{self.name}' (dynamic): {_STATUS_TEXT[status]} at arc "
                            f"length s = {s:.4g} m, t = {time:.6g} s; the solution "
                            f"went unstable ({self._step_text()})")
+
+    def _anchors_for_kernels(self) -> NDArray[np.float64] | None:
+        """The friction anchors with the stick-spring law, None with the Coulomb law (whose
+        kernels then compile without the friction kernels:
+        docs/validation/performance.md#first-run)."""
+        return self.friction_anchors if self.properties.stick_stiffness > 0.0 else None
 
     def _stepping_implicit(self) -> bool:
         """Whether the next steps are implicit ("auto": until it went explicit, and not while
@@ -521,7 +542,7 @@ class DynamicLine(PathStepper):
     def get_state(self) -> DynamicLineState:
         """A copy of the current state."""
         return DynamicLineState(self.time, self.r.copy(), self.v.copy(), self.fairlead.copy(),
-                                self.fairlead_velocity.copy())
+                                self.fairlead_velocity.copy(), self.friction_anchors.copy())
 
     def set_state(self, state: DynamicLineState) -> None:
         """Restore a state saved by :meth:`get_state`."""
@@ -530,6 +551,8 @@ class DynamicLine(PathStepper):
         self.v[:] = state.velocities
         self.fairlead[:] = state.fairlead
         self.fairlead_velocity[:] = state.fairlead_velocity
+        self.friction_anchors[...] = (self.r[..., :2] if state.friction_anchors is None
+                                      else state.friction_anchors)
         self._work.damping[-1][0] = 0.0  # the factored damping system belongs to another state
         if self.implicit is not None:
             self.implicit.invalidate()
@@ -542,7 +565,7 @@ class DynamicLine(PathStepper):
         s = self.get_state()
         out = {"time": np.array(s.time, dtype=np.float64), "positions": s.positions,
                "velocities": s.velocities, "fairlead": s.fairlead,
-               "fairlead_velocity": s.fairlead_velocity}
+               "fairlead_velocity": s.fairlead_velocity, "friction_anchors": s.friction_anchors}
         if self._implicit_damping():
             out.update({f"damping_{name}": a.copy()
                         for name, a in zip(_DAMPING_ARRAYS, self._work.damping)})
@@ -556,7 +579,8 @@ class DynamicLine(PathStepper):
         """Restore a state of :meth:`state_arrays` (shapes checked by the caller)."""
         self.set_state(DynamicLineState(
             float(arrays["time"]), *(np.asarray(arrays[k], dtype=float) for k in (
-                "positions", "velocities", "fairlead", "fairlead_velocity"))))
+                "positions", "velocities", "fairlead", "fairlead_velocity")),
+            np.asarray(arrays["friction_anchors"], dtype=float)))
         if self.auto is not None:
             self.auto.set_state(arrays)
             self._follow_auto()
