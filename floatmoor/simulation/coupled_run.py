@@ -434,7 +434,8 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
                 progress(recorder.simulated_time)
     if probe is not None and not probe.done:
         recorder.set_attribute("line_accuracy", "not estimated: the run ended before the wave "
-                               f"ramp and {probe.cycles} wave periods")
+                               f"ramp and {probe.cycles} "
+                               f"{'peak' if irregular_sea(settings.waves) else 'wave'} periods")
     dataset = recorder.result(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()

@@ -75,7 +75,8 @@ JUDGED_CYCLES = 2
 #: Measured on DeepCwind LC34 (3 h, 8 x p3 lines, line 1 probed from 34 starts 300 s apart):
 #: the estimate over 2 judged periods scatters from 0.02 to 2.1 % (median 0.75 %, over the 1 %
 #: accuracy from 10 starts, 1.7 % from the end of the ramp) about the 0.37 % that longer
-#: windows converge to (whole-run STD within 0.3 % of converged runs); over 10, 20 and 30
+#: windows converge to (its STD after the ramp is within 0.21 % of 16 x p3's, 0.33 % of
+#: 10 x p5's); over 10, 20 and 30
 #: judged periods its largest is 1.6, 1.1 and 0.60 %
 #: (docs/theory/dynamic_line.md#a-posteriori-error-check).
 IRREGULAR_PROBE_CYCLES = 31
