@@ -8,14 +8,14 @@ from __future__ import annotations
 import time as _time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import points_state
-from floatmoor.case.schema import Case
+from floatmoor.case.schema import Case, Line
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.io.netcdf3_format import NetCDF3Error
 from floatmoor.io.output_files import OutputWriteError
@@ -26,7 +26,8 @@ from floatmoor.simulation.checkpoint import (
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled import MooredBody
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
-from floatmoor.simulation.line_accuracy import NOT_YET_ESTIMATED, RunProbe, describe
+from floatmoor.simulation.line_accuracy import (NOT_YET_ESTIMATED, LineRefinement, RunProbe,
+                                                describe, describe_raises)
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.simulation.validity import ValidityMonitor
 from floatmoor.signals import deferred_interrupts
@@ -80,6 +81,12 @@ def settings_from_case(case: Case) -> CoupledSettings:
         initial_offset=tuple(case.initial_offset))
 
 
+def irregular_sea(waves: RegularWaveSettings | JonswapSettings | StillWaterSettings) -> bool:
+    """Whether a run's waves are an irregular sea, whose probe records
+    :data:`~floatmoor.simulation.line_accuracy.IRREGULAR_PROBE_CYCLES` peak periods."""
+    return not isinstance(waves, (RegularWaveSettings, StillWaterSettings))
+
+
 def checkpoint_path(output: str | Path) -> Path:
     """The checkpoint file of a run writing ``output``."""
     return Path(str(output) + ".checkpoint")
@@ -101,13 +108,18 @@ class _Snapshot:
         return cls(moored.state_arrays(), done, recorder.n_done)
 
 
+#: The checkpoint's array of the element counts of the lines a probe raised (0: the line as
+#: the case gives or the rule chooses it): a resumed run is built with them.
+RAISED_ELEMENTS = "progress/raised_elements"
+
+
 def _write_checkpoint(path: Path, snapshot: _Snapshot, recorder: Recorder,
-                      identity: RunIdentity) -> None:
+                      identity: RunIdentity, raised: NDArray[np.int64]) -> None:
     """Write ``snapshot`` atomically, as plain arrays
     (:mod:`floatmoor.simulation.checkpoint`), after the samples it covers are in the output
     file and on disk: the checkpoint holds the state, the file the samples, which a resumed
     run continues (cut to the checkpoint's samples). Killed or cut off at any moment, the
-    run leaves a checkpoint that its file covers."""
+    run leaves a checkpoint that its file covers. ``raised``: :data:`RAISED_ELEMENTS`."""
     if recorder.written < snapshot.n_done:
         recorder.write(status=f"running: partial results up to "
                               f"t = {recorder.simulated_time:.6g} s")
@@ -115,7 +127,30 @@ def _write_checkpoint(path: Path, snapshot: _Snapshot, recorder: Recorder,
     arrays = {f"state/{k}": v for k, v in snapshot.state.items()}
     arrays["progress/done"] = np.array(snapshot.done, dtype=np.int64)
     arrays["progress/n_done"] = np.array(snapshot.n_done, dtype=np.int64)
+    arrays[RAISED_ELEMENTS] = np.asarray(raised, dtype=np.int64)
     write_checkpoint(path, arrays, identity)
+
+
+def _raised_elements(path: Path, identity: RunIdentity, n_lines: int) -> dict[int, int]:
+    """The element counts of the lines the probe of the checkpoint's run raised (line index
+    -> elements): the resumed run keeps the numerics its checkpoint was made with."""
+    raised = read_checkpoint(path, identity, {RAISED_ELEMENTS: ((n_lines,), np.int64)},
+                             exact=False)[RAISED_ELEMENTS]
+    if np.any(raised < 0):
+        raise CheckpointError(path, "element counts >= 0 in array "
+                              f"'{RAISED_ELEMENTS}'", str(raised.tolist()))
+    return {i: int(k) for i, k in enumerate(raised) if k > 0}
+
+
+def _with_elements(case: Case, raised: dict[int, int]) -> Case:
+    """``case`` with the element counts the probe raised (line index -> elements); the
+    order stays the one the case gives or the rule chooses (which does not depend on the
+    elements)."""
+    if not raised:
+        return case
+    return replace(case, lines=tuple(
+        replace(line, dynamic=replace(line.dynamic, elements=raised[i])) if i in raised
+        else line for i, line in enumerate(case.lines)))
 
 
 def _load_checkpoint(path: Path, identity: RunIdentity, moored: MooredBody,
@@ -141,6 +176,7 @@ def _load_checkpoint(path: Path, identity: RunIdentity, moored: MooredBody,
                               f"{done} steps and {n} samples done")
     template = {f"state/{k}": v for k, v in moored.state_arrays().items()}
     template.update(progress)
+    template[RAISED_ELEMENTS] = np.zeros(len(recorder.case.lines), dtype=np.int64)
     arrays = read_checkpoint(path, identity, {k: (v.shape, v.dtype)
                                               for k, v in template.items()})
     try:
@@ -238,6 +274,47 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             raise CheckpointError("--resume", "a run with an output file (its checkpoint is "
                                   "OUTPUT.checkpoint)", "no output")
         check_checkpoint(ckpt, identity)  # before the set-up: the file, its format and run
+    raised = _raised_elements(ckpt, identity, len(case.lines)) if resume else {}
+    raised_from: dict[int, tuple[tuple[int, float, float], ...]] = {}
+    earlier_loops = 0.0  # [s] time loops of the passes the probe stopped
+    while True:  # a pass per raise of the lines' elements by the probe (up to MAX_REFINEMENTS)
+        try:
+            return _run_pass(_with_elements(case, raised), case.lines, settings, identity,
+                             raised, raised_from, output=output, progress=progress,
+                             flush_interval=flush_interval,
+                             checkpoint_interval=checkpoint_interval, resume=resume,
+                             earlier_loops=earlier_loops)
+        except LineRefinement as refined:
+            earlier_loops += refined.loop_wall_s
+            # the aborted pass's checkpoint is not of the run that starts now
+            if ckpt is not None:
+                ckpt.unlink(missing_ok=True)
+            raised.update(refined.elements)
+            raised_from.update(refined.raised_from)
+            restarted = getattr(progress, "restarted", None)
+            if restarted is not None:
+                restarted(f"{refined}: the run starts again from t = 0")
+
+
+def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSettings,
+              identity: RunIdentity, raised: dict[int, int],
+              raised_from: dict[int, tuple[tuple[int, float, float], ...]], *,
+              output: str | Path | None, progress: Callable[[float], None] | None,
+              flush_interval: float, checkpoint_interval: float, resume: bool,
+              earlier_loops: float) -> RunResult:
+    """One pass of :func:`run_coupled` from t = 0 (or its checkpoint) of ``case``: the case
+    with the element counts ``raised`` by the probes of earlier passes (whose estimates are
+    ``raised_from``); ``rule_lines`` are the case's own lines (those whose elements the rule
+    chose are probed). The result's wall time is the time loop's, ``earlier_loops`` [s] (the
+    earlier passes') included.
+
+    Raises
+    ------
+    LineRefinement
+        When the probe raises lines' elements: the output file is left to the next pass,
+        which rewrites it from its start.
+    """
+    ckpt = checkpoint_path(output) if output is not None else None
     dt = float(settings.time_step)
     times = output_times(case.simulation)
     stride = int(round(case.simulation.output_interval / dt))
@@ -252,12 +329,19 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     stride_shapes = shape_stride(case)
     # the lines whose elements the accuracy chose are checked as the run goes (not resumed:
     # a resumed run keeps what its file says of them)
-    probe = None if resume else RunProbe.for_run(case.lines, moored.models, case.environment,
-                                                 case.seabed, settings.ramp_duration)
+    probe = None if resume else RunProbe.for_run(
+        list(rule_lines), moored.models, case.environment, case.seabed,
+        settings.ramp_duration, raised_from=raised_from,
+        irregular=irregular_sea(settings.waves))
+    not_yet = NOT_YET_ESTIMATED + "".join(
+        f"\nline '{rule_lines[i].name}': raised to {raised[i]} elements from "
+        f"{describe_raises(history)}; the run started again from t = 0"
+        for i, history in raised_from.items())
     recorder = Recorder(case, times, output, flush_interval, body=True, equilibrium=x_eq,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
                         shape_stride=stride_shapes, chunk=CHUNK_STEPS // stride + 1,
-                        attrs=None if probe is None else {"line_accuracy": NOT_YET_ESTIMATED})
+                        attrs=None if probe is None else {"line_accuracy": not_yet})
+    elements = np.array([raised.get(i, 0) for i in range(len(case.lines))], dtype=np.int64)
     series, bseries = recorder.series, recorder.body
     n_steps = (times.size - 1) * stride
     done = 0
@@ -304,13 +388,13 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     def checkpoint_last() -> None:
         if ckpt is not None and snapshot is not None:
             with deferred_interrupts():  # a second Ctrl-C must not cut it
-                _write_checkpoint(ckpt, snapshot, recorder, identity)
+                _write_checkpoint(ckpt, snapshot, recorder, identity, elements)
 
     if ckpt is not None:
         remove_stale_temporaries(ckpt)
     # on interruption: the partial results first, then the checkpoint; on failure none
     with _no_checkpoint_on_failure(ckpt), _checkpoint_on_interrupt(checkpoint_last), \
-            recorder.partial_on_failure():
+            recorder.partial_on_failure(), _closed_on_refinement(recorder, start_wall):
         if not resume:
             recorder.reserve(1)
             fill_elevation(0, 0)
@@ -319,7 +403,7 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
         if ckpt is not None:
             snapshot = _Snapshot.take(moored, recorder, done)
             if not resume:  # a hard kill from now on leaves a run to resume
-                _write_checkpoint(ckpt, snapshot, recorder, identity)
+                _write_checkpoint(ckpt, snapshot, recorder, identity, elements)
                 last_ckpt = _time.perf_counter()
         while done < n_steps:
             chunk = min(CHUNK_STEPS, n_steps - done)
@@ -344,18 +428,19 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
             if ckpt is not None:
                 snapshot = _Snapshot.take(moored, recorder, done)
                 if _time.perf_counter() - last_ckpt >= checkpoint_interval:
-                    _write_checkpoint(ckpt, snapshot, recorder, identity)
+                    _write_checkpoint(ckpt, snapshot, recorder, identity, elements)
                     last_ckpt = _time.perf_counter()
             if progress is not None:
                 progress(recorder.simulated_time)
     if probe is not None and not probe.done:
         recorder.set_attribute("line_accuracy", "not estimated: the run ended before the wave "
-                               "ramp and three wave periods")
+                               f"ramp and {probe.cycles} "
+                               f"{'peak' if irregular_sea(settings.waves) else 'wave'} periods")
     dataset = recorder.result(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()
     return RunResult(dataset=dataset, status="complete",
-                     wall_time_s=_time.perf_counter() - start_wall,
+                     wall_time_s=earlier_loops + _time.perf_counter() - start_wall,
                      simulated_time_s=recorder.simulated_time,
                      line_accuracy=() if probe is None or not probe.done else probe.results)
 
@@ -369,6 +454,19 @@ def _no_checkpoint_on_failure(ckpt: Path | None) -> Iterator[None]:
     except SolverError:
         if ckpt is not None:
             ckpt.unlink(missing_ok=True)
+        raise
+
+
+@contextmanager
+def _closed_on_refinement(recorder: Recorder, start_wall: float) -> Iterator[None]:
+    """Close the recorder's output file when the probe raises lines' elements
+    (:class:`LineRefinement`; the next pass rewrites it from its start), and give the
+    exception the pass's time-loop wall time (``loop_wall_s`` [s], from ``start_wall``)."""
+    try:
+        yield
+    except LineRefinement as refined:
+        refined.loop_wall_s = _time.perf_counter() - start_wall
+        recorder.close()
         raise
 
 

@@ -14,14 +14,20 @@ with :data:`MARGIN` and the check repeats; a line still over it after
 :data:`MAX_REFINEMENTS` raises, or at :data:`~floatmoor.mooring.dg.resolution.MAX_AUTO_ELEMENTS`,
 stops the run with a :class:`LineAccuracyError` naming the line and its estimate.
 
+A coupled run's fairlead path is known only as the run goes: its lines are probed
+(:class:`RunProbe`) along the path recorded over :data:`PROBE_CYCLES` wave periods after the
+wave ramp, or :data:`IRREGULAR_PROBE_CYCLES` peak periods in an irregular sea (two periods of a
+sea are too short a sample of it). A line over its accuracy is raised by the same rule, and
+the run starts again from t = 0 with it (:class:`LineRefinement`), where it is probed again.
+
 A line over its accuracy is also probed at its own numerics on the path shifted by
 :data:`NUDGE` of its length: a chain that goes slack and snaps can be so sensitive to its path
 that this alone moves the statistics by more than :data:`SENSITIVE_SHARE` of the accuracy, and
 then the difference of the two probes is not a discretisation error. Such a line is refined
 by :data:`REFINEMENT` (an under-resolved chain can ring chaotically where a finer one does
 not); one still that sensitive when the check gives up stops the run with a
-:class:`LineSensitivityError` that says so, as does a coupled run's line (whose numerics are
-not changed as the run goes).
+:class:`LineSensitivityError` that says so, as does a coupled run's line at once (its run is
+not started again for it).
 
 A motion without a ramp starts the run's statistics with its start from rest in the
 motion's first pose (docs/guide/running.md#what-a-run-writes-and-prints), which the probe
@@ -55,7 +61,8 @@ __all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line"
            "estimate_error_along", "accuracy_error", "RunProbe", "NOT_YET_ESTIMATED",
            "PROBE_CYCLES", "JUDGED_CYCLES", "REFINEMENT", "MAX_REFINEMENTS",
            "LineSensitivityError", "NUDGE", "SENSITIVE_SHARE", "probe_end",
-           "probe_frequency"]
+           "probe_frequency", "IRREGULAR_PROBE_CYCLES", "LineRefinement", "probe_cycles",
+           "raised_elements", "recorded_cycles", "describe_raises"]
 
 #: Cycles of the motion run after its ramp in a probe: the first lets the start from rest
 #: pass through the line (its axial and transverse waves cross a chain in well under a
@@ -63,6 +70,16 @@ __all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line"
 PROBE_CYCLES = 3
 #: Cycles at the end of the probe over which the statistics are compared.
 JUDGED_CYCLES = 2
+#: Peak periods of a coupled run's probe in an irregular sea (the first brings the probe onto
+#: the recorded path, the others are judged): two periods of a sea are too short a sample.
+#: Measured on DeepCwind LC34 (3 h, 8 x p3 lines, line 1 probed from 34 starts 300 s apart):
+#: the estimate over 2 judged periods scatters from 0.02 to 2.1 % (median 0.75 %, over the 1 %
+#: accuracy from 10 starts, 1.7 % from the end of the ramp) about the 0.37 % that longer
+#: windows converge to (its STD after the ramp is within 0.21 % of 16 x p3's, 0.33 % of
+#: 10 x p5's); over 10, 20 and 30
+#: judged periods its largest is 1.6, 1.1 and 0.60 %
+#: (docs/theory/dynamic_line.md#a-posteriori-error-check).
+IRREGULAR_PROBE_CYCLES = 31
 #: Samples per cycle at which the probe records the fairlead tension: the per-cycle maximum
 #: of a snap load is caught to within (pi / 256)^2 / 2 ~ 1e-4 of a sinusoid's peak.
 SAMPLES_PER_CYCLE = 256
@@ -123,6 +140,10 @@ class LineAccuracy:
         How many times the check raised the element count.
     wall_time_s
         Wall time the check took [s].
+    raised_from
+        In a coupled run, each element count the probe found over the accuracy and raised
+        (restarting the run), with its estimated errors: (elements, STD error, mean cycle
+        maximum error), the rule's choice first.
     """
 
     line: str
@@ -133,6 +154,7 @@ class LineAccuracy:
     accuracy: float
     refinements: int
     wall_time_s: float
+    raised_from: tuple[tuple[int, float, float], ...] = ()
 
     @property
     def estimated_error(self) -> float:
@@ -185,13 +207,13 @@ def _nudged(path: NDArray[np.float64], length: float) -> NDArray[np.float64]:
 
 
 def sensitivity_error(line: str, sensitivity: tuple[float, float], accuracy: float,
-                      length: float) -> LineSensitivityError:
+                      length: float, cycles: int = JUDGED_CYCLES) -> LineSensitivityError:
     """The error stopping a run whose line's statistics move under a nudge of its path."""
     return LineSensitivityError(
         f"line '{line}' (dynamic): its fairlead tension is too sensitive to its path for the "
         f"accuracy check: shifting the path by {NUDGE * length:.2g} m moves the STD "
         f"{100 * sensitivity[0]:.3g} % and the mean cycle maximum {100 * sensitivity[1]:.3g} % "
-        f"over {JUDGED_CYCLES} cycles, against an accuracy of {100 * accuracy:.3g} % (a chain "
+        f"over {cycles} cycles, against an accuracy of {100 * accuracy:.3g} % (a chain "
         "snapping chaotically, docs/theory/dynamic_line.md#a-posteriori-error-check), so no "
         f"element count can be verified to it; set lines.{line}.dynamic.elements and order to "
         "run at numerics of your choice, and judge its statistics over many cycles or runs")
@@ -206,15 +228,22 @@ def _relative_errors(coarse: NDArray[np.float64], fine: NDArray[np.float64], ord
     return std_error / richardson, maxima_error / richardson
 
 
+def recorded_cycles(time: NDArray[np.float64]) -> int:
+    """Cycles of a recorded path's probe whose times ``time`` hold :data:`SAMPLES_PER_CYCLE`
+    samples a cycle after the first (:data:`PROBE_CYCLES`, or :data:`IRREGULAR_PROBE_CYCLES`
+    in an irregular sea)."""
+    return (np.asarray(time).size - 1) // SAMPLES_PER_CYCLE
+
+
 def _onto_path(line: Line, time: NDArray[np.float64], path: NDArray[np.float64],
                velocity: NDArray[np.float64]) -> tuple[Line, NDArray[np.float64],
                                                         NDArray[np.float64], NDArray[np.float64]]:
     """A recorded path's probe (:func:`estimate_error_along`): ``line`` with its fairlead where
     the path starts, the probe's times from 0, and the path and velocity brought on over the
-    first of the :data:`PROBE_CYCLES` cycles by the cosine ramp."""
+    first of the probe's cycles (:func:`recorded_cycles`) by the cosine ramp."""
     start = path[0]
     s = time - time[0]
-    duration = (time[-1] - time[0]) / PROBE_CYCLES
+    duration = (time[-1] - time[0]) / recorded_cycles(time)
     factor, rate = ramp(s, duration)[:, None], ramp_rate(s, duration)[:, None]
     at_start = replace(line, fairlead=(float(start[0]), float(start[1]), float(start[2])))
     return (at_start, s, start + factor * (path - start),
@@ -228,8 +257,8 @@ def estimate_error_along(line: Line, environment: Environment, seabed: Seabed,
     ``line`` at its resolved numerics along a fairlead path known only as a run goes (a coupled
     run's): two probes, at its elements and at :data:`REFINEMENT` times as many, each settled at
     rest with its fairlead where the path starts and brought onto the path over the first of
-    the :data:`PROBE_CYCLES` cycles ``time`` holds (:data:`SAMPLES_PER_CYCLE` samples each
-    after its first) by the cosine ramp of the prescribed motions (docs/conventions.md). A
+    the cycles ``time`` holds (:data:`SAMPLES_PER_CYCLE` samples each after its first; the
+    others are judged) by the cosine ramp of the prescribed motions (docs/conventions.md). A
     probe cannot start from the run's own state instead: refined, its DG boundary and interface
     jumps would pull with twice the force (their lifting scales as 1 / h), a jolt of many times
     the tension on a stiff chain.
@@ -240,7 +269,7 @@ def estimate_error_along(line: Line, environment: Environment, seabed: Seabed,
     for k in (1, REFINEMENT):
         probe = replace(at_start, dynamic=replace(settings, elements=settings.elements * k))
         tensions.append(_probe_tension(probe, environment, seabed, s, ramped, ramped_velocity))
-    return _relative_errors(tensions[0], tensions[1], settings.order)
+    return _relative_errors(tensions[0], tensions[1], settings.order, recorded_cycles(time) - 1)
 
 
 def path_sensitivity_along(line: Line, environment: Environment, seabed: Seabed,
@@ -254,7 +283,7 @@ def path_sensitivity_along(line: Line, environment: Environment, seabed: Seabed,
         at_start, s, ramped, ramped_velocity = _onto_path(line, time, shifted, velocity)
         tensions.append(_probe_tension(at_start, environment, seabed, s, ramped,
                                        ramped_velocity))
-    return _relative_differences(tensions[1], tensions[0])
+    return _relative_differences(tensions[1], tensions[0], recorded_cycles(time) - 1)
 
 
 def accuracy_error(line: str, elements: int, order: int, std_error: float,
@@ -354,9 +383,8 @@ def checked_line(line: Line, environment: Environment, seabed: Seabed,
                                  accuracy, refinements)
         # a sensitive line's estimate is no convergence rate: refinement alone may calm it
         # (an under-resolved chain rings chaotically; S3 at 8 x p3, not at 13)
-        factor = (REFINEMENT if sensitive
-                  else MARGIN * (error / accuracy) ** (1.0 / (order + 1)))
-        raised = min(max(math.ceil(elements * factor), elements + 1), MAX_AUTO_ELEMENTS)
+        raised = (min(elements * REFINEMENT, MAX_AUTO_ELEMENTS) if sensitive
+                  else raised_elements(elements, order, error, accuracy))
         line = replace(line, dynamic=replace(line.dynamic, elements=raised))
         refinements += 1
     return line, LineAccuracy(line.name, elements, order, std_error, maxima_error, accuracy,
@@ -381,10 +409,21 @@ def probe_frequency(line: Line, motion_end: float | None, ramp: float) -> float:
     return PROBE_CYCLES * 2.0 * math.pi / (motion_end - ramp)
 
 
+def describe_raises(raised_from: tuple[tuple[int, float, float], ...]) -> str:
+    """The earlier element counts of a coupled run's line and their estimates, as text."""
+    return ", then ".join(f"{k} elements (estimated {100 * max(e_std, e_max):.2g} %: STD "
+                          f"{100 * e_std:.2g} %, mean cycle maximum {100 * e_max:.2g} %)"
+                          for k, e_std, e_max in raised_from)
+
+
 def describe(result: LineAccuracy) -> str:
-    """One line of text: the line's numerics and its estimated errors."""
+    """One line of text: the line's numerics and its estimated errors (and, in a coupled run,
+    the element counts the probe raised and restarted the run from)."""
     raised = (f", raised {result.refinements} time{'s' if result.refinements > 1 else ''} "
               "from the rule's choice") if result.refinements else ""
+    if result.raised_from:
+        raised += (f" (from {describe_raises(result.raised_from)}, the run starting again "
+                   "from t = 0 each time)")
     return (f"{result.line}: {result.elements} x p{result.order}{raised}; estimated error "
             f"{100 * result.estimated_error:.2g} % (STD {100 * result.std_error:.2g} %, mean "
             f"cycle maximum {100 * result.maxima_error:.2g} %) against {100 * result.accuracy:g} "
@@ -393,16 +432,62 @@ def describe(result: LineAccuracy) -> str:
 
 #: The ``line_accuracy`` attribute of a coupled run's file until its lines are checked.
 NOT_YET_ESTIMATED = ("not estimated yet: the lines whose elements the accuracy chose are "
-                     "checked after the wave ramp and three wave periods")
+                     "checked after the wave ramp and three wave periods (an irregular sea's: "
+                     f"{IRREGULAR_PROBE_CYCLES} peak periods)")
+
+
+def probe_cycles(irregular: bool) -> int:
+    """Cycles of a coupled run's probe (the first brings the probe onto the recorded path, the
+    others are judged): :data:`PROBE_CYCLES` wave periods in regular waves,
+    :data:`IRREGULAR_PROBE_CYCLES` peak periods in an irregular sea."""
+    return IRREGULAR_PROBE_CYCLES if irregular else PROBE_CYCLES
+
+
+class LineRefinement(Exception):
+    """A coupled run's probe found lines over their accuracy that can be refined: the run
+    starts again from t = 0 with their raised element counts (not an error of the run).
+
+    Attributes
+    ----------
+    elements
+        Line index -> raised element count.
+    raised_from
+        Line index -> the earlier element counts and their estimates
+        (:attr:`LineAccuracy.raised_from`), the one just rejected last.
+    """
+
+    def __init__(self, elements: dict[int, int],
+                 raised_from: dict[int, tuple[tuple[int, float, float], ...]],
+                 names: dict[int, str]) -> None:
+        self.elements = elements
+        self.raised_from = raised_from
+        #: wall time of the stopped pass's time loop [s] (set by the run)
+        self.loop_wall_s = 0.0
+        super().__init__("; ".join(
+            f"line '{names[i]}' raised from {raised_from[i][-1][0]} to {k} elements (estimated "
+            f"{100 * max(raised_from[i][-1][1:]):.2g} % at {raised_from[i][-1][0]})"
+            for i, k in elements.items()))
+
+
+def raised_elements(elements: int, order: int, error: float, accuracy: float) -> int:
+    """The element count a line over its accuracy is raised to: by (error / accuracy)^(1/(p+1))
+    with :data:`MARGIN`, at least one more, at most
+    :data:`~floatmoor.mooring.dg.resolution.MAX_AUTO_ELEMENTS`."""
+    factor = MARGIN * (error / accuracy) ** (1.0 / (order + 1))
+    return min(max(math.ceil(elements * factor), elements + 1), MAX_AUTO_ELEMENTS)
 
 
 class RunProbe:
     """The check of a coupled run's lines whose element count the accuracy chose, as the
     run goes (their fairlead path is known only then): from the first recorded sample after
-    the wave ramp their fairlead positions are recorded for :data:`PROBE_CYCLES` periods; then
-    each is probed along the spline through them (:func:`estimate_error_along`). A line over
-    its accuracy stops the run (:func:`accuracy_error`); the run's numerics are not changed
-    as it goes.
+    the wave ramp their fairlead positions are recorded for ``cycles`` periods
+    (:func:`probe_cycles`); then each is probed along the spline through them
+    (:func:`estimate_error_along`). Lines over their accuracy are raised as a forced run's
+    are (:func:`raised_elements`) and the run starts again from t = 0 with them
+    (:class:`LineRefinement`), where they are probed again; a line still over it after
+    :data:`MAX_REFINEMENTS` raises or at ``MAX_AUTO_ELEMENTS`` stops the run
+    (:func:`accuracy_error`), as does a line sensitive to its path
+    (:func:`sensitivity_error`).
 
     Parameters
     ----------
@@ -412,17 +497,26 @@ class RunProbe:
         The case's.
     start
         When the probe starts [s]: the end of the wave ramp.
+    cycles
+        Periods recorded and probed (the first brings the probe onto the path).
+    raised_from
+        Line index -> the element counts earlier passes of the run raised, with their
+        estimates (:attr:`LineAccuracy.raised_from`).
     """
 
     def __init__(self, lines: list[tuple[int, Line]], environment: Environment, seabed: Seabed,
-                 start: float) -> None:
+                 start: float, cycles: int = PROBE_CYCLES,
+                 raised_from: dict[int, tuple[tuple[int, float, float], ...]] | None = None
+                 ) -> None:
         self.lines = lines
         self.environment = environment
         self.seabed = seabed
         omega = lines[0][1].dynamic.motion_frequency
         self.period = 2.0 * math.pi / omega
         self.start = float(start)
-        self.end = self.start + PROBE_CYCLES * self.period
+        self.cycles = int(cycles)
+        self.end = self.start + self.cycles * self.period
+        self.raised_from = dict(raised_from or {})
         self._time: list[float] = []
         self._positions: list[NDArray[np.float64]] = []
         #: the outcome per line, once checked
@@ -430,14 +524,19 @@ class RunProbe:
 
     @classmethod
     def for_run(cls, lines: list[Line], models: list, environment: Environment,
-                seabed: Seabed, ramp: float) -> "RunProbe | None":
+                seabed: Seabed, ramp: float, *, irregular: bool = False,
+                raised_from: dict[int, tuple[tuple[int, float, float], ...]] | None = None
+                ) -> "RunProbe | None":
         """The probe of a run's dynamic lines whose elements the accuracy chose (None when
-        there are none, or no wave frequency to judge cycles by)."""
+        there are none, or no wave frequency to judge cycles by). ``lines`` are the case's
+        (their ``elements`` unset where the rule chose them), ``models`` the run's (their
+        settings what the run uses, raised by earlier passes' probes)."""
         chosen = [(i, replace(line, dynamic=models[i].settings))
                   for i, (line, model) in enumerate(zip(lines, models))
                   if isinstance(model, DynamicLine) and line.dynamic.elements is None
                   and model.settings.motion_frequency > 0.0]
-        return cls(chosen, environment, seabed, ramp) if chosen else None
+        return (cls(chosen, environment, seabed, ramp, probe_cycles(irregular), raised_from)
+                if chosen else None)
 
     @property
     def done(self) -> bool:
@@ -450,8 +549,11 @@ class RunProbe:
 
         Raises
         ------
+        LineRefinement
+            When lines exceed their accuracy and can be raised: the run starts again.
         LineAccuracyError
-            For the first line whose estimated error exceeds its accuracy.
+            For the first line whose estimated error exceeds its accuracy and that cannot be
+            raised further (LineSensitivityError: that is too sensitive to its path).
         """
         if self.done or time < self.start - 1e-9 * max(1.0, self.start):
             return
@@ -465,23 +567,33 @@ class RunProbe:
         recorded_t = np.asarray(self._time)
         recorded = np.asarray(self._positions)  # (samples, lines, 3)
         t0 = recorded_t[0]
-        time = t0 + np.arange(PROBE_CYCLES * SAMPLES_PER_CYCLE + 1) * (
+        time = t0 + np.arange(self.cycles * SAMPLES_PER_CYCLE + 1) * (
             self.period / SAMPLES_PER_CYCLE)
-        results = []
+        results, raised = [], {}
         for k, (i, line) in enumerate(self.lines):
             path, velocity = table_state(recorded_t, recorded[:, k], time)
             std_error, maxima_error = estimate_error_along(
                 line, self.environment, self.seabed, time, path, velocity)
             settings = line.dynamic
-            if max(std_error, maxima_error) > settings.accuracy:
+            earlier = self.raised_from.get(i, ())
+            error = max(std_error, maxima_error)
+            if error > settings.accuracy:
                 sensitivity = path_sensitivity_along(line, self.environment, self.seabed, time,
                                                      path, velocity)
                 if max(sensitivity) > SENSITIVE_SHARE * settings.accuracy:
                     raise sensitivity_error(line.name, sensitivity, settings.accuracy,
-                                            line.length)
-                raise accuracy_error(line.name, settings.elements, settings.order, std_error,
-                                     maxima_error, settings.accuracy, 0)
+                                            line.length, self.cycles - 1)
+                if len(earlier) >= MAX_REFINEMENTS or settings.elements >= MAX_AUTO_ELEMENTS:
+                    raise accuracy_error(line.name, settings.elements, settings.order,
+                                         std_error, maxima_error, settings.accuracy,
+                                         len(earlier))
+                raised[i] = raised_elements(settings.elements, settings.order, error,
+                                            settings.accuracy)
+                self.raised_from[i] = (*earlier, (settings.elements, std_error, maxima_error))
             results.append(LineAccuracy(line.name, settings.elements, settings.order,
-                                        std_error, maxima_error, settings.accuracy, 0,
-                                        _time.perf_counter() - started))
+                                        std_error, maxima_error, settings.accuracy,
+                                        len(earlier), _time.perf_counter() - started, earlier))
+        if raised:
+            raise LineRefinement(raised, {i: self.raised_from[i] for i in raised},
+                                 {i: line.name for i, line in self.lines})
         self.results = tuple(results)

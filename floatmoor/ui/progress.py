@@ -70,6 +70,13 @@ class ProgressReporter:
         self._origin = None
         self.compile_time += seconds
 
+    def restarted(self, message: str) -> None:
+        """The run starts again from t = 0 (a coupled run whose probe raised a line's
+        elements): say why, on a line of its own, and drop the estimate."""
+        self._origin = None
+        self._last = -float("inf")
+        self._write(f"floatmoor: {message}", end=True)
+
     def __call__(self, simulated: float) -> None:
         now = self._clock()
         if self._origin is None and not self._compiling:

@@ -114,3 +114,24 @@ def test_watch_compilation_reports_compiles_not_calls():
     with watch_compilation(lambda: events.append("start"), events.append):
         outer(3.0)
     assert len(events) == 2
+
+
+def test_a_restarted_run_says_why_and_estimates_again():
+    """A coupled run whose probe raised a line's elements starts again from t = 0: the reason
+    is said on its own line, and the estimate is not taken across the restart (t falling)."""
+    stream, clock = io.StringIO(), _Clock()
+    report = _reporter(stream, clock)
+    clock.now = 1.0
+    report(3.0)
+    clock.now = 2.0
+    report(6.0)
+    report.restarted("line 'line1' raised from 8 to 11 elements: the run starts again")
+    clock.now = 3.0
+    report(2.0)
+    clock.now = 4.0
+    report(4.0)
+    lines = stream.getvalue().splitlines()
+    assert lines[2] == ("floatmoor: line 'line1' raised from 8 to 11 elements: the run starts "
+                        "again")
+    assert "t = 2 / 15 s" in lines[3] and "left" not in lines[3]
+    assert lines[4].endswith("~5.5 s left")

@@ -222,17 +222,6 @@ def test_coupled_runs_check_their_lines_as_they_go(tmp_path, monkeypatch):
     assert "line1: " in format_summary(run_summary(case, result.dataset))
 
 
-def test_a_coupled_line_over_its_accuracy_stops_the_run(tmp_path, monkeypatch,
-                                                          insensitive):
-    from floatmoor.simulation.coupled_run import run_coupled
-
-    monkeypatch.setattr(la, "estimate_error_along", _fixed_estimate((0.02, 0.05)))
-    case = load_case(BUOY, BUOY_PROBED)
-    with pytest.raises(la.LineAccuracyError, match=r"line 'line1' \(dynamic\).* 5 % .*over its "
-                       r"accuracy of 1 %.*lines\.line1\.dynamic\.elements \(about \d+ for order 3"):
-        run_coupled(case, output=tmp_path / "buoy.nc")
-
-
 def test_a_coupled_run_shorter_than_the_probe_says_so(monkeypatch):
     from floatmoor.simulation.coupled_run import run_coupled
 
