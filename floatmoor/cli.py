@@ -198,6 +198,10 @@ def _parser() -> argparse.ArgumentParser:
     hbuild.add_argument("-o", "--output", metavar="PATH.nc",
                         help="database file (default: hydrodb/NAME.nc of the case)")
     hbuild.add_argument("--quiet", action="store_true", help="no progress reports")
+    hbuild.add_argument("--drift", action="store_true",
+                        help="also compute the mean wave drift coefficients (far and near "
+                        "field, with the RAOs of the case's floater and its linearised "
+                        "mooring); added to an up-to-date database without rebuilding it")
     himport = hsub.add_parser(
         "import", help="make a database from WAMIT (.1 .3 .hst .3fk .3sc .out) or WEC-Sim "
         "BEMIO (.h5) files, and check it",

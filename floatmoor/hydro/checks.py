@@ -48,7 +48,8 @@ __all__ = [
     "finer_frequencies",
     "RECIPROCITY_TOLERANCE", "PSD_TOLERANCE", "KRAMERS_KRONIG_TOLERANCE",
     "KERNEL_DECAY_THRESHOLD", "HASKIND_TOLERANCE", "HYDROSTATICS_TOLERANCE",
-    "HASKIND_POINTWISE_REPORT", "NEGLIGIBLE_DOF",
+    "HASKIND_POINTWISE_REPORT", "NEGLIGIBLE_DOF", "check_drift", "DRIFT_TOLERANCE",
+    "drift_differences",
 ]
 
 #: |A_ij - A_ji| and |B_ij - B_ji| relative to the matrix's scale for the pair (see
@@ -71,6 +72,13 @@ HYDROSTATICS_TOLERANCE = 0.01
 #: A DOF whose largest added mass is below this fraction of the largest diagonal added mass
 #: of its kind (translation, rotation) has no hydrodynamics to check (yaw of a cylinder).
 NEGLIGIBLE_DOF = 1e-6
+
+#: Far-field against near-field mean drift in Surge, Sway and Yaw: within 5 % of the peak
+#: (the issue's consistency criterion; docs/theory/hydrodynamics.md#mean-wave-drift).
+DRIFT_TOLERANCE = 0.05
+#: The yaw drift is compared when its peak is at least this fraction of the peak force drift
+#: times the waterplane's length scale sqrt(A_wp) (a body heading into waves has none).
+NEGLIGIBLE_YAW_DRIFT = 1e-3
 
 _DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 
@@ -528,3 +536,37 @@ def describe_failures(results: list[CheckResult]) -> str:
     """``kernel_decay (worst inf, tolerance 1), ...``: the checks named with their values."""
     return ", ".join(f"{r.name} (worst {r.worst:.3g}, tolerance {r.tolerance:.3g})"
                      for r in results)
+
+
+def drift_differences(ds: xr.Dataset) -> dict[str, float]:
+    """max |far - near| / peak |near| of the mean drift, per compared DOF (Surge and Sway
+    against the peak force drift of the two, Yaw against its own peak when not negligible)."""
+    near = ds["mean_drift_near_field"].transpose("omega", "wave_direction",
+                                                 "influenced_dof").values
+    far = ds["mean_drift_far_field"].transpose("omega", "wave_direction",
+                                               "influenced_dof").values
+    force_peak = float(np.abs(near[..., :2]).max())
+    out: dict[str, float] = {}
+    if force_peak > 0.0:
+        for i in (0, 1):
+            out[_DOFS[i]] = float(np.abs(far[..., i] - near[..., i]).max()) / force_peak
+    yaw_peak = float(np.abs(near[..., 5]).max())
+    length = math.sqrt(max(float(ds["waterplane_area"].values), 0.0))
+    if yaw_peak > NEGLIGIBLE_YAW_DRIFT * force_peak * length:
+        out["Yaw"] = float(np.abs(far[..., 5] - near[..., 5]).max()) / yaw_peak
+    return out
+
+
+def check_drift(ds: xr.Dataset) -> CheckResult:
+    """Far-field against near-field mean drift (``hydro check``; not a run's check: a run
+    does not use the drift yet)."""
+    if "mean_drift_near_field" not in ds.variables or "mean_drift_far_field" not in ds.variables:
+        return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no mean drift "
+                                          "coefficients (hydro build --drift adds them)")
+    errors = drift_differences(ds)
+    if not errors:
+        return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no horizontal drift")
+    worst = max(errors.values())
+    detail = "far vs near field, of the peak: " + ", ".join(
+        f"{k} {v:.2%}" for k, v in errors.items())
+    return CheckResult("drift", worst <= DRIFT_TOLERANCE, worst, DRIFT_TOLERANCE, detail)
