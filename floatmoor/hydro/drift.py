@@ -35,6 +35,7 @@ mesh, with the sources kept.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
@@ -254,6 +255,8 @@ class DriftResult:
     kochin_radiation: NDArray[np.complex128]  #: (omega, dof, theta)
     theta: NDArray[np.float64]
     seconds: float
+    #: drift with the further RAOs of :func:`solve_drift`'s ``other_motions``
+    others: list = dataclasses.field(default_factory=list)
 
 
 def kochin_angles(count: int = KOCHIN_ANGLES) -> NDArray[np.float64]:
@@ -283,21 +286,25 @@ def far_field_from_kochin(omega: NDArray, wavenumber: NDArray, directions: NDArr
     kochin_diffraction = kochin_diffraction * factor
     kochin_radiation = kochin_radiation * factor
 
-    ds = xr.Dataset({
-        "kochin_diffraction": (("omega", "wave_direction", "theta"), kochin_diffraction),
-        "kochin_radiation": (("omega", "radiating_dof", "theta"), kochin_radiation),
-        "wavenumber": (("omega",), np.asarray(wavenumber, float)),
-        "water_depth": depth, "rho": rho, "g": g,
-    }, coords={"omega": omega, "wave_direction": directions, "theta": theta,
-               "radiating_dof": list(DOFS)})
-    x = xr.DataArray(motion, dims=("omega", "wave_direction", "radiating_dof"),
-                     coords={"omega": omega, "wave_direction": directions,
-                             "radiating_dof": list(DOFS)})
-    res = far_field_mean_drift_force(x, ds)
     out = np.full((len(omega), len(directions), 6), np.nan)
-    for name, dof in (("drift_force_surge", 0), ("drift_force_sway", 1), ("drift_force_yaw", 5)):
-        values = res[name].values  # (omega, k, l): the mean drift is the diagonal
-        out[:, :, dof] = np.real(np.diagonal(values, axis1=1, axis2=2))
+    for b, beta in enumerate(directions):
+        # one direction at a time: capytaine's function forms every pair of directions (the
+        # cross terms of a bichromatic sea); the mean drift is the diagonal of that matrix
+        ds = xr.Dataset({
+            "kochin_diffraction": (("omega", "wave_direction", "theta"),
+                                   kochin_diffraction[:, b:b + 1]),
+            "kochin_radiation": (("omega", "radiating_dof", "theta"), kochin_radiation),
+            "wavenumber": (("omega",), np.asarray(wavenumber, float)),
+            "water_depth": depth, "rho": rho, "g": g,
+        }, coords={"omega": omega, "wave_direction": [beta], "theta": theta,
+                   "radiating_dof": list(DOFS)})
+        x = xr.DataArray(motion[:, b:b + 1], dims=("omega", "wave_direction", "radiating_dof"),
+                         coords={"omega": omega, "wave_direction": [beta],
+                                 "radiating_dof": list(DOFS)})
+        res = far_field_mean_drift_force(x, ds)
+        for name, dof in (("drift_force_surge", 0), ("drift_force_sway", 1),
+                          ("drift_force_yaw", 5)):
+            out[:, b, dof] = np.real(res[name].values[:, 0, 0])
     return out
 
 
@@ -314,8 +321,8 @@ Progress = Callable[[int, int, float, float], None]
 
 def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
                 depth: float, rho: float, g: float, rotation_center: NDArray,
-                progress: Progress | None = None, theta_count: int = KOCHIN_ANGLES
-                ) -> DriftResult:
+                progress: Progress | None = None, theta_count: int = KOCHIN_ANGLES,
+                other_motions: tuple = ()) -> DriftResult:
     """Solve the radiation and diffraction problems with capytaine's indirect method (sources
     kept) and compute both drift routes.
 
@@ -331,6 +338,9 @@ def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
         Water depth (inf: deep), density, gravity.
     progress
         Called after each frequency with (done, total, omega, seconds).
+    other_motions
+        Further RAOs (omega, direction, 6) to compute the drift with from the same solves
+        (the result's ``others``: a DriftResult each, without Kochin functions).
     """
     import capytaine as cpt
     from capytaine.bem.airy_waves import airy_waves_potential
@@ -350,7 +360,8 @@ def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
     theta = kochin_angles(theta_count)
     h_diff = np.zeros((n_w, n_b, len(theta)), complex)
     h_rad = np.zeros((n_w, 6, len(theta)), complex)
-    terms = np.zeros((n_w, n_b, 5, 6))
+    motions = [motion, *other_motions]
+    terms = np.zeros((len(motions), n_w, n_b, 5, 6))
     wavenumbers = np.zeros(n_w)
     common = dict(water_depth=depth, rho=rho, g=g)
     dof_motion = _dof_motion(hull, rotation_center)
@@ -373,25 +384,32 @@ def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
             h_rad[i, j] = compute_kochin(results[j], theta)
         for b, problem in enumerate(problems):
             h_diff[i, b] = compute_kochin(results[6 + b], theta)
-            x = motion[i, b]
-            total_phi = airy_waves_potential(points, problem) + phi[:, 6 + b] + phi[:, :6] @ x
-            total_grad = np.stack([op @ total_phi for op in hull.gradient], axis=1)
-            # tangential: the surface gradient of the potential; normal: the body's velocity
-            normal_velocity = -1j * omega * (dof_motion @ x)
-            nn = hull.normals
-            total_grad = total_grad - np.sum(total_grad * nn, axis=1)[:, None] * nn \
-                + normal_velocity[:, None] * nn
-            terms[i, b] = near_field_drift(
-                hull, omega=float(omega), rho=rho, g=g, rotation_center=rotation_center,
-                motion=x, potential=total_phi[:n_h], velocity=total_grad,
-                waterline_potential=total_phi[n_h:])
+            for s_, moving in enumerate(motions):
+                x = moving[i, b]
+                total_phi = airy_waves_potential(points, problem) + phi[:, 6 + b] \
+                    + phi[:, :6] @ x
+                total_grad = np.stack([op @ total_phi for op in hull.gradient], axis=1)
+                # tangential: the surface gradient of the potential; normal: the body's
+                normal_velocity = -1j * omega * (dof_motion @ x)  # velocity
+                nn = hull.normals
+                total_grad = total_grad - np.sum(total_grad * nn, axis=1)[:, None] * nn \
+                    + normal_velocity[:, None] * nn
+                terms[s_, i, b] = near_field_drift(
+                    hull, omega=float(omega), rho=rho, g=g, rotation_center=rotation_center,
+                    motion=x, potential=total_phi[:n_h], velocity=total_grad,
+                    waterline_potential=total_phi[n_h:])
         if progress is not None:
             progress(i + 1, n_w, float(omega), time.perf_counter() - t0)
-    far = far_field_from_kochin(np.asarray(omegas, float), wavenumbers,
-                                np.asarray(directions, float), theta, h_diff, h_rad, motion,
-                                depth=depth, rho=rho, g=g)
-    return DriftResult(far, terms.sum(axis=2), terms, h_diff, h_rad, theta,
-                       time.perf_counter() - start)
+    seconds = time.perf_counter() - start
+    out = []
+    for s_, moving in enumerate(motions):
+        far = far_field_from_kochin(np.asarray(omegas, float), wavenumbers,
+                                    np.asarray(directions, float), theta, h_diff, h_rad,
+                                    moving, depth=depth, rho=rho, g=g)
+        out.append(DriftResult(far, terms[s_].sum(axis=2), terms[s_], h_diff, h_rad, theta,
+                               seconds))
+    out[0].others = out[1:]
+    return out[0]
 
 
 def _dof_motion(hull: Hull, rotation_center: NDArray) -> NDArray[np.float64]:
