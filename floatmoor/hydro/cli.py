@@ -127,7 +127,8 @@ def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
 def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
     """Build the database of a checked case into its locked output file (with ``--drift``,
     its mean drift coefficients too: added to an up-to-date database without rebuilding)."""
-    from floatmoor.hydro.checks import check_drift, run_checks
+    from floatmoor.hydro.checks import run_checks
+    from floatmoor.hydro.drift_checks import check_drift
     from floatmoor.hydro.database import (
         HydroDatabaseError, build_database, load_for_case, write_database,
     )
@@ -178,7 +179,7 @@ def _drift_current(ds, case) -> bool:
 
 def _drift_rows(ds) -> list:
     """The drift check row when the database holds drift coefficients."""
-    from floatmoor.hydro.checks import check_drift
+    from floatmoor.hydro.drift_checks import check_drift
     from floatmoor.hydro.drift_build import has_drift
 
     return [check_drift(ds)] if has_drift(ds) else []

@@ -10,7 +10,7 @@ import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
-from floatmoor.hydro.checks import DRIFT_TOLERANCE, check_drift, drift_differences
+from floatmoor.hydro.drift_checks import DRIFT_TOLERANCE, check_drift, drift_differences
 from floatmoor.hydro.complex_values import merge_complex
 from floatmoor.hydro.database import read_database
 from floatmoor.hydro.drift_build import DRIFT_VARIABLES, drift_is_current, has_drift
