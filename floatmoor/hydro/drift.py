@@ -49,9 +49,10 @@ __all__ = ["KOCHIN_ANGLES", "DRIFT_TERMS", "Hull", "hull_panels", "near_field_dr
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 #: Angles of the Kochin functions over [0, 2 pi] (plus one step beyond each end, as
-#: capytaine's far-field function needs the wave directions strictly inside): a 1 degree step.
-#: The far-field integrand over theta is smooth; on the buoy 360 and 720 angles gave the same
-#: surge drift to 1e-4 relative.
+#: capytaine's far-field function needs the wave directions strictly inside): a 1 degree step,
+#: over which the Kochin functions of the tested bodies (kR up to 7) vary smoothly; with it the
+#: far field met the MacCamy-Fuchs drift and the fixed body's energy identity to the mesh's
+#: accuracy (tests/hydro/test_drift.py). Not refined further: untested.
 KOCHIN_ANGLES = 361
 #: The near-field terms, in the order of the ``near_field_terms`` attribute.
 DRIFT_TERMS = ("waterline", "velocity", "pressure_gradient", "rotation", "hydrostatic")
@@ -346,6 +347,8 @@ def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
     from capytaine.bem.airy_waves import airy_waves_potential
     from capytaine.post_pro.kochin import compute_kochin
 
+    from floatmoor.hydro.build import _clear_capytaine_caches
+
     start = time.perf_counter()
     solver = cpt.BEMSolver(green_function=cpt.Delhommeau(
         finite_depth_prony_decomposition_method="python"), method="indirect")
@@ -398,6 +401,7 @@ def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
                     hull, omega=float(omega), rho=rho, g=g, rotation_center=rotation_center,
                     motion=x, potential=total_phi[:n_h], velocity=total_grad,
                     waterline_potential=total_phi[n_h:])
+        _clear_capytaine_caches()  # the block-circulant cache grows per frequency
         if progress is not None:
             progress(i + 1, n_w, float(omega), time.perf_counter() - t0)
     seconds = time.perf_counter() - start
