@@ -85,3 +85,27 @@ def test_rao_command_does_not_replace_other_files(tmp_path, capsys):
     before = other.read_bytes()
     assert main(["rao", str(DEEPCWIND_CASE), "-o", str(other)]) == 2
     assert other.read_bytes() == before
+
+
+def test_rao_command_refuses_a_database_without_excitation(tmp_path, capsys):
+    """The imported OC4 WAMIT database has no excitation file: exit 2, one line, nothing
+    written."""
+    from tests.hydro.conftest import REPO
+
+    out = tmp_path / "rao.nc"
+    case = REPO / "cases" / "deepcwind" / "deepcwind_free_decay_wamit.toml"
+    assert main(["rao", str(case), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("floatmoor: error: ") and err.count("\n") == 1
+    assert "excitation" in err
+    assert not out.exists()
+
+
+def test_rao_command_refuses_a_case_without_floater(tmp_path, capsys):
+    from tests.hydro.conftest import REPO
+
+    case = next((REPO / "cases" / "lindahl").glob("*.toml"))
+    out = tmp_path / "rao.nc"
+    assert main(["rao", str(case), "-o", str(out)]) == 2
+    assert "[floater] and [hydro]" in capsys.readouterr().err
+    assert not out.exists()
