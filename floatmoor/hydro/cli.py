@@ -632,6 +632,13 @@ def _info(args: argparse.Namespace) -> int:
           f"{float(ds['waterplane_area']):.6g} m^2, rotation centre "
           f"{', '.join(f'{v:g}' for v in ds['rotation_center'].values)} m")
     _say(_state_space_info(ds))
+    from floatmoor.hydro.drift_build import has_drift
+
+    if has_drift(ds):
+        print(f"  mean drift: far and near field with the recorded RAOs ('hydro build --drift', "
+              f"{_drift_seconds(ds)} s); 'hydro check' compares them")
+    else:
+        print("  mean drift: none ('floatmoor hydro build CASE --drift' adds it)")
     return EXIT_OK
 
 

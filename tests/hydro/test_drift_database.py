@@ -90,3 +90,13 @@ def test_drift_check_not_applicable_without_drift(deepcwind_db):
     ds = deepcwind_db.drop_vars([v for v in DRIFT_VARIABLES if v in deepcwind_db.variables])
     result = check_drift(ds)
     assert not result.applicable and result.passed
+
+
+def test_hydro_info_says_whether_the_drift_is_held(capsys, monkeypatch):
+    from tests.hydro.conftest import REPO
+
+    monkeypatch.chdir(REPO)
+    assert main(["hydro", "info", "cylinder_buoy"]) == 0
+    assert "mean drift: far and near field" in capsys.readouterr().out
+    assert main(["hydro", "info", "deepcwind"]) == 0
+    assert "mean drift: none" in capsys.readouterr().out
