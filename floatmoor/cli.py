@@ -9,7 +9,8 @@ quantities of interest, :mod:`floatmoor.uq.run`; a failed run of a quadrature de
 ``floatmoor hydro import FILE... -o PATH`` makes one from WAMIT or BEMIO files,
 ``floatmoor hydro check NAME`` checks one (all three exit 1 when a check fails), ``floatmoor
 hydro info NAME`` describes it and where its data came from, and ``floatmoor hydro
-fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor import moordyn DECK -o CASE.toml`` and
+fit-state-space NAME`` adds a state-space realisation of its radiation kernel; ``floatmoor rao
+CASE -o RAO.nc`` writes the floater's RAOs with its mooring (:mod:`floatmoor.hydro.rao_cli`); ``floatmoor import moordyn DECK -o CASE.toml`` and
 ``floatmoor export moordyn CASE -o DECK.dat`` convert MoorDyn input files, ``floatmoor
 import orcaflex MODEL.yml -o CASE.toml`` reads the mooring of an OrcaFlex text data file; ``floatmoor animate
 RUN.nc -o OUT.gif`` and ``floatmoor vtk RUN.nc -o DIR`` draw a run's line shapes
@@ -185,6 +186,9 @@ def _parser() -> argparse.ArgumentParser:
                     help="start the runs afresh: an existing DIR/runs.nc is moved aside to "
                     "runs.nc.bak-N (never deleted) instead of resumed")
     uq.add_argument("--quiet", action="store_true", help="no progress reports")
+    from floatmoor.hydro.rao_cli import add_rao_parser
+
+    add_rao_parser(sub, add_case)
     hydro = sub.add_parser("hydro", help="hydrodynamic (BEM) databases of floaters")
     hsub = hydro.add_subparsers(dest="hydro_command", required=True)
     hbuild = hsub.add_parser("build", help="run capytaine for a case's [floater] and [hydro]")
@@ -194,6 +198,10 @@ def _parser() -> argparse.ArgumentParser:
     hbuild.add_argument("-o", "--output", metavar="PATH.nc",
                         help="database file (default: hydrodb/NAME.nc of the case)")
     hbuild.add_argument("--quiet", action="store_true", help="no progress reports")
+    hbuild.add_argument("--drift", action="store_true",
+                        help="also compute the mean wave drift coefficients (far and near "
+                        "field, with the RAOs of the case's floater and its linearised "
+                        "mooring); added to an up-to-date database without rebuilding it")
     himport = hsub.add_parser(
         "import", help="make a database from WAMIT (.1 .3 .hst .3fk .3sc .out) or WEC-Sim "
         "BEMIO (.h5) files, and check it",
@@ -332,6 +340,10 @@ def _command(args: argparse.Namespace) -> int:
             from floatmoor.hydro.cli import hydro_command
 
             return hydro_command(args)
+        if args.command == "rao":
+            from floatmoor.hydro.rao_cli import rao_command
+
+            return rao_command(args)
         if args.command in ("report", "compare"):
             return args.report_handler(args)
         if args.command in ("import", "export"):

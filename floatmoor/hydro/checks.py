@@ -48,8 +48,7 @@ __all__ = [
     "finer_frequencies",
     "RECIPROCITY_TOLERANCE", "PSD_TOLERANCE", "KRAMERS_KRONIG_TOLERANCE",
     "KERNEL_DECAY_THRESHOLD", "HASKIND_TOLERANCE", "HYDROSTATICS_TOLERANCE",
-    "HASKIND_POINTWISE_REPORT", "NEGLIGIBLE_DOF",
-]
+    "HASKIND_POINTWISE_REPORT", "NEGLIGIBLE_DOF", ]
 
 #: |A_ij - A_ji| and |B_ij - B_ji| relative to the matrix's scale for the pair (see
 #: check_symmetry). Panel methods satisfy reciprocity only to discretisation error; 1 % of the

@@ -125,11 +125,19 @@ def _database_output(args: argparse.Namespace, case, default: Path) -> Path:
 
 
 def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
-    """Build the database of a checked case into its locked output file."""
+    """Build the database of a checked case into its locked output file (with ``--drift``,
+    its mean drift coefficients too: added to an up-to-date database without rebuilding)."""
     from floatmoor.hydro.checks import run_checks
+    from floatmoor.hydro.drift_checks import check_drift
     from floatmoor.hydro.database import (
         HydroDatabaseError, build_database, load_for_case, write_database,
     )
+
+    def progress(done: int, total: int, omega: float, seconds: float, what: str = "") -> None:
+        if not args.quiet:
+            label = "inf" if math.isinf(omega) else f"{omega:.4g}"
+            print(f"floatmoor: hydro {case.hydro.database}{what}: {done} / {total} frequencies "
+                  f"(omega = {label} rad/s, {seconds:.2f} s)", file=sys.stderr, flush=True)
 
     if output.exists() and not args.force:
         try:
@@ -137,18 +145,23 @@ def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
         except HydroDatabaseError as err:
             print(f"floatmoor: rebuilding: {err}", file=sys.stderr)
         else:
+            if args.drift and not _drift_current(ds, case):
+                ds = _with_drift(ds, case, progress)
+                results = run_checks(ds) + [check_drift(ds)]
+                _record_checks(ds, results)
+                write_database(ds, output)
+                print(f"{output}: up to date for {args.case}; mean drift added in "
+                      f"{_drift_seconds(ds)} s")
+                return _report_build_checks(output, ds, results, case, "drift added")
             print(f"{output}: up to date for {args.case}; nothing to do (--force rebuilds)")
             _report_mesh(ds, warn=False)
-            return _report_build_checks(output, ds, run_checks(ds), case, "up to date")
-
-    def progress(done: int, total: int, omega: float, seconds: float) -> None:
-        if not args.quiet:
-            label = "inf" if math.isinf(omega) else f"{omega:.4g}"
-            print(f"floatmoor: hydro {case.hydro.database}: {done} / {total} frequencies "
-                  f"(omega = {label} rad/s, {seconds:.2f} s)", file=sys.stderr, flush=True)
+            return _report_build_checks(output, ds, run_checks(ds) + _drift_rows(ds), case,
+                                        "up to date")
 
     ds = build_database(case, progress=progress)
-    results = run_checks(ds)
+    if args.drift:
+        ds = _with_drift(ds, case, progress)
+    results = run_checks(ds) + _drift_rows(ds)
     _record_checks(ds, results)
     write_database(ds, output)
     print(f"{output}: {ds.attrs['hull_panels']} hull + {ds.attrs['lid_panels']} lid panels "
@@ -156,6 +169,43 @@ def _build_locked(args: argparse.Namespace, case, output: Path) -> int:
           f"{ds.sizes['wave_direction']} directions, built in {ds.attrs['build_seconds']:.1f} s")
     _report_mesh(ds, warn=True)
     return _report_build_checks(output, ds, results, case, "as built")
+
+
+def _drift_current(ds, case) -> bool:
+    from floatmoor.hydro.drift_build import drift_is_current
+
+    return drift_is_current(ds, case)
+
+
+def _drift_rows(ds) -> list:
+    """The drift check row when the database holds drift coefficients."""
+    from floatmoor.hydro.drift_checks import check_drift
+    from floatmoor.hydro.drift_build import has_drift
+
+    return [check_drift(ds)] if has_drift(ds) else []
+
+
+def _drift_seconds(ds) -> str:
+    try:
+        return f"{float(json.loads(ds.attrs['drift_json'])['drift_seconds']):.1f}"
+    except (KeyError, TypeError, ValueError):
+        return "?"
+
+
+def _with_drift(ds, case, progress):
+    """The database with the case's mean drift coefficients (``hydro build --drift``)."""
+    from floatmoor.hydro.database import HydroDatabaseError, has_excitation
+    from floatmoor.hydro.drift_build import add_drift, drift_for_case
+
+    if not has_excitation(ds):
+        raise HydroDatabaseError(f"{case.source}: --drift needs wave excitation forces in "
+                                 "the database")
+
+    def step(done: int, total: int, omega: float, seconds: float) -> None:
+        progress(done, total, omega, seconds, " drift")
+
+    result, x, conditions = drift_for_case(case, ds, progress=step)
+    return add_drift(ds, result, x, conditions)
 
 
 def _report_mesh(ds, *, warn: bool) -> None:
@@ -196,9 +246,16 @@ def _report_build_checks(path: Path, ds, results, case, note: str) -> int:
 
     accepted = case.hydro.accept_failed_checks
     print(_checks_table(path, ds, note, results, accepted))
-    refused = [r for r in results if not r.passed and r.name not in accepted]
+    drift = [r for r in results if r.name == "drift" and not r.passed]
+    if drift:  # runs do not use the drift coefficients: a disagreement is reported only
+        print(f"floatmoor: warning: {path}: mean drift far and near field differ by "
+              f"{drift[0].worst:.1%} of the peak (tolerance {drift[0].tolerance:.0%}): finer "
+              "panels near the waterline bring them together (docs/guide/hydro_databases.md"
+              "#mean-drift)", file=sys.stderr)
+    refused = [r for r in results if not r.passed and r.name not in accepted
+               and r.name != "drift"]
     if refused:
-        names = ", ".join(f'"{r.name}"' for r in results if not r.passed)
+        names = ", ".join(f'"{r.name}"' for r in results if not r.passed and r.name != "drift")
         print(f"floatmoor: hydro build: {path} is written but fails its checks: "
               f"{describe_failures(refused)}; a run refuses it unless the case accepts them "
               f"([hydro] accept_failed_checks = [{names}])", file=sys.stderr)
@@ -388,7 +445,7 @@ def _check(args: argparse.Namespace) -> int:
     from floatmoor.hydro.checks import check_values, run_checks
 
     path, ds, note = _open(args.database)
-    results = [check_values(ds), *run_checks(ds)]
+    results = [check_values(ds), *run_checks(ds), *_drift_rows(ds)]
     ok = all(r.passed for r in results)
     if args.json:
         print(json.dumps({"database": str(path), "passed": ok, "staleness": note,
@@ -575,6 +632,13 @@ def _info(args: argparse.Namespace) -> int:
           f"{float(ds['waterplane_area']):.6g} m^2, rotation centre "
           f"{', '.join(f'{v:g}' for v in ds['rotation_center'].values)} m")
     _say(_state_space_info(ds))
+    from floatmoor.hydro.drift_build import has_drift
+
+    if has_drift(ds):
+        print(f"  mean drift: far and near field with the recorded RAOs ('hydro build --drift', "
+              f"{_drift_seconds(ds)} s); 'hydro check' compares them")
+    else:
+        print("  mean drift: none ('floatmoor hydro build CASE --drift' adds it)")
     return EXIT_OK
 
 

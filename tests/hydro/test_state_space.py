@@ -204,7 +204,9 @@ def test_fit_state_space_command_adds_variables_without_staling(tmp_path, capsys
     after = read_database(path)
     # nothing else changed, and the database is still up to date for its case
     for name in before.variables:
-        assert np.array_equal(before[name].values, after[name].values), name
+        values = before[name].values  # the far-field drift holds NaN for Heave, Roll, Pitch
+        assert np.array_equal(values, after[name].values,
+                              equal_nan=values.dtype.kind == "f"), name
         assert before[name].attrs == after[name].attrs, name
     assert {k: v for k, v in after.attrs.items() if not k.startswith("state_space_")} == \
         before.attrs

@@ -1,0 +1,148 @@
+"""Mean drift coefficients of a case's floater, stored in its database
+(``floatmoor hydro build CASE --drift``; docs/guide/hydro_databases.md#mean-drift).
+
+:func:`drift_for_case` computes the RAOs the drift uses (:func:`floatmoor.hydro.rao.rao_for_case`:
+the case's mass, hydrostatics, its lines' linearised stiffness), meshes the hull exactly as
+the database's build did (:func:`floatmoor.hydro.build.checked_mesh`), and runs
+:func:`floatmoor.hydro.drift.solve_drift`. :func:`add_drift` puts the result into the
+database:
+
+* ``mean_drift_near_field`` (omega, wave_direction, influenced_dof): all six DOFs;
+* ``mean_drift_far_field`` (same dims): Surge, Sway, Yaw; NaN for Heave, Roll, Pitch, which
+  the momentum route does not give;
+* ``mean_drift_near_field_terms`` (drift_term, omega, wave_direction, influenced_dof);
+* ``drift_rao`` (complex, omega, wave_direction, radiating_dof): the motions used;
+
+with the conditions (mass matrix, stiffnesses, damping, Kochin angles, seconds) in the
+attribute ``drift_json`` and their hash, with the database's ``inputs_hash``, in
+``drift_inputs_hash`` (:func:`drift_inputs_hash`): a later change of the case's mass or
+mooring makes the drift stale, not the first-order database.
+
+Forces in N/m^2 and moments about the rotation centre in N m/m^2, per unit wave amplitude
+squared; the mean force in a regular wave of amplitude a is a^2 times the coefficient.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from floatmoor.case.schema import Case
+from floatmoor.hydro.drift import DRIFT_TERMS, DriftResult, solve_drift
+
+__all__ = ["DRIFT_VARIABLES", "drift_for_case", "add_drift", "has_drift", "drift_inputs_hash",
+           "drift_conditions", "drift_is_current"]
+
+_UNITS = "N/m^2 (Surge, Sway, Heave), N m/m^2 (Roll, Pitch, Yaw)"
+_WHAT = ("mean wave drift force and moment about the rotation centre per unit wave amplitude "
+         "squared")
+DRIFT_VARIABLES: dict[str, dict[str, str]] = {
+    "mean_drift_near_field": {
+        "long_name": f"{_WHAT}, near field (pressure integration, Pinkster)", "units": _UNITS},
+    "mean_drift_far_field": {
+        "long_name": f"{_WHAT}, far field (momentum, Maruo-Newman, capytaine); Surge, Sway "
+                     "and Yaw only (NaN for Heave, Roll, Pitch)", "units": _UNITS},
+    "mean_drift_near_field_terms": {
+        "long_name": f"terms of the near-field {_WHAT}", "units": _UNITS},
+    "drift_rao": {
+        "long_name": "RAO the drift coefficients were computed with (with the mooring's "
+                     "linearised stiffness)",
+        "units": "m/m (Surge, Sway, Heave), rad/m (Roll, Pitch, Yaw)"},
+}
+
+
+def has_drift(ds: xr.Dataset) -> bool:
+    """Whether the database holds mean drift coefficients."""
+    return "mean_drift_near_field" in ds.variables
+
+
+def drift_conditions(case: Case, ds: xr.Dataset, linear_damping=None) -> tuple[Any, dict]:
+    """(RAO, conditions) of the case's floater on this database (mooring included)."""
+    from floatmoor.hydro.rao import rao_for_case
+
+    return rao_for_case(case, ds, mooring=True, linear_damping=linear_damping)
+
+
+def drift_inputs_hash(ds: xr.Dataset, conditions: dict[str, Any]) -> str:
+    """SHA-256 of the database's ``inputs_hash`` and the RAO conditions (the case file's
+    name left out: the same floater in another case file gives the same drift)."""
+    kept = {k: v for k, v in conditions.items() if k != "case_file"}
+    text = json.dumps({"database": ds.attrs.get("inputs_hash", ""), "conditions": kept},
+                      sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def drift_is_current(ds: xr.Dataset, case: Case) -> bool:
+    """Whether the database holds drift coefficients for the case's current mass and
+    mooring."""
+    if not has_drift(ds):
+        return False
+    _, conditions = drift_conditions(case, ds)
+    return ds.attrs.get("drift_inputs_hash") == drift_inputs_hash(ds, conditions)
+
+
+def drift_for_case(case: Case, ds: xr.Dataset, *, progress=None) -> tuple[DriftResult, Any,
+                                                                            dict[str, Any]]:
+    """Drift coefficients of the case's floater on its (first-order) database.
+
+    Returns
+    -------
+    (DriftResult, RAO DataArray, conditions)
+    """
+    import logging
+
+    import capytaine as cpt
+
+    from floatmoor.hydro.build import _seed_prony, checked_mesh
+
+    assert case.floater is not None and case.hydro is not None
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    _seed_prony()
+    x, conditions = drift_conditions(case, ds)
+    env, hydro = case.environment, case.hydro
+    depth = math.inf if hydro.infinite_depth else env.water_depth
+    checked = checked_mesh(case.floater, hydro, env)
+    ref = np.asarray(case.floater.reference_point, float)
+    body = cpt.FloatingBody(mesh=checked.mesh.hull, lid_mesh=checked.mesh.lid,
+                            dofs=cpt.rigid_body_dofs(rotation_center=ref), center_of_mass=ref,
+                            name=case.floater.name)
+    motion = x.transpose("omega", "wave_direction", "radiating_dof").values
+    result = solve_drift(body, omegas=ds["omega"].values, directions=ds["wave_direction"].values,
+                         motion=motion, depth=depth, rho=env.water_density, g=env.gravity,
+                         rotation_center=ref, progress=progress)
+    return result, x, conditions
+
+
+def add_drift(ds: xr.Dataset, result: DriftResult, x, conditions: dict[str, Any]) -> xr.Dataset:
+    """The database with the drift variables and attributes (replacing earlier ones)."""
+    dims = ("omega", "wave_direction", "influenced_dof")
+    out = ds.drop_vars([v for v in DRIFT_VARIABLES if v in ds.variables])
+    out = out.drop_dims([d for d in ("drift_term",) if d in out.dims])
+    values = x.transpose("omega", "wave_direction", "radiating_dof").values
+    new = {
+        "mean_drift_near_field": (dims, result.near_field),
+        "mean_drift_far_field": (dims, result.far_field),
+        "mean_drift_near_field_terms": (("drift_term",) + dims,
+                                        np.moveaxis(result.near_field_terms, 2, 0)),
+        "drift_rao": (("complex", "omega", "wave_direction", "radiating_dof"),
+                      np.stack([values.real, values.imag])),
+    }
+    for name, (d, v) in new.items():
+        out[name] = xr.DataArray(v, dims=d, attrs=DRIFT_VARIABLES[name])
+    out = out.assign_coords(drift_term=("drift_term", np.array(DRIFT_TERMS),
+                                        {"long_name": "near-field term (I waterline, II "
+                                         "velocity, III pressure gradient, IV rotation, V "
+                                         "hydrostatic)", "units": "1"}))
+    record = {**conditions, "kochin_angles": int(len(result.theta)),
+              "drift_seconds": float(result.seconds), "bem_method": "indirect",
+              "near_field_terms": list(DRIFT_TERMS),
+              "far_field": "capytaine.post_pro.mean_drift_force.far_field_mean_drift_force, "
+                           "Kochin functions / tanh(kh) in finite depth"}
+    out.attrs["drift_json"] = json.dumps(record)
+    out.attrs["drift_inputs_hash"] = drift_inputs_hash(ds, conditions)
+    return out

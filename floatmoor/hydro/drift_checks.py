@@ -1,0 +1,94 @@
+"""The ``drift`` row of ``floatmoor hydro check``: far-field against near-field mean drift
+(docs/guide/hydro_databases.md#mean-drift).
+
+Surge and sway are compared against the peak far-field force drift, yaw against its own peak
+when it is not negligible; frequencies where the near field is ill-conditioned (its terms
+cancel to less than 1/:data:`DRIFT_CONDITIONING` of their magnitudes, near a lightly damped
+resonance) are left out and named. Runs do not use the drift yet, so the row is not among the
+checks a run enforces (:func:`floatmoor.hydro.checks.run_checks`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from floatmoor.hydro.checks import CheckResult, _frequency_list
+
+__all__ = ["DRIFT_TOLERANCE", "DRIFT_CONDITIONING", "NEGLIGIBLE_YAW_DRIFT",
+           "drift_conditioning", "drift_differences", "check_drift"]
+
+#: Far-field against near-field mean drift in Surge, Sway and Yaw: within 5 % of the peak
+#: (docs/guide/hydro_databases.md#mean-drift).
+DRIFT_TOLERANCE = 0.05
+#: The yaw drift is compared when its peak is at least this fraction of the peak force drift
+#: times the waterplane's length scale sqrt(A_wp) (a body heading into waves has none).
+NEGLIGIBLE_YAW_DRIFT = 1e-3
+#: The near field is compared only where its terms cancel to no less than 1/10 of the sum of
+#: their magnitudes: a 0.5 % error in the terms is then at most 5 % of the drift. Near a
+#: lightly damped resonance the terms grow with the motions while the drift does not (the
+#: buoy's pitch at 5.3-6.5 rad/s: 1/15 to 1/150).
+DRIFT_CONDITIONING = 10.0
+
+_DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+
+
+def drift_conditioning(ds: xr.Dataset) -> np.ndarray:
+    """Per (omega, wave_direction, DOF): the near field's sum of |terms| over |their sum|,
+    its loss to cancellation (an error e in the terms is e times this in the drift)."""
+    terms = ds["mean_drift_near_field_terms"].transpose(
+        "drift_term", "omega", "wave_direction", "influenced_dof").values
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.abs(terms).sum(axis=0) / np.abs(terms.sum(axis=0))
+
+
+def drift_differences(ds: xr.Dataset) -> tuple[dict[str, float], np.ndarray]:
+    """max |far - near| / peak |far| of the mean drift per compared DOF (Surge and Sway
+    against the peak far-field force drift of the two, Yaw against its own peak when not
+    negligible), over the frequencies where the near field is well conditioned
+    (:data:`DRIFT_CONDITIONING` at every direction and compared DOF where the drift matters);
+    and the frequencies left out."""
+    near = ds["mean_drift_near_field"].transpose("omega", "wave_direction",
+                                                 "influenced_dof").values
+    far = ds["mean_drift_far_field"].transpose("omega", "wave_direction",
+                                               "influenced_dof").values
+    conditioning = drift_conditioning(ds) if "mean_drift_near_field_terms" in ds.variables \
+        else np.ones_like(near)
+    force_peak = float(np.abs(far[..., :2]).max())
+    yaw_peak = float(np.abs(far[..., 5]).max())
+    length = math.sqrt(max(float(ds["waterplane_area"].values), 0.0))
+    compared = [i for i in (0, 1) if force_peak > 0.0]
+    if yaw_peak > NEGLIGIBLE_YAW_DRIFT * force_peak * length:
+        compared.append(5)
+    peaks = {0: force_peak, 1: force_peak, 5: yaw_peak}
+    bad = np.zeros(near.shape[0], bool)
+    for i in compared:
+        matters = np.maximum(np.abs(near[..., i]), np.abs(far[..., i])) > 0.01 * peaks[i]
+        bad |= np.any(matters & ~(conditioning[..., i] <= DRIFT_CONDITIONING), axis=1)
+    out: dict[str, float] = {}
+    for i in compared:
+        diff = np.abs(far[~bad, :, i] - near[~bad, :, i])
+        out[_DOFS[i]] = float(diff.max()) / peaks[i] if diff.size else math.nan
+    return out, ds["omega"].values[bad]
+
+
+def check_drift(ds: xr.Dataset) -> CheckResult:
+    """Far-field against near-field mean drift (``hydro check``; not a run's check: a run
+    does not use the drift yet)."""
+    if "mean_drift_near_field" not in ds.variables or "mean_drift_far_field" not in ds.variables:
+        return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no mean drift "
+                                          "coefficients (hydro build --drift adds them)")
+    errors, left_out = drift_differences(ds)
+    if not errors:
+        return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no horizontal drift")
+    worst = max(errors.values())
+    detail = "far vs near field, of the peak: " + ", ".join(
+        f"{k} {v:.2%}" for k, v in errors.items())
+    if len(left_out):
+        detail += (f"; {len(left_out)} of {ds.sizes['omega']} frequencies left out, where the "
+                   f"near field cancels to less than 1/{DRIFT_CONDITIONING:g} of its terms "
+                   f"(resonant motions): {_frequency_list(left_out)} rad/s")
+    return CheckResult("drift", bool(worst <= DRIFT_TOLERANCE), worst, DRIFT_TOLERANCE,
+                       detail)
