@@ -18,7 +18,7 @@ from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch, hermite_mid
 from floatmoor.mooring.dg.batch import DynamicLineBatch
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.simulation.assembly import assemble
-from floatmoor.simulation.coupled import MooredBody
+from floatmoor.simulation.coupled import ONE_INTERVAL_LIMIT, MooredBody
 from floatmoor.simulation.coupled_run import settings_from_case
 from tests.conftest import CASES
 from tests.oracles import dg_numpy as oracle
@@ -180,6 +180,37 @@ def test_implicit_middle_state_is_interpolated(monkeypatch: pytest.MonkeyPatch) 
     scale = e[:, 2].max()
     assert e[:, 0].max() < MIDDLE_RTOL * scale
     assert e[:, 1].max() > 10.0 * MIDDLE_RTOL * scale  # (the end state would fail)
+
+
+@pytest.mark.parametrize("z", [0.2, 2.0])
+def test_one_interval_only_below_the_dashpot_limit(tmp_path, z: float) -> None:
+    """The model problem of tests/body/test_coupling_stability.py, its line implicit: at
+    Z dt / M = 0.2 it steps over the body step as one interval, at 2 (where the interpolated
+    middle state would be unstable) over the two samples, and both damp a kick."""
+    from floatmoor.body.cummins import CumminsBody
+    from tests.body import test_coupling_stability as stab
+
+    path = tmp_path / "case.toml"
+    path.write_text(stab.CASE.replace("order = 4", 'order = 4\ntime_integration = "implicit"'))
+    case = load_case(path)
+    lt = case.lines[0].line_type
+    dt = z * stab.BODY_MASS / np.sqrt(lt.axial_stiffness * lt.mass_per_length)
+    big = 1e9
+    body = CumminsBody(np.diag([stab.BODY_MASS] + [big] * 5), np.zeros((6, 6)),
+                       np.diag([0.0] + [big] * 5), np.zeros(6), None, dt)
+    moored = MooredBody(body, case.lines, case.environment, case.seabed,
+                        np.array(case.lines[0].fairlead))
+    moored.start(np.zeros(6))
+    assert moored.models[0].implicit is not None
+    assert moored.dashpot_number(0) == pytest.approx(z, rel=0.01)  # (the sag tilts e)
+    assert list(moored._batch.one_interval) == [z <= ONE_INTERVAL_LIMIT]
+    body.static_force = -np.concatenate((moored.line_forces(np.zeros(6))[0][0], np.zeros(3)))
+    body.v[0] = stab.KICK
+    speeds = []
+    for _ in range(25):
+        moored.step()
+        speeds.append(body.v[0])
+    assert np.abs(speeds[20:]).max() <= stab.DECAYED * stab.KICK
 
 
 def test_hermite_middle_matches_the_polynomials() -> None:

@@ -8,9 +8,10 @@ and 2; :meth:`DynamicLineBatch.end_forces` then gives any stage the lines' end f
 state it needs, with the stage's own fairlead velocities (``DynamicLine.end_forces_moving``'s
 operations, ``_batch_kernels.dg_end_forces_batch``).
 
-* An explicit line (and an ``"auto"`` line whose window ends inside the step) runs over both
-  samples, the same kernel steps in the same order as two :meth:`DynamicLine.solve_path`
-  calls (to the last bit), and keeps its exact state at the middle sample.
+* An explicit line (an ``"auto"`` line whose window ends inside the step, an implicit line
+  not in :attr:`DynamicLineBatch.one_interval`) runs over both samples, the same kernel steps
+  in the same order as two :meth:`DynamicLine.solve_path` calls (to the last bit), and keeps
+  its exact state at the middle sample.
 * An implicit line runs over the step as ONE sample interval [t, t + dt] (its fairlead on
   the cubic Hermite curve between the step's ends; its step control may still cut the
   interval): a sample at t + dt / 2 would end an implicit step there, so every body step
@@ -20,7 +21,13 @@ operations, ``_batch_kernels.dg_end_forces_batch``).
   (``_batch_kernels.hermite_middle``, cubic Hermite: :data:`MIDDLE_QUINTIC` says why not
   quintic); the stages 1 and 2 evaluate it with the fairlead at the predicted middle
   sample. It is interpolated even when the step control happened to cut the interval at its
-  middle: the state the stages see does not then jump with the step level.
+  middle: the state the stages see does not then jump with the step level. The
+  interpolated state narrows the coupling's stability range on the line's axial impedance
+  Z (docs/theory/floater.md#coupling-scheme): the model problem of
+  tests/body/test_coupling_stability.py damps a kick as the exact middle state does up to
+  Z dt / M = 0.3, poorly at 0.6 and grows from 0.7, where the exact state is stable to
+  2.785; the coupled run keeps lines beyond 0.3 on the two samples
+  (``simulation.coupled.ONE_INTERVAL_LIMIT``).
 """
 
 from __future__ import annotations
@@ -113,6 +120,9 @@ class DynamicLineBatch:
         self._laid, self._steps = np.zeros((n, 3)), np.zeros((n, 3))
         #: laid length of each line at the end of its last advance [m]
         self.laid_length = np.zeros(n)
+        #: which lines may step implicitly over the body step as one interval (the coupling's
+        #: owner clears those whose body answers them too fast: module docstring)
+        self.one_interval = np.ones(n, dtype=bool)
         shapes: dict[tuple[int, ...], list[int]] = {}
         for j, line in enumerate(self.lines):
             shapes.setdefault(line.r.shape, []).append(j)
@@ -166,7 +176,7 @@ class DynamicLineBatch:
                 g.v_mid[row] = line.v
                 line.solve_path(T[j, 2:3], P[j, 2:3], U[j, 2:3], ff[j, 2:3], af[j, 2:3],
                                 lb[j, 2:3], st[j, 2:3])
-            elif implicit:  # one interval, the middle state interpolated
+            elif implicit and self.one_interval[j]:  # the middle state interpolated
                 self._advance_implicit(j, line, g, row, t_end, pos_end[j], vel_end[j])
                 continue
             else:
@@ -174,7 +184,7 @@ class DynamicLineBatch:
                 P[j, 0] = line.fairlead
                 U[j, 0] = line.fairlead_velocity
                 for first, args in enumerate(self._calls[j]):  # to the middle, to the end
-                    status, index = line.run_kernel(False, *args)
+                    status, index = line.run_kernel(implicit, *args)
                     if status != _k.DG_OK:
                         line.failed_index = 0
                         raise line.unstable(status, float(T[j, first + index]))
