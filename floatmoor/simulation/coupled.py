@@ -61,14 +61,15 @@ _FD_STEP = 1e-4
 #: Equilibrium: residual force below this fraction of the largest static force.
 EQUILIBRIUM_RTOL = 1e-9
 _MAX_NEWTON = 50
-#: Largest Z dt / M (:meth:`MooredBody.dashpot_number`) at which an implicit dynamic line
-#: steps over the body step as one interval, its middle state interpolated
+#: Largest Z dt / M (:meth:`MooredBody.dashpot_number`) at which implicit dynamic lines step
+#: over the body step as one interval, their middle states interpolated
 #: (floatmoor.mooring.dg.batch): on tests/body/test_coupling_stability.py's model problem that
 #: damps a kick as the exact middle state does up to 0.3 (after 20 steps 1.3 % of it left,
-#: against 1.1 %), at 0.5-0.6 it leaves 28-33 % (5 %), from 0.7 it grows. Beyond, the line
-#: keeps the two samples (stable to 2.785). DeepCwind LC34's lines: 0.002; the buoy's chains
-#: 0.36 (explicit by default; implicit, they keep the two samples).
-ONE_INTERVAL_LIMIT = 0.3
+#: against 1.1 %; at 0.1 11.0 % against 11.1 %), at 0.5-0.6 it leaves 28-33 % (5 %), from 0.7
+#: it grows; the buoy on its three chains (implicit), at 0.48, blows up within 0.1 s with one
+#: interval. 0.1: a factor 5 below that. Beyond, the lines keep the two samples (stable to
+#: 2.785). DeepCwind LC34: 0.003.
+ONE_INTERVAL_LIMIT = 0.1
 
 
 def line_force_quasi_static(line: Line, environment: Environment, seabed: Seabed,
@@ -241,8 +242,7 @@ class MooredBody:
         self._batch_index = np.array(dynamic, dtype=np.int64)
         self._batch = DynamicLineBatch([self.models[i] for i in dynamic]) if dynamic else None
         if self._batch is not None:
-            self._batch.one_interval[:] = [self.dashpot_number(i) <= ONE_INTERVAL_LIMIT
-                                           for i in dynamic]
+            self._batch.one_interval[:] = self.dashpot_number() <= ONE_INTERVAL_LIMIT
         self._at_mid = False
         self._solved = [i for i, solo in enumerate(self.independent)
                         if solo and self.models[i] is None]
@@ -251,21 +251,25 @@ class MooredBody:
         self._batch_arms = np.ascontiguousarray(self.arms[self._batch_index])
         self._samples = tuple(np.zeros((len(dynamic), 3)) for _ in range(4))
 
-    def dashpot_number(self, i: int) -> float:
-        """Z dt / M of dynamic line ``i`` in its current state: its axial impedance Z = m c
-        [N s/m] times the body step over the mass M the body opposes to its fairlead along
-        the line's end tangent e (the dashpot acts along it): 1 / M = e J M_b^-1 J^T e, M_b
-        with the infinite-frequency added mass, J the fairlead's velocity from the body's at
-        rest."""
-        line = self.models[i]
-        prm = line.prm
-        impedance = float(prm[_k.P_M] * prm[_k.P_C])
-        tangent = line.r[-1, -1] - line.r[-1, -2]
-        e = tangent / np.linalg.norm(tangent)
-        a = self.arms[i]
-        skew = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-        je = np.hstack((np.eye(3), -skew)).T @ e
-        return impedance * self.body.dt * float(je @ self.body.inverse_mass @ je)
+    def dashpot_number(self) -> float:
+        """Z dt / M of the body on its dynamic lines in their current state: the body step
+        times the largest eigenvalue of M^-1 C, C = sum J^T e Z e^T J over the lines (Z = m c
+        the line's axial impedance [N s/m], e its end tangent, along which the dashpot acts, J
+        the fairlead's velocity from the body's at rest), M with the infinite-frequency added
+        mass. The lines act together: three chains on one buoy are three dashpots in
+        parallel."""
+        damping = np.zeros((6, 6))
+        for i in self._batch_index:
+            line = self.models[i]
+            impedance = float(line.prm[_k.P_M] * line.prm[_k.P_C])
+            tangent = line.r[-1, -1] - line.r[-1, -2]
+            e = tangent / np.linalg.norm(tangent)
+            a = self.arms[i]
+            skew = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+            je = np.hstack((np.eye(3), -skew)).T @ e
+            damping += impedance * np.outer(je, je)
+        rates = np.linalg.eigvals(self.body.inverse_mass @ damping).real
+        return self.body.dt * float(rates.max())
 
     # -- state ---------------------------------------------------------------------------
     def state_arrays(self) -> dict[str, NDArray]:

@@ -182,10 +182,10 @@ def test_implicit_middle_state_is_interpolated(monkeypatch: pytest.MonkeyPatch) 
     assert e[:, 1].max() > 10.0 * MIDDLE_RTOL * scale  # (the end state would fail)
 
 
-@pytest.mark.parametrize("z", [0.2, 2.0])
+@pytest.mark.parametrize("z", [0.08, 2.0])
 def test_one_interval_only_below_the_dashpot_limit(tmp_path, z: float) -> None:
     """The model problem of tests/body/test_coupling_stability.py, its line implicit: at
-    Z dt / M = 0.2 it steps over the body step as one interval, at 2 (where the interpolated
+    Z dt / M = 0.08 it steps over the body step as one interval, at 2 (where the interpolated
     middle state would be unstable) over the two samples, and both damp a kick."""
     from floatmoor.body.cummins import CumminsBody
     from tests.body import test_coupling_stability as stab
@@ -202,15 +202,15 @@ def test_one_interval_only_below_the_dashpot_limit(tmp_path, z: float) -> None:
                         np.array(case.lines[0].fairlead))
     moored.start(np.zeros(6))
     assert moored.models[0].implicit is not None
-    assert moored.dashpot_number(0) == pytest.approx(z, rel=0.01)  # (the sag tilts e)
+    assert moored.dashpot_number() == pytest.approx(z, rel=0.01)  # (the sag tilts e)
     assert list(moored._batch.one_interval) == [z <= ONE_INTERVAL_LIMIT]
     body.static_force = -np.concatenate((moored.line_forces(np.zeros(6))[0][0], np.zeros(3)))
     body.v[0] = stab.KICK
     speeds = []
-    for _ in range(25):
+    for _ in range(40):
         moored.step()
         speeds.append(body.v[0])
-    assert np.abs(speeds[20:]).max() <= stab.DECAYED * stab.KICK
+    assert np.abs(speeds[30:]).max() <= stab.DECAYED * stab.KICK
 
 
 def test_hermite_middle_matches_the_polynomials() -> None:
