@@ -1,5 +1,5 @@
 """Coupled runs: a floating body integrated with the Cummins equation, sub-stepped with its
-mooring lines (docs/theory/floater.md#coupling-scheme; issue 6).
+mooring lines (docs/theory/floater.md#coupling-scheme).
 
 Coupling scheme, per body step [t_n, t_n + dt] (classical RK4 for the body):
 
@@ -7,10 +7,12 @@ Coupling scheme, per body step [t_n, t_n + dt] (classical RK4 for the body):
   order, x(tau) = x_n + v_n tau + a_n tau^2 / 2, and each line with memory (dynamic,
   quasi-dynamic) is advanced along the fairlead path that prediction gives, sampled at
   t_n + dt / 2 and t_n + dt (a dynamic line at its own steps, the fairlead on the cubic Hermite
-  curve between the samples): a dynamic line once per step, before stage 1, over both samples,
-  keeping its state at t_n + dt / 2 for stages 1 and 2 (:mod:`floatmoor.mooring.dg.batch`, the
-  same steps as two advances, the same bits); a quasi-dynamic line and a group to
-  t_n + dt / 2 before stage 1, on to t_n + dt before stage 3;
+  curve between the samples): a dynamic line once per step, before stage 1, providing its
+  state at t_n + dt / 2 for stages 1 and 2 (:mod:`floatmoor.mooring.dg.batch`: an explicit
+  line over both samples, the same steps as two advances, the same bits; an implicit line
+  over [t_n, t_n + dt] as one interval, its middle state interpolated in time); a
+  quasi-dynamic line and a group to t_n + dt / 2 before stage 1, on to t_n + dt before
+  stage 3;
 * every stage takes the lines' forces in the state they have reached (t_n for stage 0,
   t_n + dt / 2 for stages 1 and 2, t_n + dt for stage 3), evaluated with the stage's own
   fairlead velocity (``PathStepper.end_forces_moving``): the dynamic line's end flux
@@ -42,6 +44,7 @@ from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.case.schema import Case, Environment, Line, Seabed
 from floatmoor.errors import CaseError
 from floatmoor.mooring.catenary import solve_catenary
+from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg.batch import DynamicLineBatch
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
@@ -58,6 +61,15 @@ _FD_STEP = 1e-4
 #: Equilibrium: residual force below this fraction of the largest static force.
 EQUILIBRIUM_RTOL = 1e-9
 _MAX_NEWTON = 50
+#: Largest Z dt / M (:meth:`MooredBody.dashpot_number`) at which implicit dynamic lines step
+#: over the body step as one interval, their middle states interpolated
+#: (floatmoor.mooring.dg.batch): on tests/body/test_coupling_stability.py's model problem that
+#: damps a kick as the exact middle state does up to 0.3 (after 20 steps 1.3 % of it left,
+#: against 1.1 %; at 0.1 11.0 % against 11.1 %), at 0.5-0.6 it leaves 28-33 % (5 %), from 0.7
+#: it grows; the buoy on its three chains (implicit), at 0.48, blows up within 0.1 s with one
+#: interval. 0.1: a factor 5 below that. Beyond, the lines keep the two samples (stable to
+#: 2.785). DeepCwind LC34: 0.003.
+ONE_INTERVAL_LIMIT = 0.1
 
 
 def line_force_quasi_static(line: Line, environment: Environment, seabed: Seabed,
@@ -229,6 +241,8 @@ class MooredBody:
         dynamic = [i for i, m in enumerate(self.models) if isinstance(m, DynamicLine)]
         self._batch_index = np.array(dynamic, dtype=np.int64)
         self._batch = DynamicLineBatch([self.models[i] for i in dynamic]) if dynamic else None
+        if self._batch is not None:
+            self._batch.one_interval[:] = self.dashpot_number() <= ONE_INTERVAL_LIMIT
         self._at_mid = False
         self._solved = [i for i, solo in enumerate(self.independent)
                         if solo and self.models[i] is None]
@@ -236,6 +250,26 @@ class MooredBody:
                            if m is not None and not isinstance(m, DynamicLine)]
         self._batch_arms = np.ascontiguousarray(self.arms[self._batch_index])
         self._samples = tuple(np.zeros((len(dynamic), 3)) for _ in range(4))
+
+    def dashpot_number(self) -> float:
+        """Z dt / M of the body on its dynamic lines in their current state: the body step
+        times the largest eigenvalue of M^-1 C, C = sum J^T e Z e^T J over the lines (Z = m c
+        the line's axial impedance [N s/m], e its end tangent, along which the dashpot acts, J
+        the fairlead's velocity from the body's at rest), M with the infinite-frequency added
+        mass. The lines act together: three chains on one buoy are three dashpots in
+        parallel."""
+        damping = np.zeros((6, 6))
+        for i in self._batch_index:
+            line = self.models[i]
+            impedance = float(line.prm[_k.P_M] * line.prm[_k.P_C])
+            tangent = line.r[-1, -1] - line.r[-1, -2]
+            e = tangent / np.linalg.norm(tangent)
+            a = self.arms[i]
+            skew = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+            je = np.hstack((np.eye(3), -skew)).T @ e
+            damping += impedance * np.outer(je, je)
+        rates = np.linalg.eigvals(self.body.inverse_mass @ damping).real
+        return self.body.dt * float(rates.max())
 
     # -- state ---------------------------------------------------------------------------
     def state_arrays(self) -> dict[str, NDArray]:

@@ -1,15 +1,33 @@
-"""The dynamic lines of a coupled run taken together: each advanced once per body step over the
-step's two fairlead samples, their end forces evaluated in one kernel call per stage
-(docs/theory/floater.md#coupling-scheme).
+"""The dynamic lines of a coupled run taken together: each advanced once per body step, their
+end forces evaluated in one kernel call per stage (docs/theory/floater.md#coupling-scheme).
 
 A body step [t, t + dt] predicts one fairlead path for the step, sampled at t + dt / 2 and
-t + dt. :meth:`DynamicLineBatch.advance` takes each line along it in one go, keeping the
+t + dt. :meth:`DynamicLineBatch.advance` takes each line along it in one go and provides the
 line's state at t + dt / 2 (its nodes' positions and velocities) for the Runge-Kutta stages 1
 and 2; :meth:`DynamicLineBatch.end_forces` then gives any stage the lines' end forces in the
 state it needs, with the stage's own fairlead velocities (``DynamicLine.end_forces_moving``'s
-operations, ``_batch_kernels.dg_end_forces_batch``). The kernels run the same steps in the
-same order as two :meth:`DynamicLine.solve_path` calls would (one to each sample): the
-results are the same to the last bit; only the Python work around the kernels is gone.
+operations, ``_batch_kernels.dg_end_forces_batch``).
+
+* An explicit line (an ``"auto"`` line whose window ends inside the step, an implicit line
+  not in :attr:`DynamicLineBatch.one_interval`) runs over both samples, the same kernel steps
+  in the same order as two :meth:`DynamicLine.solve_path` calls (to the last bit), and keeps
+  its exact state at the middle sample.
+* An implicit line runs over the step as ONE sample interval [t, t + dt] (its fairlead on
+  the cubic Hermite curve between the step's ends; its step control may still cut the
+  interval): a sample at t + dt / 2 would end an implicit step there, so every body step
+  cost at least two implicit steps and a Jacobian per step size, where the accuracy asks
+  for about one (DeepCwind LC34, docs/validation/performance.md). Its state at t + dt / 2
+  is interpolated in time, node by node, from its positions and velocities at both ends
+  (``_batch_kernels.hermite_middle``, cubic Hermite: :data:`MIDDLE_QUINTIC` says why not
+  quintic); the stages 1 and 2 evaluate it with the fairlead at the predicted middle
+  sample. It is interpolated even when the step control happened to cut the interval at its
+  middle: the state the stages see does not then jump with the step level. The
+  interpolated state narrows the coupling's stability range on the line's axial impedance
+  Z (docs/theory/floater.md#coupling-scheme): the model problem of
+  tests/body/test_coupling_stability.py damps a kick as the exact middle state does up to
+  Z dt / M = 0.3, poorly at 0.6 and grows from 0.7, where the exact state is stable to
+  2.785, and the moored buoy blows up at 0.48; the coupled run keeps its lines on the two
+  samples beyond 0.1 (``simulation.coupled.ONE_INTERVAL_LIMIT``).
 """
 
 from __future__ import annotations
@@ -19,11 +37,22 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
-from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch
+from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch, hermite_middle
 from floatmoor.mooring.dg.line import DynamicLine
 
-__all__ = ["DynamicLineBatch"]
+__all__ = ["DynamicLineBatch", "MIDDLE_QUINTIC"]
+
+#: Interpolate an implicit line's middle state with the quintic Hermite curve (positions,
+#: velocities and the state's accelerations at both ends) instead of the cubic one (positions
+#: and velocities): off. Against the state the same steps reach at the middle (DeepCwind LC34,
+#: 8 elements of order 3, 200 s, the three lines each step) the cubic's middle fairlead force
+#: is off by 1.2 kN at most (rms 0.03 % of the tension), the quintic's by 3.5 kN (rms 0.12 %);
+#: on the moored buoy's chains 0.17 N against 0.55 N (of 4 N). The state's acceleration
+#: carries the axial waves the generalised-alpha step does not resolve (and damps): it is not
+#: the slope of the velocities the steps produce, which the cubic curve follows.
+MIDDLE_QUINTIC = False
 
 
 class _Discretisation:
@@ -43,6 +72,8 @@ class _Discretisation:
             else np.array(members))
         self.r, self.v = np.zeros(shape), np.zeros(shape)
         self.r_mid, self.v_mid = np.zeros(shape), np.zeros(shape)
+        #: an implicit line's state and acceleration at the start of the step
+        self.r_start, self.v_start, self.a_start = (np.zeros(shape) for _ in range(3))
         self.anchors = np.array([lines[j].anchor for j in members], dtype=float).reshape(m, 3)
         self.prm = np.array([lines[j].prm for j in members], dtype=float)
         self.element = first.element
@@ -89,6 +120,9 @@ class DynamicLineBatch:
         self._laid, self._steps = np.zeros((n, 3)), np.zeros((n, 3))
         #: laid length of each line at the end of its last advance [m]
         self.laid_length = np.zeros(n)
+        #: which lines may step implicitly over the body step as one interval (the coupling's
+        #: owner clears those whose body answers them too fast: module docstring)
+        self.one_interval = np.ones(n, dtype=bool)
         shapes: dict[tuple[int, ...], list[int]] = {}
         for j, line in enumerate(self.lines):
             shapes.setdefault(line.r.shape, []).append(j)
@@ -101,6 +135,11 @@ class DynamicLineBatch:
                   self._steps)
         self._calls = [tuple(tuple(a[j, first:first + 2] for a in arrays) for first in (0, 1))
                        for j in range(n)]
+        #: an implicit line's one sample interval [t, t + dt]: its kernel arguments (views)
+        ends = (np.zeros((n, 2)), np.zeros((n, 2, 3)), np.zeros((n, 2, 3)),
+                np.zeros((n, 2, 3)), np.zeros((n, 2, 3)), np.zeros((n, 2)), np.zeros((n, 2)))
+        self._ends = ends
+        self._end_calls = [tuple(a[j] for a in ends) for j in range(n)]
 
     def sync(self) -> None:
         """Take the lines' states and fairleads again (after they were restored in place or
@@ -111,10 +150,11 @@ class DynamicLineBatch:
     def advance(self, t_mid: float, t_end: float, pos_mid: NDArray[np.float64],
                 vel_mid: NDArray[np.float64], pos_end: NDArray[np.float64],
                 vel_end: NDArray[np.float64]) -> None:
-        """Advance every line from its time to ``t_mid`` and on to ``t_end``, its fairlead on
-        the cubic Hermite curve through its current position and velocity and the samples
-        ``pos_mid``, ``vel_mid`` and ``pos_end``, ``vel_end`` ((n, 3) each), keeping its state
-        at ``t_mid`` for :meth:`end_forces` (``mid=True``).
+        """Advance every line from its time to ``t_end``, its fairlead on the cubic Hermite
+        curve through its current position and velocity and the samples ``pos_mid``,
+        ``vel_mid`` (an explicit line's; an implicit line's curve skips them) and ``pos_end``,
+        ``vel_end`` ((n, 3) each), keeping its state at ``t_mid`` (an implicit line's
+        interpolated: module docstring) for :meth:`end_forces` (``mid=True``).
 
         Raises
         ------
@@ -136,6 +176,9 @@ class DynamicLineBatch:
                 g.v_mid[row] = line.v
                 line.solve_path(T[j, 2:3], P[j, 2:3], U[j, 2:3], ff[j, 2:3], af[j, 2:3],
                                 lb[j, 2:3], st[j, 2:3])
+            elif implicit and self.one_interval[j]:  # the middle state interpolated
+                self._advance_implicit(j, line, g, row, t_end, pos_end[j], vel_end[j])
+                continue
             else:
                 T[j, 0] = line.time
                 P[j, 0] = line.fairlead
@@ -155,6 +198,38 @@ class DynamicLineBatch:
             g.fair_mid[row] = P[j, 1]
             g.fair_now[row] = P[j, 2]
             self.laid_length[j] = lb[j, 2]
+
+    def _advance_implicit(self, j: int, line: DynamicLine, g: _Discretisation, row: int,
+                          t_end: float, pos_end: NDArray[np.float64],
+                          vel_end: NDArray[np.float64]) -> None:
+        """Line ``j`` (row ``row`` of ``g``) stepping implicitly: from its time to ``t_end``
+        as one sample interval, its state at the middle interpolated (module docstring)."""
+        T, P, U, ff, af, lb, st = self._ends
+        integ = line.implicit
+        t0 = line.time
+        T[j, 0], T[j, 1] = t0, t_end
+        P[j, 0], P[j, 1] = line.fairlead, pos_end
+        U[j, 0], U[j, 1] = line.fairlead_velocity, vel_end
+        g.r_start[row] = line.r
+        g.v_start[row] = line.v
+        # the state's acceleration at the start: kept by the integrator between calls (the
+        # first call computes it: the cubic curve then)
+        quintic = MIDDLE_QUINTIC and integ.cs[_ik.CS_ACC_VALID] != 0.0
+        if quintic:
+            g.a_start[row] = integ.An
+        status, index = line.run_kernel(True, *self._end_calls[j])
+        if status != _k.DG_OK:
+            line.failed_index = 0
+            raise line.unstable(status, float(T[j, index]))
+        line.failed_index = -1
+        hermite_middle(g.r_start[row], g.v_start[row], g.a_start[row], line.r, line.v,
+                       integ.An, t_end - t0, quintic, g.r_mid[row], g.v_mid[row])
+        line.time = float(t_end)
+        line.fairlead[:] = pos_end
+        line.fairlead_velocity[:] = vel_end
+        g.fair_mid[row] = self._path[j, 1]
+        g.fair_now[row] = pos_end
+        self.laid_length[j] = lb[j, 1]
 
     def end_forces(self, fairlead_velocity: NDArray[np.float64], mid: bool,
                    fairlead_force: NDArray[np.float64], anchor_force: NDArray[np.float64]
