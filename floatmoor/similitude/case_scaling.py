@@ -56,6 +56,7 @@ KEY_KINDS: dict[str, str] = {
     "environment.gravity": "same", "environment.current_velocity": "velocity",
     "seabed.stiffness": "seabed_stiffness", "seabed.damping_ratio": "same",
     "seabed.friction_coefficient": "same", "seabed.slip_speed": "velocity",
+    "seabed.friction_model": "same",
     "line_types.*.mass_per_length": "mass_per_length", "line_types.*.axial_stiffness": "force",
     "line_types.*.diameter": "diameter", "line_types.*.material_density": "same",
     "line_types.*.normal_drag_coefficient": "drag_coefficient",
