@@ -44,8 +44,10 @@ ORACLE_RTOL = 1e-12
 #: The interpolated middle state's fairlead force against the one the line's steps reach at
 #: the middle (the same step size on the same fairlead curve), relative to the largest
 #: fairlead force of the run: measured 4.3 % at worst on these soft chains on their 10 ms body
-#: step (rms 0.32 %), with 1.5 x margin. The end state is off by up to 390 %.
-MIDDLE_RTOL = 0.065
+#: step (rms 0.32 %) with steps doubling after 2 good ones, 7.5 % after 4 (GOOD_STEPS) with the
+#: slack-taut event check (other steps around the snaps); 1.3 x margin. The end state is off by
+#: up to 390 %.
+MIDDLE_RTOL = 0.10
 
 
 class TwoCallScheme(MooredBody):
