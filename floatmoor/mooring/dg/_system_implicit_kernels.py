@@ -686,10 +686,7 @@ def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, 
     n_shape = 0
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
-            for i in range(nodes):
-                shape_t[n_shape, i] = math.sqrt(N[i, 0] ** 2 + N[i, 1] ** 2 + N[i, 2] ** 2)
-                for c in range(3):
-                    shape_r[n_shape, i, c] = r[i, c]
+            _s.dgs_record_shape(r, N, shape_r, shape_t, n_shape)
             n_shape += 1
         if s == n - 1:
             break

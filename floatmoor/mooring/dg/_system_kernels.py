@@ -58,7 +58,7 @@ from floatmoor.mooring.dg._banded_kernels import band_solve
 __all__ = ["FIXED", "FREE", "BODY", "S_K", "S_NP", "N_SEC", "PP_MASS", "PP_VOLUME",
            "PP_DRAG_AREA", "PP_CA", "PP_KB", "PP_CB", "PP_FRICTION", "N_PP", "E_RHO_W", "E_G", "E_U", "E_ZB", "E_VC",
            "N_ENV", "dgs_rhs",
-           "dgs_run_path", "dgs_record"]
+           "dgs_run_path", "dgs_record", "dgs_record_shape"]
 
 # -- point kinds ----------------------------------------------------------------------------
 FIXED = 0
@@ -725,6 +725,15 @@ def _damped_balance(p, x, u, sec, prm, ops, kind, pprm, env, pvel, G, Zs, q, qt)
 
 
 @jit
+def dgs_record_shape(r, N, shape_r, shape_t, n_shape):
+    """The system's shape record ``n_shape``: every node's position and tension |N|."""
+    for i in range(r.shape[0]):
+        shape_t[n_shape, i] = math.sqrt(N[i, 0] ** 2 + N[i, 1] ** 2 + N[i, 2] ** 2)
+        for c in range(3):
+            shape_r[n_shape, i, c] = r[i, c]
+
+
+@jit
 def dgs_record(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q, qt, N, Nstar,
                faces, slack, ue, start_out, end_out, laid_out):
     """End forces of every section on its start and end point [N] (``start_out``,
@@ -848,10 +857,7 @@ def dgs_run_path(r, v, x, u, time, bpos, bvel, sec, prm, ops, kind, body, pprm, 
     n_shape = 0
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
-            for i in range(nodes):
-                shape_t[n_shape, i] = math.sqrt(N[i, 0] ** 2 + N[i, 1] ** 2 + N[i, 2] ** 2)
-                for c in range(3):
-                    shape_r[n_shape, i, c] = r[i, c]
+            dgs_record_shape(r, N, shape_r, shape_t, n_shape)
             n_shape += 1
         if s == n - 1:
             break

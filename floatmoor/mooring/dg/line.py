@@ -423,16 +423,9 @@ class DynamicLine(PathStepper):
     def _segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int) -> int:
         """Last sample of the kernel call from sample ``i0``: the path's end, or, with "auto",
         the first (shape) sample at or after its next decision (shapes keep their slots)."""
-        n = time.size
-        auto = self.auto
-        if auto is None or self._settling:
-            return n - 1
-        if auto.counters is None:
-            auto.restart(float(time[i0]), self.implicit.cs)
-        k = int(np.searchsorted(time, auto.next_check(), side="left"))
-        if shape_every > 0:
-            k = -(-k // shape_every) * shape_every
-        return min(max(k, i0 + 1), n - 1)
+        if self.auto is None or self._settling:
+            return time.size - 1
+        return self.auto.segment_end(time, i0, shape_every, self.implicit.cs)
 
     def _run_segment(self, implicit: bool, time, path, velocity, ff, af, lb, st, shape_every,
                      sr, sten, i0: int, i1: int) -> tuple[int, int]:

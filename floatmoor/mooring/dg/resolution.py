@@ -251,6 +251,19 @@ class AutoIntegration:
         end = self.window_start + self.window
         return min(end, self.check_at) if self.probing and not self.switched else end
 
+    def segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int,
+                    counters: NDArray[np.float64]) -> int:
+        """Last sample of a kernel call from sample ``i0`` of ``time``: the first sample at or
+        after the next decision (:meth:`next_check`; a first call starts the first window at
+        ``time[i0]`` with the integrator's ``counters``), on a shape sample when shapes are
+        recorded every ``shape_every`` samples (so their records keep their slots)."""
+        if self.counters is None:
+            self.restart(float(time[i0]), counters)
+        k = int(np.searchsorted(time, self.next_check(), side="left"))
+        if shape_every > 0:
+            k = -(-k // shape_every) * shape_every
+        return min(max(k, i0 + 1), time.size - 1)
+
     def _spent(self, counters: NDArray[np.float64]) -> float:
         """Implicit work since the window's start."""
         d = counters - self.counters

@@ -484,19 +484,12 @@ class DynamicSystem:
         return status, i0 + index
 
     def _segment_end(self, time: NDArray[np.float64], i0: int, shape_every: int) -> int:
-        """Last sample of the kernel call starting at ``i0``: the path's end, or, while
-        ``"auto"`` still steps implicitly, the first sample at or after the end of its window
-        (on a shape sample, so the shape records keep their slots)."""
-        n = time.size
-        auto = self.auto
-        if auto is None or self._settling:
-            return n - 1
-        if auto.counters is None:
-            auto.restart(float(time[i0]), self.implicit.cs)
-        k = int(np.searchsorted(time, auto.next_check(), side="left"))
-        if shape_every > 0:
-            k = -(-k // shape_every) * shape_every
-        return min(max(k, i0 + 1), n - 1)
+        """Last sample of the kernel call starting at ``i0``: the path's end, or, with
+        ``"auto"``, the first (shape) sample at or after its next decision
+        (``AutoIntegration.segment_end``)."""
+        if self.auto is None or self._settling:
+            return time.size - 1
+        return self.auto.segment_end(time, i0, shape_every, self.implicit.cs)
 
     def _switch_if_dearer(self, time: float) -> None:
         """``"auto"`` (not settling): at ``time``, switch between implicit and explicit steps
