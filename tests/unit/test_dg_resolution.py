@@ -146,10 +146,11 @@ def test_switch_rule(ratio: float, windows: int | None) -> None:
     auto = rs.AutoIntegration.for_line(2.0 * math.pi / 1.25, 1e-4, 4)
     assert auto.window == 1.25
     assert not auto.update(0.0, _counters(0.0))
-    steps, switched = 0.0, None
+    steps, switched = _window_steps(0.5, auto), None  # a first window (a probe) that passes
+    assert not auto.update(auto.window, _counters(steps)) and not auto.probing
     for k in range(1, 5):
         steps += _window_steps(ratio, auto)
-        if auto.update(k * auto.window, _counters(steps)):
+        if auto.update((k + 1) * auto.window, _counters(steps)):
             switched = k
             break
     assert switched == windows
@@ -173,22 +174,24 @@ def test_probes_bring_implicit_back_and_back_off_while_dearer() -> None:
     MAX_PROBE_GAP; a probe within them keeps the line implicit (never a permanent switch)."""
     auto = rs.AutoIntegration.for_line(2.0 * math.pi / 1.25, 1e-4, 4)
     auto.update(0.0, _counters(0.0))
-    steps = _window_steps(4.0, auto)
-    assert auto.update(auto.window, _counters(steps)) and auto.switched
+    steps = _window_steps(0.5, auto)  # the first window, a probe, passes
+    assert not auto.update(auto.window, _counters(steps)) and not auto.probing
+    steps += _window_steps(4.0, auto)
+    assert auto.update(2 * auto.window, _counters(steps)) and auto.switched
     part = auto.window / rs.PROBE_CHECKS
-    time, gaps = auto.window, []
+    time, gaps = 2 * auto.window, []
     for k in range(5):  # snapping: every probe dearer
         start = _explicit_until_probe(auto, time, steps)
         gaps.append(round((start - time) / auto.window))
         assert auto.next_check() == pytest.approx(start + part)
         if k % 2 == 0:  # dearer than the whole window's explicit steps at the second check
-            steps += _window_steps(0.3, auto)  # (0.3 < 3 / PROBE_CHECKS: on)
+            steps += _window_steps(0.5 * rs.CLEARLY_OVER_BUDGET / rs.PROBE_CHECKS, auto)
             assert not auto.update(start + part, _counters(steps))
             assert auto.next_check() == pytest.approx(start + 2 * part)
-            steps += _window_steps(0.8, auto)
+            steps += _window_steps(1.0, auto)
             assert auto.update(start + 2 * part, _counters(steps))
         else:  # clearly dearer so far at the first check
-            steps += _window_steps(0.5, auto)
+            steps += _window_steps(1.5 * rs.CLEARLY_OVER_BUDGET / rs.PROBE_CHECKS, auto)
             assert auto.update(start + part, _counters(steps))
         assert auto.switched and not auto.probing
         assert auto.next_check() == pytest.approx(start + auto.window)
@@ -208,8 +211,9 @@ def test_auto_state_round_trip() -> None:
     """A checkpoint carries every field of the choice."""
     auto = rs.AutoIntegration.for_line(2.0 * math.pi / 1.25, 1e-4, 4)
     auto.update(0.0, _counters(0.0))
-    auto.update(auto.window, _counters(_window_steps(4.0, auto)))
-    auto.update(2 * auto.window, _counters(_window_steps(4.0, auto)))
+    auto.update(auto.window, _counters(_window_steps(0.5, auto)))
+    auto.update(2 * auto.window, _counters(_window_steps(4.5, auto)))
+    auto.update(3 * auto.window, _counters(_window_steps(4.5, auto)))
     other = rs.AutoIntegration.for_line(2.0 * math.pi / 1.25, 1e-4, 4)
     other.set_state(auto.state())
     assert auto.probing and auto.switches == 1

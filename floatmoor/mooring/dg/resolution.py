@@ -178,12 +178,16 @@ CLEARLY_OVER_BUDGET = 3.0
 #: is back on implicit steps within this many windows, and a probe that fails costs about one
 #: window's explicit work (below), 1 / 8 of the explicit run's at the longest gap.
 MAX_PROBE_GAP = 8
-#: A probe window is checked this many times: as soon as its implicit work exceeds what the
-#: explicit steps of the whole window cost, or ``CLEARLY_OVER_BUDGET`` times what they cost up
-#: to the check, the rest of the window steps explicitly. On the Lindahl chain (implicit 5 to 9
-#: times dearer) a probe so costs 5 / 8 to 9 / 8 of a window's explicit work beside the
-#: explicit steps it replaces.
-PROBE_CHECKS = 8
+#: A probe window (the first window of a run is one too) is checked this many times: as soon as
+#: its implicit work exceeds what the explicit steps of the whole window cost, or
+#: ``CLEARLY_OVER_BUDGET`` times what they cost up to the check, the rest of the window steps
+#: explicitly. On the Lindahl chain (12 x p3, T = 1.25 s, implicit 5 to 9 times dearer) a probe
+#: so fails at its first check and costs 0.2 to 0.3 of a window's explicit work beside the
+#: explicit steps it replaces; with 8 checks (and a first window stepped implicitly through)
+#: the 10 s snap benchmark's time loop cost 1.44 times the explicit steps', with 32 checks 1.03
+#: (docs/validation/performance.md). The probes' results do not depend on the count: the
+#: implicit steps span sample intervals, and a check only ends a kernel call at a sample.
+PROBE_CHECKS = 32
 
 
 def implicit_work(steps: float, iterations: float, factorisations: float, nodes: int) -> float:
@@ -207,11 +211,12 @@ class AutoIntegration:
     A window stepped implicitly is compared, at its end, with the explicit steps over the same
     time (:func:`implicit_work` from the integrator's counters against :func:`explicit_work`);
     dearer in ``OVER_BUDGET_WINDOWS`` consecutive windows, or by ``CLEARLY_OVER_BUDGET`` in one,
-    the line steps explicitly from the next window on. While explicit, every ``gap``-th window
-    is a probe: it starts implicit, stays implicit if its implicit work stays within the
-    window's explicit work, and goes explicit for the rest of the window as soon as it does
-    not or is clearly dearer so far (checked ``PROBE_CHECKS`` times per window), doubling the
-    gap up to ``MAX_PROBE_GAP``.
+    the line steps explicitly from the next window on. The first window, and while explicit
+    every ``gap``-th window, is a probe: it starts implicit, stays implicit if its implicit
+    work stays within the window's explicit work, and goes explicit for the rest of the window
+    as soon as it does not or is clearly dearer so far (checked ``PROBE_CHECKS`` times per
+    window), doubling the gap up to ``MAX_PROBE_GAP``. (A line that snaps from the start so
+    pays for a few checks of implicit steps, not a whole window of them.)
 
     Deterministic (counters, not wall time), so a resumed run switches where the original
     did; :meth:`state` and :meth:`set_state` carry it in checkpoints.
@@ -237,7 +242,7 @@ class AutoIntegration:
                  nodes: int) -> "AutoIntegration":
         """The bookkeeping of a line driven at ``motion_frequency`` [rad/s]."""
         period = 2.0 * math.pi / motion_frequency if motion_frequency > 0.0 else 0.0
-        return cls(max(MIN_WINDOW, period), explicit_step, nodes)
+        return cls(max(MIN_WINDOW, period), explicit_step, nodes, probing=True)
 
     def restart(self, time: float, counters: NDArray[np.float64]) -> None:
         """Start a window at ``time`` with the integrator's ``counters``."""
