@@ -640,7 +640,8 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
         "time_convention": "e^{-i omega t} (capytaine); WAMIT phases are the conjugate",
         "Conventions": "CF-1.8",
     }
-    if bem.second_order is not None:
+    if any(name in data_vars for name in ("mean_drift_far_field", "mean_drift_near_field",
+                                          "qtf_difference")):
         # imported drift: the source program's RAOs, no floatmoor drift_inputs_hash
         attrs["drift_source"] = bem.format
     if exponents is not None:

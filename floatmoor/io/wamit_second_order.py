@@ -49,7 +49,7 @@ from floatmoor.terminal_text import shown
 
 __all__ = ["read_wamit_second_order", "SECOND_ORDER_EXTENSIONS", "MEAN_DRIFT_IMAG_RTOL",
            "QTF_DIAGONAL_IMAG_RTOL", "QTF_SYMMETRY_RTOL", "QTF_DIAGONAL_RTOL",
-           "DIRECTION_ATOL_DEG"]
+           "QTF_PERIOD_RTOL", "DIRECTION_ATOL_DEG"]
 
 #: The second-order file kinds read, by extension (lower case).
 SECOND_ORDER_EXTENSIONS = (".8", ".9", ".12d")
@@ -76,6 +76,10 @@ QTF_SYMMETRY_RTOL = 1e-3
 #: differences and catches mixed runs, which are refused: a time-domain mean force that is
 #: not the database's mean drift would be silently inconsistent.
 QTF_DIAGONAL_RTOL = 2e-2
+#: A .12d period matches a .1 period when within this, relative: WAMIT prints the QTF's
+#: periods with 5 significant digits (0.22848E+01: up to 2.2e-5 relative rounding), the .1's
+#: with 7; 5e-5 passes that rounding and still separates periods 0.01 % apart.
+QTF_PERIOD_RTOL = 5e-5
 #: Wave directions [deg] of two files are the same when within this (files print BETA with
 #: 4 to 6 decimals).
 DIRECTION_ATOL_DEG = 1e-3
@@ -398,7 +402,7 @@ def _compare_diagonal(qtf_name: str, drift_name: str, qtf_periods: Sequence[floa
     pairs = []
     for a, per in enumerate(qtf_periods):
         k = int(np.argmin(np.abs(ref - per)))
-        if abs(ref[k] - per) <= 1e-5 * ref[k]:
+        if abs(ref[k] - per) <= QTF_PERIOD_RTOL * ref[k]:
             pairs.append((a, k))
     dir_pairs = [(d, min(range(len(dirs)), key=lambda j: abs(dirs[j] - beta)))
                  for d, beta in enumerate(qtf_dirs)
