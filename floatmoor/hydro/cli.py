@@ -671,7 +671,7 @@ def _second_order_lines(ds) -> list[str]:
         omega = ds["qtf_omega_1"].values
         rows.append(f"  difference-frequency QTF: {len(omega)} x {len(omega)} frequencies "
                     f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s, {ds.sizes['qtf_direction']} "
-                    f"directions, from {ds['qtf_difference'].attrs.get('qtf_source', '?')}")
+                    f"direction{'s' if ds.sizes['qtf_direction'] > 1 else ''}, from {ds['qtf_difference'].attrs.get('qtf_source', '?')}")
     return rows
 
 

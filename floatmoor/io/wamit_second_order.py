@@ -423,7 +423,8 @@ def _compare_diagonal(qtf_name: str, drift_name: str, qtf_periods: Sequence[floa
                         "forces or moments: files of one run)",
                         f"{diag[d, a, m]:.6g} against {near[k, j, m]:.6g} (SI)")
     return (f"{qtf_name}: diagonal agrees with {drift_name} within {QTF_DIAGONAL_RTOL:.0%} at "
-            f"{len(pairs)} common frequencies and {len(dir_pairs)} directions.")
+            f"{len(pairs)} common frequencies and {len(dir_pairs)} direction"
+            f"{'s' if len(dir_pairs) > 1 else ''}.")
 
 
 def read_wamit_second_order(files: Mapping[str, str | Path], *, periods: Sequence[float],
@@ -495,7 +496,7 @@ def read_wamit_second_order(files: Mapping[str, str | Path], *, periods: Sequenc
                          "route's).")
         notes.append(f"{table.name}: QTF at {len(qtf_periods)} frequencies "
                      f"({2 * math.pi / qtf_periods[0]:.4g}-{2 * math.pi / qtf_periods[-1]:.4g} "
-                     f"rad/s) and {len(qtf_dirs)} directions, filled to the whole (omega_1, "
+                     f"rad/s) and {len(qtf_dirs)} direction{'s' if len(qtf_dirs) > 1 else ''}, filled to the whole (omega_1, "
                      "omega_2) plane by Q(w2, w1) = conj(Q(w1, w2)), conjugated from WAMIT's "
                      "e^{+i omega t}.")
     return SecondOrder(
