@@ -121,6 +121,11 @@ def test_one_route_alone_and_the_check_row(wamit_set, deepcwind_db, capsys):
     assert "only the near field (pressure) mean drift (imported from wamit files)" in out
     ds = read_database(folder / "hydrodb" / "w.nc")
     assert "mean_drift_far_field" not in ds and has_drift(ds)
+    eight = {k: v for k, v in files.items() if k not in (".9", ".12d")}
+    assert _import(folder, eight, deepcwind_db, "--force") == 0
+    assert "only the far field (momentum) mean drift" in capsys.readouterr().out
+    ds = read_database(folder / "hydrodb" / "w.nc")
+    assert "mean_drift_near_field" not in ds and has_drift(ds)   # either route is drift
 
 
 def test_disagreeing_routes_warn_on_import_and_fail_hydro_check(wamit_set, deepcwind_db,
