@@ -68,14 +68,18 @@ QTF_DIAGONAL_IMAG_RTOL = 1e-2
 #: group's largest |Q| (print rounding is 5e-7 relative; 1e-3 catches a triangle of another
 #: run or of the sum-frequency file).
 QTF_SYMMETRY_RTOL = 1e-3
-#: The .12d's diagonal against the .9's mean drift (the same pressure route of the same run)
-#: at their common frequencies and directions, as a fraction of the mode group's largest
-#: |drift|: both are printed with 7 digits, and WAMIT evaluates the diagonal with the same
-#: first-order solution; files of another run (other mass, mooring, damping: other RAOs)
-#: differ by tens of per cent near the resonances. 2 % passes rounding and quadrature
-#: differences and catches mixed runs, which are refused: a time-domain mean force that is
-#: not the database's mean drift would be silently inconsistent.
-QTF_DIAGONAL_RTOL = 2e-2
+#: The .12d's diagonal against the .9's mean drift at their common frequencies and
+#: directions, as a fraction of the mode group's largest |drift| (forces, moments). The
+#: diagonal is the mean drift of the QTF's own quadratic term, which WAMIT evaluates by the
+#: direct method (pressure integration, or its control surfaces): within a run the two differ
+#: by discretisation only, a few per cent of the peak at most away from lightly damped
+#: resonances (floatmoor's own two routes: 4.3 % on the buoy). Files of different runs (other
+#: mass, mooring, damping or model) differ by tens of per cent: the public IEA-15 VolturnUS-S
+#: .12d (2023) and .9 (2024) give a non-dimensional surge drift of -1.84 and +12.46 at
+#: 2.5 rad/s, about 75 % of the .9's peak.
+#: 10 % passes the first and refuses the second: a QTF whose mean is not the stored mean
+#: drift would make the time-domain mean force disagree with the drift the checks report.
+QTF_DIAGONAL_RTOL = 0.10
 #: A .12d period matches a .1 period when within this, relative: WAMIT prints the QTF's
 #: periods with 5 significant digits (0.22848E+01: up to 2.2e-5 relative rounding), the .1's
 #: with 7; 5e-5 passes that rounding and still separates periods 0.01 % apart.
@@ -411,9 +415,12 @@ def _compare_diagonal(qtf_name: str, drift_name: str, qtf_periods: Sequence[floa
         return (f"{qtf_name}: diagonal not compared with {drift_name} (no common frequency "
                 "and direction).")
     peaks = _group_peaks(near)
+    worst = 0.0
     for a, k in pairs:
         for d, j in dir_pairs:
             for m in range(6):
+                if peaks[m] > 0.0:
+                    worst = max(worst, abs(diag[d, a, m] - near[k, j, m]) / peaks[m])
                 if abs(diag[d, a, m] - near[k, j, m]) > QTF_DIAGONAL_RTOL * peaks[m]:
                     raise BemFileError(
                         qtf_name, f"PER1 = PER2 = {qtf_periods[a]:.6g} s, BETA = "
@@ -422,8 +429,8 @@ def _compare_diagonal(qtf_name: str, drift_name: str, qtf_periods: Sequence[floa
                         f"route; within {QTF_DIAGONAL_RTOL:.0%} of the largest drift of its "
                         "forces or moments: files of one run)",
                         f"{diag[d, a, m]:.6g} against {near[k, j, m]:.6g} (SI)")
-    return (f"{qtf_name}: diagonal agrees with {drift_name} within {QTF_DIAGONAL_RTOL:.0%} at "
-            f"{len(pairs)} common frequencies and {len(dir_pairs)} direction"
+    return (f"{qtf_name}: diagonal agrees with {drift_name} within {QTF_DIAGONAL_RTOL:.0%} "
+            f"(worst {worst:.2%} of the peak drift) at {len(pairs)} common frequencies and {len(dir_pairs)} direction"
             f"{'s' if len(dir_pairs) > 1 else ''}.")
 
 

@@ -128,7 +128,7 @@ def test_qtf_either_triangle_or_both(tmp_path, triangle):
 
 def test_qtf_diagonal_agrees_with_the_9(tmp_path):
     """A .12d whose diagonal is the .9's drift is accepted with a note; one from another
-    run (the .9 scaled by 1.1) is refused naming both files."""
+    run (the .9 scaled by 1.2: 20 % of the peak) is refused naming both files."""
     def diagonal_is_drift(p1, p2, i):
         if p1 == p2 and p1 in PERIODS:
             return drift_si(p1, 0.0, i) / scale(RHO, G, ULEN, i)
@@ -136,9 +136,9 @@ def test_qtf_diagonal_agrees_with_the_9(tmp_path):
 
     qtf = write(tmp_path, "b.12d", qtf_lines(QTF_PERIODS, diagonal_is_drift))
     second = _read({".9": _drift(tmp_path, ".9"), ".12d": qtf})
-    assert any("diagonal agrees with" in note and "2 common frequencies" in note
-               for note in second.notes)
-    other = _drift(tmp_path, ".9", value=lambda per, beta, i: 1.1 * drift_si(per, beta, i)
+    assert any("diagonal agrees with" in note and "(worst 0.00% of the peak drift) at 2 "
+               "common frequencies" in note for note in second.notes)
+    other = _drift(tmp_path, ".9", value=lambda per, beta, i: 1.2 * drift_si(per, beta, i)
                    / scale(RHO, G, ULEN, i))
     with pytest.raises(BemFileError) as err:
         _read({".9": other, ".12d": qtf})
