@@ -657,6 +657,8 @@ def _info(args: argparse.Namespace) -> int:
 def _second_order_lines(ds) -> list[str]:
     """What imported second-order data a database holds and where it came from (recorded
     text: the caller prints it escaped and bounded)."""
+    import numpy as np
+
     rows = []
     routes = [(v, label) for v, label in (("mean_drift_far_field", "far field (momentum)"),
                                           ("mean_drift_near_field", "near field (pressure)"))
@@ -668,10 +670,16 @@ def _second_order_lines(ds) -> list[str]:
                                 for v, label in routes)
                     + ("; 'hydro check' compares them" if len(routes) == 2 else ""))
     if "qtf_difference" in ds.variables:
-        omega = ds["qtf_omega_1"].values
-        rows.append(f"  difference-frequency QTF: {len(omega)} x {len(omega)} frequencies "
-                    f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s, {ds.sizes['qtf_direction']} "
-                    f"direction{'s' if ds.sizes['qtf_direction'] > 1 else ''}, from {ds['qtf_difference'].attrs.get('qtf_source', '?')}")
+        source = ds["qtf_difference"].attrs.get("qtf_source", "?")
+        try:
+            omega = np.asarray(ds["qtf_omega_1"].values, dtype=float)
+            n_dir = int(ds.sizes["qtf_direction"])
+            rows.append(f"  difference-frequency QTF: {len(omega)} x {len(omega)} frequencies "
+                        f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s, {n_dir} "
+                        f"direction{'s' if n_dir > 1 else ''}, from {source}")
+        except (KeyError, IndexError, TypeError, ValueError):  # written by another hand
+            rows.append(f"  difference-frequency QTF from {source} (its frequencies or "
+                        "directions are not readable)")
     return rows
 
 

@@ -231,3 +231,21 @@ def test_bemio_mean_drift_imported(tmp_path, deepcwind_db, capsys):
     assert len(err) == 1 and "/body1/hydro_coeffs/mean_drift/pressure_integration/val: " \
         f"expected shape (6, {n_h}, {n_w})" in err[0]
     assert not (tmp_path / "hydrodb" / "x.nc").exists()
+
+
+def test_info_of_a_tampered_second_order_database(wamit_set, deepcwind_db, capsys):
+    """A database edited by another hand (QTF without its frequency coordinates, a source
+    with a terminal escape) still gets its info, escaped, without a traceback."""
+    from floatmoor.hydro.database import write_database
+
+    folder, files, *_ = wamit_set
+    assert _import(folder, files, deepcwind_db) == 0
+    path = folder / "hydrodb" / "w.nc"
+    ds = read_database(path).load().drop_vars(["qtf_omega_1", "qtf_omega_2"])
+    ds["qtf_difference"].attrs["qtf_source"] = "evil\x1b[31m.12d"
+    write_database(ds, path)
+    capsys.readouterr()
+    assert main(["hydro", "info", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "difference-frequency QTF: 3 x 3 frequencies" in out  # xarray's 0, 1, 2: no crash
+    assert "from evil\\x1b[31m.12d" in out and "\x1b" not in out
