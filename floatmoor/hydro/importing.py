@@ -25,6 +25,12 @@ What the files lack and the layout needs:
   Kramers-Kronig as :func:`floatmoor.hydro.radiation.consistent_infinite_added_mass` does. The
   attribute ``added_mass_infinite_source`` says which.
 
+Second-order data (WAMIT ``.8``/``.9``/``.12d``, :mod:`floatmoor.io.wamit_second_order`; BEMIO
+mean drift, :mod:`floatmoor.io.bemio_second_order`) become ``mean_drift_far_field``,
+``mean_drift_near_field`` and ``qtf_difference`` with ``drift_source`` = the format
+(docs/guide/hydro_databases.md#imported-second-order-data), turned by the yaw as the
+excitation is.
+
 ``yaw_deg`` turns the file's body frame about z into the case's: a point p of the file is
 ``reference + R (p - file reference)``, a 6x6 matrix M becomes T M T^T with
 T = blockdiag(R, R) (exact), an excitation vector T X and its wave direction beta + yaw
