@@ -203,12 +203,13 @@ def _parser() -> argparse.ArgumentParser:
                         "field, with the RAOs of the case's floater and its linearised "
                         "mooring); added to an up-to-date database without rebuilding it")
     himport = hsub.add_parser(
-        "import", help="make a database from WAMIT (.1 .3 .hst .3fk .3sc .out) or WEC-Sim "
-        "BEMIO (.h5) files, and check it",
+        "import", help="make a database from WAMIT (.1 .3 .hst .3fk .3sc .out .8 .9 .12d) or "
+        "WEC-Sim BEMIO (.h5) files, and check it",
         description="WAMIT needs the .1 (added mass, damping) and .hst (hydrostatic "
         "stiffness); a .3 gives the wave excitation; the run's .out states the gravity, ULEN, "
-        "water depth, displaced volume and centre of buoyancy, which otherwise are options. "
-        "Everything missing is listed at once.")
+        "water depth, displaced volume and centre of buoyancy, which otherwise are options; "
+        ".8 and .9 give the mean drift (momentum, pressure; with the .3) and .12d the "
+        "difference-frequency QTF. Everything missing is listed at once.")
     himport.add_argument("files", nargs="+", metavar="FILE", help="the BEM result files")
     himport.add_argument("-o", "--output", metavar="PATH.nc", required=True,
                          help="database file; a case names it by its path relative to the "

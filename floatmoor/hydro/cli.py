@@ -13,8 +13,8 @@ the database unless its case accepts those checks (``[hydro] accept_failed_check
 the case accepts is shown as such and does not make the build fail).
 
 ``hydro import FILE... -o PATH.nc`` makes a database from WAMIT (.1, .3, .hst, .3fk, .3sc,
-.out) or WEC-Sim BEMIO (.h5) files (:mod:`floatmoor.hydro.importing`), checks it and prints the
-same table (exit 1 when a check fails; the database is written, as by ``build``), the values
+.out; mean drift .8, .9 and difference-frequency QTF .12d) or WEC-Sim BEMIO (.h5) files
+(:mod:`floatmoor.hydro.importing`), checks it and prints the same table (exit 1 when a check fails; the database is written, as by ``build``), the values
 taken from a WAMIT .out and the orientation applied (``--yaw-deg``). A file that cannot be
 read, a bad option, everything missing (all listed in one line), or an existing output without
 ``--force`` is exit 2 with one line, and nothing is written. ``hydro info`` says where a database came from.
@@ -285,8 +285,8 @@ def _import(args: argparse.Namespace) -> int:
         ds = import_database(args.files, options, name=output.stem,
                              command=_import_command(args),
                              project=project_folder(output))
-        results = [check_values(ds), *run_checks(ds)]
-        failed = _record_checks(ds, results)
+        results = [check_values(ds), *run_checks(ds), *_drift_rows(ds)]
+        failed = [name for name in _record_checks(ds, results) if name != "drift"]
         write_database(ds, output)
     omega = ds["omega"].values
     print(f"{output}: imported from {ds.attrs['source']} files, {len(omega)} frequencies "
@@ -298,7 +298,15 @@ def _import(args: argparse.Namespace) -> int:
         # values the options did not give, and the orientation
         if note.startswith((RUN_SUMMARY_NOTE, YAW_NOTE)):
             print(f"  {note}")
+    second = _second_order_lines(ds)
+    if second:
+        _say("\n".join(second))
     print(_checks_table(output, ds, "as imported", results))
+    drift = [r for r in results if r.name == "drift" and not r.passed]
+    if drift:  # runs do not enforce the drift row: reported, as by hydro build
+        print(f"floatmoor: warning: {output}: imported mean drift far and near field differ "
+              f"by {drift[0].worst:.1%} of the peak (tolerance {drift[0].tolerance:.0%})",
+              file=sys.stderr)
     if failed:
         print(f"floatmoor: hydro import: {output} is written but fails its checks: "
               f"{', '.join(failed)}; a run refuses it unless the case accepts them "
@@ -634,12 +642,45 @@ def _info(args: argparse.Namespace) -> int:
     _say(_state_space_info(ds))
     from floatmoor.hydro.drift_build import has_drift
 
-    if has_drift(ds):
+    from floatmoor.hydro.drift_build import drift_is_imported
+
+    if drift_is_imported(ds) or "qtf_difference" in ds.variables:
+        _say("\n".join(_second_order_lines(ds)))
+    elif has_drift(ds):
         print(f"  mean drift: far and near field with the recorded RAOs ('hydro build --drift', "
               f"{_drift_seconds(ds)} s); 'hydro check' compares them")
     else:
         print("  mean drift: none ('floatmoor hydro build CASE --drift' adds it)")
     return EXIT_OK
+
+
+def _second_order_lines(ds) -> list[str]:
+    """What imported second-order data a database holds and where it came from (recorded
+    text: the caller prints it escaped and bounded)."""
+    import numpy as np
+
+    rows = []
+    routes = [(v, label) for v, label in (("mean_drift_far_field", "far field (momentum)"),
+                                          ("mean_drift_near_field", "near field (pressure)"))
+              if v in ds.variables]
+    if routes:
+        rows.append(f"  mean drift imported from {ds.attrs.get('drift_source', '?')} files (the "
+                    "source program's RAOs; current while its files are unchanged): "
+                    + "; ".join(f"{label} from {ds[v].attrs.get('drift_source', '?')}"
+                                for v, label in routes)
+                    + ("; 'hydro check' compares them" if len(routes) == 2 else ""))
+    if "qtf_difference" in ds.variables:
+        source = ds["qtf_difference"].attrs.get("qtf_source", "?")
+        try:
+            omega = np.asarray(ds["qtf_omega_1"].values, dtype=float)
+            n_dir = int(ds.sizes["qtf_direction"])
+            rows.append(f"  difference-frequency QTF: {len(omega)} x {len(omega)} frequencies "
+                        f"{omega[0]:.4g}-{omega[-1]:.4g} rad/s, {n_dir} "
+                        f"direction{'s' if n_dir > 1 else ''}, from {source}")
+        except (KeyError, IndexError, TypeError, ValueError):  # written by another hand
+            rows.append(f"  difference-frequency QTF from {source} (its frequencies or "
+                        "directions are not readable)")
+    return rows
 
 
 def _import_info(ds) -> str:

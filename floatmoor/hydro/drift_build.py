@@ -36,7 +36,7 @@ from floatmoor.case.schema import Case
 from floatmoor.hydro.drift import DRIFT_TERMS, DriftResult, solve_drift
 
 __all__ = ["DRIFT_VARIABLES", "drift_for_case", "add_drift", "has_drift", "drift_inputs_hash",
-           "drift_conditions", "drift_is_current"]
+           "drift_conditions", "drift_is_current", "drift_is_imported", "IMPORTED_DRIFT_SOURCES"]
 
 _UNITS = "N/m^2 (Surge, Sway, Heave), N m/m^2 (Roll, Pitch, Yaw)"
 _WHAT = ("mean wave drift force and moment about the rotation centre per unit wave amplitude "
@@ -56,9 +56,19 @@ DRIFT_VARIABLES: dict[str, dict[str, str]] = {
 }
 
 
+#: ``drift_source`` values of drift imported with the database (``hydro import``).
+IMPORTED_DRIFT_SOURCES = ("wamit", "bemio")
+
+
 def has_drift(ds: xr.Dataset) -> bool:
-    """Whether the database holds mean drift coefficients."""
-    return "mean_drift_near_field" in ds.variables
+    """Whether the database holds mean drift coefficients (either route: an import of a WAMIT
+    .9 alone has no far field, of a .8 alone no near field)."""
+    return "mean_drift_near_field" in ds.variables or "mean_drift_far_field" in ds.variables
+
+
+def drift_is_imported(ds: xr.Dataset) -> bool:
+    """Whether the database's drift was imported (``drift_source`` "wamit" or "bemio")."""
+    return has_drift(ds) and ds.attrs.get("drift_source") in IMPORTED_DRIFT_SOURCES
 
 
 def drift_conditions(case: Case, ds: xr.Dataset, linear_damping=None) -> tuple[Any, dict]:
@@ -79,9 +89,19 @@ def drift_inputs_hash(ds: xr.Dataset, conditions: dict[str, Any]) -> str:
 
 def drift_is_current(ds: xr.Dataset, case: Case) -> bool:
     """Whether the database holds drift coefficients for the case's current mass and
-    mooring."""
+    mooring.
+
+    Imported drift (:func:`drift_is_imported`) is current whenever the database is: it was
+    computed by the source program with that program's RAOs (its run's mass, mooring and
+    damping), which floatmoor cannot recompute, so it has no ``drift_inputs_hash``; its
+    source files are recorded with their SHA-256 and checked as the database's are
+    (docs/guide/hydro_databases.md#imported-second-order-data). It is never "stale" against
+    the case's mass or mooring: matching them is the user's responsibility.
+    """
     if not has_drift(ds):
         return False
+    if drift_is_imported(ds):
+        return True
     _, conditions = drift_conditions(case, ds)
     return ds.attrs.get("drift_inputs_hash") == drift_inputs_hash(ds, conditions)
 

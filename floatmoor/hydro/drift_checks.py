@@ -4,7 +4,9 @@
 Surge and sway are compared against the peak far-field force drift, yaw against its own peak
 when it is not negligible; frequencies where the near field is ill-conditioned (its terms
 cancel to less than 1/:data:`DRIFT_CONDITIONING` of their magnitudes, near a lightly damped
-resonance) are left out and named. Runs do not use the drift yet, so the row is not among the
+resonance) are left out and named. Imported drift (WAMIT .8 and .9, BEMIO) is compared the
+same way when both routes were imported (without the near field's terms, every frequency is
+compared); with one route the row is not applicable. Runs do not use the drift yet, so the row is not among the
 checks a run enforces (:func:`floatmoor.hydro.checks.run_checks`).
 """
 
@@ -77,9 +79,18 @@ def drift_differences(ds: xr.Dataset) -> tuple[dict[str, float], np.ndarray]:
 def check_drift(ds: xr.Dataset) -> CheckResult:
     """Far-field against near-field mean drift (``hydro check``; not a run's check: a run
     does not use the drift yet)."""
-    if "mean_drift_near_field" not in ds.variables or "mean_drift_far_field" not in ds.variables:
+    held = [v for v in ("mean_drift_far_field", "mean_drift_near_field") if v in ds.variables]
+    if not held:
         return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no mean drift "
                                           "coefficients (hydro build --drift adds them)")
+    if len(held) == 1:
+        route = "far field (momentum)" if held[0] == "mean_drift_far_field" else \
+            "near field (pressure)"
+        source = ds.attrs.get("drift_source")  # file text: quoted only when a known value
+        source = source if source in ("wamit", "bemio") else "its source"
+        return CheckResult.not_applicable(
+            "drift", DRIFT_TOLERANCE, f"only the {route} mean drift (imported from "
+            f"{source} files): nothing to compare it with")
     errors, left_out = drift_differences(ds)
     if not errors:
         return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no horizontal drift")

@@ -25,6 +25,12 @@ What the files lack and the layout needs:
   Kramers-Kronig as :func:`floatmoor.hydro.radiation.consistent_infinite_added_mass` does. The
   attribute ``added_mass_infinite_source`` says which.
 
+Second-order data (WAMIT ``.8``/``.9``/``.12d``, :mod:`floatmoor.io.wamit_second_order`; BEMIO
+mean drift, :mod:`floatmoor.io.bemio_second_order`) become ``mean_drift_far_field``,
+``mean_drift_near_field`` and ``qtf_difference`` with ``drift_source`` = the format
+(docs/guide/hydro_databases.md#imported-second-order-data), turned by the yaw as the
+excitation is.
+
 ``yaw_deg`` turns the file's body frame about z into the case's: a point p of the file is
 ``reference + R (p - file reference)``, a 6x6 matrix M becomes T M T^T with
 T = blockdiag(R, R) (exact), an excitation vector T X and its wave direction beta + yaw
@@ -68,7 +74,10 @@ __all__ = [
 #: File extensions of WAMIT's numeric output: added mass and damping, excitation (total,
 #: Haskind), hydrostatics, Froude-Krylov and scattering (diffraction) parts; and its run
 #: summary (the gravity, ULEN and water depth of the run).
-WAMIT_EXTENSIONS = (".1", ".3", ".hst", ".3fk", ".3sc", ".out")
+WAMIT_EXTENSIONS = (".1", ".3", ".hst", ".3fk", ".3sc", ".out", ".8", ".9", ".12d")
+#: ... of which the second-order ones (mean drift by momentum and by pressure, the
+#: difference-frequency QTF), read by :mod:`floatmoor.io.wamit_second_order`.
+WAMIT_SECOND_ORDER = (".8", ".9", ".12d")
 #: WEC-Sim BEMIO (HDF5).
 BEMIO_EXTENSIONS = (".h5",)
 #: The damping's tail exponent is fitted over the frequencies above (1 - this) x the top
@@ -221,8 +230,14 @@ _ARRAYS = ("omega", "added_mass", "radiation_damping", "added_mass_infinite", "a
 
 def _require_finite(bem: ImportedBem, options: ImportOptions) -> None:
     """Refuse dimensional values that overflowed (finite file values times extreme scales)."""
-    for name in _ARRAYS:
-        value = getattr(bem, name)
+    second = bem.second_order
+    held = [(name, getattr(bem, name)) for name in _ARRAYS]
+    if second is not None:
+        # the far field's NaN for Heave, Roll and Pitch is the layout's, not an overflow
+        far = None if second.far_field is None else second.far_field[..., [0, 1, 5]]
+        held += [("mean_drift_far_field", far), ("mean_drift_near_field", second.near_field),
+                 ("qtf_difference", second.qtf_difference)]
+    for name, value in held:
         if value is not None and not np.all(np.isfinite(value)):
             scales = f"rho = {bem.water_density:g}, g = {bem.gravity:g}" + (
                 f", ULEN = {options.length_scale:g}" if options.length_scale is not None else "")
@@ -241,10 +256,12 @@ def _read_source(kind: str, paths: Sequence[str], options: ImportOptions) -> Imp
         options, adopted, summary = _with_run_summary(paths, options)
         _refuse_missing_wamit(paths, options, summary)
         assert options.water_density is not None and options.gravity is not None
-        bem = read_wamit(list(map(str, paths)), water_density=options.water_density,
+        first = [str(p) for p in paths if Path(p).suffix.lower() not in WAMIT_SECOND_ORDER]
+        bem = read_wamit(first, water_density=options.water_density,
                          gravity=options.gravity,
                          length_scale=1.0 if options.length_scale is None
                          else options.length_scale, water_depth=options.water_depth)
+        bem = _with_wamit_second_order(bem, paths, options)
         if summary is not None:  # the body's volume and centre of buoyancy, as the file's
             bem = replace(bem, disp_volume=summary.disp_volume,
                           center_of_buoyancy=None if summary.center_of_buoyancy is None
@@ -263,6 +280,28 @@ def _read_source(kind: str, paths: Sequence[str], options: ImportOptions) -> Imp
     _agree(str(paths[0]), "gravity", "--gravity", options.gravity, bem.gravity)
     _agree(str(paths[0]), "water depth", "--water-depth", options.water_depth, bem.water_depth)
     return bem
+
+
+def _with_wamit_second_order(bem: ImportedBem, paths: Sequence[str],
+                             options: ImportOptions) -> ImportedBem:
+    """``bem`` with the mean drift and QTF of the ``.8``/``.9``/``.12d`` among ``paths``."""
+    files = {Path(p).suffix.lower(): str(p) for p in paths
+             if Path(p).suffix.lower() in WAMIT_SECOND_ORDER}
+    if not files:
+        return bem
+    from floatmoor.io.wamit_second_order import read_wamit_second_order
+
+    one = next(str(p) for p in paths if Path(p).suffix.lower() == ".1")
+    excitation = next((str(p) for p in paths if Path(p).suffix.lower() in (".3", ".3fk",
+                                                                            ".3sc")), ".3")
+    directions = None if bem.directions is None else \
+        [float(d) for d in np.degrees(bem.directions)]
+    second = read_wamit_second_order(
+        files, periods=list(2.0 * np.pi / np.asarray(bem.omega)), reference_name=one,
+        directions_deg=directions, excitation_name=excitation,
+        water_density=bem.water_density, gravity=bem.gravity,
+        length_scale=1.0 if options.length_scale is None else options.length_scale)
+    return replace(bem, second_order=second)
 
 
 #: How the notes of the values taken from a WAMIT ``.out`` begin (``hydro import`` prints
@@ -551,6 +590,9 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
             turned = np.einsum("ik,wbk->wbi", t, np.asarray(x, complex))[:, order, :]
             data_vars[var] = labelled_variable(var, turned, exc)
     coords = database_coords(bem.omega, depth, g, directions)
+    second_vars, second_coords = _second_order_variables(bem, options.yaw_deg, t)
+    data_vars.update(second_vars)
+    coords.update(second_coords)
     if bem.added_mass_infinite is not None:
         a_inf = _turn_matrices(np.asarray(bem.added_mass_infinite, float), t)
         a_inf_source = f"file ({_INFINITY_ENTRY.get(bem.format, 'the file')})"
@@ -566,6 +608,8 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
     data_vars["added_mass_infinite"] = labelled_variable("added_mass_infinite", a_inf, pair)
     records = files if files is not None else source_file_records(bem.files)
     notes = list(bem.notes) + _importer_notes(bem, options, ref, float(c[2, 2] / (rho * g)))
+    if bem.second_order is not None:
+        notes += list(bem.second_order.notes)
     depth_text = "infinite" if not math.isfinite(depth) else f"{depth!r}"
     inputs = {
         "source": bem.format,
@@ -602,9 +646,66 @@ def imported_dataset(bem: ImportedBem, options: ImportOptions, *, name: str,
         "time_convention": "e^{-i omega t} (capytaine); WAMIT phases are the conjugate",
         "Conventions": "CF-1.8",
     }
+    if any(name in data_vars for name in ("mean_drift_far_field", "mean_drift_near_field",
+                                          "qtf_difference")):
+        # imported drift: the source program's RAOs, no floatmoor drift_inputs_hash
+        attrs["drift_source"] = bem.format
     if exponents is not None:
         attrs["added_mass_infinite_tail_exponents"] = json.dumps(np.diag(exponents).tolist())
     return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+#: Units of the mean drift and QTF variables (per unit wave amplitude squared).
+SECOND_ORDER_UNITS = "N/m^2 (Surge, Sway, Heave), N m/m^2 (Roll, Pitch, Yaw)"
+_DRIFT_WHAT = ("mean wave drift force and moment about the rotation centre per unit wave "
+               "amplitude squared")
+
+
+def _second_order_variables(bem: ImportedBem, yaw_deg: float, t: NDArray[np.float64]
+                            ) -> tuple[dict[str, xr.DataArray], dict[str, tuple]]:
+    """The imported mean drift and QTF variables, turned by the yaw like the excitation, and
+    the QTF's coordinates (docs/guide/hydro_databases.md#imported-second-order-data)."""
+    second = bem.second_order
+    out: dict[str, xr.DataArray] = {}
+    coords: dict[str, tuple] = {}
+    if second is None:
+        return out, coords
+    drift_dims = ("omega", "wave_direction", "influenced_dof")
+    for name, values, route, source in (
+            ("mean_drift_far_field", second.far_field, "far field (momentum conservation); "
+             "Surge, Sway and Yaw only (NaN for Heave, Roll, Pitch)", second.far_field_from),
+            ("mean_drift_near_field", second.near_field, "near field (pressure integration)",
+             second.near_field_from)):
+        if values is None:
+            continue
+        _, order = _turned_directions(bem.directions, yaw_deg, bem)
+        turned = np.einsum("ik,wbk->wbi", t, np.nan_to_num(values))[:, order, :]
+        if name == "mean_drift_far_field":
+            turned[..., 2:5] = np.nan
+        out[name] = xr.DataArray(turned, dims=drift_dims, attrs={
+            "long_name": f"{_DRIFT_WHAT}, {route}, imported from {bem.format} files",
+            "units": SECOND_ORDER_UNITS, "drift_source": source})
+    if second.qtf_difference is not None:
+        beta, order = _turned_directions(second.qtf_directions, yaw_deg, bem)
+        q = np.einsum("ik,dabk->dabi", t, second.qtf_difference)[order]
+        out["qtf_difference"] = xr.DataArray(
+            np.stack([q.real, q.imag]),
+            dims=("complex", "qtf_direction", "qtf_omega_1", "qtf_omega_2", "influenced_dof"),
+            attrs={"long_name": "difference-frequency quadratic transfer function per unit "
+                   "wave amplitude squared: F(t) = Re sum_i sum_j A_i conj(A_j) Q(w_i, w_j) "
+                   "e^{-i (w_i - w_j) t} over all ordered pairs of the sea's complex "
+                   "amplitudes; Hermitian, Q(w, w) the mean drift",
+                   "units": SECOND_ORDER_UNITS, "qtf_source": second.qtf_from})
+        omega = np.asarray(second.qtf_omega, float)
+        for axis in ("qtf_omega_1", "qtf_omega_2"):
+            coords[axis] = (axis, omega, {"long_name": f"wave frequency "
+                                          f"{axis[-1]} of the QTF", "units": "rad/s"})
+        coords["qtf_direction"] = ("qtf_direction", beta, {
+            "long_name": "wave propagation direction of both components (unidirectional "
+                         "pairs), from +x counter-clockwise", "units": "rad"})
+        coords.setdefault("complex", ("complex", np.array(["re", "im"]),
+                                      {"long_name": "real and imaginary parts"}))
+    return out, coords
 
 
 def _importer_notes(bem: ImportedBem, options: ImportOptions, ref: NDArray[np.float64],
@@ -679,7 +780,10 @@ def import_database(paths: Sequence[str], options: ImportOptions, *, name: str,
         ds = imported_dataset(bem, options, name=name, command=command,
                               files=source_file_records(paths, project))
     for var in ds.data_vars:
-        if not np.all(np.isfinite(ds[var].values)):
+        values = ds[var].values
+        if var == "mean_drift_far_field":  # NaN for Heave, Roll, Pitch by its layout
+            values = ds[var].sel(influenced_dof=["Surge", "Sway", "Yaw"]).values
+        if not np.all(np.isfinite(values)):
             raise BemFileError(" ".join(map(str, bem.files)), var, "finite values once placed "
                                "and turned into the case's frame", "values that overflow")
     return ds

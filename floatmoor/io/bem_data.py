@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from floatmoor.errors import FloatmoorError
 
-__all__ = ["ImportedBem", "BemFileError", "DOFS"]
+__all__ = ["ImportedBem", "SecondOrder", "BemFileError", "DOFS"]
 
 #: Rigid-body DOFs in capytaine's names and order (rotations about the rotation centre).
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
@@ -34,6 +34,45 @@ class BemFileError(FloatmoorError, ValueError):
         self.path, self.where, self.expected, self.found = path, where, expected, found
         at = f"{path}: {where}" if where else str(path)
         super().__init__(f"{at}: expected {expected}, found {found}")
+
+
+@dataclass(frozen=True)
+class SecondOrder:
+    """Second-order wave loads read from another program's files, dimensional, SI,
+    e^{-i omega t} (the layout of docs/guide/hydro_databases.md#imported-second-order-data).
+
+    Mean drift arrays are (omega, wave_direction, DOF) on the first-order data's frequencies
+    and directions, per unit wave amplitude squared [N/m^2, N m/m^2], about the file's
+    reference point; the far field (momentum route) is NaN for Heave, Roll and Pitch. The QTF
+    is (direction, omega_1, omega_2, DOF), Hermitian in (omega_1, omega_2), with
+    F(t) = Re sum_i sum_j A_i conj(A_j) Q(omega_i, omega_j) e^{-i (omega_i - omega_j) t} over
+    all ordered pairs of the sea's complex amplitudes A (capytaine's convention).
+
+    Attributes
+    ----------
+    source
+        ``"wamit"`` or ``"bemio"``.
+    far_field, far_field_from
+        Momentum-route mean drift and where it came from (file and route), or None.
+    near_field, near_field_from
+        Pressure-route mean drift (all six DOFs) and where it came from, or None.
+    qtf_omega, qtf_directions, qtf_difference, qtf_from
+        The difference-frequency QTF's own frequencies [rad/s] (ascending), unidirectional
+        wave directions [rad], values and where they came from; None without a QTF.
+    notes
+        What the reader did that a user should know.
+    """
+
+    source: str
+    far_field: NDArray[np.float64] | None = None
+    far_field_from: str = ""
+    near_field: NDArray[np.float64] | None = None
+    near_field_from: str = ""
+    qtf_omega: NDArray[np.float64] | None = None
+    qtf_directions: NDArray[np.float64] | None = None
+    qtf_difference: NDArray[np.complex128] | None = None
+    qtf_from: str = ""
+    notes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -75,6 +114,8 @@ class ImportedBem:
         The body's name in the file, if any.
     notes
         What the importer did that a user should know (one sentence each).
+    second_order
+        Mean drift and difference-frequency QTF read with the first-order data, or None.
     """
 
     format: str
@@ -98,3 +139,4 @@ class ImportedBem:
     water_depth: float | None = None
     body_name: str | None = None
     notes: tuple[str, ...] = ()
+    second_order: SecondOrder | None = None

@@ -47,7 +47,11 @@ itself are read (soft and external links, virtual datasets and external raw stor
 refused), of a floating-point type (strings where a string is expected), their shape checked
 against the expected one before their data are read, and at most :data:`MAX_READ_BYTES` of data
 in all. Text from the file (names, entries) is quoted with
-:func:`floatmoor.terminal_text.shown`.
+:func:`floatmoor.terminal_text.shown`. Mean drift datasets, when present, are read by
+:mod:`floatmoor.io.bemio_second_order`.
+
+Size: one strict reader of one file layout: the dataset access, the checks and the assembly of
+one body share the open file and its notes; split, each part would need the others.
 """
 
 from __future__ import annotations
@@ -61,6 +65,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
+from floatmoor.io.bemio_second_order import read_bemio_mean_drift
 from floatmoor.io.input_files import InputFileError, open_regular
 from floatmoor.terminal_text import shown
 
@@ -139,6 +144,11 @@ class _File:
         import h5py
 
         return isinstance(self._entry(where, "an entry"), h5py.Dataset)
+
+    def has_group(self, where: str) -> bool:
+        import h5py
+
+        return isinstance(self._entry(where, "an entry"), h5py.Group)
 
     def raw(self, where: str, what: str) -> Any:
         """The dataset at ``where``, stored in the file itself (no data read yet)."""
@@ -587,6 +597,7 @@ def _read(file: _File, body: int | None, water_density: float | None) -> Importe
     notes.append(f"Wave directions in {'radians' if in_radians else 'degrees'} in the file "
                  "(propagation directions); excitation conjugated (BEMIO's e^{+i omega t}).")
 
+    second = read_bemio_mean_drift(file, body, exc_shape, order, dir_order, rho_g)
     return ImportedBem(
         format="bemio", files=(file.name,), omega=omega, added_mass=added_mass,
         radiation_damping=damping, water_density=rho, gravity=g,
@@ -597,4 +608,4 @@ def _read(file: _File, body: int | None, water_density: float | None) -> Importe
         disp_volume=volume if volume > 0.0 else None,
         center_of_buoyancy=cb if volume > 0.0 else None, center_of_gravity=cg,
         rotation_center=cg.copy(), water_depth=depth, body_name=body_name or None,
-        notes=tuple(notes))
+        notes=tuple(notes), second_order=second)

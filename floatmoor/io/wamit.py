@@ -112,7 +112,11 @@ _EMPTY_BLOCK = array("d", [math.nan] * (3 * _N_MODES))
 
 _KIND_NAMES = {".1": "added mass and damping (.1)", ".3": "exciting force (.3)",
                ".3fk": "Froude-Krylov force (.3fk)", ".3sc": "scattering force (.3sc)",
-               ".hst": "hydrostatic restoring (.hst)", ".out": "run summary (.out)"}
+               ".hst": "hydrostatic restoring (.hst)", ".out": "run summary (.out)",
+               # second-order files, read by floatmoor.io.wamit_second_order
+               ".8": "mean drift, momentum conservation (.8)",
+               ".9": "mean drift, pressure integration (.9)",
+               ".12d": "difference-frequency QTF (.12d)"}
 
 #: The header fields of a ``.out`` read, as WAMIT prints them (``Gravity:     9.80665
 #: Length scale:        1.00000``, ``Water depth:        200.000000`` or ``infinite``).
