@@ -106,6 +106,11 @@ class DriftLookup(ExcitationInterpolator):
         self.directions = np.asarray(ds["wave_direction"].values, dtype=float)
         self.values = values  # (omega, direction, dof)
 
+    def covers(self, omega: ArrayLike) -> NDArray[np.bool_]:
+        """Whether each frequency [rad/s] is inside the database's."""
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        return (w >= self.omega[0]) & (w <= self.omega[-1])
+
     def at(self, omega: ArrayLike, direction: ArrayLike) -> NDArray[np.float64]:
         """D at each component (frequency [rad/s], direction [rad]), shape (N, 6); zero for a
         frequency outside the database's.
@@ -119,7 +124,7 @@ class DriftLookup(ExcitationInterpolator):
         w = np.atleast_1d(np.asarray(omega, dtype=float))
         beta = np.broadcast_to(np.asarray(direction, dtype=float), w.shape)
         out = np.zeros((w.size, 6))
-        inside = (w >= self.omega[0]) & (w <= self.omega[-1])
+        inside = self.covers(w)
         for b in np.unique(beta):
             sel = inside & (beta == b)
             if not np.any(sel):

@@ -240,7 +240,9 @@ class MooredSystem:
     second_order: dict[str, str] = field(default_factory=dict)
 
 
-def _excitation(sea: WaveField, ds: "xr.Dataset") -> WaveExcitation | None:
+def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation | None:
+    """The first-order excitation of the sea (zero for components outside the database's
+    frequencies); a direction outside the database's is refused (CaseError)."""
     if sea.n_components == 0:
         return None
     interp = ExcitationInterpolator(ds)
@@ -250,7 +252,13 @@ def _excitation(sea: WaveField, ds: "xr.Dataset") -> WaveExcitation | None:
     for beta in np.unique(sea.direction):
         sel = inside & (sea.direction == beta)
         if np.any(sel):
-            X[sel] = interp(sea.omega[sel], float(beta))
+            try:
+                X[sel] = interp(sea.omega[sel], float(beta))
+            except ValueError as err:
+                raise CaseError(key_origin(case, "waves.direction_deg"), "waves.direction_deg",
+                                "a wave direction the excitation forces of "
+                                f"{ds.attrs.get('path', 'the database')} cover",
+                                str(err)) from None
     return WaveExcitation(sea, X)
 
 
@@ -294,8 +302,10 @@ def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "
             force: SecondOrderForce = QTFForce(sea, lookup.grid, qtf) if qtf is not None \
                 else MeanDriftForce(sea, np.zeros((0, 6)))
         else:
-            drift = DriftLookup(ds, route).at(sea.omega, sea.direction)
-            force = MeanDriftForce(sea, drift) if model == "mean" else NewmanForce(sea, drift)
+            drifts = DriftLookup(ds, route)
+            drift = drifts.at(sea.omega, sea.direction)
+            force = MeanDriftForce(sea, drift) if model == "mean" else \
+                NewmanForce(sea, drift, drifts.covers(sea.omega))
     except ValueError as err:
         what = "QTF" if model == "full" else f"{route.replace('_', ' ')} mean drift"
         raise CaseError(key_origin(case, "waves.direction_deg"), "waves.direction_deg",
@@ -362,7 +372,9 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     Raises
     ------
     CaseError
-        When the floater asks for a state-space radiation its database does not hold.
+        When the floater asks for a state-space radiation its database does not hold, the
+        sea's direction is outside the database's, or the case asks for second-order wave
+        loads the database cannot give (:func:`_second_order`).
     HydroDatabaseError
         When the floater's database is missing, damaged, stale or fails a check the case
         does not accept, or has no excitation forces for the case's waves.
@@ -388,7 +400,7 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
     # before the body: a sea on a database without excitation forces (or without the
     # second-order coefficients the case asks for) is refused at once
-    excitation = _excitation(sea, ds)
+    excitation = _excitation(sea, ds, case)
     second, second_attrs = _second_order(case, settings, sea, ds)
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)

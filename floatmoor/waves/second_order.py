@@ -15,7 +15,9 @@ looks them up in the database: floatmoor.hydro.second_order):
                                        S_D(t) = sum_j A_j D_j e^{-i omega_j t},
 
     O(N) per time (one harmonic sum of 14 real signals, floatmoor.waves.synthesis); its time
-    mean (over the repeat period of an equally spaced sea) is the ``mean`` force.
+    mean (over the repeat period of an equally spaced sea) is the ``mean`` force. Components
+    outside the coefficients' band are left out of S and S_D (as out of ``full``'s pairs), so
+    that ``full`` with the QTF (D_p + D_q) / 2 is ``newman`` for any sea.
 ``"full"`` (:class:`QTFForce`)
     F(t) = Re sum_i sum_j A_i conj(A_j) Q(omega_i, omega_j) e^{-i (omega_i - omega_j) t}
     over all ordered pairs, Q the difference-frequency QTF interpolated bilinearly on its
@@ -100,13 +102,19 @@ class NewmanForce:
         The sea.
     drift
         D at each component's frequency and direction, shape (N, n_dof) [N/m^2, N m/m^2].
+    inside
+        Which components the coefficients cover, shape (N,) (default all); the others are
+        left out.
     """
 
     model = "newman"
 
-    def __init__(self, field: WaveField, drift: ArrayLike) -> None:
+    def __init__(self, field: WaveField, drift: ArrayLike,
+                 inside: ArrayLike | None = None) -> None:
         d = _drift_array(field, drift)
         a = field.complex_amplitude
+        if inside is not None:
+            a = np.where(np.asarray(inside, dtype=bool), a, 0.0)
         self.omega = field.omega
         self.n_dof = d.shape[1]
         sd = a[:, None] * d
@@ -114,7 +122,7 @@ class NewmanForce:
         self.coefficients = np.concatenate([a[:, None], -1j * a[:, None], sd, -1j * sd],
                                            axis=1)
         self.coefficients.setflags(write=False)
-        self.mean = (field.amplitude ** 2) @ d
+        self.mean = np.abs(a) ** 2 @ d
         self.mean.setflags(write=False)
 
     def __call__(self, t: float) -> NDArray[np.float64]:
