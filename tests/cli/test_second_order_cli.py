@@ -135,3 +135,19 @@ def test_full_qtf_run_of_newmans_off_diagonals_equals_the_newman_run(tmp_path) -
     assert runs["full"].attrs["second_order_coefficients"] == \
         "qtf_difference (qtf_source: test: Newman's off-diagonals)"
     assert runs["full"].attrs["drift_inputs_current"].startswith("not applicable")
+
+
+def test_a_case_with_second_order_loads_scales_keeping_the_choice(tmp_path) -> None:
+    """``floatmoor scale`` keeps ``second_order`` and ``drift_coefficients`` (words, not
+    dimensional values)."""
+    from floatmoor.similitude.case_scaling import scale_case_file
+    from floatmoor.similitude.laws import ScaleLaw
+
+    case = tmp_path / "buoy.toml"
+    case.write_text(BUOY_CASE.read_text().replace(
+        'ramp_duration = 20.0', 'ramp_duration = 20.0\nsecond_order = "newman"\n'
+        'drift_coefficients = "near_field"'))
+    scaled = scale_case_file(case, ScaleLaw(10.0, 10.0, 1.0), output=tmp_path / "big.toml",
+                             hydro_database="buoy_x10").case
+    assert scaled.waves.second_order == "newman"
+    assert scaled.waves.drift_coefficients == "near_field"
