@@ -27,8 +27,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.hydro.excitation import ExcitationInterpolator
 
-__all__ = ["DriftLookup", "QTFLookup", "drift_source", "missing_coefficients", "route_text",
-           "FAR_FIELD_DOFS", "QTF_VARIABLE", "DRIFT_VARIABLE"]
+__all__ = ["DriftLookup", "QTFLookup", "DirectionError", "drift_source", "missing_coefficients",
+           "route_text", "FAR_FIELD_DOFS", "QTF_VARIABLE", "DRIFT_VARIABLE"]
 
 #: The DOFs the far field (momentum) route gives: Surge, Sway, Yaw.
 FAR_FIELD_DOFS = (0, 1, 5)
@@ -36,6 +36,17 @@ FAR_FIELD_DOFS = (0, 1, 5)
 DRIFT_VARIABLE = {"far_field": "mean_drift_far_field", "near_field": "mean_drift_near_field"}
 #: Database variable of the difference-frequency QTF.
 QTF_VARIABLE = "qtf_difference"
+
+
+class DirectionError(ValueError):
+    """A wave direction outside the directions of the coefficients."""
+
+
+def _column(lookup: ExcitationInterpolator, beta: float) -> NDArray:
+    try:
+        return lookup._at_direction(beta)
+    except ValueError as err:
+        raise DirectionError(str(err)) from None
 
 
 def drift_source(ds: xr.Dataset) -> str:
@@ -117,9 +128,11 @@ class DriftLookup(ExcitationInterpolator):
 
         Raises
         ------
+        DirectionError
+            A direction outside the database's.
         ValueError
-            A direction outside the database's, or coefficients that are not finite where
-            the sea needs them (naming the frequency).
+            Coefficients that are not finite where the sea needs them (naming the
+            frequency).
         """
         w = np.atleast_1d(np.asarray(omega, dtype=float))
         beta = np.broadcast_to(np.asarray(direction, dtype=float), w.shape)
@@ -129,7 +142,7 @@ class DriftLookup(ExcitationInterpolator):
             sel = inside & (beta == b)
             if not np.any(sel):
                 continue
-            column = self._at_direction(float(b))  # (omega, dof)
+            column = _column(self, float(b))  # (omega, dof)
             for k in range(6):
                 out[sel, k] = np.interp(w[sel], self.omega, column[:, k])
         bad = ~np.all(np.isfinite(out), axis=1)
@@ -148,7 +161,13 @@ class QTFLookup(ExcitationInterpolator):
     """
 
     def __init__(self, ds: xr.Dataset) -> None:  # noqa: super() not called
+        """Raises ValueError for a QTF whose two frequency axes differ or do not ascend."""
         da = ds[QTF_VARIABLE]
+        w1 = np.asarray(ds["qtf_omega_1"].values, dtype=float)
+        w2 = np.asarray(ds["qtf_omega_2"].values, dtype=float)
+        if w1.size < 2 or not np.array_equal(w1, w2) or np.any(np.diff(w1) <= 0.0):
+            raise ValueError("qtf_omega_1 and qtf_omega_2 must be the same two or more "
+                             "ascending frequencies")
         labels = [str(v) for v in da["complex"].values] if "complex" in da.coords else []
         real, imag = ("re", "im") if "re" in labels else ("real", "imag")
         values = (da.sel(complex=real, drop=True) + 1j * da.sel(complex=imag, drop=True))
@@ -167,11 +186,13 @@ class QTFLookup(ExcitationInterpolator):
 
         Raises
         ------
+        DirectionError
+            A direction outside the database's QTF directions.
         ValueError
-            A direction outside the database's QTF directions, or a QTF that is not finite.
+            A QTF that is not finite there.
         """
         m = self.grid.size
-        q = np.asarray(self._at_direction(float(direction))).reshape(m, m, -1)
+        q = np.asarray(_column(self, float(direction))).reshape(m, m, -1)
         if not np.all(np.isfinite(q)):
             raise ValueError("QTF not finite on its grid")
         return q

@@ -29,7 +29,7 @@ from floatmoor.errors import CaseError, FloatmoorError, FloatmoorWarning, Solver
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
 from floatmoor.hydro.second_order import (
-    DriftLookup, QTFLookup, drift_source, missing_coefficients, route_text,
+    DirectionError, DriftLookup, QTFLookup, drift_source, missing_coefficients, route_text,
 )
 from floatmoor.hydro.state_space_file import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
@@ -295,6 +295,7 @@ def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "
                         "(add them with 'floatmoor hydro build CASE --drift', or import "
                         "WAMIT .8/.9 files)", f'"{model}" with {path}, which has {missing}')
     directions = np.unique(sea.direction)
+    what = "QTF" if model == "full" else f"{route.replace('_', ' ')} mean drift"
     try:
         if model == "full":
             lookup = QTFLookup(ds)
@@ -306,10 +307,13 @@ def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "
             drift = drifts.at(sea.omega, sea.direction)
             force = MeanDriftForce(sea, drift) if model == "mean" else \
                 NewmanForce(sea, drift, drifts.covers(sea.omega))
-    except ValueError as err:
-        what = "QTF" if model == "full" else f"{route.replace('_', ' ')} mean drift"
+    except DirectionError as err:
         raise CaseError(key_origin(case, "waves.direction_deg"), "waves.direction_deg",
                         f"a sea the {what} coefficients of {path} cover", str(err)) from None
+    except ValueError as err:
+        raise CaseError(key_origin(case, "waves.second_order"), "waves.second_order",
+                        f'"none", or a database whose {what} coefficients are usable',
+                        f'"{model}" with {path}: {err}') from None
     source = drift_source(ds)
     current = "not applicable (coefficients not computed by floatmoor)"
     if source == "floatmoor" and model != "full":

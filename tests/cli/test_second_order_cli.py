@@ -151,3 +151,27 @@ def test_a_case_with_second_order_loads_scales_keeping_the_choice(tmp_path) -> N
                              hydro_database="buoy_x10").case
     assert scaled.waves.second_order == "newman"
     assert scaled.waves.drift_coefficients == "near_field"
+
+
+def test_unusable_coefficients_are_refused_on_the_model_key(tmp_path, capsys) -> None:
+    """A QTF with NaN where the sea needs it, or with different frequency axes: refused on
+    ``waves.second_order``, naming the database and what is wrong."""
+    def with_nan(ds):
+        out = _newman_qtf(ds)
+        out["qtf_difference"][0, 0, 40, 41, 0] = np.nan
+        return out
+
+    case, database = _project(tmp_path, with_nan)
+    err = _refused(capsys, [case, "--set", 'waves.second_order="full"'], tmp_path / "o.nc")
+    assert f"waves.second_order: expected \"none\", or a database whose QTF coefficients are " \
+           f"usable, found \"full\" with {database}: QTF not finite on its grid" in err
+
+
+def test_drift_with_nan_where_the_sea_needs_it_is_refused(tmp_path, capsys) -> None:
+    def with_nan(ds):
+        ds["mean_drift_far_field"][44, 0, 0] = np.nan
+        return ds
+
+    case, database = _project(tmp_path, with_nan)
+    err = _refused(capsys, [case, "--set", 'waves.second_order="mean"'], tmp_path / "o.nc")
+    assert f"found \"mean\" with {database}: drift coefficients not finite at 5.23599 rad/s" in err
