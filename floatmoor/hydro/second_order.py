@@ -122,6 +122,17 @@ class DriftLookup(ExcitationInterpolator):
         w = np.atleast_1d(np.asarray(omega, dtype=float))
         return (w >= self.omega[0]) & (w <= self.omega[-1])
 
+    def column(self, direction: float) -> NDArray[np.float64]:
+        """D on the database's frequencies (:attr:`omega`) at ``direction`` [rad], shape
+        (n_omega, 6) (may hold NaN where the database does).
+
+        Raises
+        ------
+        DirectionError
+            A direction outside the database's.
+        """
+        return np.asarray(_column(self, float(direction)), dtype=float)
+
     def at(self, omega: ArrayLike, direction: ArrayLike) -> NDArray[np.float64]:
         """D at each component (frequency [rad/s], direction [rad]), shape (N, 6); zero for a
         frequency outside the database's.

@@ -42,7 +42,7 @@ from floatmoor.simulation.groups import SystemGroup, body_point_line, system_gro
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.second_order import (
-    MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce,
+    MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce, newman_on_grid,
 )
 from floatmoor.waves.settings import build
 from floatmoor.wind.force import RotorThrust
@@ -304,9 +304,13 @@ def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "
                 else MeanDriftForce(sea, np.zeros((0, 6)))
         else:
             drifts = DriftLookup(ds, route)
-            drift = drifts.at(sea.omega, sea.direction)
-            force = MeanDriftForce(sea, drift) if model == "mean" else \
-                NewmanForce(sea, drift, drifts.covers(sea.omega))
+            drift = drifts.at(sea.omega, sea.direction)  # refuses NaN where the sea needs D
+            if model == "mean":
+                force = MeanDriftForce(sea, drift)
+            elif directions.size == 1:  # a long-crested sea: from the band amplitudes
+                force = newman_on_grid(sea, drifts.omega, drifts.column(float(directions[0])))
+            else:
+                force = NewmanForce(sea, drift, drifts.covers(sea.omega))
     except DirectionError as err:
         raise CaseError(key_origin(case, "waves.direction_deg"), "waves.direction_deg",
                         f"a sea the {what} coefficients of {path} cover", str(err)) from None

@@ -13,7 +13,9 @@ import xarray as xr
 from floatmoor.hydro.second_order import DriftLookup, QTFLookup, missing_coefficients
 from floatmoor.waves._second_order_kernels import band_amplitudes, hermitian_forms
 from floatmoor.waves.realisation import WaveField
-from floatmoor.waves.second_order import MeanDriftForce, NewmanForce, QTFForce, hat_weights
+from floatmoor.waves.second_order import (
+    MeanDriftForce, NewmanForce, QTFForce, hat_weights, newman_on_grid,
+)
 from tests.conftest import REPO
 from tests.oracles import second_order_numpy as oracle
 
@@ -139,6 +141,29 @@ def test_newman_leaves_out_the_components_outside_the_band(buoy) -> None:
     np.testing.assert_allclose(got, expected, rtol=0, atol=ROUND_OFF * np.abs(expected).max())
     assert np.abs(NewmanForce(field, lookup.at(w, 0.0)).series(t) - expected).max() > \
         1e-3 * np.abs(expected).max()
+
+
+@pytest.mark.parametrize("spacing", ["equal", "random-in-bin"])
+def test_newman_from_the_band_amplitudes_equals_the_harmonic_sums(buoy, spacing) -> None:
+    """The run's Newman force (D on the database's frequencies, from the grid's band
+    amplitudes) against the harmonic sums of S and S_D, for seas reaching beyond the
+    database's band at both ends."""
+    field = WaveField.jonswap(0.04, 1.2, seed=8, duration=60.0, omega_min=0.5,
+                              omega_max=12.0, spacing=spacing,
+                              n_components=150 if spacing != "equal" else None, depth=0.9)
+    lookup = DriftLookup(buoy, "far_field")
+    inside = lookup.covers(field.omega)
+    assert not inside[0] and not inside[-1]
+    reference = NewmanForce(field, lookup.at(field.omega, 0.0), inside)
+    fast = newman_on_grid(field, lookup.omega, lookup.column(0.0))
+    t = np.arange(0.0, 60.0, 0.005)
+    expected = reference.series(t)
+    np.testing.assert_allclose(fast.series(t), expected, rtol=0,
+                               atol=ROUND_OFF * np.abs(expected).max())
+    np.testing.assert_allclose(fast.mean, reference.mean, rtol=1e-13)
+    scattered = np.array([0.3, 17.1, 59.99])
+    np.testing.assert_allclose(fast.series(scattered), reference.series(scattered), rtol=0,
+                               atol=ROUND_OFF * np.abs(expected).max())
 
 
 def test_qtf_with_a_known_phase_gives_the_hand_written_cosine() -> None:
