@@ -15,10 +15,11 @@ looks them up in the database: floatmoor.hydro.second_order):
                                        S_D(t) = sum_j A_j D_j e^{-i omega_j t},
 
     O(N) per time (one harmonic sum of 14 real signals, floatmoor.waves.synthesis; with D
-    given on a frequency grid, :func:`newman_on_grid`, from the grid's band amplitudes, as
-    ``full`` below, about ten times cheaper); its time mean (over the repeat period of an equally spaced sea) is the ``mean`` force. Components
-    outside the coefficients' band are left out of S and S_D (as out of ``full``'s pairs), so
-    that ``full`` with the QTF (D_p + D_q) / 2 is ``newman`` for any sea.
+    given on a frequency grid, :func:`newman_on_grid`, from the grid's band amplitudes as
+    ``full`` below, about six times cheaper); its time mean (over the repeat period of an
+    equally spaced sea) is the ``mean`` force. Components outside the coefficients' band are
+    left out of S and S_D (as out of ``full``'s pairs), so that ``full`` with the QTF
+    (D_p + D_q) / 2 is ``newman`` for any sea.
 ``"full"`` (:class:`QTFForce`)
     F(t) = Re sum_i sum_j A_i conj(A_j) Q(omega_i, omega_j) e^{-i (omega_i - omega_j) t}
     over all ordered pairs, Q the difference-frequency QTF interpolated bilinearly on its
