@@ -6,7 +6,10 @@ and the body step ``[simulation] time_step`` (read in load.py).
 ``seed``, ``gamma = 3.3``, ``direction_deg = 0``, ``spacing = "equal"`` (or
 ``"random-in-bin"``), ``n_components``, ``frequency_step`` [rad/s], ``omega_min``,
 ``omega_max`` [rad/s]; all kinds: ``ramp_duration`` [s] (cosine ramp of the excitation;
-default two periods, or two peak periods). ``[wind]`` (rotor thrust of the NREL 5 MW turbine,
+default two periods, or two peak periods); ``second_order = "none"`` (or ``"mean"``,
+``"newman"``, ``"full"``: second-order wave loads, floatmoor.waves.second_order) and
+``drift_coefficients = "far_field"`` (or ``"near_field"``: the mean drift route of ``mean``
+and ``newman``). ``[wind]`` (rotor thrust of the NREL 5 MW turbine,
 floatmoor.wind): ``mean_speed`` [m/s] at ``reference_height = 90`` [m], ``spectrum = "npd"``
 (or ``"steady"``), ``seed = 0``, ``direction_deg = 0``, ``relative_velocity = true``,
 ``cutoff_hz = 0.5``, ``hub_height = 90`` [m]. ``[initial]``: the body's displacement from its
@@ -24,6 +27,7 @@ import numpy as np
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Environment
 from floatmoor.waves.realisation import SPACINGS
+from floatmoor.waves.second_order import DRIFT_ROUTES, SECOND_ORDER_MODELS
 from floatmoor.waves.settings import (
     GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
@@ -38,10 +42,14 @@ RAMP_PERIODS = 2.0
 
 @dataclass(frozen=True)
 class WaveCase:
-    """The sea of a coupled case and the ramp of its excitation."""
+    """The sea of a coupled case, the ramp of its excitation and its second-order loads."""
 
     settings: StillWaterSettings | RegularWaveSettings | JonswapSettings
     ramp_duration: float  #: [s]
+    #: second-order wave loads: "none", "mean", "newman" or "full"
+    second_order: str = "none"
+    #: mean drift route of "mean" and "newman": "far_field" or "near_field"
+    drift_coefficients: str = "far_field"
 
 
 def read_waves(t: TableReader, environment: Environment, duration: float) -> WaveCase:
@@ -74,6 +82,11 @@ def read_waves(t: TableReader, environment: Environment, duration: float) -> Wav
             omega_max=t.number("omega_max", unit="rad/s", gt=0.0, default=None))
         period = settings.tp
     ramp = t.number("ramp_duration", unit="s", ge=0.0, default=RAMP_PERIODS * period)
+    second_order = t.string("second_order", choices=SECOND_ORDER_MODELS, default="none")
+    route = t.string("drift_coefficients", choices=DRIFT_ROUTES, default="far_field")
+    if kind == "still" and second_order != "none":
+        raise t.error("second_order", '"none" in still water (kind = "still": no waves to '
+                      "drift the floater)", second_order)
     try:
         # an extreme period can defeat the dispersion relation's Newton iteration: that is a
         # period out of range, said in one message (no overflow warnings before it)
@@ -89,7 +102,7 @@ def read_waves(t: TableReader, environment: Environment, duration: float) -> Wav
         raise t.error(key, f"a wave period for which the dispersion relation has a solution "
                       f"({err}) [s]", period) from None
     t.finish()
-    return WaveCase(settings, ramp)
+    return WaveCase(settings, ramp, second_order, route)
 
 
 def read_initial(t: TableReader) -> tuple[float, float, float, float, float, float]:

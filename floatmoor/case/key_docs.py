@@ -362,6 +362,13 @@ _CASE = {
     "waves.omega_max": "Highest realised frequency; default four times the peak frequency "
                        "(`jonswap`).",
     "waves.ramp_duration": "Duration of the cosine ramp of the wave excitation.",
+    "waves.second_order": "Second-order wave loads: `none` (first order only), the constant "
+                          "`mean` drift, the slow drift by `newman`'s approximation, or the "
+                          "`full` difference-frequency QTF of the database "
+                          "(theory/hydrodynamics.md, guide/rao_and_drift.md).",
+    "waves.drift_coefficients": "Mean drift route of `mean` and `newman`: `far_field` "
+                                "(momentum: Surge, Sway, Yaw; Heave, Roll, Pitch from the near "
+                                "field) or `near_field` (pressure integration, all six DOFs).",
     # initial
     "initial": "The floater's displacement from its static equilibrium at t = 0 (a free "
                "decay); body and lines start at rest there.",

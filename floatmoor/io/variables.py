@@ -1,7 +1,8 @@
 """The one table of names, long names and units of floatmoor's output variables.
 
 Units are UDUNITS strings; every variable and coordinate written to a result dataset takes its
-``long_name`` and ``units`` from here.
+``long_name`` and ``units`` from here (``body_equilibrium_with_drift``: the attributes of
+``body_equilibrium`` in a run with second-order wave loads).
 """
 
 from __future__ import annotations
@@ -53,6 +54,18 @@ VARIABLE_ATTRIBUTES: dict[str, dict[str, str]] = {
                          "and the mean rotor thrust of the mean wind if any (no current, wave "
                          "drift or Morison drag): Surge, Sway, Heave [m], Roll, Pitch, Yaw "
                          "[rad]", "units": "m or rad"},
+    "body_equilibrium_with_drift": {
+        "long_name": "static equilibrium of the moored floater relative to the case's "
+                     "position, under its weight, buoyancy (linear hydrostatic stiffness), the "
+                     "quasi-static catenaries of its lines in still water, the mean rotor "
+                     "thrust of the mean wind if any and the mean wave drift of the sea "
+                     "(second_order_force's mean; no current or Morison drag): Surge, Sway, "
+                     "Heave [m], Roll, Pitch, Yaw [rad]", "units": "m or rad",
+        "mean_wave_drift": "included"},
+    "second_order_force": {"long_name": "second-order wave force and moment on the floater "
+                           "about its reference point, as applied: its mean unramped (in "
+                           "body_equilibrium), the rest ramped with the square of the wave "
+                           "ramp", "units": "N (Surge, Sway, Heave), N m (Roll, Pitch, Yaw)"},
     "body_velocity": {"long_name": "floater velocity: Surge, Sway, Heave [m/s], Roll, Pitch, "
                       "Yaw [rad/s]", "units": "m/s or rad/s"},
     # prescribed body motion (forced runs with [motion] kind = "body")

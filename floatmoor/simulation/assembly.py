@@ -3,7 +3,8 @@
 :func:`assemble` turns a validated case into a :class:`MooredSystem`: its points, its lines
 (each model object built from the line's sections), and for a case with a ``[floater]`` the
 Cummins body on those lines at its static equilibrium, the sea, and the loads on the body
-other than the lines (:class:`BodyLoads`: ramped wave excitation, rotor thrust, Morison drag).
+other than the lines (:class:`BodyLoads`: ramped wave excitation, second-order wave loads,
+rotor thrust, Morison drag).
 The forced-motion and coupled runs take that object and only step and record it; nothing in
 their time loops builds models.
 """
@@ -11,6 +12,7 @@ their time loops builds models.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Sequence
@@ -23,9 +25,12 @@ from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case, Point
-from floatmoor.errors import CaseError, SolverError
+from floatmoor.errors import CaseError, FloatmoorError, FloatmoorWarning, SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.second_order import (
+    DirectionError, DriftLookup, QTFLookup, drift_source, missing_coefficients, route_text,
+)
 from floatmoor.hydro.state_space_file import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.dg.system import DynamicSystem
@@ -36,6 +41,9 @@ from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.groups import SystemGroup, body_point_line, system_groups
 from floatmoor.waves.excitation import WaveExcitation
 from floatmoor.waves.realisation import WaveField
+from floatmoor.waves.second_order import (
+    MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce, newman_on_grid,
+)
 from floatmoor.waves.settings import build
 from floatmoor.wind.force import RotorThrust
 
@@ -120,19 +128,24 @@ def key_origin(case: Case, key: str) -> str:
 
 class BodyLoads:
     """The loads on the body other than its lines: the wave excitation (with its cosine ramp),
-    the rotor thrust (unramped: the body starts at the mean-thrust equilibrium) and the Morison
-    drag, each tabulated at the body's half-steps of a chunk by :meth:`prepare` and looked up
-    by :meth:`__call__` at the Runge-Kutta stage times."""
+    the second-order wave loads (their mean unramped, the rest ramped with the square of the
+    wave ramp: docs/theory/hydrodynamics.md#the-ramp-and-the-start), the rotor thrust
+    (unramped: the body starts at the mean-thrust equilibrium) and the Morison drag, each
+    tabulated at the body's half-steps of a chunk by :meth:`prepare` and looked up by
+    :meth:`__call__` at the Runge-Kutta stage times."""
 
     def __init__(self, excitation: WaveExcitation | None, rotor: RotorThrust | None,
-                 drag: MorisonDrag | None, ramp_duration: float, time_step: float) -> None:
+                 drag: MorisonDrag | None, ramp_duration: float, time_step: float,
+                 second_order: SecondOrderForce | None = None) -> None:
         self.excitation = excitation
         self.rotor = rotor
         self.drag = drag
+        self.second_order = second_order
         self.ramp_duration = float(ramp_duration)
         self.time_step = float(time_step)
         self._t0 = math.nan
         self._wave = np.zeros((1, 6))
+        self._drift = np.zeros((0, 6))
 
     def ramp(self, t: float) -> float:
         """The excitation's cosine ramp factor at ``t`` [-]."""
@@ -147,6 +160,8 @@ class BodyLoads:
         self._t0 = t0
         if self.excitation is not None:
             self._wave = self.excitation.series(t0 + h * np.arange(2 * steps + 1))
+        if self.second_order is not None:
+            self._drift = self.second_order.series(t0 + h * np.arange(2 * steps + 1))
         if self.rotor is not None:
             self.rotor.prepare(t0, 2 * steps + 1, h)
         if self.drag is not None:
@@ -157,11 +172,28 @@ class BodyLoads:
         """The 6-DOF load at stage time ``t`` (a half-step of the prepared chunk) [N, N m]."""
         k = int(round((t - self._t0) / (0.5 * self.time_step)))
         f = self.ramp(t) * self._wave[k] if self.excitation is not None else np.zeros(6)
+        if self.second_order is not None:
+            f = f + self._ramped_drift(t, self._drift[k])
         if self.rotor is not None:
             f = f + self.rotor.force(k, x, v)
         if self.drag is not None:
             f = f + self.drag.force(k, x, v)
         return f
+
+    def _ramped_drift(self, t: float, value: NDArray[np.float64]) -> NDArray[np.float64]:
+        mean = self.second_order.mean
+        return mean + self.ramp(t) ** 2 * (value - mean)
+
+    def second_order_force(self, t: float) -> NDArray[np.float64]:
+        """The second-order wave load applied at ``t`` [N, N m] (6,): from the prepared chunk
+        at its half-steps, evaluated directly otherwise (before the first chunk)."""
+        if self.second_order is None:
+            raise ValueError("the body has no second-order wave loads")
+        k = (t - self._t0) / (0.5 * self.time_step)
+        j = int(round(k)) if math.isfinite(k) else -1
+        if 0 <= j < len(self._drift) and abs(k - j) < 1e-6:
+            return self._ramped_drift(t, self._drift[j])
+        return self._ramped_drift(t, self.second_order(t))
 
 
 @dataclass
@@ -187,9 +219,13 @@ class MooredSystem:
     sea
         The wave field of a coupled run, or None.
     equilibrium
-        The body's static equilibrium on its lines (6,) [m, rad], or None.
+        The body's static equilibrium on its lines (6,) [m, rad], or None; with second-order
+        wave loads it includes their mean.
     database
         The hydrodynamic database of the floater, or None.
+    second_order
+        The run's description of its second-order wave loads (result attributes), empty
+        without them.
     """
 
     case: Case
@@ -201,9 +237,12 @@ class MooredSystem:
     sea: WaveField | None = None
     equilibrium: NDArray[np.float64] | None = None
     database: "xr.Dataset | None" = None
+    second_order: dict[str, str] = field(default_factory=dict)
 
 
-def _excitation(sea: WaveField, ds: "xr.Dataset") -> WaveExcitation | None:
+def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation | None:
+    """The first-order excitation of the sea (zero for components outside the database's
+    frequencies); a direction outside the database's is refused (CaseError)."""
     if sea.n_components == 0:
         return None
     interp = ExcitationInterpolator(ds)
@@ -213,8 +252,91 @@ def _excitation(sea: WaveField, ds: "xr.Dataset") -> WaveExcitation | None:
     for beta in np.unique(sea.direction):
         sel = inside & (sea.direction == beta)
         if np.any(sel):
-            X[sel] = interp(sea.omega[sel], float(beta))
+            try:
+                X[sel] = interp(sea.omega[sel], float(beta))
+            except ValueError as err:
+                raise CaseError(key_origin(case, "waves.direction_deg"), "waves.direction_deg",
+                                "a wave direction the excitation forces of "
+                                f"{ds.attrs.get('path', 'the database')} cover",
+                                str(err)) from None
     return WaveExcitation(sea, X)
+
+
+def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "xr.Dataset"
+                  ) -> tuple[SecondOrderForce | None, dict[str, str]]:
+    """The second-order wave force of the run and its description (result attributes), or
+    (None, {}); refused before any run starts when the database cannot give it.
+
+    Raises
+    ------
+    CaseError
+        Naming the case file, the key, the database, what was expected and what was found.
+    """
+    model, route = settings.second_order, settings.drift_coefficients
+    if model == "none":
+        return None, {}
+    path = ds.attrs.get("path", "the database")
+    missing = missing_coefficients(ds, model, route)
+    if missing is not None:
+        if model == "full":
+            raise CaseError(key_origin(case, "waves.second_order"), "waves.second_order",
+                            '"none", "mean" or "newman", or "full" with a database holding '
+                            "the difference-frequency QTF (qtf_difference: import it with "
+                            "'floatmoor hydro import')", f'"full" with {path}, which has '
+                            f"{missing}")
+        other = [r for r in ("far_field", "near_field") if r != route][0]
+        if missing_coefficients(ds, model, other) is None:
+            raise CaseError(key_origin(case, "waves.drift_coefficients"),
+                            "waves.drift_coefficients", f'"{other}", or a database holding '
+                            f"the {route.replace('_', ' ')} mean drift",
+                            f'"{route}" with {path}, which has {missing}')
+        raise CaseError(key_origin(case, "waves.second_order"), "waves.second_order",
+                        f'"none", or a database holding mean drift coefficients for "{model}" '
+                        "(add them with 'floatmoor hydro build CASE --drift', or import "
+                        "WAMIT .8/.9 files)", f'"{model}" with {path}, which has {missing}')
+    directions = np.unique(sea.direction)
+    what = "QTF" if model == "full" else f"{route.replace('_', ' ')} mean drift"
+    try:
+        if model == "full":
+            lookup = QTFLookup(ds)
+            qtf = lookup.at(float(directions[0])) if directions.size else None
+            force: SecondOrderForce = QTFForce(sea, lookup.grid, qtf) if qtf is not None \
+                else MeanDriftForce(sea, np.zeros((0, 6)))
+        else:
+            drifts = DriftLookup(ds, route)
+            drift = drifts.at(sea.omega, sea.direction)  # refuses NaN where the sea needs D
+            if model == "mean":
+                force = MeanDriftForce(sea, drift)
+            elif directions.size == 1:  # a long-crested sea: from the band amplitudes
+                force = newman_on_grid(sea, drifts.omega, drifts.column(float(directions[0])))
+            else:
+                force = NewmanForce(sea, drift, drifts.covers(sea.omega))
+    except DirectionError as err:
+        raise CaseError(key_origin(case, "waves.direction_deg"), "waves.direction_deg",
+                        f"a sea the {what} coefficients of {path} cover", str(err)) from None
+    except ValueError as err:
+        raise CaseError(key_origin(case, "waves.second_order"), "waves.second_order",
+                        f'"none", or a database whose {what} coefficients are usable',
+                        f'"{model}" with {path}: {err}') from None
+    source = drift_source(ds)
+    current = "not applicable (coefficients not computed by floatmoor)"
+    if source == "floatmoor" and model != "full":
+        from floatmoor.hydro.drift_build import drift_is_current
+
+        try:
+            is_current = drift_is_current(ds, case)
+        except FloatmoorError as err:
+            is_current, current = False, f"unknown ({err})"
+        else:
+            current = "yes" if is_current else "no"
+        if not is_current:
+            warnings.warn(f"{path}: the mean drift coefficients were computed with another "
+                          f"mass or mooring than {case.source}'s (drift_inputs_hash differs); "
+                          "the run uses them as they are (for this case's: 'floatmoor hydro "
+                          "build CASE --drift')", FloatmoorWarning, stacklevel=3)
+    attrs = {"second_order": model, "second_order_coefficients": route_text(ds, model, route),
+             "drift_source": source, "drift_inputs_current": current}
+    return force, attrs
 
 
 def _system_force(case: Case, centre: NDArray[np.float64]
@@ -258,7 +380,9 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     Raises
     ------
     CaseError
-        When the floater asks for a state-space radiation its database does not hold.
+        When the floater asks for a state-space radiation its database does not hold, the
+        sea's direction is outside the database's, or the case asks for second-order wave
+        loads the database cannot give (:func:`_second_order`).
     HydroDatabaseError
         When the floater's database is missing, damaged, stale or fails a check the case
         does not accept, or has no excitation forces for the case's waves.
@@ -282,20 +406,24 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
                         f'"state-space" with {ds.attrs.get("path", "the database")}, which '
                         "holds none")
     sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
-    # before the body: a sea on a database without excitation forces is refused at once
-    excitation = _excitation(sea, ds)
+    # before the body: a sea on a database without excitation forces (or without the
+    # second-order coefficients the case asks for) is refused at once
+    excitation = _excitation(sea, ds, case)
+    second, second_attrs = _second_order(case, settings, sea, ds)
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)
     rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
-    loads = BodyLoads(excitation, rotor, None, settings.ramp_duration, dt)
+    loads = BodyLoads(excitation, rotor, None, settings.ramp_duration, dt, second)
     centre = np.asarray(case.floater.reference_point, dtype=float)
     # built as for a fresh start, so that a checkpoint's state fits the same operators
     moored = MooredBody(body, case.lines, env, case.seabed, centre, loads, case=case)
     solo = np.array([case.is_independent(ln) for ln in case.lines], dtype=bool)
+    mean_force = None if rotor is None else rotor.steady_force()
+    if second is not None:  # the mean drift is in the start equilibrium, and unramped
+        mean_force = second.mean if mean_force is None else mean_force + second.mean
     x_eq = equilibrium(body, [ln for ln, s in zip(case.lines, solo) if s],
                        moored.arms[solo] if len(solo) else moored.arms, centre, env, case.seabed,
-                       mean_force=None if rotor is None else rotor.steady_force(),
-                       system_force=_system_force(case, centre))
+                       mean_force=mean_force, system_force=_system_force(case, centre))
     moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
     refuse_long_runs(case, moored.models)
     moored.equilibrium_position = x_eq
@@ -303,4 +431,4 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
         loads.drag = MorisonDrag(case.floater, case.floater.drag, env.water_density, sea,
                                  current=env.current_velocity, mean_displacement=x_eq)
     return MooredSystem(case=case, points=case.points, moored=moored, loads=loads, sea=sea,
-                        equilibrium=x_eq, database=ds)
+                        equilibrium=x_eq, database=ds, second_order=second_attrs)

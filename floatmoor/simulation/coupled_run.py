@@ -67,6 +67,10 @@ class CoupledSettings:
     database: str | Path | None = None  #: default: hydrodb/<hydro.database>.nc
     linear_damping: NDArray[np.float64] | None = None  #: B_1 (6, 6)
     quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
+    #: second-order wave loads ("none", "mean", "newman", "full": floatmoor.waves.second_order)
+    second_order: str = "none"
+    #: mean drift route of "mean" and "newman" ("far_field" or "near_field")
+    drift_coefficients: str = "far_field"
 
 
 def settings_from_case(case: Case) -> CoupledSettings:
@@ -78,7 +82,9 @@ def settings_from_case(case: Case) -> CoupledSettings:
         time_step=sim.time_step if sim.time_step is not None else sim.output_interval,
         waves=waves.settings if waves is not None else StillWaterSettings(),
         ramp_duration=waves.ramp_duration if waves is not None else 0.0,
-        initial_offset=tuple(case.initial_offset))
+        initial_offset=tuple(case.initial_offset),
+        second_order=waves.second_order if waves is not None else "none",
+        drift_coefficients=waves.drift_coefficients if waves is not None else "far_field")
 
 
 def irregular_sea(waves: RegularWaveSettings | JonswapSettings | StillWaterSettings) -> bool:
@@ -337,10 +343,11 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
         f"\nline '{rule_lines[i].name}': raised to {raised[i]} elements from "
         f"{describe_raises(history)}; the run started again from t = 0"
         for i, history in raised_from.items())
+    attrs = {**system.second_order, **({} if probe is None else {"line_accuracy": not_yet})}
     recorder = Recorder(case, times, output, flush_interval, body=True, equilibrium=x_eq,
                         shape_nodes=moored.shape_arc_lengths() if stride_shapes else None,
                         shape_stride=stride_shapes, chunk=CHUNK_STEPS // stride + 1,
-                        attrs=None if probe is None else {"line_accuracy": not_yet})
+                        attrs=attrs or None, second_order=loads.second_order is not None)
     elements = np.array([raised.get(i, 0) for i in range(len(case.lines))], dtype=np.int64)
     series, bseries = recorder.series, recorder.body
     n_steps = (times.size - 1) * stride
@@ -363,6 +370,8 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
             recorder.store_group(case, group, sample, index, index + 1)
         bseries["body_displacement"][k] = body.x - x_eq
         bseries["body_velocity"][k] = body.v
+        if loads.second_order is not None:
+            bseries["second_order_force"][k] = loads.second_order_force(float(times[index]))
         if probe is not None and not probe.done:
             probe.sample(float(times[index]), pos)
             if probe.done:

@@ -35,6 +35,7 @@ from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
 from floatmoor.io.dataset import build_result_dataset, record_order
 from floatmoor.io.netcdf import NETCDF_ENGINE, NETCDF_FORMAT, open_result
+from floatmoor.io.variables import attributes
 from floatmoor.io.netcdf3_format import NetCDF3Error
 from floatmoor.io.netcdf_stream import NetCDF3Stream
 from floatmoor.signals import deferred_interrupts, signal_name
@@ -104,6 +105,8 @@ def estimated_output_bytes(case: Case) -> float:
     values += (len(case.points) * 6 + len(case.sections) * 2) * n_time
     if case.floater is not None:
         values += n_time * _BODY_VALUES
+        if case.waves is not None and case.waves.second_order != "none":
+            values += n_time * 6  # second_order_force
     if getattr(case.motion, "kind", None) == "body":  # the prescribed DOFs and their rates
         values += n_time * 12
     if sim.shape_output_interval is not None:
@@ -172,6 +175,9 @@ class Recorder:
     equilibrium
         With ``body``: the floater's static equilibrium (6,) [m, rad] its displacement is
         recorded from, written to the file (``body_equilibrium``) with its first samples.
+    second_order
+        With ``body``: record the second-order wave force (``second_order_force``), whose
+        mean the equilibrium then includes (said in ``body_equilibrium``'s attributes).
     chunk
         Most samples the run writes between two :meth:`reserve` calls: the window holds at
         least this many.
@@ -185,10 +191,14 @@ class Recorder:
                  shape_nodes: list[NDArray[np.float64]] | None = None,
                  shape_stride: int = 0, body: bool = False, prescribed: bool = False,
                  equilibrium: NDArray[np.float64] | None = None, chunk: int = 1,
-                 attrs: dict[str, str | float | int] | None = None) -> None:
+                 attrs: dict[str, str | float | int] | None = None,
+                 second_order: bool = False) -> None:
         if body != (equilibrium is not None):
             raise ValueError("a floater's series are recorded with its equilibrium, and only "
                              "they")
+        if second_order and not body:
+            raise ValueError("a second-order wave force is recorded with a floater's series")
+        self.second_order = second_order
         self.case = case
         #: attributes the run adds to the file's (known before its first sample)
         self.attrs = dict(attrs or {})
@@ -197,7 +207,8 @@ class Recorder:
         self.flush_interval = flush_interval
         n_lines, n_total = len(case.lines), self.time.size
         self.capacity = n_total if self.path is None else min(
-            n_total, max(int(chunk), WINDOW_BYTES // _sample_bytes(case, body, prescribed)))
+            n_total, max(int(chunk), WINDOW_BYTES // _sample_bytes(case, body, prescribed,
+                                                                   second_order)))
         n_time = self.capacity
         #: absolute index of the window's first sample; samples written to the file
         self.offset = 0
@@ -215,6 +226,8 @@ class Recorder:
             self.body = {"body_displacement": np.zeros((n_time, 6)),
                          "body_velocity": np.zeros((n_time, 6)),
                          "wave_elevation": np.zeros(n_time)}
+            if second_order:
+                self.body["second_order_force"] = np.zeros((n_time, 6))
         #: prescribed body motion (forced runs with [motion] kind = "body"): its 6 DOFs and
         #: their rates (time, 6)
         self.prescribed: dict[str, NDArray[np.float64]] | None = None
@@ -437,13 +450,16 @@ class Recorder:
             system["point_force"] += self.system["point_force"][:, a:b]
         if self.prescribed is not None:
             body = {**(body or {}), **{k: v[a:b] for k, v in self.prescribed.items()}}
-        return build_result_dataset(self.case, self.time[first:stop], variables, status=status,
-                                    shapes=shape_data, body=body, system=system,
-                                    body_equilibrium=self.equilibrium,
-                                    extra_attrs={**self.attrs, "wall_time_s": wall,
-                                                 "simulated_time_s": self.simulated_time,
-                                                 VALIDITY_ATTRIBUTE:
-                                                     "\n".join(self.validity_warnings)})
+        dataset = build_result_dataset(self.case, self.time[first:stop], variables,
+                                       status=status, shapes=shape_data, body=body,
+                                       system=system, body_equilibrium=self.equilibrium,
+                                       extra_attrs={**self.attrs, "wall_time_s": wall,
+                                                    "simulated_time_s": self.simulated_time,
+                                                    VALIDITY_ATTRIBUTE:
+                                                        "\n".join(self.validity_warnings)})
+        if self.second_order:  # its equilibrium includes the mean drift
+            dataset["body_equilibrium"].attrs.update(attributes("body_equilibrium_with_drift"))
+        return dataset
 
     def _template(self, first: int, stop: int, status: str) -> bytes:
         """netCDF bytes of samples [first, stop) as xarray writes them, ``time`` the record
@@ -644,10 +660,11 @@ class Recorder:
             raise
 
 
-def _sample_bytes(case: Case, body: bool, prescribed: bool) -> int:
+def _sample_bytes(case: Case, body: bool, prescribed: bool, second_order: bool = False) -> int:
     """Bytes the recorder's buffers take per output sample."""
     values = len(case.lines) * sum(size for _, size in _SERIES)
     values += (_BODY_VALUES if body else 0) + (12 if prescribed else 0)
+    values += 6 if second_order else 0
     if case.is_system:
         values += len(case.points) * 6 + len(case.sections) * 2
     return max(values, 1) * _VALUE_BYTES
