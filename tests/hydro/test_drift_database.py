@@ -98,5 +98,5 @@ def test_hydro_info_says_whether_the_drift_is_held(capsys, monkeypatch):
     monkeypatch.chdir(REPO)
     assert main(["hydro", "info", "cylinder_buoy"]) == 0
     assert "mean drift: far and near field" in capsys.readouterr().out
-    assert main(["hydro", "info", "deepcwind"]) == 0
+    assert main(["hydro", "info", "deepcwind_wamit"]) == 0  # an import without .8 / .9
     assert "mean drift: none" in capsys.readouterr().out
