@@ -249,3 +249,25 @@ def test_info_of_a_tampered_second_order_database(wamit_set, deepcwind_db, capsy
     out = capsys.readouterr().out
     assert "difference-frequency QTF: 3 x 3 frequencies" in out  # xarray's 0, 1, 2: no crash
     assert "from evil\\x1b[31m.12d" in out and "\x1b" not in out
+
+
+def test_imported_qtf_and_drift_read_by_the_run_lookups(wamit_set, deepcwind_db):
+    """What the import writes is what a run reads: the time domain's lookups
+    (floatmoor.hydro.second_order) give the imported QTF and mean drift back unchanged."""
+    from floatmoor.hydro.second_order import DriftLookup, QTFLookup, missing_coefficients
+
+    folder, files, periods, chosen = wamit_set
+    assert _import(folder, files, deepcwind_db) == 0
+    ds = read_database(folder / "hydrodb" / "w.nc")
+    for model, route in (("mean", "far_field"), ("newman", "near_field"), ("full", "far_field")):
+        assert missing_coefficients(ds, model, route) is None
+    q = merge_complex(ds, "qtf_difference").sel(qtf_direction=0.0)
+    np.testing.assert_array_equal(QTFLookup(ds).at(0.0),
+                                  q.transpose("qtf_omega_1", "qtf_omega_2",
+                                              "influenced_dof").values)
+    lookup = DriftLookup(ds, "near_field")
+    near = ds["mean_drift_near_field"].transpose("omega", "wave_direction",
+                                                 "influenced_dof").values
+    w = ds["omega"].values
+    np.testing.assert_allclose(lookup.at(np.array([w[5]]), np.array([0.0]))[0], near[5, 0],
+                               rtol=1e-12)
