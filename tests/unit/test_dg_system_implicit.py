@@ -267,8 +267,7 @@ def test_one_section_system_is_the_implicit_line_bit_for_bit() -> None:
     system = DynamicSystem([point("a", "fixed", ln.anchor), point("f", "body", ln.fairlead)],
                            [sec], initial_positions=line.r.reshape(-1, 3))
     assert system.integration == "implicit"
-    # (the system's implicit step has no slack-taut event check: the line's is off here)
-    line.implicit.ip[ik.IP_FLAG_EVENTS] = 0.0
+    assert line.implicit.ip[ik.IP_FLAG_EVENTS] == system.implicit.ip[ik.IP_FLAG_EVENTS] == 1.0
     system.implicit.ip[:] = line.implicit.ip  # (its force scale: the line's unsettled start)
     t = np.linspace(0.0, 2.0, 201)
     w = 2 * np.pi / 1.25

@@ -37,6 +37,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
@@ -616,6 +618,34 @@ def _step_error(sec, prm, ops, st, nw, fields, dt, err_coef, tmp3):
 
 
 @jit
+def _end_strains(r, v, x, u, sec, prm, ops, kind, body, t0s, t1s, bp0, bw0, bp1, bw1, t, ppos,
+                 pvel, out):
+    """(eps, d eps/dt) of every section's end node at time t (``out`` (sections, 2)): the
+    line kernel's fairlead strain (``_implicit_kernels._fairlead_strain``) with the section's
+    start and end points as its anchor and fairlead (their data at t, ``_point_data``)."""
+    _point_data(kind, body, x, u, t0s, t1s, bp0, bw0, bp1, bw1, t, ppos, pvel)
+    for j in range(sec.shape[0]):
+        D, LIFT, F, w = _s._ops(ops, sec, j)
+        sp, ep = sec[j, _s.S_START], sec[j, _s.S_END]
+        e, de = _ik._fairlead_strain(_s._nodes(r, sec, j), _s._nodes(v, sec, j), ppos[sp],
+                                     ppos[ep], pvel[ep], prm[j], D, LIFT)
+        out[j, 0] = e
+        out[j, 1] = de
+
+
+@jit
+def _jumped_transitions(before, after, prm, dt, tol):
+    """Whether any section's end crossed the slack-taut transition within the step with more
+    than the force tolerance ``tol`` on its taut side (``_implicit_kernels._jumped_transition``
+    per section)."""
+    for j in range(before.shape[0]):
+        if _ik._jumped_transition(before[j, 0], before[j, 1], after[j, 0], after[j, 1], dt,
+                                  prm[j, _k.P_EA], tol):
+            return True
+    return False
+
+
+@jit
 def dgi_start(r, v, x, u, bpos, bvel, sec, prm, ops, kind, body, pprm, env, st, pw, fields,
               slack, H):
     """The state's accelerations: An, Fn (``st[1]``, ``st[3]``) and the acceleration
@@ -683,6 +713,12 @@ def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, 
     err_coef = abs(ip[_ik.IP_BETA] - 1.0 / 6.0)
     dt_max = ip[_ik.IP_DT_MAX]
     level_max = int(ip[_ik.IP_LEVEL_MAX])
+    events = ip[_ik.IP_FLAG_EVENTS] != 0.0
+    strain0 = np.zeros((sec.shape[0], 2))  # (the sections' end strains at the step's start)
+    strain1 = np.zeros((sec.shape[0], 2))
+    if events and n > 1:
+        _end_strains(r, v, x, u, sec, prm, ops, kind, body, time[0], time[1], bpos[0], bvel[0],
+                     bpos[1], bvel[1], time[0], ppos, pvel, strain0)
     n_shape = 0
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
@@ -718,7 +754,13 @@ def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, 
             if ok:
                 err = _step_error(sec, prm, ops, st, nw, fields, dt, err_coef,
                                   tmp3) / ip[_ik.IP_FORCE_TOL]
-            if not ok or (err > 1.0 and L < level_max):
+            jumped = False
+            if (ok and err <= 1.0 and events
+                    and L < min(level_max, level_min + _ik.EVENT_LEVELS)):
+                _end_strains(r, v, x, u, sec, prm, ops, kind, body, t0, t1, bpos[s], bvel[s],
+                             bpos[s + 1], bvel[s + 1], t + dt, ppos, pvel, strain1)
+                jumped = _jumped_transitions(strain0, strain1, prm, dt, ip[_ik.IP_FORCE_TOL])
+            if not ok or jumped or (err > 1.0 and L < level_max):
                 _restore(r, v, x, u, st, nw, pw)
                 cs[_ik.CS_REJECTED] += 1.0
                 cs[_ik.CS_GOOD] = 0.0
@@ -752,6 +794,9 @@ def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, 
             if filtered:
                 dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N,
                            Nstar, faces, slack, st[1], st[3], H)
+            if events:
+                _end_strains(r, v, x, u, sec, prm, ops, kind, body, t0, t1, bpos[s], bvel[s],
+                             bpos[s + 1], bvel[s + 1], t + dt, ppos, pvel, strain0)
             if err < ip[_ik.IP_GROW]:
                 cs[_ik.CS_GOOD] += 1.0
             else:

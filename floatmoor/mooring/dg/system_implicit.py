@@ -78,6 +78,9 @@ class SystemImplicit:
         self.ip[_ik.IP_DT_MAX] = self.max_step
         self.ip[_ik.IP_LEVEL_MAX] = LEVEL_MAX
         self.ip[_ik.IP_GROW] = GROW_RATIO
+        # a step that jumps over a section end's slack-taut transition is rejected, as on
+        # single lines (docs/theory/dynamic_line.md#slack-taut-events-and-seabed-friction)
+        self.ip[_ik.IP_FLAG_EVENTS] = 1.0
         #: integrator state (``_implicit_kernels.CS_*``)
         self.cs = np.zeros(_ik.CS_N)
         #: the sections' parameters with damping and contact inside the solve
