@@ -13,12 +13,12 @@ Only the wetted hull (z <= 0) is meshed; normals point into the fluid.
   ``RotationSymmetricMesh(ReflectionSymmetricMesh(half, "xOz"), n)``; all panel edges are laid
   on the sector planes, so the half-sector is an exact subset of the full mesh (checked).
 
-Drift meshes (``waterline_panel_size``): the vertical walls reaching the still water line
-(columns, the cylinder's side) are graded in depth, panel height ``waterline_panel_size`` at
-z = 0 growing by at most :data:`GRADING_RATIO` per row to ``panel_size``
-(:func:`graded_levels`; docs/theory/hydrodynamics.md#mean-wave-drift): the mean drift's
-waterline and velocity terms and the Kochin functions' e^{kz} are resolved where the wave's
-pressure varies fastest, without refining the whole hull.
+Drift meshes (``waterline_panel_size``): the walls reaching the still water line (columns,
+the cylinder's side, members crossing it, along their axis) are graded, panel height
+``waterline_panel_size`` at z = 0 growing by at most :data:`GRADING_RATIO` per row to
+``panel_size`` (:func:`graded_levels`; docs/theory/hydrodynamics.md#mean-wave-drift): the mean
+drift's waterline and velocity terms and the Kochin functions' e^{kz} are resolved where the
+wave's pressure varies fastest, without refining the whole hull.
 
 Lids (interior waterplane panels at ``z = -lid_depth`` against irregular frequencies) follow
 the same symmetry. A ``mesh`` geometry meshes nothing: its file is read, placed, clipped and
@@ -136,7 +136,8 @@ def graded_levels(z_lo: float, z_hi: float, size: float, top_size: float | None 
                   ) -> NDArray[np.float64]:
     """Increasing z levels from ``z_lo`` to ``z_hi``: uniform at about ``size``, or (with
     ``top_size`` < ``size``) rows of height ``top_size`` at ``z_hi`` growing by
-    :data:`GRADING_RATIO` per row until they reach ``size``, uniform below."""
+    :data:`GRADING_RATIO` per row until they reach ``size``, uniform below (the nearest
+    whole number of rows: heights within a factor 1.5 of ``size``)."""
     length = z_hi - z_lo
     if top_size is None or top_size >= size:
         return np.linspace(z_lo, z_hi, max(1, math.ceil(length / size)) + 1)
@@ -283,9 +284,10 @@ def _member_frame(member: Member) -> tuple[NDArray, NDArray, NDArray, float]:
     return a, d, e_a, e_b
 
 
-def _member_surface(member: Member, others, size: float, n_theta: int, n_axial_even: bool
-                    ) -> NDArray[np.float64] | None:
-    """(m, n_theta, 3) grid of a member's wetted surface between the solids it joins."""
+def _member_surface(member: Member, others, size: float, n_theta: int, n_axial_even: bool,
+                    top_size: float | None = None) -> NDArray[np.float64] | None:
+    """(m, n_theta, 3) grid of a member's wetted surface between the solids it joins (rows
+    graded to ``top_size`` along the axis at a still water line crossing it)."""
     a, d, e_a, e_b = _member_frame(member)
     length = float(np.linalg.norm(np.subtract(member.end, member.start)))
     radius = 0.5 * member.diameter
@@ -324,20 +326,30 @@ def _member_surface(member: Member, others, size: float, n_theta: int, n_axial_e
     s_end = length - exit_distance(a + d * length + offsets, -d)
     # cut at the still water line
     z0 = (a + offsets)[:, 2]
+    at_water = 0  # the end cut by the still water line: 1 at s_end, -1 at s_start
     if abs(d[2]) > 1e-12:
         s_zero = -z0 / d[2]
         if d[2] > 0:
+            at_water = 1 if np.any(s_zero < s_end) else 0
             s_end = np.minimum(s_end, s_zero)
         else:
+            at_water = -1 if np.any(s_zero > s_start) else 0
             s_start = np.maximum(s_start, s_zero)
     elif np.any(z0 > 0):
         return None
     if np.any(s_end <= s_start):
         return None
-    n_axial = max(1, math.ceil(float(np.max(s_end - s_start)) / size))
-    if n_axial_even and n_axial % 2:
-        n_axial += 1
-    frac = np.linspace(0.0, 1.0, n_axial + 1)
+    longest = float(np.max(s_end - s_start))
+    if at_water and top_size is not None and top_size < size:
+        frac = graded_levels(0.0, 1.0, size / longest, top_size / longest)
+        frac[0], frac[-1] = 0.0, 1.0
+        if at_water < 0:
+            frac = 1.0 - frac[::-1]
+    else:
+        n_axial = max(1, math.ceil(longest / size))
+        if n_axial_even and n_axial % 2:
+            n_axial += 1
+        frac = np.linspace(0.0, 1.0, n_axial + 1)
     s = s_start[None, :] + frac[:, None] * (s_end - s_start)[None, :]
     pts = a[None, None, :] + s[..., None] * d[None, None, :] + offsets[None, :, :]
     # rows along d, columns counter-clockwise about d: (d) x (tangent) points inward; reverse
@@ -433,7 +445,8 @@ def semisubmersible_mesh(geometry: SemisubmersibleGeometry, *, panel_size: float
         others = [f for j, f in enumerate(solids) if j != n_cols + k]
         n_theta = _angular_count(0.5 * member.diameter, panel_size, 4)
         n_theta = max(n_theta, 12)
-        grid = _member_surface(member, others, panel_size, n_theta, n_axial_even=True)
+        grid = _member_surface(member, others, panel_size, n_theta, n_axial_even=True,
+                               top_size=waterline_panel_size)
         if grid is not None:
             builder.add_grid(grid, n_cols + k, closed=True)
 
