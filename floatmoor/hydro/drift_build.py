@@ -41,10 +41,10 @@ __all__ = ["DRIFT_VARIABLES", "drift_for_case", "add_drift", "has_drift", "drift
 
 #: Default panel height at the still water line of the drift's mesh: wavenumber (at the
 #: highest frequency) times height 0.05. Convergence study (docs/validation/floaters.md#mean-wave-drift):
-#: on the OC4 semisubmersible (2 m panels) far and near field agree within 2.7 % of the peak
-#: with k h = 0.044 at 1.80 rad/s and within 3.3 % with 0.087 (10-50 % uniform); on a
-#: truncated cylinder (0.5 m panels, kR up to 6.8) both meet the short-wave limit within
-#: 1 % with k h = 0.07, the near field 7.6 % off with 0.14.
+#: on the OC4 semisubmersible (2 m panels, 0.8-1.8 rad/s) far and near field agree within
+#: 3.3 % of the peak surge drift with k h = 0.05, 4.3 % with 0.087, 9.2 % with 0.17 and 44 %
+#: uniform; on a truncated cylinder (0.5 m panels, kR up to 6.8) both meet the short-wave
+#: limit within 1 % with k h = 0.07, the near field 7.6 % off with 0.14.
 DRIFT_WATERLINE_KH = 0.05
 
 _UNITS = "N/m^2 (Surge, Sway, Heave), N m/m^2 (Roll, Pitch, Yaw)"
