@@ -5,8 +5,8 @@
 the case's mass, hydrostatics, its lines' linearised stiffness), meshes the hull as the
 database's build did (:func:`floatmoor.hydro.build.checked_mesh`) but with the walls graded
 towards the still water line (:func:`drift_waterline_panel_size`; a mesh-file hull is used as
-read), and runs :func:`floatmoor.hydro.drift.solve_drift`. :func:`add_drift` puts the result into the
-database:
+read), and runs :func:`floatmoor.hydro.drift.solve_drift`. :func:`add_drift` puts the result
+into the database:
 
 * ``mean_drift_near_field`` (omega, wave_direction, influenced_dof): all six DOFs;
 * ``mean_drift_far_field`` (same dims): Surge, Sway, Yaw; NaN for Heave, Roll, Pitch, which
