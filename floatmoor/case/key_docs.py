@@ -339,6 +339,10 @@ _CASE = {
                             "environment.water_depth.",
     "hydro.symmetry": "Use the hull's symmetries in the BEM.",
     "hydro.radial_panels": "Panels across the bottom of a cylinder, centre to rim.",
+    "hydro.drift_waterline_panel_size": "Panel height at the water line of the mesh the mean "
+                                        "drift is solved on (`hydro build --drift`), graded "
+                                        "to panel_size below; default from the highest "
+                                        "frequency (guide/hydro_databases.md#mean-drift).",
     "hydro.accept_failed_checks": "Database checks whose failure a run of this case "
                                   "accepts; a run refuses a database failing any other.",
     # waves

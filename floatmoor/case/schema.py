@@ -552,6 +552,10 @@ class HydroSettings:
     infinite_depth: bool  #: solve in deep water (allows omega = 0) instead of water_depth
     symmetry: bool  #: use the mesh symmetries capytaine supports
     radial_panels: int | None = None  #: cylinder only: panels across the bottom radius
+    #: panel height at the still water line of the mean drift's mesh (walls graded from it to
+    #: ``panel_size``) [m]; None: the default rule of floatmoor.hydro.drift_build. Not a
+    #: first-order input: the database's own mesh is uniform
+    drift_waterline_panel_size: float | None = None
     #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
     accept_failed_checks: tuple[str, ...] = ()
     #: ``"bem"`` (built by ``floatmoor hydro build``) or ``"imported"`` (``hydro import``)

@@ -247,7 +247,7 @@ def _report_build_checks(path: Path, ds, results, case, note: str) -> int:
     accepted = case.hydro.accept_failed_checks
     print(_checks_table(path, ds, note, results, accepted))
     drift = [r for r in results if r.name == "drift" and not r.passed]
-    if drift:  # runs do not use the drift coefficients: a disagreement is reported only
+    if drift:  # a run uses the route its case chooses: a disagreement is reported only
         print(f"floatmoor: warning: {path}: mean drift far and near field differ by "
               f"{drift[0].worst:.1%} of the peak (tolerance {drift[0].tolerance:.0%}): finer "
               "panels near the waterline bring them together (docs/guide/hydro_databases.md"

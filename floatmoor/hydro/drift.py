@@ -29,8 +29,11 @@ Re(a e^{-i omega t}) Re(b e^{-i omega t}) is Re(a conj(b)) / 2). Two independent
 The velocity on the hull comes from the source distribution of capytaine's indirect method:
 its tangential part is the principal-value integral of the sources (the jump of the single
 layer is normal), its normal part is the body's normal velocity (the boundary condition). The
-drift solves are therefore separate from the database's (direct method) solves, on the same
-mesh, with the sources kept.
+drift solves are therefore separate from the database's (direct method) solves, with the
+sources kept, on the same hull meshed finer towards the still water line
+(:func:`floatmoor.hydro.drift_build.drift_waterline_panel_size`): the waterline and velocity
+terms, which cancel each other in large part, and the Kochin functions' e^{kz} vary fastest
+there.
 """
 
 from __future__ import annotations
@@ -258,6 +261,8 @@ class DriftResult:
     seconds: float
     #: drift with the further RAOs of :func:`solve_drift`'s ``other_motions``
     others: list = dataclasses.field(default_factory=list)
+    #: what the caller records of the mesh solved on (floatmoor.hydro.drift_build)
+    mesh: dict = dataclasses.field(default_factory=dict)
 
 
 def kochin_angles(count: int = KOCHIN_ANGLES) -> NDArray[np.float64]:

@@ -4,9 +4,11 @@
 Surge and sway are compared against the peak far-field force drift, yaw against its own peak
 when it is not negligible; frequencies where the near field is ill-conditioned (its terms
 cancel to less than 1/:data:`DRIFT_CONDITIONING` of their magnitudes, near a lightly damped
-resonance) are left out and named. Imported drift (WAMIT .8 and .9, BEMIO) is compared the
+resonance) are left out and named, and so are the frequencies where the row fails (the
+difference over the tolerance). Imported drift (WAMIT .8 and .9, BEMIO) is compared the
 same way when both routes were imported (without the near field's terms, every frequency is
-compared); with one route the row is not applicable. Runs do not use the drift yet, so the row is not among the
+compared); with one route the row is not applicable. A run's second-order loads use the
+coefficients whatever this row says (their route is the case's choice), so it is not among the
 checks a run enforces (:func:`floatmoor.hydro.checks.run_checks`).
 """
 
@@ -20,7 +22,7 @@ import xarray as xr
 from floatmoor.hydro.checks import CheckResult, _frequency_list
 
 __all__ = ["DRIFT_TOLERANCE", "DRIFT_CONDITIONING", "NEGLIGIBLE_YAW_DRIFT",
-           "drift_conditioning", "drift_differences", "check_drift"]
+           "drift_conditioning", "drift_differences", "drift_by_frequency", "check_drift"]
 
 #: Far-field against near-field mean drift in Surge, Sway and Yaw: within 5 % of the peak
 #: (docs/guide/hydro_databases.md#mean-drift).
@@ -46,12 +48,29 @@ def drift_conditioning(ds: xr.Dataset) -> np.ndarray:
         return np.abs(terms).sum(axis=0) / np.abs(terms.sum(axis=0))
 
 
+def drift_by_frequency(ds: xr.Dataset, *, left_out_too: bool = False
+                       ) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """Per compared DOF, max over directions of |far - near| / peak at each frequency (NaN
+    where left out, unless ``left_out_too``), and the frequencies left out
+    (:func:`drift_differences`)."""
+    return _differences(ds, left_out_too)
+
+
 def drift_differences(ds: xr.Dataset) -> tuple[dict[str, float], np.ndarray]:
     """max |far - near| / peak |far| of the mean drift per compared DOF (Surge and Sway
     against the peak far-field force drift of the two, Yaw against its own peak when not
     negligible), over the frequencies where the near field is well conditioned
     (:data:`DRIFT_CONDITIONING` at every direction and compared DOF where the drift matters);
     and the frequencies left out."""
+    per_omega, left_out = _differences(ds)
+    out = {k: float(np.nanmax(v)) if np.any(np.isfinite(v)) else math.nan
+           for k, v in per_omega.items()}
+    return out, left_out
+
+
+def _differences(ds: xr.Dataset, left_out_too: bool = False
+                 ) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """:func:`drift_by_frequency`."""
     near = ds["mean_drift_near_field"].transpose("omega", "wave_direction",
                                                  "influenced_dof").values
     far = ds["mean_drift_far_field"].transpose("omega", "wave_direction",
@@ -69,16 +88,16 @@ def drift_differences(ds: xr.Dataset) -> tuple[dict[str, float], np.ndarray]:
     for i in compared:
         matters = np.maximum(np.abs(near[..., i]), np.abs(far[..., i])) > 0.01 * peaks[i]
         bad |= np.any(matters & ~(conditioning[..., i] <= DRIFT_CONDITIONING), axis=1)
-    out: dict[str, float] = {}
+    out: dict[str, np.ndarray] = {}
     for i in compared:
-        diff = np.abs(far[~bad, :, i] - near[~bad, :, i])
-        out[_DOFS[i]] = float(diff.max()) / peaks[i] if diff.size else math.nan
+        diff = np.abs(far[..., i] - near[..., i]).max(axis=1) / peaks[i]
+        out[_DOFS[i]] = diff if left_out_too else np.where(bad, np.nan, diff)
     return out, ds["omega"].values[bad]
 
 
 def check_drift(ds: xr.Dataset) -> CheckResult:
     """Far-field against near-field mean drift (``hydro check``; not a run's check: a run
-    does not use the drift yet)."""
+    uses the route its case chooses)."""
     held = [v for v in ("mean_drift_far_field", "mean_drift_near_field") if v in ds.variables]
     if not held:
         return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no mean drift "
@@ -91,15 +110,26 @@ def check_drift(ds: xr.Dataset) -> CheckResult:
         return CheckResult.not_applicable(
             "drift", DRIFT_TOLERANCE, f"only the {route} mean drift (imported from "
             f"{source} files): nothing to compare it with")
-    errors, left_out = drift_differences(ds)
+    per_omega, left_out = drift_by_frequency(ds)
+    errors, _ = drift_differences(ds)
     if not errors:
         return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no horizontal drift")
     worst = max(errors.values())
     detail = "far vs near field, of the peak: " + ", ".join(
         f"{k} {v:.2%}" for k, v in errors.items())
+    over = np.zeros(ds.sizes["omega"], bool)
+    for v in per_omega.values():
+        over |= np.nan_to_num(v) > DRIFT_TOLERANCE
+    if np.any(over):
+        detail += (f"; over {DRIFT_TOLERANCE:.0%} at {_frequency_list(ds['omega'].values[over])}"
+                   " rad/s")
     if len(left_out):
+        every, _ = drift_by_frequency(ds, left_out_too=True)
+        there = max(float(np.nanmax(v[np.isin(ds["omega"].values, left_out)]))
+                    for v in every.values())
         detail += (f"; {len(left_out)} of {ds.sizes['omega']} frequencies left out, where the "
                    f"near field cancels to less than 1/{DRIFT_CONDITIONING:g} of its terms "
-                   f"(resonant motions): {_frequency_list(left_out)} rad/s")
+                   f"(resonant motions, or the waterline and velocity terms of short waves): "
+                   f"{_frequency_list(left_out)} rad/s, far vs near {there:.2%} there")
     return CheckResult("drift", bool(worst <= DRIFT_TOLERANCE), worst, DRIFT_TOLERANCE,
                        detail)

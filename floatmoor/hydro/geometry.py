@@ -13,11 +13,21 @@ Only the wetted hull (z <= 0) is meshed; normals point into the fluid.
   ``RotationSymmetricMesh(ReflectionSymmetricMesh(half, "xOz"), n)``; all panel edges are laid
   on the sector planes, so the half-sector is an exact subset of the full mesh (checked).
 
+Drift meshes (``waterline_panel_size``): the walls reaching the still water line (columns,
+the cylinder's side, members crossing it, along their axis) are graded, panel height
+``waterline_panel_size`` at z = 0 growing by at most :data:`GRADING_RATIO` per row to
+``panel_size`` (:func:`graded_levels`; docs/theory/hydrodynamics.md#mean-wave-drift): the mean
+drift's waterline and velocity terms and the Kochin functions' e^{kz} are resolved where the
+wave's pressure varies fastest, without refining the whole hull.
+
 Lids (interior waterplane panels at ``z = -lid_depth`` against irregular frequencies) follow
 the same symmetry. A ``mesh`` geometry meshes nothing: its file is read, placed, clipped and
 given a lid by :mod:`floatmoor.hydro.mesh_file`, into the same :class:`HullMesh`
 (:mod:`floatmoor.hydro.hull_mesh`). :func:`geometry_properties` gives the analytic volume,
 waterplane area and centre of buoyancy of the geometry for the checks.
+
+Size: the parametric hulls' meshing (cylinder, semisubmersible with its members and symmetry
+detection, the drift's grading) and their analytic properties, one family of helpers.
 """
 
 from __future__ import annotations
@@ -37,6 +47,7 @@ from floatmoor.hydro.hull_mesh import HullMesh
 __all__ = [
     "HullMesh", "build_mesh", "cylinder_mesh", "semisubmersible_mesh", "hemisphere_mesh",
     "geometry_properties", "GeometryProperties", "mesh_hash", "SYMMETRY_TOLERANCE",
+    "GRADING_RATIO", "graded_levels",
 ]
 
 #: Relative tolerance on total panel area when a symmetric mesh is compared with the full mesh
@@ -49,6 +60,10 @@ GEOMETRY_SYMMETRY_TOLERANCE = 1e-5
 #: Bisection steps for the end of a member's generator on another solid: 2^-60 of the search
 #: interval, i.e. exact to round-off.
 _BISECTION_STEPS = 60
+#: Largest ratio of adjacent panel heights in a graded wall (:func:`graded_levels`): 1.25
+#: keeps neighbouring panels' source strengths and the surface gradient's least-squares
+#: stencils (floatmoor.hydro.drift.surface_gradient) close to the uniform mesh's.
+GRADING_RATIO = 1.25
 
 
 @dataclass(frozen=True)
@@ -117,11 +132,36 @@ def _disk(builder: _Builder, centre: tuple[float, float], z: float, r_in: float,
     builder.add_grid(pts, owner, closed=True)
 
 
+def graded_levels(z_lo: float, z_hi: float, size: float, top_size: float | None = None
+                  ) -> NDArray[np.float64]:
+    """Increasing z levels from ``z_lo`` to ``z_hi``: uniform at about ``size``, or (with
+    ``top_size`` < ``size``) rows of height ``top_size`` at ``z_hi`` growing by
+    :data:`GRADING_RATIO` per row until they reach ``size``, uniform below (the nearest
+    whole number of rows: heights within a factor 1.5 of ``size``)."""
+    length = z_hi - z_lo
+    if top_size is None or top_size >= size:
+        return np.linspace(z_lo, z_hi, max(1, math.ceil(length / size)) + 1)
+    heights: list[float] = []
+    h = top_size
+    while h < size and sum(heights) + h < length:
+        heights.append(h)
+        h *= GRADING_RATIO
+    rest = length - sum(heights)
+    if heights and rest < heights[-1]:  # a thin remainder: stretch the graded rows to fill
+        heights = [v * length / sum(heights) for v in heights]
+    else:
+        n_rest = max(1, round(rest / size))
+        heights += [rest / n_rest] * n_rest
+    return z_hi - np.concatenate([[0.0], np.cumsum(heights)])[::-1]
+
+
 def _wall(builder: _Builder, centre: tuple[float, float], radius: float, z_lo: float,
-          z_hi: float, angles: NDArray[np.float64], size: float, owner: int) -> None:
-    """Vertical cylindrical wall, normal outward."""
-    nz = max(1, math.ceil((z_hi - z_lo) / size))
-    zs = np.linspace(z_lo, z_hi, nz + 1)
+          z_hi: float, angles: NDArray[np.float64], size: float, owner: int,
+          top_size: float | None = None) -> None:
+    """Vertical cylindrical wall, normal outward (graded towards a top at the still water
+    line by ``top_size``: :func:`graded_levels`)."""
+    zs = graded_levels(z_lo, z_hi, size, top_size if z_hi >= 0.0 else None)
+    zs[0], zs[-1] = z_lo, z_hi
     pts = np.empty((len(zs), len(angles), 3))
     pts[..., 0] = centre[0] + radius * np.cos(angles)[None, :]
     pts[..., 1] = centre[1] + radius * np.sin(angles)[None, :]
@@ -143,7 +183,8 @@ def _angular_count(radius: float, size: float, multiple: int, minimum: int = 4) 
 
 def cylinder_mesh(geometry: CylinderGeometry, *, panel_size: float, centre=(0.0, 0.0),
                   lid_depth: float | None = None, symmetry: bool = True,
-                  radial_panels: int | None = None) -> HullMesh:
+                  radial_panels: int | None = None,
+                  waterline_panel_size: float | None = None) -> HullMesh:
     """Mesh of the wetted part of a vertical cylinder.
 
     Parameters
@@ -160,15 +201,19 @@ def cylinder_mesh(geometry: CylinderGeometry, *, panel_size: float, centre=(0.0,
         Keep the rotation symmetry (a capytaine ``RotationSymmetricMesh``).
     radial_panels
         Panels across the bottom radius (default from ``panel_size``).
+    waterline_panel_size
+        Side panels' height at the still water line, graded to ``panel_size`` below
+        (:func:`graded_levels`); None: uniform.
     """
     import capytaine as cpt
 
     radius, draft = geometry.radius, geometry.draft
     n_theta = _angular_count(radius, panel_size, 4)
     nr = radial_panels or max(1, math.ceil(radius / panel_size))
-    nz = max(1, math.ceil(draft / panel_size))
+    levels = graded_levels(-draft, 0.0, panel_size, waterline_panel_size)
+    levels[0], levels[-1] = -draft, 0.0
     profile = [(r, 0.0, -draft) for r in np.linspace(0.0, radius, nr + 1)]
-    profile += [(radius, 0.0, z) for z in np.linspace(-draft, 0.0, nz + 1)[1:]]
+    profile += [(radius, 0.0, z) for z in levels[1:]]
     hull = cpt.RotationSymmetricMesh.from_profile_points(np.array(profile), n=n_theta,
                                                         name="hull")
     lid = None
@@ -239,9 +284,10 @@ def _member_frame(member: Member) -> tuple[NDArray, NDArray, NDArray, float]:
     return a, d, e_a, e_b
 
 
-def _member_surface(member: Member, others, size: float, n_theta: int, n_axial_even: bool
-                    ) -> NDArray[np.float64] | None:
-    """(m, n_theta, 3) grid of a member's wetted surface between the solids it joins."""
+def _member_surface(member: Member, others, size: float, n_theta: int, n_axial_even: bool,
+                    top_size: float | None = None) -> NDArray[np.float64] | None:
+    """(m, n_theta, 3) grid of a member's wetted surface between the solids it joins (rows
+    graded to ``top_size`` along the axis at a still water line crossing it)."""
     a, d, e_a, e_b = _member_frame(member)
     length = float(np.linalg.norm(np.subtract(member.end, member.start)))
     radius = 0.5 * member.diameter
@@ -280,20 +326,30 @@ def _member_surface(member: Member, others, size: float, n_theta: int, n_axial_e
     s_end = length - exit_distance(a + d * length + offsets, -d)
     # cut at the still water line
     z0 = (a + offsets)[:, 2]
+    at_water = 0  # the end cut by the still water line: 1 at s_end, -1 at s_start
     if abs(d[2]) > 1e-12:
         s_zero = -z0 / d[2]
         if d[2] > 0:
+            at_water = 1 if np.any(s_zero < s_end) else 0
             s_end = np.minimum(s_end, s_zero)
         else:
+            at_water = -1 if np.any(s_zero > s_start) else 0
             s_start = np.maximum(s_start, s_zero)
     elif np.any(z0 > 0):
         return None
     if np.any(s_end <= s_start):
         return None
-    n_axial = max(1, math.ceil(float(np.max(s_end - s_start)) / size))
-    if n_axial_even and n_axial % 2:
-        n_axial += 1
-    frac = np.linspace(0.0, 1.0, n_axial + 1)
+    longest = float(np.max(s_end - s_start))
+    if at_water and top_size is not None and top_size < size:
+        frac = graded_levels(0.0, 1.0, size / longest, top_size / longest)
+        frac[0], frac[-1] = 0.0, 1.0
+        if at_water < 0:
+            frac = 1.0 - frac[::-1]
+    else:
+        n_axial = max(1, math.ceil(longest / size))
+        if n_axial_even and n_axial % 2:
+            n_axial += 1
+        frac = np.linspace(0.0, 1.0, n_axial + 1)
     s = s_start[None, :] + frac[:, None] * (s_end - s_start)[None, :]
     pts = a[None, None, :] + s[..., None] * d[None, None, :] + offsets[None, :, :]
     # rows along d, columns counter-clockwise about d: (d) x (tangent) points inward; reverse
@@ -347,8 +403,10 @@ def _detect_symmetry(geometry: SemisubmersibleGeometry) -> int:
 
 
 def semisubmersible_mesh(geometry: SemisubmersibleGeometry, *, panel_size: float,
-                         lid_depth: float | None = None, symmetry: bool = True) -> HullMesh:
-    """Mesh of the wetted part of a semisubmersible (see the module docstring)."""
+                         lid_depth: float | None = None, symmetry: bool = True,
+                         waterline_panel_size: float | None = None) -> HullMesh:
+    """Mesh of the wetted part of a semisubmersible (see the module docstring; columns'
+    walls graded to ``waterline_panel_size`` at the still water line when given)."""
     n_sym = _detect_symmetry(geometry) if symmetry else 0
     multiple = 4 * max(n_sym, 1) if n_sym else 4
     builder = _Builder()
@@ -368,7 +426,7 @@ def semisubmersible_mesh(geometry: SemisubmersibleGeometry, *, panel_size: float
         plate_top = col.z_bottom + (col.heave_plate_height if plate else 0.0)
         if plate:
             _wall(builder, centre, plate / 2, col.z_bottom, min(plate_top, z_top_wet), angles,
-                  panel_size, i)
+                  panel_size, i, waterline_panel_size)
             if plate_top < z_top_wet:
                 _disk(builder, centre, plate_top, radius, plate / 2, angles, panel_size, i,
                       down=False)
@@ -376,7 +434,8 @@ def semisubmersible_mesh(geometry: SemisubmersibleGeometry, *, panel_size: float
         else:
             _disk(builder, centre, col.z_bottom, 0.0, radius, angles, panel_size, i, down=True)
         if plate_top < z_top_wet:
-            _wall(builder, centre, radius, plate_top, z_top_wet, angles, panel_size, i)
+            _wall(builder, centre, radius, plate_top, z_top_wet, angles, panel_size, i,
+                  waterline_panel_size)
         if col.z_top < 0.0:
             _disk(builder, centre, col.z_top, 0.0, radius, angles, panel_size, i, down=False)
         elif lid_depth is not None:
@@ -386,7 +445,8 @@ def semisubmersible_mesh(geometry: SemisubmersibleGeometry, *, panel_size: float
         others = [f for j, f in enumerate(solids) if j != n_cols + k]
         n_theta = _angular_count(0.5 * member.diameter, panel_size, 4)
         n_theta = max(n_theta, 12)
-        grid = _member_surface(member, others, panel_size, n_theta, n_axial_even=True)
+        grid = _member_surface(member, others, panel_size, n_theta, n_axial_even=True,
+                               top_size=waterline_panel_size)
         if grid is not None:
             builder.add_grid(grid, n_cols + k, closed=True)
 
@@ -440,7 +500,8 @@ def _symmetric(vertices: NDArray[np.float64], faces: list[list[int]], n: int, na
 
 def build_mesh(geometry: FloaterGeometry, *, panel_size: float, reference_xy=(0.0, 0.0),
                lid_depth: float | None = None, symmetry: bool = True,
-               radial_panels: int | None = None, water_depth: float = math.inf) -> HullMesh:
+               radial_panels: int | None = None, water_depth: float = math.inf,
+               waterline_panel_size: float | None = None) -> HullMesh:
     """The hull (and lid) mesh of a floater geometry.
 
     Parameters
@@ -461,6 +522,9 @@ def build_mesh(geometry: FloaterGeometry, *, panel_size: float, reference_xy=(0.
         Cylinder only: panels across the bottom radius.
     water_depth
         Mesh file only: the seabed's depth [m], which the hull must stay above.
+    waterline_panel_size
+        Parametric hulls: walls graded to this panel height at the still water line
+        (the drift's mesh; :func:`graded_levels`); None: uniform. A mesh file is used as is.
     """
     if isinstance(geometry, MeshGeometry):
         from floatmoor.hydro.mesh_file import mesh_from_file
@@ -469,9 +533,10 @@ def build_mesh(geometry: FloaterGeometry, *, panel_size: float, reference_xy=(0.
                               symmetry=symmetry, water_depth=water_depth)
     if isinstance(geometry, CylinderGeometry):
         return cylinder_mesh(geometry, panel_size=panel_size, centre=tuple(reference_xy),
-                             lid_depth=lid_depth, symmetry=symmetry, radial_panels=radial_panels)
+                             lid_depth=lid_depth, symmetry=symmetry, radial_panels=radial_panels,
+                             waterline_panel_size=waterline_panel_size)
     return semisubmersible_mesh(geometry, panel_size=panel_size, lid_depth=lid_depth,
-                                symmetry=symmetry)
+                                symmetry=symmetry, waterline_panel_size=waterline_panel_size)
 
 
 def mesh_hash(mesh) -> str:

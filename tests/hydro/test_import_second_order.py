@@ -135,7 +135,7 @@ def test_disagreeing_routes_warn_on_import_and_fail_hydro_check(wamit_set, deepc
     write(folder, "body.8", drift_lines(periods, betas,
                                         lambda *a: 1.3 * drift_nd(*a), modes=(1, 2, 6)))
     files = {k: v for k, v in files.items() if k != ".12d"}
-    # 0.3 / 1.3 of the far field's peak; runs do not use the drift yet: exit 0
+    # 0.3 / 1.3 of the far field's peak; a run uses the route its case chooses: exit 0
     assert _import(folder, files, deepcwind_db) == 0
     captured = capsys.readouterr()
     assert "drift           FAIL" in captured.out
