@@ -1,4 +1,5 @@
-"""Numba kernels of the state-space radiation of the Cummins equation (issue 6).
+"""Numba kernels of the state-space radiation of the Cummins equation
+(docs/theory/floater.md#radiation-convolution-or-state-space).
 
 The radiation states z of all the pairs are one vector; pair p owns z[offsets[p]:offsets[p+1]],
 is driven by the velocity of DOF ``radiating[p]`` and adds to the force on DOF

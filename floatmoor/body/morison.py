@@ -1,6 +1,6 @@
 """Viscous (Morison) drag on a floater's members: strips, coefficients and a per-stage force.
 
-Issue 6 item 3, docs/theory/floater.md (viscous effects potential flow misses: quadratic Morison
+docs/theory/floater.md (viscous effects potential flow misses: quadratic Morison
 drag on members). Only the DRAG term of Morison's equation is computed here. The inertia
 terms (Froude-Krylov, diffraction, added mass) of the same members are already in the
 potential-flow hydrodynamics of the Cummins body (BEM excitation X, A_inf and the radiation

@@ -1,4 +1,4 @@
-"""The state-space radiation of a body at its time step (issue 6): the realisations of the
+"""The state-space radiation of a body at its time step: the realisations of the
 database's K_ij(t) (:mod:`floatmoor.hydro.state_space`) packed for the compiled stage kernel
 (:mod:`floatmoor.body._radiation_kernels`).
 

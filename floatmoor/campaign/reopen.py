@@ -1,5 +1,6 @@
 """Reopening an existing campaign file to resume it: validated before any run is skipped or
-its results taken over, and, to start over, moved aside rather than deleted (issue 14).
+its results taken over, and, to start over, moved aside rather than deleted
+(docs/guide/safeguards.md#output-files).
 
 A campaign file is resumed only when it is a regular file, a readable netCDF dataset that
 floatmoor wrote as a campaign, of the same campaign (case text, base overrides, design), with

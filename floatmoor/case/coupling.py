@@ -1,4 +1,4 @@
-"""Case tables of coupled runs (a floater on its lines, issue 6): ``[waves]``, ``[initial]``
+"""Case tables of coupled runs (a floater on its lines): ``[waves]``, ``[initial]``
 and the body step ``[simulation] time_step`` (read in load.py).
 
 ``[waves]``: ``kind = "still"``; ``"regular"`` with ``height`` [m], ``period`` [s],

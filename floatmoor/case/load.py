@@ -58,7 +58,8 @@ DEFAULT_DG_CFL = 0.8
 #: What ``elements = "auto"`` / ``order = "auto"`` (or leaving them out) means: the DG
 #: discretisation follows ``accuracy`` (floatmoor.mooring.dg.resolution).
 _FROM_ACCURACY = "chosen from accuracy"
-#: Default accepted relative error of the fairlead tension (issue 17: 1 %).
+#: Default accepted relative error of the fairlead tension (1 %,
+#: docs/theory/dynamic_line.md#accuracy-driven-discretisation).
 DEFAULT_DG_ACCURACY = 0.01
 #: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
 MAX_DG_ACCURACY = 0.2

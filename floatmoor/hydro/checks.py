@@ -56,16 +56,20 @@ __all__ = [
 RECIPROCITY_TOLERANCE = 0.01
 #: Most negative eigenvalue of B relative to its largest one (discretisation error, as above).
 PSD_TOLERANCE = 0.01
-#: Kramers-Kronig: A rebuilt from K(t) within 3 % of the BEM A (issue 5).
+#: Kramers-Kronig: A rebuilt from K(t) within 3 % of the BEM A
+#: (docs/theory/hydrodynamics.md#database-integrity).
 KRAMERS_KRONIG_TOLERANCE = 0.03
-#: K(t) must fall below this fraction of its peak before the truncation time (issue 5).
+#: K(t) must fall below this fraction of its peak before the truncation time
+#: (docs/theory/hydrodynamics.md#database-integrity).
 KERNEL_DECAY_THRESHOLD = 1e-3
-#: Haskind relation: damping from the excitation within 5 % of the BEM damping (issue 5).
+#: Haskind relation: damping from the excitation within 5 % of the BEM damping
+#: (docs/theory/hydrodynamics.md#database-integrity).
 HASKIND_TOLERANCE = 0.05
 #: The Haskind check also reports (does not test) the pointwise relative error where B_ii is
 #: at least this fraction of its peak.
 HASKIND_POINTWISE_REPORT = 0.5
-#: Displacement and hydrostatic stiffness against the analytic geometry within 1 % (issue 5).
+#: Displacement and hydrostatic stiffness against the analytic geometry within 1 %
+#: (docs/theory/hydrodynamics.md#database-integrity).
 HYDROSTATICS_TOLERANCE = 0.01
 #: A DOF whose largest added mass is below this fraction of the largest diagonal added mass
 #: of its kind (translation, rotation) has no hydrodynamics to check (yaw of a cylinder).

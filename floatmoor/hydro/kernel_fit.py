@@ -1,4 +1,4 @@
-"""Realisation of one sampled impulse response K(t) as c exp(A t) b (issue 6).
+"""Realisation of one sampled impulse response K(t) as c exp(A t) b.
 
 Identification (:func:`fit_kernel`):
 

@@ -67,7 +67,7 @@ _TAIL_POINTS_PER_DECADE = 200
 #: transforms build their operator a block of times (or nodes) at a time, so that their memory
 #: (the block and a few temporaries of its size, 4 MB each) does not grow with the number of
 #: times. Whole, the tail operator of a 0.01 s body step's kernel (31417 times, 10 per step,
-#: x 601 nodes) took 151 MB, and building it 0.9 GB (issue 17). That kernel costs 1.6 s of
+#: x 601 nodes) took 151 MB, and building it 0.9 GB. That kernel costs 1.6 s of
 #: CPU in blocks of 2^19 values, 6 % more than in blocks of 2^20 and 25 % less than in 2^17.
 _BLOCK_VALUES = 2 ** 19
 

@@ -1,4 +1,5 @@
-"""State-space realisations of the radiation impulse response K(t) (issue 6).
+"""State-space realisations of the radiation impulse response K(t)
+(docs/theory/floater.md#radiation-convolution-or-state-space).
 
 The radiation memory of the Cummins equation, mu_i(t) = sum_j int_0^t K_ji(t - tau) v_j(tau)
 dtau, is replaced by linear states driven by the body velocity: for each significant pair

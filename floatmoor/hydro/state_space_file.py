@@ -1,4 +1,4 @@
-"""A database's state-space realisation stored in its own netCDF file (issue 6).
+"""A database's state-space realisation stored in its own netCDF file.
 
 Variables ``state_space_*`` (the modal A as two diagonals, B, C, the pairs and their
 errors) and attributes are added beside the BEM variables without touching them or the

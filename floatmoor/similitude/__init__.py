@@ -1,4 +1,5 @@
-"""Dynamic similitude of mooring cases (issue 20; chain-experiment paper section 2).
+"""Dynamic similitude of mooring cases (docs/theory/similitude.md;
+chain-experiment paper section 2).
 
 :func:`~floatmoor.similitude.groups.cable_groups` gives the dimensionless groups of every line
 of a case (alpha_1 to alpha_5, Reynolds and Keulegan-Carpenter numbers);

@@ -1,4 +1,4 @@
-"""A case assembled once into the moored system a run advances (issue 15).
+"""A case assembled once into the moored system a run advances.
 
 :func:`assemble` turns a validated case into a :class:`MooredSystem`: its points, its lines
 (each model object built from the line's sections), and for a case with a ``[floater]`` the

@@ -1,4 +1,5 @@
-"""Checkpoints of coupled runs as plain numeric data, validated before use (issue 14).
+"""Checkpoints of coupled runs as plain numeric data, validated before use
+(docs/guide/safeguards.md#checkpoints-and---resume).
 
 A checkpoint is an uncompressed ``.npz`` (a zip of ``.npy`` arrays, :func:`numpy.savez`): a
 flat set of named arrays -- the format name and version, the floatmoor version, what

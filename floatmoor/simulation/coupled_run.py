@@ -1,5 +1,5 @@
 """Coupled runs of a case with a floater: waves, the Cummins body on its lines, recorded and
-written as the run goes (issue 6; the coupling scheme is in :mod:`.coupled`). The floater's
+written as the run goes (the coupling scheme is in :mod:`.coupled`). The floater's
 radiation memory is the convolution of K(t) or, with ``[floater] radiation = "state-space"``,
 the database's state-space realisation (whose states are in the checkpoint with the body's)."""
 

@@ -1,4 +1,5 @@
-"""Numba kernels of the implicit time integration of the DG cable (issue 17).
+"""Numba kernels of the implicit time integration of the DG cable
+(docs/theory/dynamic_line.md#time-integration).
 
 The semi-discrete cable of ``_kernels`` (the same tension field, fluxes, external forces and
 mass), dr/dt = v, M_eff(r) dv/dt = F(r, v, t), is advanced with the generalised-alpha method of

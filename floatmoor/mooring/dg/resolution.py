@@ -11,7 +11,7 @@ the transverse wavelength lambda_t = 2 pi c_t / omega at the motion frequency om
 (``DynamicSettings.motion_frequency``) and the transverse wave speed c_t = sqrt(H / (m + m_a))
 on the horizontal tension H of the line at rest (its quasi-static catenary). The DG error of
 a smooth solution falls as h^(p + 1), hence the exponent. The two constants are calibrated on
-the three references of issue 17 at 1 % (explicit 10 x p5 the reference; tests/data/references):
+the three stored references at 1 % (explicit 10 x p5 the reference; tests/data/references):
 
 - Lindahl chain, T = 1.25 s (L / lambda_t = 2.0, snaps): 40 to 48 nodes of order 3 or 4 keep
   the mean cycle maximum within 0.3 % of 10 x p5, 32 (8 x p3) move it by 0.9 %;
@@ -66,7 +66,7 @@ BASE_NODES = 24
 #: Further nodes per transverse wavelength along the line at the reference accuracy: 10
 #: puts the Lindahl chain at 44 nodes (measured: 40 to 48 within 0.3 % of 10 x p5).
 NODES_PER_WAVELENGTH = 10
-#: The accuracy the two constants above were calibrated at (issue 17's default, 1 %).
+#: The accuracy the two constants above were calibrated at (the default, 1 %).
 REFERENCE_ACCURACY = 0.01
 #: Elements and order per section of a line of several sections (module docstring).
 SYSTEM_ELEMENTS, SYSTEM_ORDER = 10, 5
