@@ -1,4 +1,4 @@
-"""Shared harness of issue 17's dynamic-line benchmarks (``test_bench_*`` beside this file).
+"""Shared harness of the dynamic-line benchmarks (``test_bench_*`` beside this file).
 
 What the benchmark files share:
 
@@ -64,7 +64,7 @@ from tests.peer.moordyn_runner import MoorDynError, MoorDynLine, run_moordyn_for
 QUICK = os.environ.get("FLOATMOOR_BENCH_QUICK", "") == "1"
 #: The stored references of today's code.
 REFERENCES = REPO / "tests" / "data" / "references"
-#: "MoorDyn 2.7 at its cheapest setting within 1 %" (issue 17): STD and maximum of every line's
+#: "MoorDyn 2.7 at its cheapest setting within 1 %" (the target): STD and maximum of every line's
 #: fairlead tension within 1 % of its converged reference.
 MOORDYN_TOLERANCE = 0.01
 #: MoorDyn's default coupling interval of the baseline studies [s] (as moordyn_lindahl.py).

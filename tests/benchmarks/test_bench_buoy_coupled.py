@@ -1,4 +1,4 @@
-"""Benchmark (issue 17): the moored buoy at T = 1.2 s, dynamic lines at the accuracy default,
+"""Benchmark: the moored buoy at T = 1.2 s, dynamic lines at the accuracy default,
 against the explicit 10 x p5 run of today.
 
 ``cases/cylinder_buoy/buoy_regular_T1.20.toml`` with its lines' reference numerics (10 x p5,
@@ -8,7 +8,7 @@ subprocess. Compared with ``buoy_T1.20_dynamic_10xp5.json`` (today's
 code, 10 elements of order 5): every line's fairlead-tension STD and maximum after the ramp, and
 the heave and pitch STD.
 
-Targets (issue 17): at most 0.3 wall s per simulated second (asserted on the whole run: case
+Targets: at most 0.3 wall s per simulated second (asserted on the whole run: case
 loading, equilibrium, line settling, loop, dataset; the time loop alone is reported too); the
 line figures within 2 %, heave and pitch STD within 1 % of today's. The maxima after the ramp
 are single snap events (README of the references: lines 1 and 2, mirror images, peak at 5.37 N
@@ -34,11 +34,11 @@ pytestmark = pytest.mark.benchmark
 
 CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 REFERENCE = "buoy_T1.20_dynamic_10xp5.json"
-#: "at most 0.3 wall s per simulated second" (issue 17).
+#: "at most 0.3 wall s per simulated second" (the target).
 WALL_PER_SIMULATED_MAX = 0.3
-#: "every line's fairlead-tension STD and maximum after the ramp within 2 %" (issue 17).
+#: "every line's fairlead-tension STD and maximum after the ramp within 2 %" (the target).
 LINE_RTOL = 0.02
-#: "heave and pitch STD within 1 %" (issue 17).
+#: "heave and pitch STD within 1 %" (the target).
 MOTION_RTOL = 0.01
 QUICK_DURATION = 24.0  # s
 

@@ -1,4 +1,4 @@
-"""Benchmark (issue 17): the buoy's line 3 alone on its recorded fairlead path, floatmoor at its
+"""Benchmark: the buoy's line 3 alone on its recorded fairlead path, floatmoor at its
 defaults beside MoorDyn 2.7 at its cheapest setting within 1 %.
 
 Line 3 of the buoy (``tests/data/references/buoy_T1.20_line3_forced.toml``: the buoy case's

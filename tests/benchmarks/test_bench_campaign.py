@@ -1,7 +1,7 @@
 """Benchmark: campaign overhead. On these machines (about one core of throughput for two
 processes) a 2-worker campaign must take no longer than the 1-worker one plus 10 %, and the
 per-run compute (CPU) times it records must sum to within 10 % of the serial run's, so that
-scaling on a real cluster follows from the worker count (issue 4).
+scaling on a real cluster follows from the worker count.
 
 Run with ``python -m pytest -m benchmark tests/benchmarks/test_bench_campaign.py -s``.
 """
@@ -18,7 +18,7 @@ from tests.conftest import LINDAHL_CASE
 
 pytestmark = pytest.mark.benchmark
 
-#: Issue 4: overhead and compute-time bookkeeping within 10 %.
+#: Goal: overhead and compute-time bookkeeping within 10 %.
 OVERHEAD_FRACTION = 0.10
 #: 8 dynamic Lindahl runs of 10 s (about 0.5 s of compute each).
 DESIGN = ["motion.radius=0.1,0.15,0.2,0.25", "motion.period=1.25,2.5"]

@@ -1,4 +1,4 @@
-"""Benchmark: wall time of the coupled runs (issue 6): the 3-hour DeepCwind LC34 sea state with
+"""Benchmark: wall time of the coupled runs: the 3-hour DeepCwind LC34 sea state with
 each line model on one core (goals: dynamic lines under 10 minutes, quasi-dynamic under 1
 minute), and the moored cylinder of docs/cases/cylinder_buoy.md with its dynamic chains.
 

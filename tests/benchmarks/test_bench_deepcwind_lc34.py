@@ -1,4 +1,4 @@
-"""Benchmark (issue 17): DeepCwind LC34, 3 hours with dynamic lines, against today's 10 x p5 run
+"""Benchmark: DeepCwind LC34, 3 hours with dynamic lines, against today's 10 x p5 run
 and against the same case with quasi-static lines.
 
 ``cases/deepcwind/deepcwind_lc34.toml --set 'lines.*.model="dynamic"'`` at the dynamic line's
@@ -39,10 +39,10 @@ CASE = CASES / "deepcwind" / "deepcwind_lc34.toml"
 REFERENCE = "deepcwind_lc34_dynamic_10xp5.json"
 #: The earlier target of the whole run, 2 minutes for 3 hours (90 x real time): printed only.
 WALL_MAX_S = 120.0
-#: "dynamic lines at most 1.2 times the cost of quasi-static ones" (issue 17): whole runs.
+#: "dynamic lines at most 1.2 times the cost of quasi-static ones" (the target): whole runs.
 QS_RATIO_MAX = 1.2
 DURATION_S = 10800.0
-#: "fairlead tension STD and maximum within 2 % of today's 10 x p5 run" (issue 17).
+#: "fairlead tension STD and maximum within 2 % of today's 10 x p5 run" (the target).
 LINE_RTOL = 0.02
 QUICK_DURATION = 300.0  # s
 #: Duration of the kernels' warm-up run [s]: the JONSWAP sea of a shorter run has no wave

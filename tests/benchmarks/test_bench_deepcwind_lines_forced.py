@@ -1,4 +1,4 @@
-"""Benchmark (issue 17): the three DeepCwind lines alone on recorded fairlead paths, floatmoor at
+"""Benchmark: the three DeepCwind lines alone on recorded fairlead paths, floatmoor at
 its defaults beside MoorDyn 2.7 at its cheapest setting within 1 % of its converged tension.
 
 ``tests/data/references/deepcwind_lines_forced.toml`` (the LC34 case's environment, seabed,
@@ -16,7 +16,7 @@ reference (every line's STD and maximum) whose next finer mesh is too. MoorDyn's
 on the coupling (it steps at min(dtM, coupling)); the baseline found 20 ms cheapest of 1 and
 20 ms, so coarser ones are tried too.
 
-Targets (issue 17): "floatmoor at the defaults at least as fast, whole run against whole run and
+Targets: "floatmoor at the defaults at least as fast, whole run against whole run and
 time loop against time loop", each against MoorDyn's cheapest accepted setting by that measure
 (floatmoor whole: construction, settling, loop; MoorDyn whole: input, creation,
 initial-condition solve, loop; summed over the three lines).
@@ -47,7 +47,7 @@ FRACTIONS = pick((1.0, 0.5), (1.0,))
 SCHEMES = pick(MOORDYN_SCHEMES, ("RK2", "Midpoint3"))
 #: MoorDyn coupling intervals tried [s].
 COUPLINGS = pick((0.1, 0.05, 0.02, 0.01), (0.02,))
-#: "floatmoor at the defaults at least as fast" (issue 17): floatmoor / MoorDyn at most 1.
+#: "floatmoor at the defaults at least as fast" (the target): floatmoor / MoorDyn at most 1.
 SPEED_RATIO_MAX = 1.0
 
 

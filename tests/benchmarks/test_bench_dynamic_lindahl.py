@@ -29,7 +29,7 @@ from tests.conftest import LINDAHL_CASE
 
 pytestmark = pytest.mark.benchmark
 
-#: "1 % accuracy of the maximum tension against a converged reference" (issue 3).
+#: "1 % accuracy of the maximum tension against a converged reference" (the target).
 TOLERANCE = 0.01
 #: Converged reference: 40 elements of order 5 (error below 0.3 % from 20 elements on).
 REFERENCE = (40, 5)
@@ -118,4 +118,4 @@ def test_dynamic_lindahl_against_moordyn(period):
           f"{ours['default'].wall_per_simulated:.4f} s/s")
     print(f"  MoorDyn {m.segments} segments dt = {m.dt * 1e6:g} us: {m.wall_per_simulated:.4f} s/s")
     print(f"  ratio MoorDyn / floatmoor at equal accuracy: {ratio:.1f}")
-    assert ratio >= 2.0  # issue 3's goal
+    assert ratio >= 2.0  # the goal (docs/validation/performance.md#line-models)

@@ -1,4 +1,4 @@
-"""Benchmark (issue 17): the Lindahl snap case at floatmoor's defaults beside MoorDyn 2.7.
+"""Benchmark: the Lindahl snap case at floatmoor's defaults beside MoorDyn 2.7.
 
 The Lindahl chain, r = 0.2 m, T = 1.25 s (slack and snap), physical seabed, on the problem of
 ``moordyn_lindahl.py``: the case's circular path sampled every 1 ms, a two-period ramp, one
@@ -17,7 +17,7 @@ the whole run (floatmoor: construction, settling, loop; MoorDyn: input, creation
 initial-condition solve, loop) of the first run (floatmoor remembers a settled line per
 process, so only the first whole run settles).
 
-Targets (issue 17): the mean cycle maximum within 1 % of the converged value, and floatmoor's
+Targets: the mean cycle maximum within 1 % of the converged value, and floatmoor's
 wall seconds per simulated second (time loop) at most 0.2 of MoorDyn's; the whole-run ratio is
 reported. Quick mode (``FLOATMOOR_BENCH_QUICK=1``, dynamic_harness.py): MoorDyn only at the
 setting the full study found (60 segments, 100 us), no search.
@@ -46,13 +46,13 @@ from tests.peer.moordyn_runner import run_moordyn_forced
 pytestmark = pytest.mark.benchmark
 
 PERIOD = 1.25  # s
-#: "mean cycle maximum within 1 % of the converged value (about 72.7 N)" (issue 17): on this
+#: "mean cycle maximum within 1 % of the converged value (about 72.7 N)" (the target): on this
 #: problem floatmoor's 40 elements of order 5 give 72.742 N, MoorDyn's 160 segments at 25 us
 #: 72.780 N (tests/data/references/README.md).
 CONVERGED_MEAN_MAX_N = 72.74
 ACCURACY = 0.01
 #: "wall s per simulated s at most 0.2 of MoorDyn 2.7 at its 1 % setting with the physical
-#: seabed" (issue 17): floatmoor / MoorDyn, time loop.
+#: seabed" (the target): floatmoor / MoorDyn, time loop.
 SPEED_RATIO_MAX = 0.2
 #: MoorDyn's 1 % setting found by the full study (README of the references): quick mode's.
 QUICK_MOORDYN_SETTING = (60, 1e-4)

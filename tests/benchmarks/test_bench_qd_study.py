@@ -1,5 +1,6 @@
 """Benchmark: the whole quasi-dynamic set of the verification study (docs/cases/qd_verification.md, 180 runs)
-on one core, the issue's goal being under a minute (issue 4).
+on one core, the goal being under a minute
+(docs/validation/performance.md#line-models).
 
 Each of the 180 combinations (6 configurations x 5 amplitudes x 6 accelerations) runs the
 quasi-dynamic model exactly as the study does: the case file loaded with the run's
@@ -23,7 +24,7 @@ from floatmoor.studies import qd_verification as qdv
 
 pytestmark = pytest.mark.benchmark
 
-#: Issue 4: the 180 quasi-dynamic runs in under a minute on one core [s].
+#: Goal: the 180 quasi-dynamic runs in under a minute on one core [s].
 QD_SET_GOAL = 60.0
 
 

@@ -1,5 +1,5 @@
 """Cost of a body step with each radiation path: the convolution of K(t) and the state-space
-realisation (issue 6).
+realisation.
 
 Run with ``pytest -m benchmark tests/benchmarks/test_bench_radiation.py -s``. Each body, alone
 (no lines, no waves), is released from an offset and stepped; the paths are timed alternately,

@@ -1,4 +1,4 @@
-"""Benchmark (issue 18): the wall time of the gpc paper's studies on this machine, local and
+"""Benchmark: the wall time of the gpc paper's studies on this machine, local and
 with 2 workers.
 
 - Case F, T = 1.25 s, all three coefficients (``cases/uq/lindahl_T1.25_all.toml``: 216 dynamic
@@ -7,7 +7,7 @@ with 2 workers.
 - Case G (``cases/uq/buoy_T1.20_anchors.toml``: 150 coupled buoy runs of 60 s with dynamic
   lines, for each of three wave periods): the first :data:`G_RUNS` runs of its design with 1
   and 2 workers, the 450 runs of the three studies extrapolated from them (the whole study takes
-  hours here: issue 17's buoy speed).
+  hours here at the coupled buoy's speed).
 
 This machine gives about one core of throughput to two busy processes, so 2 workers are not
 expected to be faster here: the figures say what a run costs and that the campaign adds no

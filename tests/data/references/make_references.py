@@ -1,4 +1,4 @@
-"""Issue 17 baseline: extract the stored references from today's runs (see README.md here).
+"""Benchmark baseline: extract the stored references from today's runs (see README.md here).
 
     python tests/data/references/make_references.py buoy RUN.nc WALL_WHOLE_S
         -> buoy_T1.20_dynamic_10xp5.json and buoy_T1.20_motion.csv

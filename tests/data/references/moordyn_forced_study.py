@@ -1,4 +1,4 @@
-"""Issue 17 baseline: lines alone on recorded fairlead paths, floatmoor (today) and MoorDyn 2.7.
+"""Benchmark baseline: lines alone on recorded fairlead paths, floatmoor (today) and MoorDyn 2.7.
 
     python tests/data/references/moordyn_forced_study.py CASE.toml PATHS.nc OUT.json
         [--lines NAME ...] [--start S] [--reference N F SCHEME] [--segments N ...]
@@ -21,8 +21,8 @@ follow (cubic Hermite between samples). Each line alone:
 Statistics of each fairlead tension over t >= S: population STD and maximum. A MoorDyn
 setting is within 1 % when both are within 1 % of the reference setting's for every line and
 the next finer segment count at the same F is too; candidates go in increasing N^2 / F.
-The functions are those of tests/benchmarks/dynamic_harness.py (the issue 17 benchmarks use
-them too); this is their command line, which resumes from an existing OUT.json. Run it with
+The functions are those of tests/benchmarks/dynamic_harness.py (the dynamic-line benchmarks
+use them too); this is their command line, which resumes from an existing OUT.json. Run it with
 PYTHONPATH = the repository root.
 """
 
