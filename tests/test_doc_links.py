@@ -1,6 +1,6 @@
 """Citations point at the project's own pages: no file cites the team-internal reference files
 (they are not in the repository), and every page under ``docs/`` the package, the cases or the
-tests cite exists, down to the section anchor when one is given (issue 19)."""
+tests cite exists, down to the section anchor when one is given."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """The package's house rules, checked statically: imports run one way, modules stay small.
 
-Imports (issue 19): the project layers its code one way (case -> models -> simulation ->
+Imports (docs/development.md): the project layers its code one way (case -> models -> simulation ->
 campaigns/reports -> CLI), so no module may, directly or through others, import itself. The
 import graph is read from the source with :mod:`ast` (nothing is imported, so a circle that
 Python happens to survive today is found as well):
@@ -32,7 +32,7 @@ from functools import lru_cache
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "floatmoor"
-#: The "about 600 lines" of issue 19: past it a module must give its reason.
+#: The "about 600 lines" of docs/development.md: past it a module must give its reason.
 MAX_MODULE_LINES = 600
 #: The docstring line that gives that reason.
 SIZE_REASON_PREFIX = "Size:"

@@ -16,9 +16,9 @@ README = (REPO / "README.md").read_text()
 VALIDATION_PAGES = sorted((REPO / "docs" / "validation").glob("*.md"))
 GETTING_STARTED = (REPO / "docs" / "getting_started.md").read_text()
 #: A validation row, test names aside, longer than this is rewritten as a short row and a
-#: note below the table (issue 19: the README once held a row of over 1,000 characters).
+#: note below the table (the README once held a row of over 1,000 characters).
 MAX_ROW_CHARACTERS = 300
-#: The README is what a visitor reads in five minutes (issue 19's target).
+#: The README is what a visitor reads in five minutes (the target).
 MAX_README_BYTES = 8000
 
 

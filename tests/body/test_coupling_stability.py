@@ -1,5 +1,5 @@
-"""Stability of the explicit body-line coupling (issue 6: "explicit coupling with a heavy line on
-a light body is the hard case"; the scheme is in floatmoor/simulation/coupled.py).
+"""Stability of the explicit body-line coupling ("explicit coupling with a heavy line on a light
+body is the hard case"; the scheme is in floatmoor/simulation/coupled.py).
 
 Model problem. A long taut line pulls a body along its own axis. Over times shorter than the
 line's wave return time 2 L / c, the line answers a fairlead velocity u with the force

@@ -1,5 +1,5 @@
 """The coupling scheme with dynamic lines: the body's time step must not change the results
-beyond 1 % (issue 6). The buoy of docs/cases/cylinder_buoy.md in regular waves H = 0.01 m, T = 1.2 s, its chains
+beyond 1 %. The buoy of docs/cases/cylinder_buoy.md in regular waves H = 0.01 m, T = 1.2 s, its chains
 made cheaper (EA 2e4 N, 4 elements of order 3, so the test runs in seconds) but still stiff
 against the body; the waves are kept small enough that no line snaps, since the sampled
 peaks of snap loads are not a property of the coupling (with H = 0.04 m they are, and vary

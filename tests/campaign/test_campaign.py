@@ -191,7 +191,7 @@ def test_campaign_table_in_the_case_file(tmp_path, capsys):
 def test_sweep_with_failed_runs_exits_1_naming_them(tmp_path, capsys):
     """A sweep whose runs fail at run time (one iteration cannot reach 1e-16; the values
     validate) keeps its dataset but exits 1 with a one-line summary naming the failed runs by
-    their swept values, then their messages; 0 only when every run completes (issue 13)."""
+    their swept values, then their messages; 0 only when every run completes."""
     out = tmp_path / "sweep.nc"
     argv = ["sweep", str(LINDAHL_CASE), *sum((["--set", b] for b in BASE), []),
             "--set", "lines.chain.quasi_static.max_iterations=1",

@@ -1,4 +1,4 @@
-"""An existing campaign output file is validated before it is resumed (issue 14 item 11): an
+"""An existing campaign output file is validated before it is resumed: an
 empty, truncated, non-netCDF or foreign file, a run's output, another campaign or a damaged
 variable is one message (status 2) naming the file and what is wrong, saying how to start
 over, with nothing run and the file untouched; ``sweep --restart`` moves it aside to

@@ -1,4 +1,4 @@
-"""Issue 18, item 5: campaigns on a real Dask cluster, whose scheduler and workers run as
+"""Campaigns on a real Dask cluster, whose scheduler and workers run as
 processes of their own in a folder of their own (``dask scheduler``, ``dask worker``), so the
 client's relative case path and case folder mean nothing to them: forced-motion and coupled
 sweeps give numbers identical to a local run, workers of another floatmoor are refused, and a

@@ -1,4 +1,4 @@
-"""Histories of a ``--timeseries`` campaign share one time axis (issue 14, item 6): runs of
+"""Histories of a ``--timeseries`` campaign share one time axis: runs of
 different output times are refused before any run, and a campaign file is resumed only with
 the same choice of histories, so no run is ever marked complete with NaN histories."""
 

@@ -1,4 +1,4 @@
-"""Issue 15, item 3: ``[motion] kind = "body"`` from the command line: shipped forced cases run
+"""``[motion] kind = "body"`` from the command line: shipped forced cases run
 under a 6-DOF body motion and record it; bad body motions stop with one message, status 2 and
 no output."""
 

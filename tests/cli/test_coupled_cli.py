@@ -46,7 +46,7 @@ def test_run_refuses_a_database_failing_its_checks_unless_the_case_accepts(tmp_p
                                                                           ) -> None:
     """A database that fails ``hydro check`` is bad input for a run (status 2, one message
     naming the database, the check with its value and tolerance and how to accept it, nothing
-    written); accepted by the case, the run goes on with one warning line (issue 13)."""
+    written); accepted by the case, the run goes on with one warning line."""
     from floatmoor.hydro.database import read_database, write_database
 
     (tmp_path / "hydrodb").mkdir()

@@ -1,4 +1,4 @@
-"""Issue 14, items 9, 10, 11, 13 and 14: sizes the input controls are bounded at load (status
+"""Sizes the input controls are bounded at load (status
 2, before anything is allocated), extreme values give messages instead of tracebacks or
 hangs, and the messages say what is wrong."""
 

@@ -59,7 +59,7 @@ def test_check_and_run_refuse_a_static_tension_above_the_mbl(tmp_path, capsys):
 
 
 def test_check_of_the_issue_case_strain_is_visible_and_refused(capsys):
-    # issue 13: a line shortened until the static strain is ~20 %
+    # a line shortened until the static strain is ~20 %
     short = ["--set", "lines.line1.length=680.0"]
     assert main(["check", str(DEEPCWIND), *short]) == 0
     text = capsys.readouterr().out

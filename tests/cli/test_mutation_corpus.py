@@ -1,4 +1,4 @@
-"""Issue 14: the probe's families again, as a seeded mutation corpus of the shipped cases.
+"""The probe's families again, as a seeded mutation corpus of the shipped cases.
 
 Every numeric key of a few shipped cases is set, in turn for a seeded sample, to extreme or
 wrong values through ``--set``; ``floatmoor check`` and a short ``floatmoor run`` must then

@@ -1,4 +1,4 @@
-"""Output files of ``floatmoor run`` and ``sweep`` (issue 14, items 1, 2, 3, 11, 13, 14): what
+"""Output files of ``floatmoor run`` and ``sweep`` (docs/guide/safeguards.md#output-files): what
 an output may not be, the checks made before any work (writable folder, free space), the lock
 against a second writer, the kept file mode, atomic writes that leave no temporary file, and
 the message saying whether partial results were written."""

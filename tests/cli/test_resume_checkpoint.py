@@ -1,5 +1,5 @@
-"""``floatmoor run --resume`` with checkpoints that are not this run's own (issue 14 items 7,
-11, 13): a crafted pickle is never unpickled, an empty, truncated or foreign file is one
+"""``floatmoor run --resume`` with checkpoints that are not this run's own: a
+crafted pickle is never unpickled, an empty, truncated or foreign file is one
 message with status 2, another run's checkpoint names the overrides that differ; nothing is
 run, and the partial results and the checkpoint are left as they were."""
 

@@ -1,4 +1,4 @@
-"""Interrupts and signals (issue 14, items 4 and 5): SIGINT, a second SIGINT and SIGTERM leave a
+"""Interrupts and signals: SIGINT, a second SIGINT and SIGTERM leave a
 valid partial file or none and say which; a sweep's workers die with their parent, even when it
 is killed; finished runs reach the campaign file before the workers are stopped.
 

@@ -1,4 +1,4 @@
-"""A run's results streamed to their file (issue 17 item 3): the final file is the one the
+"""A run's results streamed to their file: the final file is the one the
 whole-dataset writer made (``write_dataset``: xarray's netCDF-3 writer), but for ``time``
 being the record dimension (stored first in the variables along it); the window the run
 holds is bounded; the file is valid while the run goes and after it is killed."""

@@ -17,7 +17,7 @@ from tests.conftest import LINDAHL_CASE
 
 moordyn_runner = pytest.importorskip("tests.peer.moordyn_runner")
 
-#: Issue 3: the fairlead tension history agrees with MoorDyn run fine within 2 % of the
+#: Required: the fairlead tension history agrees with MoorDyn run fine within 2 % of the
 #: tension range (after the ramp).
 RANGE_FRACTION = 0.02
 #: MoorDyn "run fine": 80 segments at 50 us is within 0.3 % of its 160-segment converged

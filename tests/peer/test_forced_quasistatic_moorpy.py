@@ -11,7 +11,7 @@ from floatmoor.case.load import load_case
 from floatmoor.simulation.forced import run_forced_motion
 from tests.conftest import LINDAHL_CASE
 
-#: Issue 2 asks for agreement with MoorPy's catenary to 1e-6 relative; both codes solve the
+#: Required: agreement with MoorPy's catenary to 1e-6 relative; both codes solve the
 #: same equations, MoorPy to its Tol = 1e-10 here.
 MOORPY_RTOL = 1e-6
 

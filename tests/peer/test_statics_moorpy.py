@@ -1,4 +1,4 @@
-"""Statics of mooring systems against MoorPy 1.3's ``System`` on the same inputs (issue 15):
+"""Statics of mooring systems against MoorPy 1.3's ``System`` on the same inputs:
 a chain-rope-chain line with a clump weight at one joint and a buoy at the other, and a
 three-line system with free points (clump weights, a bridle, a buoy); free points on the
 seabed (a clump weight, a massless joint); point positions and end forces to 1e-6 relative,
@@ -51,7 +51,7 @@ from tests.unit.statics_systems import (
 
 mp = pytest.importorskip("moorpy")
 
-#: The agreement issue 15 asks for.
+#: The agreement asked for (docs/validation/mooring_systems.md#statics-against-moorpy).
 PEER_RTOL = 1e-6
 #: MoorPy's position tolerance [m] (see the module docstring).
 MOORPY_TOL = 1e-8

@@ -1,4 +1,4 @@
-"""Mooring systems in dynamics against MoorDyn 2.7 run converged on the exported deck (issue 15).
+"""Mooring systems in dynamics against MoorDyn 2.7 run converged on the exported deck.
 
 Two lines of tests/data/systems/, each under harmonic fairlead motion (surge 2 m, heave 1 m,
 10 s period, ramped in over 10 s): the chain-rope-chain line with a clump weight at its lower
@@ -50,7 +50,7 @@ TENSION_RANGE_FRACTION = {
 }
 #: The issue's bound [-], met by both lines with floatmoor's sections at 20 elements (a
 #: numerics choice, not a physical input: the clump line's ringing is not converged at the
-#: default 10; issue 17 chooses numerics from an accuracy).
+#: default 10; floatmoor chooses numerics from an accuracy).
 ISSUE_RANGE_FRACTION = 0.02
 REFINED = ["lines.*.dynamic.elements=20"]
 #: The same for the wave-frequency content: the least-squares fit of the harmonics of the

@@ -1,4 +1,4 @@
-"""The body in the views (issue 19 item 2): the floater's outline in the side and plan views
+"""The body in the views: the floater's outline in the side and plan views
 and in every animation frame, placed by its 6-DOF motion; its panels in the VTK series; a
 semisubmersible's columns in plan; a forced-motion run's polygon through its fairleads; and
 one warning line when the body cannot be drawn."""

@@ -1,4 +1,4 @@
-"""The views of a run (issue 19): every figure rendered for a short buoy run and looked at
+"""The views of a run: every figure rendered for a short buoy run and looked at
 for content (axes labelled with units, no empty or NaN series), the animation's frame count,
 the VTK series read back through meshio, and bad arguments refused with status 2."""
 

@@ -26,7 +26,7 @@ from tests.post.synthetic import gaussian_band, realisation
 
 #: Closed-form comparisons of exact counts: only round-off of sums of ~1e3 terms [-].
 CLOSED_FORM_RTOL = 1e-12
-#: Narrow-band damage against the Rayleigh closed form (issue 7's acceptance criterion) [-].
+#: Narrow-band damage against the Rayleigh closed form (the acceptance criterion) [-].
 RAYLEIGH_DAMAGE_RTOL = 0.05
 
 #: DeepCwind chain nominal diameter (docs/cases/deepcwind.md, quasi-dynamic paper Table 7) [m].

@@ -1,5 +1,6 @@
 """Welch PSD of a synthetic JONSWAP realisation: its integral is the signal variance and its
-moments are the target spectrum's (issue 7)."""
+moments are the target spectrum's
+(docs/development.md#case-532-spectra)."""
 
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ from floatmoor.post.spectra import (
 )
 from tests.post.synthetic import jonswap, realisation
 
-#: Integral of the PSD against the record's variance (issue 7's acceptance criterion) [-].
+#: Integral of the PSD against the record's variance (the acceptance criterion) [-].
 VARIANCE_RTOL = 0.01
 #: Moments m0, m1, m2 and Tz of the estimate against the target JONSWAP. Sources of error:
 #: the Hann window's leakage over 0.005 Hz bins and the random-phase estimate's scatter

@@ -1,4 +1,4 @@
-"""The Lindahl chain in water with drag and its 1240 m prototype (issue 20): the dimensionless
+"""The Lindahl chain in water with drag and its 1240 m prototype: the dimensionless
 fairlead tension histories T / (w L) against t / T agree when every group is kept (the drag
 and added-mass coefficients scaled by eqs. 38 and 42) and differ through the groups that are
 not: drag coefficients left as they are (alpha_4, alpha_5: what a Reynolds-dependent C_d

@@ -4,7 +4,7 @@ reproduced from the model data and the scale laws of floatmoor.similitude.laws.
 
 A printed value counts as reproduced when it agrees within PAPER_TOLERANCE or, for values
 printed with fewer digits, within half a unit of the last printed digit. The paper's slips
-(issue 20, checked here) are tested as what they are.
+(docs/guide/similitude.md, checked here) are tested as what they are.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from floatmoor.similitude.parameter_sets import (
     LineData, papazoglou_parameters, webster_parameters,
 )
 
-#: Issue 20: the paper's tables are to be reproduced within 0.3 % where self-consistent.
+#: The paper's tables are to be reproduced within 0.3 % where self-consistent.
 PAPER_TOLERANCE = 0.003
 
 # -- section 3.1 and Table 3: the model (Lindahl's decoration chain) and the 76 mm stud chain

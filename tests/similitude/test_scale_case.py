@@ -1,4 +1,4 @@
-"""``floatmoor scale``: exact similitude of a scaled line, round trips, refusals (issue 20)."""
+"""``floatmoor scale``: exact similitude of a scaled line, round trips, refusals."""
 
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ DEEPCWIND = [ROOT / "cases" / "deepcwind" / f"deepcwind_{n}.toml" for n in ("lc3
 #: A wave-tank scale for them: 1:50, Froude (beta = lambda, phi = 1).
 TANK = ScaleLaw(0.02, 0.02, 1.0)
 
-#: Exact similitude (issue 20): the dimensionless tension histories of a line and its scaled
+#: Exact similitude: the dimensionless tension histories of a line and its scaled
 #: copy agree to 1e-6. Every term of the discretised equations scales exactly (the explicit
 #: step is h / c, which scales sqrt(lambda) like the output interval), so what is left is
 #: round-off and the 12 significant digits the scaled case is written with (~1e-11 here).

@@ -1,6 +1,6 @@
 """``floatmoor scale`` of a case with a motion table: the table is rewritten beside the scaled
 case (times x sqrt(lambda), positions x lambda, angles unchanged), exactly reversible, and a
-forced run on it is similar to the original (issue 20)."""
+forced run on it is similar to the original."""
 
 from __future__ import annotations
 

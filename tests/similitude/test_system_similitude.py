@@ -1,4 +1,4 @@
-"""A mooring system with free points and its scaled copy (issue 20): the chain-rope-chain line
+"""A mooring system with free points and its scaled copy: the chain-rope-chain line
 with a clump weight and a buoy of tests/data/systems/clump_buoy_seabed.toml, dynamic, settled
 (the default start) and scaled by floatmoor.similitude (the path of ``floatmoor scale``).
 

@@ -112,7 +112,7 @@ def test_full_study_quasi_dynamic_beats_quasi_static(full_study):
     assert by_shape_s[2] < by_shape_s[1] < by_shape_s[0]
 
 
-# The strict xfail below is a documented deviation from the paper (decision of issue 13): it
+# The strict xfail below is a documented deviation from the paper (docs/validation/notes.md): it
 # stays until a peer check of the study says otherwise.
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="observed RMSE_S < 20 % in 34 % of the runs (paper 18 %) "
@@ -138,7 +138,7 @@ def test_full_study_quasi_dynamic_errors_grow_from_s3_to_s1(full_study):
 
 def test_study_with_a_failed_run_exits_1_naming_it(tmp_path, capsys, monkeypatch):
     """A combination whose run fails is recorded (NaN measures, its message in run_error) and
-    the study completes, but ``floatmoor study`` exits 1 naming it (issue 13). Two
+    the study completes, but ``floatmoor study`` exits 1 naming it. Two
     combinations; the model runs are replaced by a synthetic steady cycle and a solver
     failure."""
     from floatmoor.errors import SolverError

@@ -1,4 +1,4 @@
-"""A floater on a mooring system (issue 15): lines through free points in coupled runs."""
+"""A floater on a mooring system : lines through free points in coupled runs."""
 
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ def _split_case(tmp_path, sections: str, sets: list[str]):
         path.unlink()
 
 
-@pytest.mark.slow  # 5-10 s: the default-run budget (issue 19's docs build)
+@pytest.mark.slow  # 5-10 s: the default-run budget (docs/development.md)
 def test_quasi_static_line_split_by_a_joint_runs_as_the_unsplit_line(tmp_path):
     sets = ["simulation.duration=2.0", 'lines.*.model="quasi-static"']
     split = _split_case(tmp_path, '[{ type = "chain", length = 5.8 }, '

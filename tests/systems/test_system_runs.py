@@ -1,4 +1,4 @@
-"""Forced-motion runs of mooring systems (issue 15): lines of several sections with a clump
+"""Forced-motion runs of mooring systems: lines of several sections with a clump
 weight and a buoy, solved together, quasi-static and dynamic."""
 
 from __future__ import annotations

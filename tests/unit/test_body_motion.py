@@ -1,4 +1,4 @@
-"""Issue 15, item 3: prescribed 6-DOF body motion (``[motion] kind = "body"``): large-angle
+"""Prescribed 6-DOF body motion (``[motion] kind = "body"``): large-angle
 kinematics, exact velocities, table and harmonic input, and the translations of today's
 motions reproduced bit for bit."""
 

@@ -99,7 +99,7 @@ def test_loading_does_not_mutate_input():
 
 
 def test_time_integration_and_accuracy_keys():
-    """``[lines.dynamic] time_integration`` and ``accuracy`` (issue 17): defaults, values, and
+    """``[lines.dynamic] time_integration`` and ``accuracy``: defaults, values, and
     what is refused, with the key path and what was found."""
     default = load_case(LINDAHL_CASE).lines[0].dynamic
     assert default.time_integration == "explicit" and default.accuracy == 0.01  # the file's

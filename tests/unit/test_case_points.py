@@ -1,4 +1,4 @@
-"""Points and multi-section lines in case files (issue 15): the loader's system objects."""
+"""Points and multi-section lines in case files: the loader's system objects."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Issue 17: the DG numerics chosen from the accuracy (floatmoor.mooring.dg.resolution) and
+"""The DG numerics chosen from the accuracy (floatmoor.mooring.dg.resolution) and
 the fairlead motion frequency a case declares (floatmoor.case.motion_frequency)."""
 
 from __future__ import annotations
@@ -61,7 +61,7 @@ def test_given_keys_override_the_choice() -> None:
 
 
 def test_the_reference_cases_choices() -> None:
-    """What the rule gives on issue 17's references at the default 1 % (module docstring of
+    """What the rule gives on the stored references at the default 1 % (module docstring of
     resolution.py: 40 to 48 nodes on the Lindahl chain and the buoy chains, 32 on the
     DeepCwind lines), their files' reference numerics taken out; numerics a case gives stay
     as given (the QD study's 10 x p5)."""

@@ -1,15 +1,15 @@
 """The moving-start generalisation of the DG kernels leaves a fixed-anchor line bit-identical.
 
 ``tests/data/dg_system/lindahl_baseline.npz`` was written by :func:`run` with the kernels as
-they were before the start end could move (commit efa0522, the head of main when issue 15
-began): regenerate it only from such a commit (``python -m tests.unit.test_dg_system_bits
+they were before the start end could move (commit efa0522, the head of main before
+mooring systems): regenerate it only from such a commit (``python -m tests.unit.test_dg_system_bits
 FILE``). The Lindahl chain (docs/cases/lindahl.md) runs 0.5 s of harmonic fairlead motion with the
 Kelvin-Voigt damping implicit and explicit.
 
 Bit-identity holds on the processor that wrote the baseline: numba compiles for the host CPU,
 and LLVM fuses multiply-adds where the CPU has FMA instructions, so another processor rounds
 differently (on this project's 2026-11-26 machine: 1e-11 relative after the 0.5 s, 60 % of the
-values differing in their last bits, at main's head before issue 17 as after). Elsewhere the
+values differing in their last bits, at main's head before the implicit DG as after). Elsewhere the
 comparison is to :data:`CPU_RTOL`.
 """
 
@@ -45,7 +45,7 @@ def run(damping: str) -> dict[str, np.ndarray]:
     ln = case.lines[0]
     line = DynamicLine.from_case(ln, case.environment, case.seabed)
     # settled as the baseline's code did, on fixed times (20 1/s, 0.1 s chunks, 20 s at most),
-    # not on the line's own time scale (issue 20): what is compared is the kernels' arithmetic
+    # not on the line's own time scale: what is compared is the kernels' arithmetic
     line.settle(rate=BASELINE_SETTLE_RATE, chunk=BASELINE_SETTLE_CHUNK,
                 max_time=BASELINE_SETTLE_MAX_TIME)
     t = np.linspace(0.0, 0.5, 51)

@@ -1,4 +1,4 @@
-"""Issue 14, items 8, 11 and 14: motion tables are confined to the case folder, regular,
+"""Motion tables are confined to the case folder, regular,
 bounded and strictly parsed; errors never quote the file (nor say "times nan to nan")."""
 
 from __future__ import annotations

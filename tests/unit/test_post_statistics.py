@@ -31,7 +31,7 @@ def test_statistics_window_and_moments():
 
 
 def test_cycle_maxima_of_an_astronomical_period_are_none_and_immediate():
-    # issue 14 item 9: the slack was relative to the period, so a 1e308 s period counted
+    # the slack was relative to the period, so a 1e308 s period counted
     # ~1e299 cycles (and looped over them) and a 1e9 s one counted a cycle that is not there
     from floatmoor.post.statistics import channel_statistics, cycle_maxima
 

@@ -1,4 +1,4 @@
-"""The Python runners refuse a case they cannot run as asked (issue 13): a forced-motion run
+"""The Python runners refuse a case they cannot run as asked: a forced-motion run
 of a case with a floater would ignore the floater and hold the fairleads fixed; a coupled run
 of a case without one has no body. ``run_case`` picks the runner a case needs."""
 

@@ -1,6 +1,6 @@
 """What the published DeepCwind LC34 mean tensions imply about the platform's mean position
-(why the published means are not a check of the line models: issue 13 retired the LC34
-mean-tension comparison; docs/validation/coupled.md, DeepCwind sea states).
+(why the published means are not a check of the line models: the LC34
+mean-tension comparison was retired; docs/validation/coupled.md, DeepCwind sea states).
 
 The quasi-dynamic paper runs LC34 without second-order wave forces and says that "the mean
 tension of the three lines will only differ due to the initial offset of the platform"
@@ -32,7 +32,7 @@ PUBLISHED_DYNAMIC = np.array([1030e3, 1202e3])
 #: The offset (surge, heave of the fairleads) [m] quoted in docs/validation/coupled.md, to the quoted digits.
 RECONSTRUCTED = np.array([-2.27, -1.84])
 OFFSET_ATOL = 0.005
-#: Issue 6's tolerance on the LC34 means.
+#: The former tolerance on the LC34 means (docs/validation/coupled.md#the-published-mean-tensions).
 MEAN_RTOL = 0.05
 
 

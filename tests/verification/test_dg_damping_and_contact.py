@@ -119,7 +119,7 @@ def _deepcwind_line_tension(method: str, tangent_tol: float | None = None):
     return np.linalg.norm(ff, axis=1), steps[1:].mean(), line
 
 
-@pytest.mark.slow  # 8-17 s: the default-run budget (issue 19's docs build)
+@pytest.mark.slow  # 8-17 s: the default-run budget (docs/development.md)
 def test_implicit_internal_damping_matches_explicit_at_ten_times_the_step():
     explicit, explicit_steps, _ = _deepcwind_line_tension("explicit")
     implicit, implicit_steps, line = _deepcwind_line_tension("implicit")

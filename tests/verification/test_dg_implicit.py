@@ -1,6 +1,6 @@
 """The implicit (generalised-alpha) DG integration as a whole: its order in time, agreement
 with the explicit integration of the same discretisation, bit-identical resume, the settled
-state, and refinement where a snap needs it (issue 17)."""
+state, and refinement where a snap needs it."""
 
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ ORDER_RATIO = (3.5, 4.5)
 #: local error share (0.25 %) accumulated over the run; measured 0.05 % of the force range.
 SMOOTH_AGREEMENT = 0.005
 #: DeepCwind lines on their recorded fairlead paths, 8 x p3, implicit against explicit: STD
-#: and maximum after 60 s within 0.5 % (measured 0.2 %); issue 17 asks 1 % of the converged
+#: and maximum after 60 s within 0.5 % (measured 0.2 %); the target is 1 % of the converged
 #: tension of the whole run.
 DEEPCWIND_AGREEMENT = 0.005
 #: The settled end tensions of the two integrations: each settle stops at a 1e-6 relative

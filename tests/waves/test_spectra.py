@@ -14,8 +14,8 @@ from floatmoor.waves.spectra import (dnv_peak_enhancement, jonswap, jonswap_alph
                                      spectral_moment)
 
 G = 9.81
-#: Hs from an independent integration of S(omega) must match the requested Hs (issue 6 asks
-#: 1e-6; quad reaches ~1e-12 here).
+#: Hs from an independent integration of S(omega) must match the requested Hs (the requirement
+#: is 1e-6; quad reaches ~1e-12 here).
 HS_RTOL = 1e-6
 
 

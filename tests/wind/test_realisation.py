@@ -20,7 +20,7 @@ SEEDS = range(8)
 #: std(var^)/var = sqrt(sum_j v_j^2) / sum_j v_j (v_j the bin variances; Bendat & Piersol,
 #: Random Data, 4th ed., eq. 8.122 in discrete form); random-phase series scatter less.
 N_SIGMA = 4.0
-#: Budget for a 3-hour series at 0.05 s (issue 6: "well under 10 s").
+#: Budget for a 3-hour series at 0.05 s (the goal: "well under 10 s").
 SERIES_BUDGET_S = 5.0
 
 
