@@ -105,7 +105,7 @@ def _corrupted(buoy_db, path):
 def test_database_failing_a_check_is_refused_naming_check_value_tolerance(buoy_db, tmp_path,
                                                                          capsys):
     """The checks are recomputed at load, not trusted from the file: an edited database with
-    its recorded inputs (and hash) kept is refused (issue 13)."""
+    its recorded inputs (and hash) kept is refused."""
     path = _corrupted(buoy_db, tmp_path / "edited.nc")
     case = load_case(BUOY_CASE)
     with pytest.raises(HydroDatabaseError) as info:

@@ -1,4 +1,4 @@
-"""Issue 14, items 11 and 12: a database whose values were edited after the build (its
+"""A database whose values were edited after the build (its
 recorded inputs hash kept) is refused by a run whatever the case accepts, and ``hydro check``
 reports it in a row instead of a traceback."""
 

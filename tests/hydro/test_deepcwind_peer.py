@@ -16,7 +16,7 @@ References
 * C33 = 3.836 MN/m (docs/cases/deepcwind.md, notes).
 
 The excitation comparison covers the three periods in the available data (4.99 to 12.57 s);
-issue 13 accepted that range in place of the 5 to 15 s band issue 5 asked for.
+that range was accepted in place of the 5 to 15 s band first asked for.
 """
 
 from __future__ import annotations
@@ -36,14 +36,15 @@ WAMIT_ADDED_MASS = {
     "A33": (2, 1.522e7, 1.470e7),
     "A55": (4, 7.99e9, 7.21e9),
 }
-#: Issue 5: added mass within 5 % at 0.5 rad/s and at infinity.
+#: Required: added mass within 5 % at 0.5 rad/s and at infinity.
 ADDED_MASS_TOLERANCE = 0.05
 #: marin_semi.3, heading 0: period [s] -> (|X1| / (rho g), |X3| / (rho g)) [m^2].
 WAMIT_EXCITATION = {12.5664: (392.4632, 92.08018), 7.95340: (274.8945, 112.0903),
                     4.98666: (356.7737, 121.9046)}
-#: Issue 5: |X1| within 5 %, |X3| within 10 %.
+#: Required: |X1| within 5 %, |X3| within 10 %
+#: (docs/development.md#case-524-excitation-of-a-vertical-cylinder).
 X1_TOLERANCE, X3_TOLERANCE = 0.05, 0.10
-#: docs/cases/deepcwind.md: C33 = 3.836 MN/m; issue 5: within 3 %, and within 0.5 % of rho g A_wp.
+#: docs/cases/deepcwind.md: C33 = 3.836 MN/m; required: within 3 %, and within 0.5 % of rho g A_wp.
 C33_PUBLISHED, C33_TOLERANCE, C33_WATERPLANE_TOLERANCE = 3.836e6, 0.03, 0.005
 
 

@@ -33,7 +33,7 @@ ADDED_MASS_RTOL = 0.05
 #: the Haskind check's 5 % (heave measured at 4.6 % at 1.0 rad/s, the case file's [hydro]
 #: notes) plus the 3 % the two hull models differ by in the added mass.
 DAMPING_PEAK_RTOL = 0.08
-#: Issue 16: natural periods of the decay on the imported database within 1 % of ours.
+#: Required: natural periods of the decay on the imported database within 1 % of ours.
 PERIOD_RTOL = 0.01
 
 

@@ -23,7 +23,8 @@ from floatmoor.hydro.geometry import hemisphere_mesh
 #: Hulme (1982), heave: K a -> (added mass, damping), non-dimensional as above.
 HULME_HEAVE = {0.2: (0.7938, 0.2793), 0.5: (0.5861, 0.3391), 1.0: (0.4284, 0.2484),
                1.6: (0.3871, 0.1469)}
-#: Issue 5: heave added mass and damping within 3 % of Hulme's values.
+#: Heave added mass and damping within 3 % of Hulme's values
+#: (docs/development.md#case-523-floating-hemisphere).
 HULME_TOLERANCE = 0.03
 RADIUS, RHO, G = 1.0, 1000.0, 9.81
 

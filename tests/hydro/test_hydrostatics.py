@@ -20,9 +20,9 @@ from floatmoor.case.schema import CylinderGeometry
 from floatmoor.hydro.geometry import cylinder_mesh
 from floatmoor.hydro.hydrostatics import hull_hydrostatics
 
-#: Issue 5: the cylinder's hydrostatics exact to 1e-6 (relative).
+#: The cylinder's hydrostatics exact to 1e-6 (relative; docs/development.md#case-521-hydrostatics).
 EXACT = 1e-6
-#: Issue 5: stiffness and displacement against the analytic cylinder within 1 %.
+#: Required: stiffness and displacement against the analytic cylinder within 1 %.
 CIRCLE = 0.01
 RHO, G = 1000.0, 9.81
 RADIUS, DRAFT = 0.2575, 0.17210157

@@ -1,4 +1,4 @@
-"""Hull meshes from files (``[floater.geometry] kind = "mesh"``, issue 16): loading, reading,
+"""Hull meshes from files (``[floater.geometry] kind = "mesh"``): loading, reading,
 placing, symmetry, and the databases built on them against the parametric cylinder's."""
 
 from __future__ import annotations

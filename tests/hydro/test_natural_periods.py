@@ -8,7 +8,7 @@ import pytest
 
 from floatmoor.hydro.natural_periods import mooring_stiffness, natural_periods
 
-#: Issue 5: heave about 17.3 s and pitch about 26.8 s, within 3 %.
+#: Required: heave about 17.3 s and pitch about 26.8 s, within 3 %.
 PERIOD_TOLERANCE = 0.03
 OC4_PERIODS = {"Heave": 17.3, "Pitch": 26.8}
 #: OC4 linearised mooring stiffness (docs/cases/deepcwind.md, notes). The case uses the OC5 line properties

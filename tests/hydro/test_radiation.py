@@ -29,7 +29,7 @@ BLOCKED_RTOL = 1e-13
 #: Most memory building a kernel may take at once, as a fraction of its whole tail operator
 #: (times x tail nodes): K itself and its copies (36 values per time against 601), and the
 #: operator blocks (radiation._BLOCK_VALUES floats, 4 MB) with their temporaries. Building the
-#: whole operator took about seven times its size (issue 17).
+#: whole operator took about seven times its size.
 KERNEL_MEMORY_FRACTION = 0.5
 
 

@@ -1,6 +1,6 @@
 """The DeepCwind surge free decay of the validation (docs/cases/deepcwind.md), shared by
 ``test_deepcwind_decay.py`` (the published period, the damping the memory lines add) and
-``test_unchanged_dynamic.py`` (issue 17: the decays unchanged by the dynamic line's numerics).
+``test_unchanged_dynamic.py`` (the decays unchanged by the dynamic line's numerics).
 
 The platform is released from a surge offset of 16.58 m with the members' Morison drag, the
 lines of one model, 400 s (three surge cycles) at the case's body step of 0.1 s, output every
@@ -42,7 +42,7 @@ class SurgeDecay:
 def surge_decay(model: str) -> SurgeDecay:
     """Run the decay with every line of ``model`` and find its surge peaks."""
     # dynamic lines at the numerics of the stored figures (10 x p5, explicit: the defaults
-    # before issue 17; the accuracy default, 6 x p3 "auto", moves cycle 3's period by -0.66 %)
+    # before the rule; the accuracy default, 6 x p3 "auto", moves cycle 3's period by -0.66 %)
     numerics = REFERENCE_NUMERICS if model == "dynamic" else []
     case = load_case(CASE, [f'lines.*.model="{model}"', *numerics,
                             f"simulation.duration={DURATION}", "simulation.output_interval=0.5",

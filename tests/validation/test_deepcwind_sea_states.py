@@ -1,16 +1,16 @@
 """DeepCwind LC34 and LC43 (docs/cases/deepcwind.md): 3-hour sea states with each line model, compared as the
-quasi-dynamic paper's section 5 does (issues 6 and 7).
+quasi-dynamic paper's section 5 does (docs/validation/coupled.md#deepcwind-sea-states).
 
 Each load case runs once per line model through ``floatmoor compare`` (a campaign over the
 models, with the published values as labelled reference columns), which also renders the
 report; the checks read the same analysis the report prints (floatmoor.report.tables).
 
-Issue 6: the three LC34 runs complete 3 hours without instability; the standard deviation of
+Required: the three LC34 runs complete 3 hours without instability; the standard deviation of
 the most loaded line's tension (line 2, the upwave line) is within 25 % of the published
 dynamic model's. The mean tensions are not compared: the published means sit on a platform
-offset the paper does not give, and issue 13 retired that check (the offset analysis stays as
+offset the paper does not give, so that check was retired (the offset analysis stays as
 documentation: tests/verification/test_deepcwind_mean_offset.py).
-Issue 7: the published ordering: the quasi-static standard deviation of line 2 well below
+And the published ordering: the quasi-static standard deviation of line 2 well below
 the others' and its fatigue damage orders of magnitude lower; dynamic and quasi-dynamic
 damage within a factor 2 of each other.
 
@@ -31,16 +31,16 @@ pytestmark = pytest.mark.slow
 
 MODELS = ("quasi-static", "quasi-dynamic", "dynamic")
 DEEPCWIND = CASES / "deepcwind"
-#: Issue 6: LC34 standard deviation of the most loaded line against the published dynamic
+#: Required: LC34 standard deviation of the most loaded line against the published dynamic
 #: model (docs/cases/deepcwind.md, quasi-dynamic paper Table 8: 392.0 kN).
 STD_RTOL = 0.25
-#: Issue 7, "well below": the quasi-static standard deviation of line 2 at most half of the
+#: "Well below": the quasi-static standard deviation of line 2 at most half of the
 #: others' (published: 119.6 against 364.3 and 392.0 kN, 0.31 and 0.33).
 QS_STD_RATIO = 0.5
-#: Issue 7, "orders of magnitude lower": the quasi-static damage of line 2 below a tenth of
+#: "Orders of magnitude lower": the quasi-static damage of line 2 below a tenth of
 #: the others' (published: 1.75e-7 against 1.40e-4 and 2.20e-4).
 QS_DAMAGE_RATIO = 0.1
-#: Issue 7: dynamic and quasi-dynamic damage within a factor 2 (published 1.57).
+#: Required: dynamic and quasi-dynamic damage within a factor 2 (published 1.57).
 DAMAGE_FACTOR = 2.0
 
 

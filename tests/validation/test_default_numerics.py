@@ -1,4 +1,4 @@
-"""Issue 17: the DG numerics chosen from the default accuracy (1 %) reproduce the shipped cases'
+"""The DG numerics chosen from the default accuracy (1 %) reproduce the shipped cases'
 reference numerics within the accuracy asked.
 
 Lindahl (docs/cases/lindahl.md), all 30 runs (r x T) as the validation runs them

@@ -13,8 +13,8 @@ goes slack and snaps) and 3.5 s (smooth response). With the dynamic line model w
   per-cycle maxima cannot be smaller than the maximum of the mean cycle).
 
 The first check is judged with the measurement error of the maxima the chain-experiment
-paper gives, about +-5 % (decision of issue 13; the earlier 4 % bar was the dynamic-model
-issue's, inside that error). floatmoor gives +4.2 % at both periods; MoorDyn, an independent
+paper gives, about +-5 % (docs/validation/lindahl.md; the earlier 4 % bar, set for the dynamic
+model, lay inside that error). floatmoor gives +4.2 % at both periods; MoorDyn, an independent
 code, predicts the same maxima from the same inputs (72.7 N and 52.07 N, within 0.15 % of our
 converged values), and both are 1.6-3.2 % above the measured record's own cycle peaks
 (71.02 N and 51.41 N).
@@ -47,7 +47,7 @@ PERIODS = (1.25, 3.5)
 
 #: Relative tolerance on the mean per-cycle maximum against the published measured mean
 #: maximum: the +-5 % measurement error of the maxima the chain-experiment paper gives
-#: (docs/cases/lindahl.md), as issue 13 decided.
+#: (docs/cases/lindahl.md), as decided in docs/validation/lindahl.md.
 MEAN_MAX_RTOL = 0.05
 #: Largest RMS difference between the aligned simulated mean cycle and the measured mean
 #: cycle, relative to the measured cycle's peak (71.02 N at T = 1.25 s, 51.41 N at 3.5 s): 8 %.

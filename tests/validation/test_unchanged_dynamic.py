@@ -1,8 +1,8 @@
-"""Issue 17: the dynamic line's new numerics leave the validations unchanged within 0.5 %.
+"""The dynamic line's new numerics leave the validations unchanged within 0.5 %.
 
 Recomputes, with the case files as shipped, the figures of ``unchanged_dynamic.py`` (the
 Lindahl validation, the quasi-dynamic study's figures, the DeepCwind decays) and compares them
-with those of the code before issue 17 (``tests/data/references/issue17_unchanged.json``, its
+with those of the code before them (``tests/data/references/issue17_unchanged.json``, its
 provenance inside). What "within 0.5 %" means for each figure:
 
 - Lindahl, each of the 30 runs (r x T): the mean cycle maximum of the fairlead tension within
@@ -49,7 +49,7 @@ from tests.validation.unchanged_dynamic import (DECAY_MODELS, decay_figures, lin
 
 pytestmark = pytest.mark.slow
 
-#: Issue 17's bound: "Unchanged within 0.5 %: the Lindahl validation, the QD study's figures,
+#: The bound: "Unchanged within 0.5 %: the Lindahl validation, the QD study's figures,
 #: the DeepCwind decays."
 UNCHANGED_RTOL = 0.005
 

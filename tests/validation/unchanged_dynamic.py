@@ -1,7 +1,7 @@
-"""Issue 17's "unchanged" figures of the dynamic line: what the validations judge, computed.
+"""The "unchanged" figures of the dynamic line: what the validations judge, computed.
 
-Issue 17 changes the dynamic (DG) line's numerics (accuracy-chosen discretisation, implicit time
-integration) and asks that three validations stay within 0.5 %: the Lindahl validation, the
+The dynamic (DG) line's numerics changed (accuracy-chosen discretisation, implicit time
+integration) on the condition that three validations stay within 0.5 %: the Lindahl validation, the
 quasi-dynamic (QD) study's figures and the DeepCwind decays. This module computes the figures
 those validations judge, with the case files as shipped; ``issue17_unchanged.json`` in
 tests/data/references holds them from the code before the change, and
@@ -59,7 +59,7 @@ from tests.validation.deepcwind_decay import OFFSET as DECAY_OFFSET
 from tests.validation.deepcwind_decay import surge_decay
 from tests.validation.lindahl import DEFAULT_CYCLES, RAMP_PERIODS, run_lindahl
 
-#: The stored figures of the code before issue 17.
+#: The stored figures of the code before those numerics.
 BASELINE = REPO / "tests" / "data" / "references" / "issue17_unchanged.json"
 #: The 30 Lindahl experiment runs (docs/cases/lindahl.md): radii [m] x periods [s].
 LINDAHL_RADII = (0.075, 0.100, 0.125, 0.150, 0.200)
