@@ -1,4 +1,5 @@
-"""The package's house rules, checked statically: imports run one way, modules stay small.
+"""The package's house rules, checked statically: imports run one way, modules stay small,
+code cites pages rather than tracker numbers.
 
 Imports (docs/development.md): the project layers its code one way (case -> models -> simulation ->
 campaigns/reports -> CLI), so no module may, directly or through others, import itself. The
@@ -21,11 +22,17 @@ attributes) is not followed.
 Size: a module over :data:`MAX_MODULE_LINES` lines must say why in its docstring, on a line
 starting with ``Size:`` (e.g. ``Size: one numba kernel set that shares its private helpers;
 split, the helpers would have to be public``).
+
+Citations: code and tests cite docs pages and papers, never a numbered issue of a tracker the
+reader of the code does not have (docs/development.md#8-citations-in-code): no line of a ``.py``
+file under ``floatmoor/`` or ``tests/`` may match :data:`TRACKER_REFERENCE` (the word, one space,
+an optional ``#``, a number). Data file names such as ``issue17_unchanged.json`` do not match.
 """
 
 from __future__ import annotations
 
 import ast
+import re
 from collections import deque
 from collections.abc import Set
 from functools import lru_cache
@@ -36,6 +43,10 @@ PACKAGE = Path(__file__).resolve().parents[1] / "floatmoor"
 MAX_MODULE_LINES = 600
 #: The docstring line that gives that reason.
 SIZE_REASON_PREFIX = "Size:"
+#: Folders whose ``.py`` files must not cite tracker issue numbers.
+CITATION_ROOTS = (PACKAGE, PACKAGE.parent / "tests")
+#: A numbered tracker reference; built from pieces so that this file's source does not match.
+TRACKER_REFERENCE = re.compile(r"\b[Ii]ssue" + r"s? #?\d+")
 
 
 def _modules() -> dict[str, tuple[Path, bool]]:
@@ -248,3 +259,35 @@ def test_every_long_module_says_why() -> None:
     problems = [p for p in problems if p is not None]
     assert not problems, ("split these modules by what they hold, or say why not:\n"
                           + "\n".join(problems))
+
+
+def _tracker_references(name: str, text: str) -> list[str]:
+    """``name:line: text`` of every line of ``text`` that cites a numbered tracker issue."""
+    return [f"{name}:{number}: {line.strip()}"
+            for number, line in enumerate(text.splitlines(), start=1)
+            if TRACKER_REFERENCE.search(line)]
+
+
+def test_tracker_reference_pattern() -> None:
+    """The pattern flags the word with a number after a space or ``#``, not data file names."""
+    word = "Issue"
+    planted = (f"# {word} 17: 1 %\n"
+               f"x = 1  # see {word.lower()}s 6 and 7\n"
+               f'"""Fixed ({word.lower()} #5)."""\n'
+               f"BASELINE = '{word.lower()}17_unchanged.json'\n"
+               f"# the {word.lower()}'s targets\n")
+    assert _tracker_references("planted.py", planted) == [
+        f"planted.py:1: # {word} 17: 1 %",
+        f"planted.py:2: x = 1  # see {word.lower()}s 6 and 7",
+        f'planted.py:3: """Fixed ({word.lower()} #5)."""']
+
+
+def test_code_cites_no_tracker_issue_numbers() -> None:
+    """Comments, docstrings and messages say what they mean or cite a docs page instead."""
+    problems = []
+    for root in CITATION_ROOTS:
+        for path in sorted(root.rglob("*.py")):
+            problems += _tracker_references(str(path.relative_to(PACKAGE.parent)),
+                                            path.read_text(encoding="utf-8"))
+    assert not problems, ("cite the docs page (with its anchor) or paper that holds the "
+                          "decision, not the tracker's issue number:\n" + "\n".join(problems))
