@@ -51,7 +51,7 @@ __all__ = ["KERNEL_RTOL", "MAX_ORDER", "HANKEL_ROWS", "LOW_FREQUENCY_BAND",
 
 #: Largest relative L2 error ||K_fit - K|| / ||K|| over the truncation time of a pair's fit.
 #: WEC-Sim's BEMIO asks R^2 = 1 - SSE / SST >= 0.95 by default (``radiationIRFSS``), i.e. up
-#: to ~22 % here (SST ~ ||K||^2 for kernels of near-zero mean). The issue's check, decays
+#: to ~22 % here (SST ~ ||K||^2 for kernels of near-zero mean). The required check, decays
 #: with both radiation paths within 1 %, needs far less: on the shipped databases 2 % left
 #: the DeepCwind heave decay 1.9 % off the convolution's, 1 % the pitch decay 0.99 % off
 #: (through the surge-pitch coupling pairs) and the buoy's 6 x 6 B_fit 1.4 % from positive

@@ -6,7 +6,7 @@ difference of the total force and moment of the quasi-static catenaries
 (:class:`floatmoor.mooring.quasistatic.QuasiStaticLine`) on the body over small rigid-body
 displacements: fairlead p = c + x + R(theta) (p0 - c), R = Rz(yaw) Ry(pitch) Rx(roll).
 
-:func:`natural_periods` (the issue's definition): per DOF i, the fixed point of
+:func:`natural_periods` (docs/theory/floater.md#natural-periods): per DOF i, the fixed point of
 omega = sqrt(C_ii / (M_ii + A_ii(omega))) with C the hydrostatic and gravity stiffness plus
 K_moor and M the rigid-body mass matrix about the rotation centre (A interpolated linearly,
 held at the end values outside the BEM range).

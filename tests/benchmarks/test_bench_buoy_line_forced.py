@@ -13,7 +13,7 @@ candidate is searched), then per time scheme (explicit RK2, RK4; implicit BEuler
 ACA3, Wilson3) the cheapest (segments, dtM) within 1 % of the reference (STD and maximum)
 whose next finer mesh is too. Reported: the wall-time ratio floatmoor / MoorDyn at equal
 accuracy (time loop and whole run), or, without a MoorDyn setting within 1 %, against MoorDyn's
-reference. The issue sets no target here: nothing but the runs' completion is asserted.
+reference. No target is set here: nothing but the runs' completion is asserted.
 
 The chain has no internal damping and snaps: MoorDyn did not converge in the baseline study
 (README of the references: 60 segments at dt = l / c and 0.5 l / c differ by 10 % in STD,

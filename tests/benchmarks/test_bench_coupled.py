@@ -24,7 +24,7 @@ pytestmark = pytest.mark.benchmark
 
 LC34 = CASES / "deepcwind" / "deepcwind_lc34.toml"
 BUOY = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
-#: The issue's goals for the 3-hour LC34 run on one core [s]; quasi-static has none (it is
+#: The goals for the 3-hour LC34 run on one core [s]; quasi-static has none (it is
 #: the floor the others are measured against).
 GOALS = {"dynamic": 600.0, "quasi-dynamic": 60.0, "quasi-static": None}
 

@@ -1,7 +1,7 @@
 """Benchmark: the cost of one quasi-dynamic step against one quasi-static and one dynamic step
 of the same line (the verification chain of docs/cases/qd_verification.md, its fairlead path, 2.5 ms steps).
 
-The issue's goals: a quasi-dynamic step at most 3 times a quasi-static one, and at least 30
+The goals: a quasi-dynamic step at most 3 times a quasi-static one, and at least 30
 times cheaper than the dynamic model over the same simulated time. Each model runs its
 ``solve_path`` on the same samples; the quasi-static and quasi-dynamic runs alternate, and
 the medians over the repetitions are compared (this machine's timings vary by +-30 %).
@@ -40,7 +40,7 @@ from tests.conftest import CASES
 pytestmark = pytest.mark.benchmark
 
 CASE_B = CASES / "qd_verification" / "s2_d2.toml"
-#: The issue's goals.
+#: The goals (docs/validation/performance.md#line-models).
 QS_RATIO_GOAL = 3.0
 DYNAMIC_RATIO_GOAL = 30.0
 #: Asserted bound on the quasi-dynamic / quasi-static ratio: the goal (measured 1.9-2.05).

@@ -17,7 +17,7 @@ from tests.conftest import CASES
 pytestmark = pytest.mark.slow
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
-#: The issue's 1 %: on the body motions (largest difference over the run, relative to the
+#: The required 1 %: on the body motions (largest difference over the run, relative to the
 #: motion's range) and on each line's mean and maximum fairlead tension.
 STEP_RTOL = 0.01
 BASE = ["simulation.duration=5.0", "simulation.output_interval=0.02",

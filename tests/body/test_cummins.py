@@ -21,10 +21,10 @@ from tests.conftest import CASES, REPO
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 BUOY_DB = REPO / "hydrodb" / "cylinder_buoy.nc"
-#: The issue's criteria for the regular-wave response against the database's RAO.
+#: The required criteria for the regular-wave response against the database's RAO.
 RAO_AMPLITUDE_RTOL = 0.02
 RAO_PHASE_TOL_DEG = 2.0
-#: Heave free decay against the linear natural period (the issue's 1 %).
+#: Heave free decay against the linear natural period (1 % required).
 DECAY_PERIOD_RTOL = 0.01
 #: Surge on quasi-static lines against sqrt((M + A11) / K11) of the linearised mooring: the
 #: decay is small-amplitude (1 cm on 6.7 m chains) but the catenary stiffens; 2 %.

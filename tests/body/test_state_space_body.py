@@ -1,7 +1,7 @@
 """The state-space radiation path of the Cummins body (floatmoor/body/radiation_states.py,
 _radiation_kernels.py, CumminsBody._step_state_space): the compiled stage kernels and the body
 step against a dense NumPy reference, residualised fast modes, fourth-order convergence, the
-saved state, the issue's check (decays with the convolution and state-space paths within 1 %)
+saved state, the required check (decays with the convolution and state-space paths within 1 %)
 and a 3-hour DeepCwind run in the LC34 sea."""
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 DEEPCWIND_CASE = CASES / "deepcwind" / "deepcwind_free_decay.toml"
 BUOY_DB = REPO / "hydrodb" / "cylinder_buoy.nc"
 DEEPCWIND_DB = REPO / "hydrodb" / "deepcwind.nc"
-#: The issue's check: decays with the convolution and the state-space radiation agree within
+#: The required check: decays with the convolution and the state-space radiation agree within
 #: 1 % (largest displacement difference over the record / largest displacement).
 PATH_AGREEMENT = 0.01
 #: Compiled stage against the dense NumPy matrices: the same sums in another order.
@@ -184,7 +184,7 @@ def test_saved_state_holds_the_radiation_states() -> None:
         body.set_state(conv.get_state())
 
 
-# -- the issue's check: the two paths on decays --------------------------------------------
+# -- the required check: the two paths on decays -----------------------------------------
 
 def _buoy_heave_decay(radiation: str, ds=None) -> np.ndarray:
     """Buoy heave free decay from 1 cm, 60 steps per linear natural period, 10 periods (the

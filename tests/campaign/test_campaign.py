@@ -209,14 +209,14 @@ def test_sweep_with_failed_runs_exits_1_naming_them(tmp_path, capsys):
     assert len(lines) == 3
     ds = read_dataset(out)
     assert ds.attrs["runs_failed"] == 2 and ds.attrs["runs_complete"] == 2
-    # every run failing (the issue's probe) is a failure too, not "0 of 2 ... exit 0"
+    # every run failing (the probe's case) is a failure too, not "0 of 2 ... exit 0"
     assert main([*argv[:-7], "--grid", "lines.chain.quasi_static.tolerance=1e-16", "--grid",
                  "motion.radius=0.1,0.2", "-o", str(tmp_path / "all.nc"), "--quiet"]) == 1
     assert "2 of 2 runs failed" in capsys.readouterr().err
 
 
 def test_sweep_whose_workers_cannot_read_the_case_exits_1(tmp_path, capsys, monkeypatch):
-    """The issue's probe: every worker fails to load the case (here a path the workers do not
+    """The probe: every worker fails to load the case (here a path the workers do not
     see); the sweep said "0 of 4 runs complete, 4 failed" and exited 0."""
     original = worker.run_one
 

@@ -81,7 +81,7 @@ def _assert_valid_partial(path, status_start: str, message: str) -> None:
 @pytest.mark.parametrize("signals, status, text, code", [
     ((signal.SIGINT,), "interrupted", "floatmoor: interrupted;", 130),
     ((signal.SIGTERM,), "terminated (SIGTERM)", "floatmoor: terminated (SIGTERM);", 143),
-    # the second Ctrl-C 0.15 s after the first, during the partial write
+    # a second Ctrl-C 0.15 s after the first, during the partial write
     ((signal.SIGINT, signal.SIGINT), "interrupted", "floatmoor: interrupted;", 130),
 ])
 def test_signalled_run_leaves_valid_partial_file_and_says_so(tmp_path, signals, status, text,

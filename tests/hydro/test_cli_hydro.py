@@ -60,8 +60,8 @@ TINY_ACCEPTS = 'hydro.accept_failed_checks=["symmetry", "kramers_kronig", "kerne
 
 
 def test_build_writes_database_then_skips_when_up_to_date(tiny_case, capsys):
-    """The tiny database fails its checks: written (failed checks recorded), exit 1 (issue
-    13); up to date on a re-run, checks reported again; accepted by the case: exit 0."""
+    """The tiny database fails its checks: written (failed checks recorded), exit 1; up
+    to date on a re-run, checks reported again; accepted by the case: exit 0."""
     assert main(["hydro", "build", str(tiny_case)]) == 1
     out = capsys.readouterr()
     target = tiny_case.parent / "hydrodb" / "tiny.nc"

@@ -24,8 +24,8 @@ from tests.hydro.conftest import DEEPCWIND_CASE, HYDRODB, REPO
 WAMIT_DB = HYDRODB / "deepcwind_wamit.nc"
 WAMIT_CASE = REPO / "cases" / "deepcwind" / "deepcwind_free_decay_wamit.toml"
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
-#: Diagonal added mass: the existing WAMIT comparison's 5 % (test_deepcwind_peer.py, issue
-#: 5; 3.07 % measured there at 0.5 rad/s and infinity), now at every capytaine frequency.
+#: Diagonal added mass: the existing WAMIT comparison's 5 % (test_deepcwind_peer.py;
+#: 3.07 % measured there at 0.5 rad/s and infinity), now at every capytaine frequency.
 ADDED_MASS_RTOL = 0.05
 #: Diagonal damping, |B_WAMIT - B| / peak B (the scale check_haskind uses: the damping is the
 #: small imaginary part of the radiation impedance, and heave and pitch damping nearly cancel

@@ -21,7 +21,7 @@ from floatmoor.hydro.geometry import cylinder_mesh
 from tests.hydro.maccamy_fuchs import maccamy_fuchs_drift
 
 RHO, G = 1000.0, 9.81
-#: Both routes against the closed form (the issue's criterion).
+#: Both routes against the closed form (2 % required).
 ANALYTIC_TOLERANCE = 0.02
 #: Energy identity of a fixed body (scattered flux against the interference term): the
 #: Kochin functions' quadrature on the mesh below holds it to 0.3 %.

@@ -33,7 +33,7 @@ from tests.hydro.mesh_files import (
 SAME_PANELS = 1e-6
 #: Hydrostatic integrals of the same panels read from another file format: round-off.
 ROUND_OFF = 1e-9
-#: The issue's check: the mesh database within 1 % of the built-in cylinder's over the band,
+#: The required check: the mesh database within 1 % of the built-in cylinder's over the band,
 #: per DOF, as the largest |difference| over the band relative to the DOF's peak |value| over
 #: the band (the pointwise differences are reported).
 BAND_TOLERANCE = 0.01
@@ -368,7 +368,7 @@ def test_drag_on_a_mesh_needs_morison_elements(tmp_path):
 
 @pytest.mark.slow
 def test_buoy_mesh_database_matches_the_cylinder_database(tmp_path, capsys):
-    """The issue's check: the shipped buoy's cylinder meshed by floatmoor at the case's panel
+    """The required check: the shipped buoy's cylinder meshed by floatmoor at the case's panel
     size, written to GDF as its positive quarter (ISX = ISY = 1, both planes declared),
     built through kind = "mesh" at 22 of the shipped database's frequencies spread over the
     band: A, B and the excitation within 1 % of hydrodb/cylinder_buoy.nc, per DOF (largest

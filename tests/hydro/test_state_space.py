@@ -23,7 +23,7 @@ from tests.hydro.conftest import BUOY_CASE, BUOY_DB, DEEPCWIND_CASE, DEEPCWIND_D
 #: ~1e-12 (observed 2e-13); 1e-9 leaves room for other BLAS builds.
 ROUND_OFF = 1e-9
 #: B_fit against the BEM damping over the band, relative to sqrt(max B_ii max B_jj): "within
-#: a few %" (the issue); observed at most 1.20 % (DeepCwind surge).
+#: a few %" (required); observed at most 1.20 % (DeepCwind surge).
 DAMPING_FIT_TOL = 0.03
 #: A_fit (with the band-mean A_inf, as the body's) against the BEM added mass, relative to
 #: sqrt(max A_ii max A_jj); observed at most 0.88 % (DeepCwind surge, buoy surge 0.78 %).

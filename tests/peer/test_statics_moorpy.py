@@ -118,7 +118,7 @@ def test_equilibrium_matches_moorpy(maker):
     # and each force component to 1e-6 of itself where it is not negligible
     big = np.abs(ours.end_force) > 1e-3 * force_scale
     np.testing.assert_allclose(ours.end_force[big], fb[big], rtol=PEER_RTOL)
-    # the systems exercise what the issue names: a clump off the seabed, a buoy, touchdown
+    # the systems exercise what the check is for: a clump off the seabed, a buoy, touchdown
     assert np.all(ours.positions[system.free_index, 2] > system.seabed_z + 5.0)
     assert np.any(ours.laid_length > 0.0)
 

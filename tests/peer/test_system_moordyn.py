@@ -33,7 +33,7 @@ from tests.peer.moordyn_system_reference import (REFERENCE_SETTINGS, read_refere
 
 SYSTEMS = Path(__file__).parents[1] / "data" / "systems"
 #: Max |floatmoor - MoorDyn| of the fairlead tension after the ramp over MoorDyn's range, per
-#: line (the issue asks 2 %). Observed, floatmoor at its defaults against the stored records:
+#: line (2 % required). Observed, floatmoor at its defaults against the stored records:
 #: - lazy wave (MoorDyn 200 segments per section): 1.47 % (RMS 0.37 %), 1.46 % against the
 #:   Richardson estimate of converged MoorDyn (its wave-frequency content moves 0.13 % then
 #:   0.03 % of the range RMS from 50 to 100 to 200 segments: order 2.1); floatmoor at 20
@@ -48,7 +48,7 @@ TENSION_RANGE_FRACTION = {
     "chain_rope_chain_clump": 0.025,
     "lazy_wave_buoy": 0.02,
 }
-#: The issue's bound [-], met by both lines with floatmoor's sections at 20 elements (a
+#: The required bound [-], met by both lines with floatmoor's sections at 20 elements (a
 #: numerics choice, not a physical input: the clump line's ringing is not converged at the
 #: default 10; floatmoor chooses numerics from an accuracy).
 ISSUE_RANGE_FRACTION = 0.02

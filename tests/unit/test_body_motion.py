@@ -22,8 +22,8 @@ from floatmoor.errors import CaseError
 from floatmoor.motion import fairlead_state
 from tests.conftest import LINDAHL_CASE
 
-#: Tolerance of the exactness checks [-]: a few hundred ulps of the arm length (the issue's
-#: "on its circle exactly (1e-12)").
+#: Tolerance of the exactness checks [-]: a few hundred ulps of the arm length (the
+#: requirement's "on its circle exactly (1e-12)").
 EXACT = 1e-12
 #: Rest points of a body (k = 4) spread around a reference point, arms of 5 to 40 m.
 REST = np.array([[32.0, 0.0, -5.0], [-20.0, 17.0, -14.0], [3.0, -30.0, 2.0], [0.0, 0.0, -40.0]])

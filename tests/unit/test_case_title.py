@@ -27,7 +27,7 @@ def test_placeholders_read_the_file_values_by_default():
 
 
 def test_placeholders_follow_the_overrides_and_nothing_is_appended_for_them():
-    """The issue: after --set motion.period=3.5 --set motion.radius=0.15 the title still
+    """The bug: after --set motion.period=3.5 --set motion.radius=0.15 the title still
     read 'r = 0.20 m, T = 1.25 s'."""
     case = load_case(LINDAHL_CASE, ["motion.period=3.5", "motion.radius=0.15"])
     assert case.title == "Lindahl chain, circular motion r = 0.15 m, T = 3.50 s"

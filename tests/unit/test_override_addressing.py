@@ -20,7 +20,7 @@ def test_wildcard_sets_every_line_and_a_name_one_line():
 
 
 def test_digit_segment_is_an_error_naming_the_entries():
-    """The issue's trap: LC34's lines are line1..line3, so ``lines.1`` read as line1 but
+    """The trap: LC34's lines are line1..line3, so ``lines.1`` read as line1 but
     set line2. Now it is bad input that lists the names and the wildcard."""
     with pytest.raises(CaseError) as info:
         load_case(LC34, ['lines.1.model="dynamic"'])

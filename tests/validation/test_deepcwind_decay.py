@@ -12,7 +12,7 @@ from tests.validation.deepcwind_decay import surge_decay
 
 pytestmark = pytest.mark.slow
 
-#: Published surge natural period of the OC4 DeepCwind (docs/cases/deepcwind.md, notes) and the issue's 5 %.
+#: Published surge natural period of the OC4 DeepCwind (docs/cases/deepcwind.md, notes) and the 5 % required.
 PUBLISHED_SURGE_PERIOD = 107.5
 PERIOD_RTOL = 0.05
 #: Memory lines must damp more: the first return peak below this fraction of the quasi-static

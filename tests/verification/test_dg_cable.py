@@ -9,10 +9,10 @@ energy conservation up to the Lax-Friedrichs dissipation; the elastic catenary
 (:func:`floatmoor.solve_catenary`) for statics; the taut-string and bar frequencies with
 Morison added mass; sinking with added mass and the terminal settling velocity.
 
-Every tolerance is a named constant with its source: "issue" (the requirements of the DG issue),
-"docs/development.md" (its verification cases 5.1.x) or "observed" (the margin measured when the
-test was written). Run with ``-s`` to see the observed errors; the slow parts run with
-``python -m pytest -m slow tests/verification/test_dg_cable.py -s``.
+Every tolerance is a named constant with its source: "required" (the requirements set for the
+DG line), "docs/development.md" (its verification cases 5.1.x) or "observed" (the margin
+measured when the test was written). Run with ``-s`` to see the observed errors; the slow
+parts run with ``python -m pytest -m slow tests/verification/test_dg_cable.py -s``.
 """
 
 from __future__ import annotations
@@ -31,12 +31,13 @@ from tests.conftest import LINDAHL_CASE, REFERENCE_NUMERICS
 from tests.oracles import dg_numpy as oracle
 
 # -- tolerances -----------------------------------------------------------------------------------
-#: issue: longitudinal-wave travel time L / sqrt(EA / m) within 1 %. Observed 4e-5 (K = 20, p = 4).
+#: required: longitudinal-wave travel time L / sqrt(EA / m) within 1 %.
+#: Observed 4e-5 (K = 20, p = 4).
 TRAVEL_TIME_RTOL = 0.01
 #: The pulse amplitudes: Z v at the driven end, doubled at the fixed end (d'Alembert). Same
 #: 1 % bar as the travel time (docs/development.md#case-513-axial-waves). Observed 5e-4 and 1.7e-3.
 PULSE_AMPLITUDE_RTOL = 0.01
-#: issue: fitted h-convergence slope within 0.3 of p + 1/2, or better.
+#: required: fitted h-convergence slope within 0.3 of p + 1/2, or better.
 SLOPE_MARGIN = 0.3
 #: docs/development.md#case-513-axial-waves: at least 10x error reduction from p = 2 to p = 5 at
 #: fixed h. Observed 4e3 on the fairlead force (K = 4).
@@ -44,7 +45,7 @@ P_REDUCTION_MIN = 10.0
 #: docs/development.md#case-513-axial-waves: the time integrator's order (SSP-RK3: 3) within 0.2.
 #: Observed 2.9-3.0.
 TIME_ORDER_MARGIN = 0.2
-#: issue: energy drift below 1e-4 over 10 periods at p = 5, relative to the energy of the
+#: required: energy drift below 1e-4 over 10 periods at p = 5, relative to the energy of the
 #: perturbation (the total also holds the static strain energy, 2e4 times larger here).
 #: Observed 3.7e-7.
 ENERGY_DRIFT_RTOL = 1e-4
@@ -53,11 +54,11 @@ ENERGY_DRIFT_RTOL = 1e-4
 #: perturbation energy: the discrete energy of energy() is an LGL-quadrature one, not exactly the
 #: functional the scheme dissipates).
 ENERGY_STEP_RTOL = 1e-12
-#: issue: relaxed static fairlead and anchor tension within 0.2 % of the elastic catenary.
+#: required: relaxed static fairlead and anchor tension within 0.2 % of the elastic catenary.
 #: Observed 2e-5 (fairlead) and 4e-5 (anchor), limited by the residual motion.
 STATIC_TENSION_RTOL = 2e-3
 #: docs/development.md#case-514-transverse-waves-on-a-taut-string: standing-wave frequency within
-#: 1e-4 for p >= 3 (the issue asks 1e-3). Observed <= 1e-7.
+#: 1e-4 for p >= 3 (1e-3 required). Observed <= 1e-7.
 FREQUENCY_RTOL = 1e-4
 #: Sinking (MoorDyn rods; docs/development.md#case-517-sinking-with-added-mass): rtol 1e-8.
 #: Observed 1e-15.

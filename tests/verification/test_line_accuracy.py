@@ -234,7 +234,7 @@ def test_a_coupled_run_shorter_than_the_probe_says_so(monkeypatch):
 
 @pytest.mark.slow
 def test_the_buoy_at_the_rules_numerics_is_stopped_by_its_check():
-    # the rule's 11 x p3 on the buoy's chains: 34 % estimated on line1 (issue measurements:
+    # the rule's 11 x p3 on the buoy's chains: 34 % estimated on line1 (measured:
     # +112 % STD against 10 x p5 over 60 s); the chains snap chaotically, so the stop says the
     # line is too sensitive to its path for any element count to be verified
     from floatmoor.simulation.coupled_run import run_coupled
