@@ -333,8 +333,13 @@ def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
 
 
 def write_database(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
-    """Write atomically (the folder is created if missing)."""
+    """Write atomically (the folder is created if missing). The ``path`` attribute that
+    :func:`read_database` sets (where this process read it from) is not written: a file
+    carries no path of the machine it was made on."""
     Path(path).parent.mkdir(parents=True, exist_ok=True)
+    if "path" in dataset.attrs:
+        dataset = dataset.copy()
+        dataset.attrs = {k: v for k, v in dataset.attrs.items() if k != "path"}
     write_dataset(dataset, path)
 
 

@@ -88,6 +88,9 @@ def test_build_drift_adds_then_skips_then_recomputes(tiny_case, capsys):  # noqa
                  TINY_ACCEPTS]) in (0, 1)
     out = capsys.readouterr().out
     assert "mean drift added" in out and "drift " in out
+    import xarray as xr
+    with xr.open_dataset(db) as raw:  # (read_database sets it in memory only)
+        assert "path" not in raw.attrs  # no path of this machine written into the file
     ds = read_database(db)
     assert has_drift(ds)
     case = load_case(tiny_case, [TINY_ACCEPTS])
