@@ -36,7 +36,7 @@ OC4_K11 = 70.8e3
 #: the stiffening over a metre of offset).
 OFFSET_RTOL = 0.05
 #: The slow drift's share of the surge resonance: the low-frequency surge STD at least this
-#: many times the first-order run's (measured 6.7 times).
+#: many times the first-order run's (measured 6.8 times).
 LOW_FREQUENCY_GAIN = 3.0
 START = 600.0  # s: the ramp and five surge periods
 
