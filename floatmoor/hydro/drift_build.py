@@ -114,7 +114,20 @@ def drift_is_current(ds: xr.Dataset, case: Case) -> bool:
     if drift_is_imported(ds):
         return True
     _, conditions = drift_conditions(case, ds)
-    return ds.attrs.get("drift_inputs_hash") == drift_inputs_hash(ds, conditions)
+    if ds.attrs.get("drift_inputs_hash") != drift_inputs_hash(ds, conditions):
+        return False
+    # the drift's own mesh: a changed [hydro] drift_waterline_panel_size (or its default
+    # rule) makes it stale too; drift without a recorded mesh was solved on the uniform hull
+    try:
+        mesh = json.loads(ds.attrs.get("drift_json", "{}")).get("mesh") or {}
+    except (TypeError, ValueError):
+        return False
+    recorded = mesh.get("waterline_panel_size") if isinstance(mesh, dict) else None
+    wanted = drift_waterline_panel_size(case)
+    if recorded is None or wanted is None:
+        return recorded is None and wanted is None
+    return isinstance(recorded, (int, float)) and math.isclose(float(recorded), wanted,
+                                                                rel_tol=1e-9)
 
 
 def drift_waterline_panel_size(case: Case) -> float | None:
@@ -206,5 +219,6 @@ def add_drift(ds: xr.Dataset, result: DriftResult, x, conditions: dict[str, Any]
               "far_field": "capytaine.post_pro.mean_drift_force.far_field_mean_drift_force, "
                            "Kochin functions / tanh(kh) in finite depth"}
     out.attrs["drift_json"] = json.dumps(record)
+    out.attrs["drift_source"] = "floatmoor"
     out.attrs["drift_inputs_hash"] = drift_inputs_hash(ds, conditions)
     return out

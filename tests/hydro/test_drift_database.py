@@ -94,7 +94,11 @@ def test_build_drift_adds_then_skips_then_recomputes(tiny_case, capsys):  # noqa
     ds = read_database(db)
     assert has_drift(ds)
     case = load_case(tiny_case, [TINY_ACCEPTS])
-    assert drift_is_current(ds, case)
+    assert drift_is_current(ds, case) and ds.attrs["drift_source"] == "floatmoor"
+    # another drift mesh (its water line panels) makes the drift stale, not the database
+    graded = json.loads(ds.attrs["drift_json"])["mesh"]["waterline_panel_size"]
+    finer = f"hydro.drift_waterline_panel_size={0.5 * graded if graded else 0.001}"
+    assert not drift_is_current(ds, load_case(tiny_case, [TINY_ACCEPTS, finer]))
     # up to date: nothing to do
     main(["hydro", "build", str(tiny_case), "--quiet", "--drift", "--set", TINY_ACCEPTS])
     assert "nothing to do" in capsys.readouterr().out
