@@ -417,6 +417,19 @@ def _match_periods(table: _Table, found: Sequence[float], reference: Sequence[fl
     return index
 
 
+def _check_polar(table: _Table, suspects: list, largest: float) -> None:
+    """Refuse a line whose Mod/Pha do not give its Re/Im: ``suspects`` (line number, Mod, Pha,
+    Re + i Im) failed the relative test alone; a line passes within MOD_PHASE_RTOL of Mod plus
+    MOD_PHASE_ATOL_REL of the file's ``largest`` Mod (the print's last digit)."""
+    atol = MOD_PHASE_ATOL_REL * largest
+    for lineno, mod, pha, value in suspects:
+        polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
+        if abs(polar - value) > MOD_PHASE_RTOL * mod + atol:
+            raise table.error(lineno, f"Mod and Pha agreeing with Re and Im (within "
+                              f"{MOD_PHASE_RTOL:g} of Mod)",
+                              f"Mod e^(i Pha) = {polar.real:.6g}{polar.imag:+.6g}i, "
+                              f"Re + i Im = {value.real:.6g}{value.imag:+.6g}i")
+
 def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
                      ) -> _Excitation:
     layout = "PER BETA I Mod Pha Re Im"
@@ -460,14 +473,7 @@ def _read_excitation(table: _Table, radiation: _Radiation, reference_name: str
         if abs(polar - value) > MOD_PHASE_RTOL * mod:
             suspects.append((lineno, mod, pha, value))
 
-    atol = MOD_PHASE_ATOL_REL * largest
-    for lineno, mod, pha, value in suspects:
-        polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
-        if abs(polar - value) > MOD_PHASE_RTOL * mod + atol:
-            raise table.error(lineno, f"Mod and Pha agreeing with Re and Im (within "
-                              f"{MOD_PHASE_RTOL:g} of Mod)",
-                              f"Mod e^(i Pha) = {polar.real:.6g}{polar.imag:+.6g}i, "
-                              f"Re + i Im = {value.real:.6g}{value.imag:+.6g}i")
+    _check_polar(table, suspects, largest)
     dropped = {p for p in (-1.0, 0.0) if lines.pop(p, None) is not None}
     if not lines:
         raise BemFileError(table.name, "", "lines at finite wave periods (PER > 0)",

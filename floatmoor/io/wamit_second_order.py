@@ -42,8 +42,8 @@ from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import DOFS, BemFileError, SecondOrder
 from floatmoor.io.wamit import (
-    MAX_DIRECTIONS, MAX_PERIODS, MOD_PHASE_ATOL_REL, MOD_PHASE_RTOL, _list_periods,
-    _match_periods, _Table,
+    MAX_DIRECTIONS, MAX_PERIODS, MOD_PHASE_RTOL, _list_periods,
+    _check_polar, _match_periods, _Table,
 )
 from floatmoor.terminal_text import shown
 
@@ -140,18 +140,6 @@ def _group_peaks(values: NDArray, axis_modes: int = -1) -> NDArray[np.float64]:
     out = np.empty(6)
     out[:3], out[3:] = peak[:3].max(), peak[3:].max()
     return out
-
-
-def _check_polar(table: _Table, suspects: list, largest: float) -> None:
-    """Refuse a line whose Mod/Pha do not give its Re/Im (as the .3 reader does)."""
-    atol = MOD_PHASE_ATOL_REL * largest
-    for lineno, mod, pha, value in suspects:
-        polar = mod * complex(math.cos(math.radians(pha)), math.sin(math.radians(pha)))
-        if abs(polar - value) > MOD_PHASE_RTOL * mod + atol:
-            raise table.error(lineno, f"Mod and Pha agreeing with Re and Im (within "
-                              f"{MOD_PHASE_RTOL:g} of Mod)",
-                              f"Mod e^(i Pha) = {polar.real:.6g}{polar.imag:+.6g}i, "
-                              f"Re + i Im = {value.real:.6g}{value.imag:+.6g}i")
 
 
 def _polar_columns(table: _Table, lineno: int, parts: list[str], first: int
