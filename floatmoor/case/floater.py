@@ -34,8 +34,9 @@ a path to the ``.nc``, see :func:`floatmoor.hydro.database.database_path`), the 
 [rad/s], ``directions_deg`` [deg], ``panel_size`` [m], and optionally ``lid`` (default true),
 ``lid_depth`` [m] (default: wavenumber x depth = 0.15 at the top frequency), ``symmetry``
 (default true), ``infinite_depth`` (default false: the BEM uses environment.water_depth) and
-``radial_panels`` (cylinder bottom) and ``drift_waterline_panel_size`` [m] (the mean drift's
-mesh at the water line, ``hydro build --drift``). Density and gravity come from ``[environment]``.
+``radial_panels`` (cylinder bottom), ``drift_waterline_panel_size`` [m] (the mean drift's
+mesh at the water line, ``hydro build --drift``) and ``drift_panel_size`` [m] (that mesh's
+panels below, default ``panel_size``). Density and gravity come from ``[environment]``.
 ``accept_failed_checks = ["kernel_decay", ...]`` (default none) names database checks
 (floatmoor.hydro.checks) whose failure a run of the case accepts; a run refuses a database
 failing any other check. ``source`` is ``"bem"`` (default: the database is built by
@@ -277,7 +278,7 @@ IMPORTED_HYDRO_KEYS = ("database", "source", "accept_failed_checks")
 #: them and without ``source`` has probably forgotten ``source = "imported"``).
 BEM_BUILD_KEYS = ("frequency_ranges", "frequencies", "directions_deg", "panel_size", "lid",
                   "lid_depth", "infinite_depth", "symmetry", "radial_panels",
-                  "drift_waterline_panel_size")
+                  "drift_waterline_panel_size", "drift_panel_size")
 
 
 def _is_name(text: str) -> bool:
@@ -364,6 +365,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
         radial_panels=t.integer("radial_panels", ge=1, le=1000, default=None),
         drift_waterline_panel_size=t.number("drift_waterline_panel_size", unit="m", gt=0.0,
                                             default=None),
+        drift_panel_size=t.number("drift_panel_size", unit="m", gt=0.0, default=None),
         accept_failed_checks=_accepted_checks(t),
     )
     t.finish()

@@ -343,6 +343,10 @@ _CASE = {
                                         "drift is solved on (`hydro build --drift`), graded "
                                         "to panel_size below; default from the highest "
                                         "frequency (guide/hydro_databases.md#mean-drift).",
+    "hydro.drift_panel_size": "Panel size of the mean drift's mesh away from the water line; "
+                              "default panel_size. Finer panels resolve the near field's "
+                              "body-motion terms at a large resonant response "
+                              "(guide/hydro_databases.md#mean-drift).",
     "hydro.accept_failed_checks": "Database checks whose failure a run of this case "
                                   "accepts; a run refuses a database failing any other.",
     # waves

@@ -556,6 +556,9 @@ class HydroSettings:
     #: ``panel_size``) [m]; None: the default rule of floatmoor.hydro.drift_build. Not a
     #: first-order input: the database's own mesh is uniform
     drift_waterline_panel_size: float | None = None
+    #: panel size of the mean drift's mesh away from the water line [m]; None: ``panel_size``.
+    #: Not a first-order input either (docs/guide/hydro_databases.md#mean-drift)
+    drift_panel_size: float | None = None
     #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
     accept_failed_checks: tuple[str, ...] = ()
     #: ``"bem"`` (built by ``floatmoor hydro build``) or ``"imported"`` (``hydro import``)

@@ -38,7 +38,7 @@ from floatmoor.hydro.drift import DRIFT_TERMS, DriftResult, solve_drift
 
 __all__ = ["DRIFT_VARIABLES", "drift_for_case", "add_drift", "has_drift", "drift_inputs_hash",
            "drift_conditions", "drift_is_current", "drift_is_imported", "IMPORTED_DRIFT_SOURCES",
-           "DRIFT_WATERLINE_KH", "drift_waterline_panel_size"]
+           "DRIFT_WATERLINE_KH", "drift_waterline_panel_size", "drift_panel_size"]
 
 #: Default panel height at the still water line of the drift's mesh: wavenumber (at the
 #: highest frequency) times height 0.05. Convergence study
@@ -122,12 +122,27 @@ def drift_is_current(ds: xr.Dataset, case: Case) -> bool:
         mesh = json.loads(ds.attrs.get("drift_json", "{}")).get("mesh") or {}
     except (TypeError, ValueError):
         return False
-    recorded = mesh.get("waterline_panel_size") if isinstance(mesh, dict) else None
+    if not isinstance(mesh, dict):
+        return False
+    base = mesh.get("panel_size")
+    if base is not None and drift_panel_size(case) is not None and not (
+            isinstance(base, (int, float))
+            and math.isclose(float(base), drift_panel_size(case), rel_tol=1e-9)):
+        return False
+    recorded = mesh.get("waterline_panel_size")
     wanted = drift_waterline_panel_size(case)
     if recorded is None or wanted is None:
         return recorded is None and wanted is None
     return isinstance(recorded, (int, float)) and math.isclose(float(recorded), wanted,
                                                                 rel_tol=1e-9)
+
+
+def drift_panel_size(case: Case) -> float | None:
+    """Panel size of the drift's mesh away from the still water line [m]: ``[hydro]
+    drift_panel_size``, else the database's ``panel_size``."""
+    assert case.hydro is not None
+    hydro = case.hydro
+    return hydro.drift_panel_size if hydro.drift_panel_size is not None else hydro.panel_size
 
 
 def drift_waterline_panel_size(case: Case) -> float | None:
@@ -144,7 +159,8 @@ def drift_waterline_panel_size(case: Case) -> float | None:
         depth = math.inf if hydro.infinite_depth else case.environment.water_depth
         size = DRIFT_WATERLINE_KH / wavenumber(max(hydro.frequencies), depth,
                                                case.environment.gravity)
-    return size if hydro.panel_size is None or size < hydro.panel_size else None
+    base = drift_panel_size(case)
+    return size if base is None or size < base else None
 
 
 def drift_for_case(case: Case, ds: xr.Dataset, *, progress=None) -> tuple[DriftResult, Any,
@@ -175,7 +191,7 @@ def drift_for_case(case: Case, ds: xr.Dataset, *, progress=None) -> tuple[DriftR
     mesh, top = checked.mesh, None
     if not isinstance(case.floater.geometry, MeshGeometry):
         top = drift_waterline_panel_size(case)
-        mesh = build_mesh(case.floater.geometry, panel_size=hydro.panel_size,
+        mesh = build_mesh(case.floater.geometry, panel_size=drift_panel_size(case),
                           reference_xy=(float(ref[0]), float(ref[1])),
                           lid_depth=checked.lid_depth, symmetry=hydro.symmetry,
                           radial_panels=hydro.radial_panels, waterline_panel_size=top)
@@ -186,7 +202,7 @@ def drift_for_case(case: Case, ds: xr.Dataset, *, progress=None) -> tuple[DriftR
     result = solve_drift(body, omegas=ds["omega"].values, directions=ds["wave_direction"].values,
                          motion=motion, depth=depth, rho=env.water_density, g=env.gravity,
                          rotation_center=ref, progress=progress)
-    result.mesh = {"waterline_panel_size": top, "panel_size": hydro.panel_size,
+    result.mesh = {"waterline_panel_size": top, "panel_size": drift_panel_size(case),
                    "grading_ratio": GRADING_RATIO if top is not None else None,
                    "hull_panels": int(mesh.full_hull.nb_faces), "hull_sha256": mesh_hash(
                        mesh.full_hull)}

@@ -111,6 +111,7 @@ KEY_KINDS: dict[str, str] = {
     "hydro.frequencies": "frequency", "hydro.directions_deg": "same",
     "hydro.panel_size": "length", "hydro.lid_depth": "length",
     "hydro.drift_waterline_panel_size": "length",
+    "hydro.drift_panel_size": "length",
     **{f"hydro.{k}": "same" for k in ("lid", "infinite_depth", "symmetry", "radial_panels",
                                       "accept_failed_checks")},
     "hydro.source": "hydro_source",

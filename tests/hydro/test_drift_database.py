@@ -99,6 +99,12 @@ def test_build_drift_adds_then_skips_then_recomputes(tiny_case, capsys):  # noqa
     graded = json.loads(ds.attrs["drift_json"])["mesh"]["waterline_panel_size"]
     finer = f"hydro.drift_waterline_panel_size={0.5 * graded if graded else 0.001}"
     assert not drift_is_current(ds, load_case(tiny_case, [TINY_ACCEPTS, finer]))
+    # so do other panels below the water line; the database's own panel size keeps it current
+    base = json.loads(ds.attrs["drift_json"])["mesh"]["panel_size"]
+    assert drift_is_current(ds, load_case(tiny_case, [TINY_ACCEPTS,
+                                                      f"hydro.drift_panel_size={base}"]))
+    assert not drift_is_current(ds, load_case(tiny_case, [TINY_ACCEPTS,
+                                                          f"hydro.drift_panel_size={0.7 * base}"]))
     # up to date: nothing to do
     main(["hydro", "build", str(tiny_case), "--quiet", "--drift", "--set", TINY_ACCEPTS])
     assert "nothing to do" in capsys.readouterr().out

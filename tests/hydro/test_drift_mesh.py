@@ -89,3 +89,20 @@ def test_drift_waterline_panel_size_must_be_positive():
     with pytest.raises(CaseError) as info:
         load_case(DEEPCWIND_CASE, ["hydro.drift_waterline_panel_size=-0.1"])
     assert info.value.key == "hydro.drift_waterline_panel_size"
+
+
+def test_drift_panel_size_sets_the_mesh_below_the_water_line(deepcwind_case):
+    from floatmoor.case.load import load_case
+    from floatmoor.hydro.drift_build import drift_panel_size
+
+    assert drift_panel_size(deepcwind_case) == deepcwind_case.hydro.panel_size
+    finer = load_case(DEEPCWIND_CASE, ["hydro.drift_panel_size=1.4"])
+    assert drift_panel_size(finer) == 1.4
+    # the water line's default panel is finer than either, so it stays graded
+    assert drift_waterline_panel_size(finer) == drift_waterline_panel_size(deepcwind_case)
+    # a water line panel not finer than the drift's own panels: uniform
+    assert drift_waterline_panel_size(load_case(DEEPCWIND_CASE, [
+        "hydro.drift_panel_size=0.1"])) is None
+    with pytest.raises(CaseError) as info:
+        load_case(DEEPCWIND_CASE, ["hydro.drift_panel_size=0"])
+    assert info.value.key == "hydro.drift_panel_size"
