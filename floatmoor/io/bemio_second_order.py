@@ -13,7 +13,10 @@ BEMIO's ``readWAMIT`` fills ``md_mc`` / ``md_cs`` / ``md_pi`` with WAMIT's print
 per unit wave amplitude squared [N/m^2, N m/m^2] about the body's ``cg``. The modes the
 momentum route does not give (Heave, Roll, Pitch: BEMIO writes 0) are NaN in floatmoor's far
 field. The control-surface route and BEMIO's QTF groups (``excitation/QTF<N>/Diff<k>``,
-``Sum<k>``) are not imported: a note says so.
+``Sum<k>``) are not imported: a note says so. BEMIO's QTF layout cannot be read safely
+(one wave direction; the periods of the source ``.12d``'s two columns numbered separately by
+order of appearance, so the matrix's orientation depends on that file's line order:
+docs/guide/hydro_databases.md#imported-second-order-data); the ``.12d`` itself can be imported.
 """
 
 from __future__ import annotations
@@ -77,7 +80,9 @@ def read_bemio_mean_drift(file: "_File", body: int, shape: tuple[int, int, int],
         notes.append(f"{file.name}: {base}mean_drift/control_surface not imported (the "
                      "database holds the momentum and pressure routes).")
     if file.has_group(f"{base}excitation/QTF{body}"):
-        notes.append(f"{file.name}: {base}excitation/QTF{body} (BEMIO's QTFs) not imported.")
+        notes.append(f"{file.name}: {base}excitation/QTF{body} (BEMIO's QTFs) not imported "
+                     "(their layout depends on the source .12d's line order: import that "
+                     ".12d with the WAMIT files).")
     if not found:
         return SecondOrder(source="bemio", notes=tuple(notes)) if notes else None
     for route in found:

@@ -233,6 +233,29 @@ def test_bemio_mean_drift_imported(tmp_path, deepcwind_db, capsys):
     assert not (tmp_path / "hydrodb" / "x.nc").exists()
 
 
+def test_bemio_qtf_is_left_out_with_the_reason(tmp_path, deepcwind_db, capsys):
+    """BEMIO's QTF groups are not read (their (i, j) orientation depends on the source .12d's
+    line order): the import says so and where to go instead, and stores no QTF."""
+    import h5py
+
+    (tmp_path / "hydrodb").mkdir()
+    n_w, n_h = deepcwind_db.sizes["omega"], deepcwind_db.sizes["wave_direction"]
+    pi = np.random.default_rng(4).uniform(-1.0, 1.0, (6, n_h, n_w))
+    h5 = _bemio_with_drift(tmp_path / "q.h5", deepcwind_db, md_pi=pi)
+    with h5py.File(h5, "a") as f:
+        group = "body1/hydro_coeffs/excitation/QTF1/Diff1/"
+        f[group + "PER_i"] = np.array([10.0, 8.0])
+        f[group + "Re_F_ij"] = np.ones(4)
+        f[group + "Im_F_ij"] = np.zeros(4)
+    out = tmp_path / "hydrodb" / "q.nc"
+    assert main(["hydro", "import", str(h5), "-o", str(out), "--water-density", "1025"]) == 0
+    ds = read_database(out)
+    notes = " ".join(json.loads(ds.attrs["import_notes_json"]))   # what `hydro info` shows
+    assert "excitation/QTF1 (BEMIO's QTFs) not imported" in notes
+    assert "import that .12d with the WAMIT files" in notes
+    assert "qtf_difference" not in ds and "mean_drift_near_field" in ds
+
+
 def test_info_of_a_tampered_second_order_database(wamit_set, deepcwind_db, capsys):
     """A database edited by another hand (QTF without its frequency coordinates, a source
     with a terminal escape) still gets its info, escaped, without a traceback."""
