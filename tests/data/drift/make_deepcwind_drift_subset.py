@@ -36,7 +36,8 @@ def main() -> None:
     from floatmoor.hydro.build import _seed_prony, lid_depth_for
     from floatmoor.hydro.database import read_database
     from floatmoor.hydro.drift import DRIFT_TERMS, solve_drift
-    from floatmoor.hydro.drift_build import drift_conditions, drift_waterline_panel_size
+    from floatmoor.hydro.drift_build import (drift_conditions, drift_panel_size,
+                                             drift_waterline_panel_size)
     from floatmoor.hydro.geometry import build_mesh
     from floatmoor.hydro.rao import rao
 
@@ -60,7 +61,7 @@ def main() -> None:
     top = drift_waterline_panel_size(case)
     lid = (hydro.lid_depth or lid_depth_for(max(hydro.frequencies), case.environment.water_depth,
                                             case.environment.gravity)) if hydro.lid else None
-    mesh = build_mesh(floater.geometry, panel_size=hydro.panel_size, lid_depth=lid,
+    mesh = build_mesh(floater.geometry, panel_size=drift_panel_size(case), lid_depth=lid,
                       symmetry=hydro.symmetry, waterline_panel_size=top)
     body = cpt.FloatingBody(mesh=mesh.hull, lid_mesh=mesh.lid,
                             dofs=cpt.rigid_body_dofs(rotation_center=ref), center_of_mass=ref)
