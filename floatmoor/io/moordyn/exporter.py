@@ -23,8 +23,9 @@ statics' initial guesses. A system without a static equilibrium keeps the case's
 with a note.
 
 The solvers' answers (the sections' discretisations, their time step, the statics) are not
-computed here: file formats sit below the models (docs/development.md#1-package-layout-and-import-order),
-so :func:`export_case` takes them as :class:`DeckNumerics`, which
+computed here: file formats sit below the models
+(docs/development.md#1-package-layout-and-import-order), so :func:`export_case` takes them as
+:class:`DeckNumerics`, which
 :func:`floatmoor.mooring.deck_numerics.deck_numerics` computes::
 
     export_case(case, deck_numerics(case))
