@@ -8,7 +8,7 @@ answers as an argument: docs/development.md#1-package-layout-and-import-order).
 * the smallest DG time step of those sections (:meth:`CableProperties.time_step`, the function
   the DG line steps with: the axial wave, explicit internal damping and explicit seabed
   contact, ``max_time_step``);
-* the free points' static equilibrium (:func:`floatmoor.mooring.system_statics.case_statics`,
+* the free points' static equilibrium (:func:`floatmoor.mooring.statics_solver.case_statics`,
   body points at rest), or why there is none.
 """
 
@@ -23,7 +23,7 @@ from floatmoor.errors import SolverError
 from floatmoor.io.moordyn.exporter import DeckNumerics
 from floatmoor.mooring.dg.cable import CableProperties
 from floatmoor.mooring.dg.resolution import resolve_settings
-from floatmoor.mooring.system_statics import case_statics
+from floatmoor.mooring.statics_solver import case_statics
 
 __all__ = ["deck_numerics"]
 

@@ -22,7 +22,7 @@ import numpy as np
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.system_statics import StaticSolution, case_statics
+from floatmoor.mooring.statics_solver import StaticSolution, case_statics
 
 __all__ = ["StaticLineLoad", "static_line_loads", "system_statics_at_rest", "check_static_below_mbl",
            "refuse_static_breaking", "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]

@@ -36,7 +36,7 @@ from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.system_statics import case_statics
+from floatmoor.mooring.statics_solver import case_statics
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.groups import SystemGroup, body_point_line, system_groups
 from floatmoor.waves.excitation import WaveExcitation

@@ -16,7 +16,7 @@ from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type
 from floatmoor.io.moordyn.parser import read_deck
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
 from floatmoor.mooring.dg.system import DynamicSystem
-from floatmoor.mooring.system_statics import case_statics
+from floatmoor.mooring.statics_solver import case_statics
 from tests.conftest import ACCURACY_DEFAULT, LINDAHL_CASE
 from tests.io.moordyn_decks import REPO, export_file, exported
 

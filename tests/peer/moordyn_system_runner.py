@@ -61,7 +61,7 @@ from floatmoor.io.moordyn.deck import Deck, DeckOption
 from floatmoor.io.moordyn.exporter import export_case
 from floatmoor.io.moordyn.writer import deck_text
 from floatmoor.mooring.deck_numerics import deck_numerics
-from floatmoor.mooring.system_statics import build_static_system, solve_statics
+from floatmoor.mooring.statics_solver import build_static_system, solve_statics
 from floatmoor.simulation.forced import body_points_state
 from tests.peer.moordyn_runner import (MoorDynError, _as_list, _check_motion,
                                        _console_tail, _coupling_path, _stdout_to, open_input)

@@ -16,7 +16,7 @@ RK2 is written). The deck's title is the case's title; the simulation's output i
 MoorDyn's dtOut (MoorDyn has no run length: its driver steps it).
 
 Free points are written at the system's static equilibrium (floatmoor's statics,
-:func:`floatmoor.mooring.system_statics.case_statics`, body points at rest): MoorDyn starts its
+:func:`floatmoor.mooring.statics_solver.case_statics`, body points at rest): MoorDyn starts its
 initial-condition solve from the deck's positions and its catenaries between them, so from the
 equilibrium it settles at once to its own discretisation's; the case's positions are only the
 statics' initial guesses. A system without a static equilibrium keeps the case's positions,
