@@ -59,7 +59,7 @@ def parse_damping(items: list[str]) -> np.ndarray:
 def rao_command(args: argparse.Namespace) -> int:
     """Run ``floatmoor rao``; CaseError and HydroDatabaseError propagate (exit 2)."""
     from floatmoor.hydro.database import HydroDatabaseError, has_excitation, load_for_case
-    from floatmoor.hydro.excitation import no_excitation_message
+    from floatmoor.hydro.excitation_transfer import no_excitation_message
     from floatmoor.hydro.rao import RAO_FILE, rao_dataset, rao_for_case
     from floatmoor.io.netcdf import write_dataset
     from floatmoor.io.output_files import IMAGE, check_output_file
