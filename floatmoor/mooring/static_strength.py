@@ -1,4 +1,5 @@
-"""Static line tension against the minimum breaking load (MBL) of the line type.
+"""Static line tension against the minimum breaking load (MBL) of the line type, before a run
+(a run's largest tension against the MBL: :mod:`floatmoor.post.run_strength`).
 
 ``floatmoor check`` and ``floatmoor run`` solve each line's static catenary at the mean (or
 rest) fairlead position. The fairlead tension is the largest along a static line that sinks
