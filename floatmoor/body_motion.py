@@ -17,7 +17,8 @@ point p0 keeps its distance to the reference point exactly. The velocity is exac
              yaw' - roll' sin(pitch)),
 
 omega the angular velocity in global axes from the Euler-angle rates (omega x = R' R^T),
-as the coupled floater's points take it (:mod:`floatmoor.body.kinematics`). The
+as the coupled floater's points take it (:mod:`floatmoor.body.kinematics`); both, for arrays of
+poses, are in :mod:`floatmoor.rotations`. The
 displacement is ramped DOF by DOF as every prescribed motion is
 (:func:`floatmoor.motion.ramp`); a table is interpolated in each DOF by the not-a-knot cubic
 spline of a translational table (:func:`floatmoor.motion.table_state`), rotations in the Euler
@@ -51,48 +52,15 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import BodyHarmonicMotion, BodyMotion, BodyTableMotion, Line, Motion
 from floatmoor.motion import fairlead_state, ramp, ramp_rate, table_state
+from floatmoor.rotations import angular_velocity, rotation_matrices
 
-__all__ = ["rotation_matrices", "angular_velocity", "body_motion_state", "body_points_state",
-           "prescribed_fairlead_state", "is_body_motion", "start_line"]
+__all__ = ["body_motion_state", "body_points_state", "prescribed_fairlead_state",
+           "is_body_motion", "start_line"]
 
 
 def is_body_motion(motion: Motion | None) -> bool:
     """Whether ``motion`` is a 6-DOF body motion (``[motion] kind = "body"``)."""
     return isinstance(motion, (BodyHarmonicMotion, BodyTableMotion))
-
-
-def rotation_matrices(angles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (body axes to global axes) for angles (n, 3)
-    (roll, pitch, yaw) [rad]; shape (n, 3, 3)."""
-    angles = np.asarray(angles, dtype=float).reshape(-1, 3)
-    cr, sr = np.cos(angles[:, 0]), np.sin(angles[:, 0])
-    cp, sp = np.cos(angles[:, 1]), np.sin(angles[:, 1])
-    cy, sy = np.cos(angles[:, 2]), np.sin(angles[:, 2])
-    R = np.empty((angles.shape[0], 3, 3))
-    R[:, 0, 0] = cy * cp
-    R[:, 0, 1] = cy * sp * sr - sy * cr
-    R[:, 0, 2] = cy * sp * cr + sy * sr
-    R[:, 1, 0] = sy * cp
-    R[:, 1, 1] = sy * sp * sr + cy * cr
-    R[:, 1, 2] = sy * sp * cr - cy * sr
-    R[:, 2, 0] = -sp
-    R[:, 2, 1] = cp * sr
-    R[:, 2, 2] = cp * cr
-    return R
-
-
-def angular_velocity(angles: NDArray[np.float64], rates: NDArray[np.float64]
-                     ) -> NDArray[np.float64]:
-    """Angular velocity [rad/s] in global axes, (n, 3), of the rotation R = Rz Ry Rx with
-    Euler angles ``angles`` (n, 3) [rad] changing at ``rates`` (n, 3) [rad/s]."""
-    angles = np.asarray(angles, dtype=float).reshape(-1, 3)
-    rates = np.asarray(rates, dtype=float).reshape(-1, 3)
-    cp, sp = np.cos(angles[:, 1]), np.sin(angles[:, 1])
-    cy, sy = np.cos(angles[:, 2]), np.sin(angles[:, 2])
-    droll, dpitch, dyaw = rates[:, 0], rates[:, 1], rates[:, 2]
-    return np.stack([droll * cy * cp - dpitch * sy,
-                     droll * sy * cp + dpitch * cy,
-                     dyaw - droll * sp], axis=1)
 
 
 def body_motion_state(motion: BodyMotion, t: NDArray[np.float64]

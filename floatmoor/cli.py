@@ -73,7 +73,7 @@ except KeyboardInterrupt:
 
 if TYPE_CHECKING:
     from floatmoor.campaign.design import CampaignDesign
-    from floatmoor.mooring.strength import StaticLineLoad
+    from floatmoor.mooring.static_strength import StaticLineLoad
     from floatmoor.simulation.forced import RunResult
     from floatmoor.uq.study import Study
 
@@ -380,7 +380,7 @@ def error_line(err: BaseException) -> str:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
+    from floatmoor.mooring.static_strength import check_static_below_mbl, static_line_loads
 
     import warnings
 
@@ -428,7 +428,7 @@ def _describe_system(case: Case) -> list[str]:
     import numpy as np
 
     from floatmoor.errors import SolverError
-    from floatmoor.mooring.strength import system_statics_at_rest
+    from floatmoor.mooring.static_strength import system_statics_at_rest
 
     try:
         sol = system_statics_at_rest(case)
@@ -461,7 +461,7 @@ def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     the minimum breaking loads, and the discretisation and time step of dynamic lines."""
     from floatmoor.body_motion import start_line
     from floatmoor.mooring.dg.line import DynamicLine
-    from floatmoor.mooring.strength import strain_warnings
+    from floatmoor.mooring.static_strength import strain_warnings
 
     rows = [f"  {'line':<14}{'model':<14}{'length':>9}{'span':>9}{'w [N/m]':>10}"
             f"{'c_axial':>10}{'T_fair':>11}{'T_anch':>11}{'on seabed':>11}"]
@@ -697,7 +697,7 @@ def _run(args: argparse.Namespace) -> int:
 
 def _run_case(args: argparse.Namespace, case: Case, output: Path) -> int:
     """Run a checked case into its locked output file."""
-    from floatmoor.mooring.strength import refuse_static_breaking
+    from floatmoor.mooring.static_strength import refuse_static_breaking
     from floatmoor._numba import watch_compilation
     from floatmoor.io.output_files import OutputWriteError, file_state
     from floatmoor.simulation.forced import run_forced_motion

@@ -1,7 +1,7 @@
 """The SHA-256 of a file's bytes: what mesh geometries and imported databases record so that a
 changed input file makes a database stale (read in blocks: mesh and BEM files can be large).
 
-Only a regular file is read (:func:`floatmoor.io.input_files.open_regular`: a FIFO or a device
+Only a regular file is read (:func:`floatmoor.input_files.open_regular`: a FIFO or a device
 is refused before a byte is read, without blocking), and with ``size`` only a file of exactly
 that size: a database records its source files' sizes, so a recorded path leading to some other,
 possibly huge, file is not read at all."""
@@ -11,7 +11,7 @@ from __future__ import annotations
 import hashlib
 import os
 
-from floatmoor.io.input_files import InputFileError, open_regular
+from floatmoor.input_files import InputFileError, open_regular
 
 __all__ = ["file_sha256"]
 

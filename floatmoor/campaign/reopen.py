@@ -24,7 +24,7 @@ import xarray as xr
 from floatmoor.campaign.design import CampaignDesign
 from floatmoor.campaign.worker import BODY_STATISTICS, STRENGTH_STATISTICS, SUMMARY_STATISTICS
 from floatmoor.errors import CaseError
-from floatmoor.case.files import file_kind
+from floatmoor.input_files import file_kind
 from floatmoor.io.netcdf import NETCDF_ENGINE
 
 __all__ = ["CampaignFileError", "read_campaign_file", "move_aside", "CAMPAIGN_TITLE",

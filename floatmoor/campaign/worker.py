@@ -27,7 +27,7 @@ __all__ = ["run_one", "run_loaded", "failed_result", "SUMMARY_STATISTICS",
 #: Fairlead-tension statistics kept per run and line (see floatmoor.post.summary).
 SUMMARY_STATISTICS = ("mean", "std", "min", "max", "mean_cycle_max")
 #: Largest-tension statistics kept per run and line: the campaign name -> the key of the run
-#: summary's ``strength`` entry (floatmoor.post.strength.line_strength; after the ramp).
+#: summary's ``strength`` entry (floatmoor.post.run_strength.line_strength; after the ramp).
 STRENGTH_STATISTICS = {"max_line_tension": "max_tension_N",
                        "max_tension_over_mbl": "max_tension_over_mbl"}
 #: Floater-displacement statistics kept per run and DOF of coupled runs (after the wave ramp).
@@ -81,7 +81,7 @@ def run_loaded(load: Callable[[], "tuple[Case, Path | None]"], timeseries: bool 
     database (None: the case's own, :func:`floatmoor.hydro.database.database_path`); a
     failure to load is a failed run like any other."""
     from floatmoor._numba import watch_compilation
-    from floatmoor.mooring.strength import refuse_static_breaking
+    from floatmoor.mooring.static_strength import refuse_static_breaking
     from floatmoor.post.summary import run_summary
 
     cpu, wall = time.process_time(), time.perf_counter()

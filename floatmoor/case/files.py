@@ -18,20 +18,9 @@ from pathlib import Path
 from floatmoor.case.limits import MAX_CASE_FILE_BYTES
 from floatmoor.case.reader import TableReader, _Found
 from floatmoor.errors import CaseError
+from floatmoor.input_files import file_kind
 
-__all__ = ["CaseFileKindError", "read_case_text", "read_input_text", "resolve_case_file",
-           "file_kind"]
-
-
-def file_kind(mode: int) -> str:
-    """What a file of mode ``mode`` is, for a message ("a FIFO (named pipe)", ...)."""
-    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISLNK, "a symbolic link"),
-                       (stat.S_ISFIFO, "a FIFO (named pipe)"),
-                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
-                       (stat.S_ISSOCK, "a socket")):
-        if test(mode):
-            return name
-    return "not a regular file"
+__all__ = ["CaseFileKindError", "read_case_text", "read_input_text", "resolve_case_file"]
 
 
 class CaseFileKindError(OSError):

@@ -21,9 +21,10 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.case.files import file_kind, resolve_case_file
+from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MOTION_TABLE_BYTES
 from floatmoor.case.reader import TableReader, _Found
+from floatmoor.input_files import file_kind
 
 __all__ = ["read_motion_table", "read_csv_table", "HEADER"]
 

@@ -6,7 +6,7 @@
 * :mod:`~floatmoor.hydro.build`: BEM runs;
 * :mod:`~floatmoor.hydro.database`: ``hydrodb/NAME.nc`` files, staleness and damage;
 * :mod:`~floatmoor.hydro.radiation`: A_inf, K(t), Kramers-Kronig rebuild, total stiffness;
-* :mod:`~floatmoor.hydro.excitation`: X(omega, beta) interpolation;
+* :mod:`~floatmoor.hydro.excitation_transfer`: X(omega, beta) interpolation;
 * :mod:`~floatmoor.hydro.checks`: the checks every database passes;
 * :mod:`~floatmoor.hydro.natural_periods`: mooring stiffness and natural periods.
 
@@ -14,7 +14,7 @@ Modules import capytaine only when they mesh or solve, so reading a database nee
 """
 
 from floatmoor.hydro.database import HydroDatabaseError, load_for_case, read_database
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.radiation import radiation_kernel
 
 __all__ = ["HydroDatabaseError", "load_for_case", "read_database", "ExcitationInterpolator",

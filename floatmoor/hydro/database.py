@@ -61,7 +61,7 @@ from floatmoor.case.schema import Case, Environment, Floater, HydroSettings
 from floatmoor.errors import FloatmoorError
 from floatmoor.file_hash import file_sha256
 from floatmoor.hydro.complex_values import merge_complex
-from floatmoor.io.input_files import InputFileError, open_regular, regular_file_size
+from floatmoor.input_files import InputFileError, open_regular, regular_file_size
 from floatmoor.io.netcdf import read_dataset, write_dataset
 from floatmoor.terminal_text import shown
 

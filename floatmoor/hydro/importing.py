@@ -61,7 +61,7 @@ from floatmoor.hydro.database import (
     DOF_DEFINITION, database_coords, file_sha256, inputs_hash, labelled_variable,
 )
 from floatmoor.io.bem_data import BemFileError, ImportedBem
-from floatmoor.io.input_files import InputFileError, regular_file_size
+from floatmoor.input_files import InputFileError, regular_file_size
 
 __all__ = [
     "ImportOptions", "WAMIT_EXTENSIONS", "BEMIO_EXTENSIONS", "file_format", "read_source",

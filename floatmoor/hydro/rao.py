@@ -16,13 +16,13 @@ damping matrix (the case has no key for one: the ``rao`` command takes it per DO
 matrices are indexed (influenced_dof, radiating_dof): row i is the force in DOF i from a
 motion in DOF j.
 
-Units of the RAO: m/m for Surge, Sway, Heave; rad/m for Roll, Pitch, Yaw.
+Units of the RAO: m/m for Surge, Sway, Heave; rad/m for Roll, Pitch, Yaw. Their figure is
+drawn by :func:`floatmoor.plots.rao.plot_rao`.
 """
 
 from __future__ import annotations
 
 import json
-import math
 from typing import Any
 
 import numpy as np
@@ -33,7 +33,7 @@ from floatmoor.case.schema import Case, Floater
 from floatmoor.hydro.radiation import hydrostatic_stiffness_total
 
 __all__ = ["DOFS", "RAO_TITLE", "motion_matrices", "rao", "rao_for_case", "rao_dataset",
-           "rao_units", "RAO_FILE", "plot_rao"]
+           "rao_units", "RAO_FILE"]
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 #: ``title`` attribute of a RAO file: what ``floatmoor rao`` may overwrite.
@@ -190,26 +190,3 @@ def _is_rao_file(path) -> str | None:
 
 #: ``kind`` of :func:`floatmoor.io.output_files.check_output_file` for a RAO file.
 RAO_FILE = ("RAO file", (b"CDF\x01", b"CDF\x02"), _is_rao_file)
-
-
-def plot_rao(x: xr.DataArray, path, title: str = "") -> None:
-    """|RAO| against the wave period, one panel per DOF, one curve per wave direction."""
-    from floatmoor.plots.style import plain_axes, pyplot, save_figure
-
-    plt = pyplot()
-    fig, axes = plt.subplots(2, 3, figsize=(11, 6), sharex=True)
-    period = 2.0 * np.pi / x["omega"].values
-    for i, (ax, dof) in enumerate(zip(axes.ravel(), DOFS)):
-        for b, beta in enumerate(x["wave_direction"].values):
-            scale = 1.0 if i < 3 else 180.0 / math.pi
-            ax.plot(period, scale * np.abs(x.values[:, b, i]),
-                    label=f"{math.degrees(beta):g} deg")
-        ax.set_title(dof)
-        ax.set_ylabel("m/m" if i < 3 else "deg/m")
-        plain_axes(ax)
-    for ax in axes[1]:
-        ax.set_xlabel("wave period [s]")
-    if x.sizes["wave_direction"] <= 8:
-        axes[0, 0].legend(fontsize="small")
-    fig.suptitle(title or "response amplitude operators")
-    save_figure(fig, path)

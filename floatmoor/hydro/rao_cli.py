@@ -59,8 +59,8 @@ def parse_damping(items: list[str]) -> np.ndarray:
 def rao_command(args: argparse.Namespace) -> int:
     """Run ``floatmoor rao``; CaseError and HydroDatabaseError propagate (exit 2)."""
     from floatmoor.hydro.database import HydroDatabaseError, has_excitation, load_for_case
-    from floatmoor.hydro.excitation import no_excitation_message
-    from floatmoor.hydro.rao import RAO_FILE, plot_rao, rao_dataset, rao_for_case
+    from floatmoor.hydro.excitation_transfer import no_excitation_message
+    from floatmoor.hydro.rao import RAO_FILE, rao_dataset, rao_for_case
     from floatmoor.io.netcdf import write_dataset
     from floatmoor.io.output_files import IMAGE, check_output_file
 
@@ -89,6 +89,8 @@ def rao_command(args: argparse.Namespace) -> int:
                                  linear_damping=damping if args.damping else None)
     write_dataset(rao_dataset(x, conditions, ds), output)
     if plot is not None:
+        from floatmoor.plots.rao import plot_rao
+
         plot_rao(x, plot, title=f"RAOs of {case.floater.name} ({case.source})")
     amplitude = np.abs(x.values)
     period = 2.0 * np.pi / x["omega"].values

@@ -1,6 +1,7 @@
 """Second-order wave load coefficients of a database, at the sea's frequencies and direction
-(the lookup beside :class:`~floatmoor.hydro.excitation.ExcitationInterpolator`; the forces
-are in floatmoor.waves.second_order; theory: docs/theory/hydrodynamics.md#second-order-wave-loads).
+(the lookup beside :class:`~floatmoor.hydro.excitation_transfer.ExcitationInterpolator`; the
+forces are in floatmoor.waves.second_order; theory:
+docs/theory/hydrodynamics.md#second-order-wave-loads).
 
 Mean drift D(omega, beta) (``mean_drift_far_field``, ``mean_drift_near_field``; N/m^2,
 N m/m^2 per unit wave amplitude squared): the route the case chooses
@@ -25,7 +26,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 
 __all__ = ["DriftLookup", "QTFLookup", "DirectionError", "drift_source", "missing_coefficients",
            "route_text", "FAR_FIELD_DOFS", "QTF_VARIABLE", "DRIFT_VARIABLE"]

@@ -66,7 +66,7 @@ from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
 from floatmoor.io.bemio_second_order import read_bemio_mean_drift
-from floatmoor.io.input_files import InputFileError, open_regular
+from floatmoor.input_files import InputFileError, open_regular
 from floatmoor.terminal_text import shown
 
 __all__ = ["read_bemio", "MAX_FILE_BYTES", "MAX_READ_BYTES", "MAX_TEXT_BYTES", "MAX_BODIES"]

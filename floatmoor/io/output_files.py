@@ -32,8 +32,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError, FloatmoorError
+from floatmoor.input_files import file_kind
 
 __all__ = ["OutputFile", "OutputWriteError", "check_output_file", "check_output_folder",
            "output_lock", "open_lock_file", "atomic_target", "write_errors", "sync_folder",

@@ -62,7 +62,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import BemFileError, ImportedBem
-from floatmoor.io.input_files import InputFileError, read_bounded
+from floatmoor.input_files import InputFileError, read_bounded
 from floatmoor.terminal_text import shown
 
 __all__ = ["read_wamit", "read_wamit_out", "WamitRunSummary", "WAMIT_EXTENSIONS",

@@ -6,7 +6,8 @@ tension along the lines), :mod:`~floatmoor.plots.motions` (floater motions),
 :mod:`~floatmoor.plots.shapes` (line shapes in side and plan views),
 :mod:`~floatmoor.plots.animation` (line shapes and body over time) and
 :mod:`~floatmoor.plots.run_figures` (every view that applies to a run, for ``floatmoor run
---plot``). Shared styling, units and the atomic save are in :mod:`~floatmoor.plots.style`,
+--plot``); :mod:`~floatmoor.plots.rao` draws a floater's RAOs (``floatmoor rao --plot``).
+Shared styling, units and the atomic save are in :mod:`~floatmoor.plots.style`,
 the check of every plotted series in :mod:`~floatmoor.plots.series`, what the views take from
 the run's case in :mod:`~floatmoor.plots.context`; the body drawn with the lines in
 :mod:`~floatmoor.plots.body_surface` (its panels at rest), :mod:`~floatmoor.plots.body_pose`

@@ -11,7 +11,7 @@ import xarray as xr
 
 from floatmoor.case.schema import Case
 from floatmoor.post.statistics import channel_statistics
-from floatmoor.post.strength import line_strength, section_strength
+from floatmoor.post.run_strength import line_strength, section_strength
 from floatmoor.terminal_text import shown
 
 __all__ = ["run_summary", "format_summary"]
@@ -27,7 +27,7 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     the complete cycles after the ramp are averaged (``mean_cycle_max``).
     Per line, ``strength`` holds the largest tension at either end, after the ramp and over the
     whole run, over the MBL of its type and the safety factor MBL / T_max
-    (:func:`floatmoor.post.strength.line_strength`; None without an MBL). Tensions are in N.
+    (:func:`floatmoor.post.run_strength.line_strength`; None without an MBL). Tensions are in N.
     ``validity_warnings``: the messages of the conditions under which the run left its
     models' range (the dataset's attribute; :mod:`floatmoor.simulation.validity`).
     """
@@ -123,7 +123,7 @@ def _line_rows(lines: dict[str, Any], reason: str | None = None) -> list[str]:
 
 
 def _strength_rows(entries: dict[str, Any], what: str) -> tuple[list[str], list[str]]:
-    """The strength table of lines or sections (:func:`floatmoor.post.strength.line_strength`
+    """The strength table of lines or sections (:func:`floatmoor.post.run_strength.line_strength`
     entries), and a warning for each that reached its MBL."""
     rows = [f"  {what:<16}{'T_max':>10}{'at':>10}{'t [s]':>10}{'MBL':>10}"
             f"{'T_max/MBL':>11}{'SF':>8}{'whole run T_max/MBL':>21}"]

@@ -9,7 +9,7 @@ area of a chain link's two legs (``2 pi d^2 / 4``, d the nominal diameter chosen
 :func:`floatmoor.report.runs.resolve_nominal_diameters`), over the window (not scaled to any
 other duration). The damage equivalent load is that of m = 3 and 1 Hz reference cycles. The
 strength table gives the largest tension at either end over the window against the minimum
-breaking load (MBL) of the line type (:mod:`floatmoor.post.strength`).
+breaking load (MBL) of the line type (:mod:`floatmoor.post.run_strength`).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from floatmoor.post.fatigue import (
 )
 from floatmoor.post.spectra import peak_period, welch_psd, zero_upcrossing_period
 from floatmoor.post.statistics import time_statistics, time_window
-from floatmoor.post.strength import line_mbl, line_strength
+from floatmoor.post.run_strength import line_mbl, line_strength
 from floatmoor.report.figures import (
     MOTION_ACTIVE_STD, TENSION_PSD_SEGMENT, DecayFit, check_series, decay_fit,
 )
@@ -86,7 +86,7 @@ class RunAnalysis:
         Decaying DOF -> its fit, or None with too few extrema.
     strength
         Line -> the largest tension over the window against the MBL
-        (:func:`floatmoor.post.strength.line_strength`).
+        (:func:`floatmoor.post.run_strength.line_strength`).
     """
 
     tension: dict[str, dict[str, float]]

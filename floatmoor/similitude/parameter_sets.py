@@ -58,7 +58,7 @@ def line_data(case: Case, name: str, static_tension: float | None = None) -> Lin
     """The :class:`LineData` of one single-section line of ``case``: the vertical span from
     anchor to fairlead, the motion's period and amplitude, and the static fairlead tension
     of the catenary at the mean position unless ``static_tension`` is given."""
-    from floatmoor.mooring.strength import static_line_loads
+    from floatmoor.mooring.static_strength import static_line_loads
 
     line = next(ln for ln in case.lines if ln.name == name)
     if static_tension is None:

@@ -27,7 +27,7 @@ from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.schema import Case, Point
 from floatmoor.errors import CaseError, FloatmoorError, FloatmoorWarning, SolverError
 from floatmoor.hydro.database import load_for_case
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.second_order import (
     DirectionError, DriftLookup, QTFLookup, drift_source, missing_coefficients, route_text,
 )
@@ -36,10 +36,10 @@ from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.system_statics import case_statics
+from floatmoor.mooring.statics_solver import case_statics
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.groups import SystemGroup, body_point_line, system_groups
-from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.excitation_series import WaveExcitation
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.second_order import (
     MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce, newman_on_grid,

@@ -35,8 +35,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor._version import __version__
-from floatmoor.case.files import file_kind
 from floatmoor.errors import CaseError
+from floatmoor.input_files import file_kind
 from floatmoor.io.output_files import sync_folder
 
 __all__ = ["CheckpointError", "RunIdentity", "write_checkpoint", "check_checkpoint",

@@ -3,7 +3,7 @@
 A case's lines are independent when each is one section from a fixed to a body point; every
 other line belongs to a :class:`SystemGroup`, the lines connected through free points, of one
 model (the loader refuses a free point joining lines of two models). A quasi-static group is
-solved by the system statics (:class:`~floatmoor.mooring.system_statics.SystemStatics`: the
+solved by the system statics (:class:`~floatmoor.mooring.statics_solver.SystemStatics`: the
 equilibrium of its free points at every instant), a dynamic one by the DG system
 (:class:`~floatmoor.mooring.dg.system.DynamicSystem`: sections and points advanced together).
 Both take the positions (and velocities) of their body points and give the forces of every
@@ -24,7 +24,7 @@ from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.catenary import catenary_profile
 from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.quasistatic import SHAPE_POINTS
-from floatmoor.mooring.system_statics import SystemStatics, build_static_system
+from floatmoor.mooring.statics_solver import SystemStatics, build_static_system
 
 __all__ = ["SystemGroup", "GroupSamples", "system_groups", "body_point_line"]
 

@@ -18,7 +18,7 @@ import time
 import numpy as np
 import pytest
 
-from floatmoor.mooring.system_statics import SystemStatics, build_static_system
+from floatmoor.mooring.statics_solver import SystemStatics, build_static_system
 from tests.peer.test_statics_moorpy import MOORPY_TOL, _moorpy
 from tests.unit.statics_systems import ENVIRONMENT, SEABED, three_lines
 

@@ -12,10 +12,10 @@ import pytest
 from floatmoor.body.model import build_body
 from floatmoor.case.load import load_case
 from floatmoor.hydro.database import read_database
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.radiation import added_mass_at, hydrostatic_stiffness_total
 from floatmoor.simulation.coupled import MooredBody, equilibrium, line_force_quasi_static
-from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.excitation_series import WaveExcitation
 from floatmoor.waves.realisation import WaveField
 from tests.conftest import CASES, REPO
 

@@ -285,8 +285,8 @@ def test_three_hour_deepcwind_run_in_the_lc34_sea_is_stable() -> None:
     its linearised lines (about 4 s of wall time per path): the state-space path stays
     bounded, its radiation states finite, and the standard deviations of the motions are the
     convolution's (surge and pitch within 1 %; heave, see HEAVE_STD_RTOL)."""
-    from floatmoor.hydro.excitation import ExcitationInterpolator
-    from floatmoor.waves.excitation import WaveExcitation
+    from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
+    from floatmoor.waves.excitation_series import WaveExcitation
     from floatmoor.waves.settings import build
 
     case = load_case(CASES / "deepcwind" / "deepcwind_lc34.toml")

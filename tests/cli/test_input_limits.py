@@ -159,7 +159,7 @@ def test_unreachable_scheduler_fails_fast_with_one_line(tmp_path):
     assert not (tmp_path / "c.nc").exists()  # nothing ran: no campaign file of pending runs
 
 
-@pytest.mark.parametrize("module", ["numpy", "floatmoor.mooring.strength"])
+@pytest.mark.parametrize("module", ["numpy", "floatmoor.mooring.static_strength"])
 def test_ctrl_c_during_imports_exits_130_with_one_line(module):
     # the interrupt is raised by an import hook, at the moment the module is imported
     script = (

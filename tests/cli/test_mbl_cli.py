@@ -12,7 +12,7 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_dataset
-from floatmoor.mooring.strength import static_line_loads
+from floatmoor.mooring.static_strength import static_line_loads
 from tests.conftest import CASES, LINDAHL_CASE
 
 KEY = "line_types.chain.minimum_breaking_load"

@@ -25,7 +25,7 @@ import math
 
 import pytest
 
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_at
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from floatmoor.hydro.database import merge_complex
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 
 #: Linear interpolation on a grid twice as coarse as the database's, against the BEM values
 #: left out: within 2 % of the largest |X| (the database step is half that, error ~1/4).

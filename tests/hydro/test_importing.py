@@ -16,7 +16,7 @@ from floatmoor.hydro.checks import check_haskind, run_checks
 from floatmoor.hydro.database import (
     EXCITATION_VARIABLES, HydroDatabaseError, merge_complex, read_database, write_database,
 )
-from floatmoor.hydro.excitation import ExcitationInterpolator
+from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.importing import (
     ImportOptions, file_format, imported_dataset, yaw_transform,
 )

@@ -12,10 +12,11 @@ from typing import Any
 
 from floatmoor.case.schema import Case
 from floatmoor.io.moordyn.deck import DeckOption
-from floatmoor.io.moordyn.exporter import export_case
+from floatmoor.io.moordyn.exporter import ExportResult, export_case
 from floatmoor.io.moordyn.importer import import_deck
 from floatmoor.io.moordyn.parser import read_deck
 from floatmoor.io.moordyn.writer import deck_text
+from floatmoor.mooring.deck_numerics import deck_numerics
 
 REPO = Path(__file__).resolve().parents[2]
 DECKS = REPO / "tests" / "data" / "moordyn"
@@ -49,9 +50,14 @@ def import_file(name: str, folder: Path) -> Path:
     return out
 
 
+def exported(case: Case) -> ExportResult:
+    """``case``'s MoorDyn deck and notes, with the solvers' numerics (as ``export moordyn``)."""
+    return export_case(case, deck_numerics(case))
+
+
 def export_file(case: Case, path: Path, extra: dict[str, str] | None = None) -> Path:
     """Write ``case``'s MoorDyn deck to ``path`` (``extra`` options appended)."""
-    result = export_case(case)
+    result = exported(case)
     deck = result.deck
     if extra:
         deck = dataclasses.replace(deck, options=deck.options + tuple(

@@ -1,4 +1,4 @@
-"""floatmoor.io.input_files and file_sha256: only regular files are read, without blocking
+"""floatmoor.input_files and file_sha256: only regular files are read, without blocking
 on a FIFO, within a size limit; what a path is instead is said in one phrase."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import os
 import pytest
 
 from floatmoor.file_hash import file_sha256
-from floatmoor.io.input_files import InputFileError, open_regular, read_bounded
+from floatmoor.input_files import InputFileError, open_regular, read_bounded
 
 
 def test_kinds_of_paths_are_named(tmp_path):

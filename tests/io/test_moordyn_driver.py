@@ -18,7 +18,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatmoor.body_motion import rotation_matrices
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.errors import CaseError
@@ -27,6 +26,7 @@ from floatmoor.io.moordyn.driver_import import RIGID_FIT_TOLERANCE
 from floatmoor.io.moordyn.importer import import_deck
 from floatmoor.io.moordyn.motion_fit import fit_rigid_motion
 from floatmoor.io.moordyn.parser import parse_deck, read_deck
+from floatmoor.rotations import rotation_matrices
 from floatmoor.simulation.forced import run_forced_motion
 
 RTEST = Path(__file__).parents[1] / "data" / "moordyn" / "rtest"

@@ -10,15 +10,15 @@ import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
-from floatmoor.io.moordyn.exporter import SEABED_STEP_FRACTION, export_case
+from floatmoor.io.moordyn.exporter import SEABED_STEP_FRACTION
 from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type,
                                              seabed_to_moordyn, volume_diameter)
 from floatmoor.io.moordyn.parser import read_deck
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
 from floatmoor.mooring.dg.system import DynamicSystem
-from floatmoor.mooring.system_statics import case_statics
+from floatmoor.mooring.statics_solver import case_statics
 from tests.conftest import ACCURACY_DEFAULT, LINDAHL_CASE
-from tests.io.moordyn_decks import REPO, export_file
+from tests.io.moordyn_decks import REPO, export_file, exported
 
 SYSTEM = REPO / "tests" / "data" / "systems" / "clump_buoy.toml"
 LINDAHL = REPO / "cases" / "lindahl" / "lindahl_r0.20_T1.25.toml"
@@ -111,7 +111,7 @@ def test_dtm_is_the_dg_lines_own_step_with_explicit_contact_and_a_cap():
         line = case.lines[0]
         dg = DynamicLine(CableProperties.from_case(line, case.environment, case.seabed),
                          line.dynamic, np.asarray(line.anchor), np.asarray(line.fairlead))
-        return float(export_case(case).deck.option("dtM").value), dg.time_step, case
+        return float(exported(case).deck.option("dtM").value), dg.time_step, case
 
     # implicit contact: MoorDyn's own seabed limit is the smaller
     implicit, dg, case = dtm()
@@ -125,13 +125,13 @@ def test_dtm_is_the_dg_lines_own_step_with_explicit_contact_and_a_cap():
 
 def test_no_friction_writes_no_fricdamp_and_notes_what_moordyn_does_not_model():
     case = load_case(SYSTEM)  # quasi-static, no friction
-    result = export_case(case)
+    result = exported(case)
     keys = [o.key for o in result.deck.options]
     assert "FrictionCoefficient" in keys and "FricDamp" not in keys
     notes = "\n".join(result.notes)
     assert "line line1 is quasi-static in floatmoor" in notes
     assert "MoorDyn line 2: floatmoor line1 section 2" in notes
-    motion = export_case(load_case(LINDAHL)).notes
+    motion = exported(load_case(LINDAHL)).notes
     assert any(n.startswith("motion (circular): not exported") for n in motion)
 
 
@@ -140,7 +140,7 @@ def test_a_line_type_name_moordyn_cannot_read_is_made_one_word(tmp_path):
         .replace('type = "rope"', 'type = "poly rope"')
     path = tmp_path / "names.toml"
     path.write_text(text)
-    result = export_case(load_case(path))
+    result = exported(load_case(path))
     assert [t.name for t in result.deck.line_types] == ["chain", "poly_rope"]
     assert "line type 'poly rope' is MoorDyn's 'poly_rope' (a MoorDyn name is one word)" \
         in result.notes
@@ -151,7 +151,7 @@ def test_free_points_are_written_at_the_static_equilibrium_with_a_note():
     writes the free points where floatmoor's statics put them (here the clump 1.7 m above the
     case's guess), and says so; fixed and body points stay where the case has them."""
     case = load_case(SYSTEM)
-    result = export_case(case)
+    result = exported(case)
     statics = case_statics(case).solve()
     moved = 0.0
     for dp, p in zip(result.deck.points, case.points):
@@ -168,14 +168,14 @@ def test_without_a_static_equilibrium_free_points_keep_the_cases_positions(monke
     """When the statics fail (no equilibrium), the deck keeps the case's positions and the
     note says why, instead of refusing to export."""
     from floatmoor.errors import SolverError
-    from floatmoor.io.moordyn import exporter
+    from floatmoor.mooring import deck_numerics
 
     def no_equilibrium(case):
         raise SolverError("point 'buoy': no equilibrium (residual 1e3 N)")
 
-    monkeypatch.setattr(exporter, "case_statics", no_equilibrium)
+    monkeypatch.setattr(deck_numerics, "case_statics", no_equilibrium)
     case = load_case(SYSTEM)
-    result = export_case(case)
+    result = exported(case)
     assert [dp.position for dp in result.deck.points] == [p.position for p in case.points]
     assert any("case's positions (no static equilibrium: point 'buoy'" in n
                for n in result.notes)

@@ -19,7 +19,7 @@ from floatmoor.cli import main
 from floatmoor.errors import CaseError
 from floatmoor.io.orcaflex.importer import import_model
 from floatmoor.io.orcaflex.reader import MAX_MODEL_FILE_BYTES, parse_model, read_model
-from floatmoor.mooring.strength import static_line_loads
+from floatmoor.mooring.static_strength import static_line_loads
 from tests.cli.test_output_files import tmpfs  # noqa: F401 (a fixture)
 
 MODELS = Path(__file__).parents[1] / "data" / "orcaflex"

@@ -60,7 +60,8 @@ import numpy as np
 from floatmoor.io.moordyn.deck import Deck, DeckOption
 from floatmoor.io.moordyn.exporter import export_case
 from floatmoor.io.moordyn.writer import deck_text
-from floatmoor.mooring.system_statics import build_static_system, solve_statics
+from floatmoor.mooring.deck_numerics import deck_numerics
+from floatmoor.mooring.statics_solver import build_static_system, solve_statics
 from floatmoor.simulation.forced import body_points_state
 from tests.peer.moordyn_runner import (MoorDynError, _as_list, _check_motion,
                                        _console_tail, _coupling_path, _stdout_to, open_input)
@@ -125,7 +126,7 @@ def system_deck(case, *, segment_scale: float = 1.0, dt: float | None = None,
     with it, so that the internal damping coefficient stays floatmoor's), dtM = ``dt`` (default the
     exporter's), ``TmaxIC`` and no output files; with ``start_at_statics`` its free points
     placed at the static equilibrium (:func:`static_positions`), MoorDyn's initial guess."""
-    deck = export_case(case).deck
+    deck = export_case(case, deck_numerics(case)).deck
     if start_at_statics:
         numbers = {p.name: k for k, p in enumerate(case.points, start=1)}
         at = {numbers[n]: x for n, x in static_positions(case).items()}

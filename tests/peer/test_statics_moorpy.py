@@ -41,7 +41,7 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.mooring.system_statics import (
+from floatmoor.mooring.statics_solver import (
     body_point_stiffness, build_static_system, coupled_stiffness, solve_statics,
 )
 from floatmoor.case.schema import Point

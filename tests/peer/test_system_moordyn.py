@@ -123,7 +123,7 @@ def test_stored_moordyn_records_say_how_they_were_made(name):
     scale = REFERENCE_SETTINGS[name][0]
     assert ref.attrs["segments_per_section"] == str(int(50 * scale))
     case = load_case(SYSTEMS / f"{name}.toml")
-    from floatmoor.mooring.system_statics import case_statics
+    from floatmoor.mooring.statics_solver import case_statics
 
     at_rest = case_statics(case).solve()
     fairlead = at_rest.forces_on("fairlead")

@@ -10,13 +10,13 @@ import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
-from floatmoor.mooring.system_statics import SystemStatics, build_static_system
+from floatmoor.mooring.statics_solver import SystemStatics, build_static_system
 from floatmoor.simulation.forced import run_forced_motion
 from tests.conftest import LINDAHL_CASE
 
 SYSTEM = Path(__file__).parents[1] / "data" / "systems" / "clump_buoy.toml"
 MOTION = 'motion={kind = "harmonic", amplitude = [2.0, 0.0, 1.0], period = 10.0}'
-#: Newton tolerance of the system statics on the force residual (system_statics.FORCE_RTOL
+#: Newton tolerance of the system statics on the force residual (statics_solver.FORCE_RTOL
 #: is 1e-9 of each point's force scale): forces compared to this, relative.
 STATICS_RTOL = 1e-8
 

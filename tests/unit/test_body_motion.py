@@ -12,14 +12,12 @@ import pytest
 from scipy.interpolate import CubicSpline
 
 from floatmoor.body.kinematics import rotation_matrix
-from floatmoor.body_motion import (
-    angular_velocity, body_motion_state, body_points_state, prescribed_fairlead_state,
-    rotation_matrices,
-)
+from floatmoor.body_motion import body_motion_state, body_points_state, prescribed_fairlead_state
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import BodyHarmonicMotion, BodyTableMotion
 from floatmoor.errors import CaseError
 from floatmoor.motion import fairlead_state
+from floatmoor.rotations import angular_velocity, rotation_matrices
 from tests.conftest import LINDAHL_CASE
 
 #: Tolerance of the exactness checks [-]: a few hundred ulps of the arm length (the

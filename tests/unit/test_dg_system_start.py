@@ -11,7 +11,7 @@ import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.mooring.dg.system import DynamicSystem
-from floatmoor.mooring.system_statics import build_static_system, solve_statics
+from floatmoor.mooring.statics_solver import build_static_system, solve_statics
 
 SYSTEM = Path(__file__).parents[1] / "data" / "systems" / "clump_buoy_seabed.toml"
 #: The test line, dynamic; the anchor moved out 30 m so that the clump hangs 12 m above the

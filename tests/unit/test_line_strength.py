@@ -12,10 +12,10 @@ import xarray as xr
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.strength import (
+from floatmoor.mooring.static_strength import (
     STRAIN_WARNING_WITHOUT_MBL, check_static_below_mbl, static_line_loads, strain_warnings,
 )
-from floatmoor.post.strength import largest_tension, line_mbl, line_strength
+from floatmoor.post.run_strength import largest_tension, line_mbl, line_strength
 from tests.conftest import CASES, LINDAHL_CASE
 
 KEY = "line_types.chain.minimum_breaking_load"

@@ -1,4 +1,4 @@
-"""Statics of mooring systems (floatmoor.mooring.system_statics): the equilibrium of free
+"""Statics of mooring systems (floatmoor.mooring.statics_solver): the equilibrium of free
 points joined by catenary sections, its stiffness at the body and its time series."""
 
 from __future__ import annotations
@@ -12,9 +12,9 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import Point
 from floatmoor.errors import SolverError
-from floatmoor.mooring import _system_statics_kernels as k
+from floatmoor.mooring import _statics_solver_kernels as k
 from floatmoor.mooring.catenary import solve_catenary
-from floatmoor.mooring.system_statics import (
+from floatmoor.mooring.statics_solver import (
     SystemStatics, body_point_stiffness, build_static_system, coupled_stiffness, solve_statics,
 )
 from floatmoor.simulation.forced import run_forced_motion

@@ -7,7 +7,7 @@ import time
 import numpy as np
 import pytest
 
-from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.excitation_series import WaveExcitation
 from floatmoor.waves.realisation import WaveField
 
 #: Generous ceiling on a loaded machine (measured 2-3 s of thread time for both records).

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.waves.excitation import WaveExcitation
+from floatmoor.waves.excitation_series import WaveExcitation
 from floatmoor.waves.kinematics import airy_kinematics
 from floatmoor.waves.realisation import WaveField
 

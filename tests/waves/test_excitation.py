@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.waves.excitation import WaveExcitation, excitation_coefficients
+from floatmoor.waves.excitation_series import WaveExcitation, excitation_coefficients
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.synthesis import harmonic_sum
 

@@ -3,5 +3,6 @@ floatmoor case in both directions (``floatmoor import moordyn`` / ``floatmoor ex
 
 Modules: :mod:`.deck` (the parsed contents), :mod:`.parser` (text -> deck), :mod:`.writer`
 (deck -> text), :mod:`.line_types` (floatmoor's line description <-> MoorDyn's),
-:mod:`.importer` (deck -> case file text), :mod:`.exporter` (case -> deck).
+:mod:`.importer` (deck -> case file text), :mod:`.exporter` (case and the solvers' numerics,
+:mod:`floatmoor.mooring.deck_numerics` -> deck).
 """

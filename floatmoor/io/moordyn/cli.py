@@ -110,10 +110,11 @@ def _convert(args: argparse.Namespace) -> int:
     from floatmoor.case.load import load_case
     from floatmoor.io.moordyn.exporter import export_case
     from floatmoor.io.moordyn.writer import deck_text
+    from floatmoor.mooring.deck_numerics import deck_numerics
 
     output = _check_output(args.output, args.force, args.case, MOORDYN_DECK)
     case = load_case(args.case, args.overrides)
-    result = export_case(case)
+    result = export_case(case, deck_numerics(case))
     _write(output, deck_text(result.deck, result.notes))
     print(f"wrote {output} from {args.case}")
     _list("notes (also in the file's title block)", result.notes)

@@ -27,12 +27,12 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.body_motion import rotation_matrices
 from floatmoor.errors import CaseError
 from floatmoor.io.moordyn.deck import POINT_BODY, POINT_COUPLED, Deck
 from floatmoor.io.moordyn.driver import DriverInput, MotionRecord, read_motion_file
 from floatmoor.io.moordyn.importer import import_deck
 from floatmoor.io.moordyn.motion_fit import fit_rigid_motion
+from floatmoor.rotations import rotation_matrices
 
 __all__ = ["DriverImport", "import_with_driver", "RIGID_FIT_TOLERANCE", "MOTION_TABLE_HEADER"]
 

@@ -16,32 +16,35 @@ RK2 is written). The deck's title is the case's title; the simulation's output i
 MoorDyn's dtOut (MoorDyn has no run length: its driver steps it).
 
 Free points are written at the system's static equilibrium (floatmoor's statics,
-:func:`floatmoor.mooring.system_statics.case_statics`, body points at rest): MoorDyn starts its
+:func:`floatmoor.mooring.statics_solver.case_statics`, body points at rest): MoorDyn starts its
 initial-condition solve from the deck's positions and its catenaries between them, so from the
 equilibrium it settles at once to its own discretisation's; the case's positions are only the
 statics' initial guesses. A system without a static equilibrium keeps the case's positions,
 with a note.
+
+The solvers' answers (the sections' discretisations, their time step, the statics) are not
+computed here: file formats sit below the models
+(docs/development.md#1-package-layout-and-import-order), so :func:`export_case` takes them as
+:class:`DeckNumerics`, which
+:func:`floatmoor.mooring.deck_numerics.deck_numerics` computes::
+
+    export_case(case, deck_numerics(case))
 """
 
 from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
-
-import numpy as np
 
 from floatmoor.io.moordyn.deck import (POINT_COUPLED, POINT_FIXED, POINT_FREE, Deck, DeckLine,
                                        DeckLineType, DeckOption, DeckPoint)
 from floatmoor.io.moordyn.line_types import (friction_damping, moordyn_line_type,
                                              seabed_to_moordyn)
-from floatmoor.errors import SolverError
-from floatmoor.mooring.dg.cable import CableProperties
-from floatmoor.mooring.dg.resolution import resolve_settings
-from floatmoor.mooring.system_statics import case_statics
 
-__all__ = ["ExportResult", "export_case", "SEABED_STEP_FRACTION"]
+__all__ = ["DeckNumerics", "ExportResult", "export_case", "SEABED_STEP_FRACTION"]
 
 #: dtM is at most this fraction of the RK2 stability limit 2 / |lambda| of MoorDyn's explicit
 #: seabed spring-damper, |lambda| = omega (xi + sqrt(1 + xi^2)), omega^2 = kBot d / m: half the
@@ -51,6 +54,23 @@ _KINDS = {"fixed": POINT_FIXED, "body": POINT_COUPLED, "free": POINT_FREE}
 _SAME_VALUE_RTOL = 1e-12
 #: Characters a MoorDyn line type name cannot hold (it reads whitespace-separated columns).
 _TYPE_NAME_CHARACTERS = re.compile(r"[^A-Za-z0-9_.+-]")
+
+
+@dataclass(frozen=True)
+class DeckNumerics:
+    """What floatmoor's solvers say about a case, as its deck needs it
+    (:func:`floatmoor.mooring.deck_numerics.deck_numerics`)."""
+
+    #: The case's sections, in order, each with the DG discretisation it runs with, stepped
+    #: explicitly (MoorDyn's segments follow them).
+    sections: tuple[Any, ...]
+    #: The smallest DG time step of those sections [s].
+    time_step: float
+    #: The free points' positions at the static equilibrium (None: no free point, or no
+    #: statics to solve).
+    free_positions: Mapping[str, tuple[float, float, float]] | None = None
+    #: Why the statics found no equilibrium (the solver's message on one line), or None.
+    statics_failure: str | None = None
 
 
 @dataclass
@@ -65,53 +85,33 @@ def _segments(section: Any) -> int:
     return int(section.dynamic.elements * section.dynamic.order)
 
 
-def _explicit_numerics(section: Any, line: Any, independent: bool, env: Any, bed: Any) -> Any:
-    """The section with the DG discretisation it runs with (where the case leaves it to the
-    accuracy, resolution.resolve_settings as the run makes it: an independent line's rule on
-    its catenary, a line system's sections' own), stepped explicitly: MoorDyn's segments and
-    dtM follow them."""
-    st = section.dynamic
-    if not st.resolved:
-        speed = 0.0
-        if independent:
-            speed = CableProperties.from_section(section, env, bed).transverse_wave_speed(
-                np.asarray(line.anchor, dtype=float), np.asarray(line.fairlead, dtype=float))
-        st = resolve_settings(st, section.length, speed, several_sections=not independent)
-    return replace(section, dynamic=replace(st, time_integration="explicit"))
-
-
-def _free_positions(case: Any, notes: list[str]) -> dict[str, tuple[float, float, float]]:
+def _free_positions(case: Any, numerics: DeckNumerics, notes: list[str]
+                    ) -> Mapping[str, tuple[float, float, float]]:
     """The free points' positions to write: the static equilibrium when there is one (a note
     says so), the case's otherwise (a note says why)."""
-    free = [p.name for p in case.points if p.kind == "free"]
-    if not free:
+    if not any(p.kind == "free" for p in case.points):
         return {}
-    try:
-        statics = case_statics(case)
-        solution = statics.solve() if statics is not None else None
-    except SolverError as exc:
+    if numerics.statics_failure is not None:
         notes.append("free points: at the case's positions (no static equilibrium: "
-                     + " ".join(str(exc).split()) + ")")
+                     + numerics.statics_failure + ")")
         return {}
-    if solution is None:
+    if numerics.free_positions is None:
         return {}
-    at = {n: tuple(float(c) for c in solution.position(n)) for n in free
-          if n in solution.point_names}
     notes.append("free points: at floatmoor's static equilibrium (the case's positions are "
                  "its initial guesses)")
-    return at  # type: ignore[return-value]
+    return numerics.free_positions
 
 
-def export_case(case: Any) -> ExportResult:
+def export_case(case: Any, numerics: DeckNumerics) -> ExportResult:
     """The MoorDyn deck of ``case`` (a :class:`floatmoor.case.schema.Case`) and the notes on
-    what MoorDyn cannot represent (also to be written into the deck's comments)."""
+    what MoorDyn cannot represent (also to be written into the deck's comments), with the
+    solvers' ``numerics`` of the case (:func:`floatmoor.mooring.deck_numerics.deck_numerics`)."""
     notes: list[str] = []
     env, bed = case.environment, case.seabed
     line_of = {line.name: line for line in case.lines}
     numbers = {p.name: i for i, p in enumerate(case.points, start=1)}
-    at = _free_positions(case, notes)
-    sections = tuple(_explicit_numerics(s, line_of[s.line], case.is_independent(line_of[s.line]),
-                                        env, bed) for s in case.sections)
+    at = _free_positions(case, numerics, notes)
+    sections = numerics.sections
     points = tuple(DeckPoint(number=numbers[p.name], attachment=_KINDS[p.kind],
                              position=at.get(p.name,  # type: ignore[arg-type]
                                              tuple(float(c) for c in p.position)),
@@ -199,8 +199,7 @@ def export_case(case: Any) -> ExportResult:
         notes.append(f"motion ({case.motion.kind}): not exported; drive the Coupled points "
                      "with it through MoorDyn's coupling (Step)")
 
-    dt = min(CableProperties.from_section(sec, env, bed).time_step(sec.dynamic)
-             for sec in sections)
+    dt = numerics.time_step
     for sec in sections:
         lt = sec.line_type
         omega = math.sqrt(bed.stiffness * lt.diameter / lt.mass_per_length)

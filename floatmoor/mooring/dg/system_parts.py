@@ -22,7 +22,7 @@ from floatmoor.errors import SolverError
 from floatmoor.mooring.catenary import catenary_profile, solve_catenary
 from floatmoor.mooring.dg.cable import CableProperties
 from floatmoor.mooring.dg.resolution import resolve_settings
-from floatmoor.mooring.system_statics import SystemStatics, build_static_system
+from floatmoor.mooring.statics_solver import SystemStatics, build_static_system
 
 __all__ = ["PointLike", "SystemSection", "resolved_sections", "section_properties",
            "point_contact", "static_start", "catenary_positions"]

@@ -1,5 +1,5 @@
-"""Input files from elsewhere (BEM results, hydrodynamic databases): regular files only,
-opened without blocking, of bounded size.
+"""Input files from elsewhere (BEM results, hydrodynamic databases, meshes): regular files
+only, opened without blocking, of bounded size; and what a path that is not one is.
 
 A file named on the command line or recorded in a database may be a FIFO (opening it for
 reading waits for a writer: the command hangs), a device (``/dev/zero`` reads forever) or a
@@ -8,7 +8,8 @@ folder. :func:`open_regular` looks at what the path is before opening it, opens 
 again at what was opened, so only a regular file is ever read; a size limit is checked on the
 opened file before its bytes are read. The failures are :class:`InputFileError` whose
 ``found`` says what the path is ("a FIFO (named pipe)", "no such file", ...), for the caller's
-one-line error.
+one-line error. :func:`file_kind` names what a file mode is, for those messages and for the
+case's files (:mod:`floatmoor.case.files`) and output files alike.
 """
 
 from __future__ import annotations
@@ -17,9 +18,18 @@ import os
 import stat
 from typing import BinaryIO
 
-from floatmoor.case.files import file_kind
+__all__ = ["InputFileError", "file_kind", "regular_file_size", "open_regular", "read_bounded"]
 
-__all__ = ["InputFileError", "regular_file_size", "open_regular", "read_bounded"]
+
+def file_kind(mode: int) -> str:
+    """What a file of mode ``mode`` is, for a message ("a FIFO (named pipe)", ...)."""
+    for test, name in ((stat.S_ISDIR, "a folder"), (stat.S_ISLNK, "a symbolic link"),
+                       (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
 
 
 class InputFileError(OSError):

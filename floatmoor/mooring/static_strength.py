@@ -1,4 +1,5 @@
-"""Static line tension against the minimum breaking load (MBL) of the line type.
+"""Static line tension against the minimum breaking load (MBL) of the line type, before a run
+(a run's largest tension against the MBL: :mod:`floatmoor.post.run_strength`).
 
 ``floatmoor check`` and ``floatmoor run`` solve each line's static catenary at the mean (or
 rest) fairlead position. The fairlead tension is the largest along a static line that sinks
@@ -22,7 +23,7 @@ import numpy as np
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.system_statics import StaticSolution, case_statics
+from floatmoor.mooring.statics_solver import StaticSolution, case_statics
 
 __all__ = ["StaticLineLoad", "static_line_loads", "system_statics_at_rest", "check_static_below_mbl",
            "refuse_static_breaking", "strain_warnings", "STRAIN_WARNING_WITHOUT_MBL"]

@@ -1,5 +1,6 @@
 """Excitation force transfer functions X(omega, beta) of a database, at any frequency and
-direction in range.
+direction in range (the force time series a run makes of them:
+:mod:`floatmoor.waves.excitation_series`).
 
 X is complex, per unit wave amplitude, capytaine's e^{-i omega t} convention: the force of a
 wave of amplitude a is Re{X a e^{-i omega t}}. Interpolation acts on the real and imaginary

@@ -1,10 +1,11 @@
-"""The system a statics solve works on, and what a solve gives back.
+"""The system a statics solve works on, and what a solve gives back, as arrays (the Newton
+solver that works on them is :mod:`floatmoor.mooring.statics_solver`).
 
 :class:`StaticSystem` is a quasi-static mooring system as arrays: its points (fixed, body,
 free) and its catenary sections between them, built from a case's points and lines by
 :func:`build_static_system`, which refuses a free point nothing holds.
 :class:`StaticSolution` is one equilibrium and :class:`StaticSeries` one along a path; the
-solver is :class:`floatmoor.mooring.system_statics.SystemStatics`.
+solver is :class:`floatmoor.mooring.statics_solver.SystemStatics`.
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""Largest line tension of a run against the line's minimum breaking load (MBL).
+"""Largest line tension of a run against the line's minimum breaking load (MBL) (the static
+tension against it, before a run: :mod:`floatmoor.mooring.static_strength`).
 
 The largest tension is taken over both ends of the line, fairlead and anchor: on a static
 line the fairlead end carries the most, but in motion a tension wave (snap) can peak at the

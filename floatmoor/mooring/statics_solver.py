@@ -1,4 +1,5 @@
-"""Static equilibrium of a quasi-static mooring system: points joined by catenary sections.
+"""Static equilibrium of a quasi-static mooring system: points joined by catenary sections
+(the solver; the system and solution types it works on are :mod:`floatmoor.mooring.statics_arrays`).
 
 A system is a set of points (``fixed``: stay; ``body``: given, at rest or moved; ``free``:
 unknown) and sections, each the elastic catenary of :mod:`floatmoor.mooring.catenary` (seabed
@@ -6,7 +7,7 @@ contact at its lower end when that end is on the seabed, friction when its line'
 ``quasi_static.seabed_friction``) between its two end points. A free point balances its
 sections' end forces, its weight m g (down) and its buoyancy rho_w g V (up); the positions of
 the free points that achieve it are found by Newton's method with the analytic Jacobian (the
-sections' 6x6 end stiffnesses, :mod:`floatmoor.mooring._system_statics_kernels`), a step limit,
+sections' 6x6 end stiffnesses, :mod:`floatmoor.mooring._statics_solver_kernels`), a step limit,
 a line search and a Levenberg-Marquardt shift, as MoorPy's ``System.solveEquilibrium`` finds
 them. The stiffness at the body follows by condensing the free points out, as MoorPy's
 ``System.getCoupledStiffness``.
@@ -23,7 +24,7 @@ its lines' end nodes do) put no friction on a point either. With this a line spl
 massless joint lying on the seabed is the same catenary as the unsplit line, friction or not.
 
 Entry points: :func:`build_static_system` (the case's points and lines in array form, checked
-once; :mod:`floatmoor.mooring.static_system`, with the solution types), :class:`SystemStatics`
+once; :mod:`floatmoor.mooring.statics_arrays`, with the solution types), :class:`SystemStatics`
 (the solver with its warm start: :meth:`~SystemStatics.solve` for one state,
 :meth:`~SystemStatics.solve_path` for a forced run), :func:`solve_statics`,
 :func:`body_point_stiffness` and :func:`coupled_stiffness`.
@@ -38,9 +39,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.errors import SolverError
-from floatmoor.mooring import _system_statics_kernels as _k
+from floatmoor.mooring import _statics_solver_kernels as _k
 from floatmoor.mooring.catenary import PROFILE_NAMES, describe_failure
-from floatmoor.mooring.static_system import (
+from floatmoor.mooring.statics_arrays import (
     KIND_FREE, StaticSolution, StaticSystem, build_static_system, vector_text,
 )
 

@@ -1,8 +1,10 @@
-"""First-order wave excitation force time series from transfer functions.
+"""First-order wave excitation force time series from transfer functions (the transfer
+functions of a database, interpolated: :mod:`floatmoor.hydro.excitation_transfer`).
 
 With X_j the complex excitation force per unit wave amplitude of component j (capytaine's
-``excitation_force`` at omega_j and beta_j about the body's reference point, 6 DOF; the
-hydrodynamics module interpolates it, this module only takes the array), the force is
+``excitation_force`` at omega_j and beta_j about the body's reference point, 6 DOF;
+:mod:`floatmoor.hydro.excitation_transfer` interpolates it, this module only takes the
+array), the force is
 
 .. math::
     f(t) = \\Re\\Big\\{\\sum_j X_j A_j e^{-i\\omega_j t}\\Big\\} = \\Re\\Big\\{\\sum_j c_j
