@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import inspect
 import pkgutil
+import re
 import sys
 from importlib import import_module
 from pathlib import Path
@@ -101,10 +102,15 @@ def _entry(package: str, name: str, obj: Any) -> tuple[list[str], str]:
     return [f".. autodata:: {where}", "   :no-value:"], where
 
 
+#: A docs page cited in a docstring (``docs/theory/cable.md#anchor``), linked on the page.
+_DOCS_PAGE = re.compile(r"\bdocs/([A-Za-z0-9_./-]+?\.md(?:#[A-Za-z0-9_-]+)?)")
+
+
 def _summary(module: ModuleType) -> str:
-    """The first paragraph of a package's docstring, on one line."""
+    """The first paragraph of a package's docstring, on one line, its docs pages linked."""
     doc = inspect.getdoc(module) or ""
-    return " ".join(doc.split("\n\n")[0].split())
+    text = " ".join(doc.split("\n\n")[0].split())
+    return _DOCS_PAGE.sub(lambda match: f"[docs/{match.group(1)}](../{match.group(1)})", text)
 
 
 def section(package: str, documented: dict[int, str]) -> str:

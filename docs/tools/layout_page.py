@@ -57,6 +57,8 @@ OUTRO = """\
 _FULL_STOP = re.compile(r"\.(?=\s|$)")
 #: Abbreviations whose full stop ends no sentence ("e.g.", "eq. 5", "Fig. 3").
 _ABBREVIATIONS = ("e.g", "i.e", "cf", "eq", "eqs", "fig", "sec", "ref", "no", "vs", "approx")
+#: A docs page cited in a docstring (``docs/theory/cable.md#anchor``), linked on the page.
+_DOCS_PAGE = re.compile(r"\bdocs/([A-Za-z0-9_./-]+?\.md(?:#[A-Za-z0-9_-]+)?)")
 #: A Sphinx cross-reference role in a docstring (``:mod:`~a.b``` is shown as ```b```).
 _ROLE = re.compile(r":(?:py:)?[a-z]+:`~?([^`]+)`")
 
@@ -74,7 +76,7 @@ def first_sentence(docstring: str | None) -> str:
     str
         The sentence with its full stop (one inside parentheses or code, or after an
         abbreviation, does not end it), or the whole first paragraph; ``""`` without a docstring.
-        Cross-reference roles become code.
+        Cross-reference roles become code, cited docs pages links.
     """
     paragraph = " ".join((docstring or "").strip().split("\n\n")[0].split())
     paragraph = _ROLE.sub(lambda match: f"`{match.group(1)}`", paragraph)
@@ -84,8 +86,13 @@ def first_sentence(docstring: str | None) -> str:
         inside = (before.count("(") != before.count(")") or before.count("``") % 2
                   or before.replace("``", "").count("`") % 2)
         if not inside and word not in _ABBREVIATIONS:
-            return paragraph[: stop.end()]
-    return paragraph
+            return _linked(paragraph[: stop.end()])
+    return _linked(paragraph)
+
+
+def _linked(text: str) -> str:
+    """``text`` with each cited docs page a link (relative to ``docs/guide/``)."""
+    return _DOCS_PAGE.sub(lambda match: f"[docs/{match.group(1)}](../{match.group(1)})", text)
 
 
 def modules(package: Path) -> dict[str, Path]:
