@@ -80,5 +80,6 @@ def test_first_sentence_stops_at_a_full_stop_outside_code_and_parentheses() -> N
     assert first("See :mod:`~floatmoor.io.netcdf`. Two.") == "See `floatmoor.io.netcdf`."
     assert first("No full stop\n\nSecond paragraph.") == "No full stop"
     assert first(None) == ""
-    assert first("Runs (docs/guide/running.md#a-b). Two.") == (
-        "Runs ([docs/guide/running.md#a-b](../guide/running.md#a-b)).")
+    assert first("Runs (docs/guide/running.md#outside-the-models-validity). Two.") == (
+        "Runs ([docs/guide/running.md#outside-the-models-validity]"
+        "(../guide/running.md#outside-the-models-validity)).")
