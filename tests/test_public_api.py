@@ -146,9 +146,7 @@ KNOWN_GAPS = frozenset({
     "floatmoor.case.apply_overrides", "floatmoor.case.parse_case", "floatmoor.hydro.rao_dataset",
     "floatmoor.io.moordyn.export_case", "floatmoor.mooring.body_point_stiffness",
     "floatmoor.mooring.dg.CableProperties", "floatmoor.mooring.solve_statics",
-    "floatmoor.mooring.static_line_loads", "floatmoor.plots.run_context",
-    "floatmoor.post.line_strength", "floatmoor.post.safety_factor", "floatmoor.rao_for_case",
-    "floatmoor.run_coupled",
+    "floatmoor.mooring.static_line_loads", "floatmoor.rao_for_case", "floatmoor.run_coupled",
 })
 
 
