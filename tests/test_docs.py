@@ -52,8 +52,10 @@ def test_docs_build_with_warnings_as_errors(site: Path) -> None:
     for page in ("index", "getting_started", "reference/api", "auto_examples/index"):
         assert (site / f"{page}.html").is_file(), page
     api = (site / "reference" / "api.html").read_text(encoding="utf-8")
-    for name in ("floatmoor.run_case", "floatmoor.load_case", "floatmoor.uq.propagate.propagate",
-                 "floatmoor.similitude.laws.ScaleLaw", "module-floatmoor.post.statistics"):
+    for name in ("floatmoor.run_case", "floatmoor.load_case", "floatmoor.DynamicLine",
+                 "floatmoor.read_database", "floatmoor.hydro.rao_dataset",
+                 "floatmoor.uq.propagate", "floatmoor.similitude.ScaleLaw",
+                 "floatmoor.post.channel_statistics", "floatmoor.mooring.dg.DynamicSystem"):
         assert f'id="{name}"' in api, f"{name} is missing from the API reference"
 
 

@@ -212,7 +212,7 @@ class CumminsBody:
     # -- dynamics --------------------------------------------------------------------------
     def internal_force(self, x: NDArray[np.float64], v: NDArray[np.float64],
                        tau: float) -> NDArray[np.float64]:
-        """F_0 - C x - mu - B_1 v - B_2 |v| v at ``tau`` into the current step (convolution
+        """F_0 - C x - mu - B_1 v - B_2 ``|v|`` v at ``tau`` into the current step (convolution
         path: mu extrapolated from the step points; state-space path: mu = C z + D v of the
         states at the start of the step, ``tau`` unused)."""
         if self.radiation_states is not None:

@@ -32,7 +32,17 @@ __all__ = ["rotation_matrix", "points_state", "generalised_force"]
 
 
 def rotation_matrix(roll: float, pitch: float, yaw: float) -> NDArray[np.float64]:
-    """R = Rz(yaw) Ry(pitch) Rx(roll): body axes to global axes."""
+    """R = Rz(yaw) Ry(pitch) Rx(roll): body axes to global axes.
+
+    Parameters
+    ----------
+    roll, pitch, yaw
+        Rotations about x, y, z [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        R (3, 3)."""
     cr, sr = math.cos(roll), math.sin(roll)
     cp, sp = math.cos(pitch), math.sin(pitch)
     cy, sy = math.cos(yaw), math.sin(yaw)

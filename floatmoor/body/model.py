@@ -113,11 +113,34 @@ def build_body(floater: Floater, ds: xr.Dataset, environment: Environment, dt: f
                radiation: str | None = None) -> CumminsBody:
     """The Cummins body of ``floater`` with its database ``ds`` at time step ``dt``.
 
-    ``kernel_time`` truncates K(t) (default: the database's, radiation.truncation_time);
-    ``infinite_added_mass`` is ``"kramers-kronig"`` (:func:`consistent_infinite_added_mass`,
-    or :func:`state_space_infinite_added_mass` on the state-space path) or ``"bem"`` (the
-    database's A_inf); ``radiation`` is ``"convolution"`` or ``"state-space"`` (the
-    database's stored realisation, :func:`radiation_states_of`), default the floater's.
+    Parameters
+    ----------
+    floater
+        The case's floater (mass properties, reference point, radiation choice).
+    ds
+        Its hydrodynamic database.
+    environment
+        Water density and gravity.
+    dt
+        The body's time step [s].
+    extra_stiffness
+        C (6, 6) added to the hydrostatic stiffness (e.g. a linearised mooring), or None.
+    linear_damping, quadratic_damping
+        B_1, B_2 (6, 6) or None (:class:`~floatmoor.body.cummins.CumminsBody`).
+    kernel_time
+        Truncation time of K(t) [s] (default: the database's, radiation.truncation_time).
+    infinite_added_mass
+        ``"kramers-kronig"`` (:func:`consistent_infinite_added_mass`, or
+        :func:`state_space_infinite_added_mass` on the state-space path) or ``"bem"`` (the
+        database's A_inf).
+    radiation
+        ``"convolution"`` or ``"state-space"`` (the database's stored realisation,
+        :func:`radiation_states_of`); None: the floater's.
+
+    Returns
+    -------
+    CumminsBody
+        The body.
     """
     radiation = floater.radiation if radiation is None else radiation
     if radiation not in RADIATION_METHODS:

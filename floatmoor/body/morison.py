@@ -376,6 +376,9 @@ def build_strips(floater: Floater, settings: DragSettings, water_density: float,
 class MorisonDrag:
     """The drag force of a floater's strips in a sea, per RK4 stage.
 
+    Usage: :meth:`prepare` a chunk of the half-step grid t0 + k dt_half, then call
+    :meth:`force` with the stage's index k. :meth:`force_in` takes explicit fluid velocities.
+
     Parameters
     ----------
     floater
@@ -391,9 +394,6 @@ class MorisonDrag:
     mean_displacement
         The body's mean displacement (6,) at which the fluid velocity is evaluated (default:
         the rest position; a coupled run passes its static equilibrium).
-
-    Usage: :meth:`prepare` a chunk of the half-step grid t0 + k dt_half, then call
-    :meth:`force` with the stage's index k. :meth:`force_in` takes explicit fluid velocities.
     """
 
     def __init__(self, floater: Floater, settings: DragSettings, water_density: float,

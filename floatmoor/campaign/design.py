@@ -20,7 +20,14 @@ __all__ = ["Axis", "CampaignDesign", "parse_axis_option", "design_from_options"]
 
 @dataclass(frozen=True)
 class Axis:
-    """One dimension of a campaign: one or more keys (zipped) and their values."""
+    """One dimension of a campaign: one or more keys (zipped) and their values.
+
+    Attributes
+    ----------
+    keys
+        The case keys swept together (``--set`` paths).
+    values
+        One tuple of values (one per key) per point of the axis."""
 
     keys: tuple[str, ...]
     values: tuple[tuple[Any, ...], ...]  #: values[i][j]: key i at index j
@@ -36,7 +43,12 @@ class Axis:
 
 @dataclass(frozen=True)
 class CampaignDesign:
-    """The axes of a campaign; runs are the product of the axes."""
+    """The axes of a campaign; runs are the product of the axes.
+
+    Attributes
+    ----------
+    axes
+        The campaign's dimensions."""
 
     axes: tuple[Axis, ...] = field(default_factory=tuple)
 

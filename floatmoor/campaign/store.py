@@ -99,7 +99,19 @@ def same_campaign(path: str | os.PathLike[str], design: CampaignDesign, case_tex
 
 def failed_runs(dataset: xr.Dataset, design: CampaignDesign) -> list[tuple[str, str]]:
     """The runs of a campaign dataset that did not complete, in :meth:`CampaignDesign.runs`
-    order: (their swept values as ``key=VALUE, ...``, their status, e.g. ``failed: ...``)."""
+    order: (their swept values as ``key=VALUE, ...``, their status, e.g. ``failed: ...``).
+
+    Parameters
+    ----------
+    dataset
+        A campaign's dataset (:func:`floatmoor.campaign.runner.run_campaign`).
+    design
+        The campaign's design.
+
+    Returns
+    -------
+    list of tuple
+        (values, status) of each run that did not complete."""
     status = dataset["status"].values
     return [(", ".join(overrides), str(status[index])) for index, overrides in design.runs()
             if str(status[index]) != "complete"]

@@ -13,9 +13,30 @@
 Modules import capytaine only when they mesh or solve, so reading a database needs no BEM.
 """
 
-from floatmoor.hydro.database import HydroDatabaseError, load_for_case, read_database
-from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
-from floatmoor.hydro.radiation import radiation_kernel
+from floatmoor._exports import lazy_exports
 
-__all__ = ["HydroDatabaseError", "load_for_case", "read_database", "ExcitationInterpolator",
-           "radiation_kernel"]
+#: Public name -> the module that defines it (docs/development.md#public-api).
+_API = {
+    "read_database": "floatmoor.hydro.database",
+    "write_database": "floatmoor.hydro.database",
+    "build_database": "floatmoor.hydro.database",
+    "load_for_case": "floatmoor.hydro.database",
+    "database_path": "floatmoor.hydro.database",
+    "HydroDatabaseError": "floatmoor.hydro.database",
+    "import_database": "floatmoor.hydro.importing",
+    "build_mesh": "floatmoor.hydro.geometry",
+    "mesh_from_file": "floatmoor.hydro.mesh_file",
+    "run_bem": "floatmoor.hydro.build",
+    "run_checks": "floatmoor.hydro.checks",
+    "run_mesh_checks": "floatmoor.hydro.mesh_checks",
+    "radiation_kernel": "floatmoor.hydro.radiation",
+    "RadiationKernel": "floatmoor.hydro.radiation",
+    "ExcitationInterpolator": "floatmoor.hydro.excitation_transfer",
+    "rao_for_case": "floatmoor.hydro.rao",
+    "rao_dataset": "floatmoor.hydro.rao",
+    "drift_for_case": "floatmoor.hydro.drift_build",
+    "add_drift": "floatmoor.hydro.drift_build",
+    "solve_drift": "floatmoor.hydro.drift",
+    "check_drift": "floatmoor.hydro.drift_checks",
+}
+__all__, __getattr__, __dir__ = lazy_exports(__name__, _API)

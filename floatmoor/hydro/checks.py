@@ -478,7 +478,17 @@ def check_hydrostatics(ds: xr.Dataset) -> CheckResult:
 
 def run_checks(ds: xr.Dataset) -> list[CheckResult]:
     """All checks on one database, in the order of the module docstring (their names are
-    :data:`floatmoor.case.schema.HYDRO_CHECKS`)."""
+    :data:`floatmoor.case.schema.HYDRO_CHECKS`).
+
+    Parameters
+    ----------
+    ds
+        The database (:func:`floatmoor.hydro.database.read_database`).
+
+    Returns
+    -------
+    list of CheckResult
+        One result per check, passed or not (:func:`describe_failures`)."""
     try:
         kernel = radiation_kernel(ds)
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:

@@ -323,7 +323,20 @@ def to_dataset(result, case: Case) -> xr.Dataset:
 
 def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
     """Run the BEM for a case with ``[floater]`` and ``[hydro]`` and label the result as a
-    database dataset (:func:`to_dataset`)."""
+    database dataset (:func:`to_dataset`).
+
+    Parameters
+    ----------
+    case
+        The case (its ``[floater]``, ``[hydro]`` and environment).
+    progress
+        Called after each frequency (:func:`floatmoor.hydro.build.run_bem`).
+
+    Returns
+    -------
+    xarray.Dataset
+        The database, ready for :func:`write_database`.
+    """
     from floatmoor.hydro.build import run_bem
 
     if case.floater is None or case.hydro is None:
@@ -335,7 +348,15 @@ def build_database(case, *, progress: Progress | None = None) -> xr.Dataset:
 def write_database(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
     """Write atomically (the folder is created if missing). The ``path`` attribute that
     :func:`read_database` sets (where this process read it from) is not written: a file
-    carries no path of the machine it was made on."""
+    carries no path of the machine it was made on.
+
+    Parameters
+    ----------
+    dataset
+        The database (:func:`build_database`, :func:`read_database`).
+    path
+        The file to write.
+    """
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     if "path" in dataset.attrs:
         dataset = dataset.copy()
@@ -345,6 +366,16 @@ def write_database(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
 
 def read_database(path: str | os.PathLike[str]) -> xr.Dataset:
     """Read and structurally check a database.
+
+    Parameters
+    ----------
+    path
+        The database file (``hydrodb/NAME.nc``).
+
+    Returns
+    -------
+    xarray.Dataset
+        The database, read into memory, with its ``path`` attribute set to ``path``.
 
     Raises
     ------
@@ -412,6 +443,16 @@ def database_path(case: Case) -> Path:
     is relative to the case file's folder (absolute allowed); a name is ``hydrodb/NAME.nc``
     in the nearest folder above the case file that has a ``hydrodb`` folder (the repository
     root for the shipped cases), else in the current folder.
+
+    Parameters
+    ----------
+    case
+        The case (its ``[hydro] database`` and the case file's folder).
+
+    Returns
+    -------
+    pathlib.Path
+        The database file (it need not exist).
     """
     from floatmoor.case.floater import is_database_path
 

@@ -342,8 +342,12 @@ def solve_drift(body, *, omegas: NDArray, directions: NDArray, motion: NDArray,
         Complex RAO (omega, direction, 6) the body moves by.
     depth, rho, g
         Water depth (inf: deep), density, gravity.
+    rotation_center
+        The point (3,) [m] the rotational DOFs and the drift moments are about.
     progress
         Called after each frequency with (done, total, omega, seconds).
+    theta_count
+        Number of angles of the Kochin functions over the full circle (far-field route).
     other_motions
         Further RAOs (omega, direction, 6) to compute the drift with from the same solves
         (the result's ``others``: a DriftResult each, without Kochin functions).

@@ -168,6 +168,15 @@ def drift_for_case(case: Case, ds: xr.Dataset, *, progress=None) -> tuple[DriftR
     """Drift coefficients of the case's floater on its (first-order) database, solved on the
     hull graded towards the still water line (:func:`drift_waterline_panel_size`).
 
+    Parameters
+    ----------
+    case
+        The case (its floater, hydro settings and environment).
+    ds
+        The case's first-order database (:func:`floatmoor.hydro.database.load_for_case`).
+    progress
+        Called after each frequency (:func:`floatmoor.hydro.drift.solve_drift`).
+
     Returns
     -------
     (DriftResult, RAO DataArray, conditions)
@@ -210,7 +219,24 @@ def drift_for_case(case: Case, ds: xr.Dataset, *, progress=None) -> tuple[DriftR
 
 
 def add_drift(ds: xr.Dataset, result: DriftResult, x, conditions: dict[str, Any]) -> xr.Dataset:
-    """The database with the drift variables and attributes (replacing earlier ones)."""
+    """The database with the drift variables and attributes (replacing earlier ones).
+
+    Parameters
+    ----------
+    ds
+        The database.
+    result
+        The drift coefficients (:func:`drift_for_case`).
+    x
+        The RAO the body moved by in the drift solve (:func:`drift_for_case`).
+    conditions
+        The conditions of that RAO (:func:`drift_for_case`), recorded as attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        A new dataset; ``ds`` is unchanged.
+    """
     dims = ("omega", "wave_direction", "influenced_dof")
     out = ds.drop_vars([v for v in DRIFT_VARIABLES if v in ds.variables])
     out = out.drop_dims([d for d in ("drift_term",) if d in out.dims])

@@ -97,7 +97,17 @@ def _differences(ds: xr.Dataset, left_out_too: bool = False
 
 def check_drift(ds: xr.Dataset) -> CheckResult:
     """Far-field against near-field mean drift (``hydro check``; not a run's check: a run
-    uses the route its case chooses)."""
+    uses the route its case chooses).
+
+    Parameters
+    ----------
+    ds
+        A database with mean drift (:func:`floatmoor.hydro.drift_build.add_drift`).
+
+    Returns
+    -------
+    CheckResult
+        The ``drift`` row."""
     held = [v for v in ("mean_drift_far_field", "mean_drift_near_field") if v in ds.variables]
     if not held:
         return CheckResult.not_applicable("drift", DRIFT_TOLERANCE, "no mean drift "

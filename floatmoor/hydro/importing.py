@@ -773,8 +773,25 @@ def _turned_directions(directions: Any, yaw_deg: float, bem: ImportedBem
 def import_database(paths: Sequence[str], options: ImportOptions, *, name: str,
                     command: str = "", project: str | os.PathLike[str] | None = None
                     ) -> xr.Dataset:
-    """Read ``paths`` (:func:`read_source`) and label them (:func:`imported_dataset`);
-    ``project``: see :func:`source_file_records`."""
+    """Read ``paths`` (:func:`read_source`) and label them (:func:`imported_dataset`).
+
+    Parameters
+    ----------
+    paths
+        The other program's BEM result files.
+    options
+        What the command was told besides the files.
+    name
+        The database's name.
+    command
+        The command line, recorded in the database.
+    project
+        The folder the source files' paths are recorded from (:func:`source_file_records`).
+
+    Returns
+    -------
+    xarray.Dataset
+        The database, ready for :func:`floatmoor.hydro.database.write_database`."""
     bem = read_source(paths, options)
     with np.errstate(over="ignore", invalid="ignore"):
         ds = imported_dataset(bem, options, name=name, command=command,

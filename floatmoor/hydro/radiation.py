@@ -330,6 +330,16 @@ class RadiationKernel:
         (m, 6, 6), indices (radiating, influenced) as the database's damping.
     added_mass_infinite
         (6, 6).
+
+    Parameters
+    ----------
+    time, kernel
+        The attributes of the same names.
+    a_inf
+        The attribute ``added_mass_infinite``.
+    tail_exponent
+        The exponents of the damping's high-frequency tail the kernel was computed with
+        (:func:`fit_tail_exponents`).
     """
 
     def __init__(self, time: NDArray, kernel: NDArray, a_inf: NDArray,
@@ -369,7 +379,24 @@ def radiation_kernel(ds: xr.Dataset, *, t_max: float | None = None, dt: float | 
                      tail_exponent: float | str = "fitted") -> RadiationKernel:
     """K(t) of a database (defaults: :func:`truncation_time`, :func:`default_time_step`, tail
     exponents from :func:`fit_tail_exponents`, or one given exponent). The fitted exponents
-    of the same inputs are fitted once per process (:data:`_FITTED_EXPONENTS`)."""
+    of the same inputs are fitted once per process (:data:`_FITTED_EXPONENTS`).
+
+    Parameters
+    ----------
+    ds
+        The database.
+    t_max
+        Truncation time [s] (None: :func:`truncation_time`).
+    dt
+        Time step of the grid [s] (None: :func:`default_time_step`).
+    tail_exponent
+        ``"fitted"`` (:func:`fit_tail_exponents`) or one exponent for every pair.
+
+    Returns
+    -------
+    RadiationKernel
+        K(t) on the grid, with A_inf.
+    """
     omega = ds["omega"].values
     t_max = truncation_time(omega) if t_max is None else t_max
     dt = default_time_step(omega) if dt is None else dt

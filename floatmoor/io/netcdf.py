@@ -53,7 +53,18 @@ def write_dataset(dataset: xr.Dataset, path: str | os.PathLike[str]) -> None:
 
 def read_attributes(path: str | os.PathLike[str]) -> dict | None:
     """The global attributes of a netCDF file (only its header is read), or None when it is
-    missing, unreadable or truncated."""
+    missing, unreadable or truncated.
+
+    Parameters
+    ----------
+    path
+        The netCDF file.
+
+    Returns
+    -------
+    dict or None
+        Attribute name -> value.
+    """
     if not os.path.isfile(path):
         return None
     try:
@@ -65,7 +76,18 @@ def read_attributes(path: str | os.PathLike[str]) -> dict | None:
 def read_dataset(path: str | os.PathLike[str]) -> xr.Dataset:
     """Read a dataset fully into memory (the file is closed on return); a run's results
     with their variables in the order of
-    :func:`~floatmoor.io.dataset.build_result_dataset` (:func:`~floatmoor.io.dataset.result_order`)."""
+    :func:`~floatmoor.io.dataset.build_result_dataset` (:func:`~floatmoor.io.dataset.result_order`).
+
+    Parameters
+    ----------
+    path
+        The netCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, in memory.
+    """
     with xr.open_dataset(path, engine=NETCDF_ENGINE) as ds:
         return result_order(ds.load())
 
@@ -77,6 +99,16 @@ def open_result(path: str | os.PathLike[str]) -> xr.Dataset:
     coordinate and its index (16 bytes per sample). The variables are in the order of
     :func:`~floatmoor.io.dataset.build_result_dataset`. The dataset holds the file open until
     it is closed or collected.
+
+    Parameters
+    ----------
+    path
+        A result file (netCDF classic, as :func:`write_dataset` writes it).
+
+    Returns
+    -------
+    xarray.Dataset
+        The lazily read dataset; close it (or use it in a ``with`` block) when done.
 
     Raises
     ------

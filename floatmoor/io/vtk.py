@@ -90,6 +90,24 @@ def write_vtk_series(dataset: xr.Dataset, folder: str | os.PathLike[str],
     parent exists), with the body's panels at each when ``body`` is given; returns the
     ``.pvd`` file.
 
+    Parameters
+    ----------
+    dataset
+        A run's result dataset with line shapes.
+    folder
+        The output folder.
+    samples
+        Indices of the shape samples to write.
+    progress
+        Called with (done, total) after each sample.
+    body
+        The body's panels at a time (:mod:`floatmoor.plots.body_pose`), or None.
+
+    Returns
+    -------
+    pathlib.Path
+        The ``.pvd`` collection file.
+
     Raises
     ------
     ShapeDataError

@@ -14,3 +14,17 @@ the run's case in :mod:`~floatmoor.plots.context`; the body drawn with the lines
 (placed at a time) and :mod:`~floatmoor.plots.body_outline` (its patch in a view);
 :mod:`~floatmoor.plots.cli` holds the ``floatmoor animate`` and ``floatmoor vtk`` commands.
 """
+
+from floatmoor._exports import lazy_exports
+
+#: Public name -> the module that defines it (docs/development.md#public-api).
+_API = {
+    "plot_run": "floatmoor.plots.run_figures",
+    "animate_run": "floatmoor.plots.animation",
+    "draw_tensions": "floatmoor.plots.tensions",
+    "draw_tension_along_line": "floatmoor.plots.tensions",
+    "draw_body_motions": "floatmoor.plots.motions",
+    "draw_line_shapes": "floatmoor.plots.shapes",
+    "run_context": "floatmoor.plots.context",
+}
+__all__, __getattr__, __dir__ = lazy_exports(__name__, _API)

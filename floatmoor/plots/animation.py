@@ -63,7 +63,28 @@ def animate_run(dataset: xr.Dataset, path: str | Path, samples: Sequence[int], *
                 progress: Callable[[int, int], None] | None = None,
                 context: RunContext | None = None) -> int:
     """Write the animation of the shape samples ``samples`` to ``path``; returns the number
-    of frames written. ``context`` defaults to :func:`run_context` of ``dataset``.
+    of frames written.
+
+    Parameters
+    ----------
+    dataset
+        A run's result dataset with line shapes.
+    path
+        The animation file (``.gif``, or ``.mp4`` with ffmpeg).
+    samples
+        Indices of the shape samples, one frame each.
+    fps
+        Frames per second.
+    progress
+        Called with (done, total) after each frame.
+    context
+        What the views take from the run's case (default: :func:`run_context` of
+        ``dataset``).
+
+    Returns
+    -------
+    int
+        The number of frames written.
 
     Raises
     ------

@@ -57,7 +57,18 @@ def _warn_no_body(dataset: xr.Dataset, reason: str) -> None:
 
 
 def run_context(dataset: xr.Dataset) -> RunContext:
-    """The :class:`RunContext` of a result dataset (from its ``case_toml`` attribute)."""
+    """The :class:`RunContext` of a result dataset (from its ``case_toml`` attribute).
+
+    Parameters
+    ----------
+    dataset
+        A run's result dataset.
+
+    Returns
+    -------
+    RunContext
+        What the views take from the run's case.
+    """
     from floatmoor.io.bem_data import BemFileError
 
     case = case_from_dataset(dataset)

@@ -39,6 +39,18 @@ def draw_body_motions(dataset: xr.Dataset, *,
     """Floater displacements of the moving DOFs (translations in m, rotations in degrees) and
     the wave elevation, one panel each; the DOFs at rest are named in the title.
 
+    Parameters
+    ----------
+    dataset
+        A floater run's result dataset.
+    ramp_duration
+        The end of the start-up ramp [s], marked on the panels.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (not saved).
+
     Raises
     ------
     KeyError

@@ -124,6 +124,20 @@ def draw_line_shapes(dataset: xr.Dataset, samples: Sequence[int],
     colour per time), with anchors, touchdown points, the seabed, z = 0 and the body's
     outline at each time (``context.body``).
 
+    Parameters
+    ----------
+    dataset
+        A run's result dataset with line shapes.
+    samples
+        Indices of the shape samples to draw.
+    context
+        What the views take from the run's case (:func:`floatmoor.plots.context.run_context`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (not saved).
+
     Raises
     ------
     ShapeDataError

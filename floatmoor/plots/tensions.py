@@ -78,6 +78,20 @@ def draw_tension_along_line(dataset: xr.Dataset, samples: Sequence[int], *,
     samples ``samples`` and the envelope (min to max at every node) over the shape samples at
     t >= ``start`` [s].
 
+    Parameters
+    ----------
+    dataset
+        A run's result dataset with line shapes.
+    samples
+        Indices of the shape samples to draw.
+    start
+        Start of the envelope's window [s] (e.g. the end of the ramp).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (not saved).
+
     Raises
     ------
     ShapeDataError

@@ -71,6 +71,20 @@ def tension_envelope(dataset: xr.Dataset, line: str, *, start: float = 0.0) -> T
     """Node-wise min and max of the tension along ``line`` over the complete shape samples at
     times >= ``start`` [s].
 
+    Parameters
+    ----------
+    dataset
+        A run's result dataset with line shapes.
+    line
+        The line's name.
+    start
+        Start of the window [s] (e.g. the end of the ramp).
+
+    Returns
+    -------
+    TensionEnvelope
+        The envelope along the line's nodes.
+
     Raises
     ------
     ShapeDataError

@@ -39,7 +39,20 @@ def mbl_ratio(tension: float, mbl: float | None) -> float | None:
 
 
 def safety_factor(tension: float, mbl: float | None) -> float | None:
-    """``MBL / T`` [-] (inf at zero tension), or None without an MBL (None or NaN)."""
+    """``MBL / T`` [-] (inf at zero tension), or None without an MBL (None or NaN).
+
+    Parameters
+    ----------
+    tension
+        The tension T [N].
+    mbl
+        The line type's minimum breaking load [N], or None.
+
+    Returns
+    -------
+    float or None
+        The safety factor.
+    """
     if mbl is None or not math.isfinite(mbl):
         return None
     return math.inf if tension <= 0.0 else mbl / float(tension)
@@ -92,6 +105,17 @@ def largest_tension(dataset: xr.Dataset, line: str, *, start: float = 0.0,
 def line_strength(dataset: xr.Dataset, line: str, mbl: float | None, *, start: float
                   ) -> dict[str, Any]:
     """Largest tension of ``line`` against its MBL, after ``start`` and over the whole run.
+
+    Parameters
+    ----------
+    dataset
+        A run's result dataset (fairlead and anchor tensions).
+    line
+        The line's name.
+    mbl
+        The line type's minimum breaking load [N], or None.
+    start
+        Start of the window [s] (e.g. the end of the ramp).
 
     Returns
     -------

@@ -171,7 +171,19 @@ def spectral_moment(psd: xr.DataArray, order: int) -> xr.DataArray:
 
 
 def spectral_moments(psd: xr.DataArray, orders: tuple[int, ...] = (0, 1, 2, 4)) -> xr.Dataset:
-    """Spectral moments ``m0, m1, m2, m4`` (or ``orders``) as a Dataset of ``m<n>``."""
+    """Spectral moments ``m0, m1, m2, m4`` (or ``orders``) as a Dataset of ``m<n>``.
+
+    Parameters
+    ----------
+    psd
+        A one-sided power spectral density along ``frequency`` [Hz] (:func:`welch_psd`).
+    orders
+        The moments' orders n.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``m<n>`` = integral of f^n S(f) df, one variable per order."""
     return xr.Dataset({f"m{k}": spectral_moment(psd, k) for k in orders})
 
 

@@ -30,6 +30,19 @@ def run_summary(case: Case, dataset: xr.Dataset) -> dict[str, Any]:
     (:func:`floatmoor.post.run_strength.line_strength`; None without an MBL). Tensions are in N.
     ``validity_warnings``: the messages of the conditions under which the run left its
     models' range (the dataset's attribute; :mod:`floatmoor.simulation.validity`).
+
+    Parameters
+    ----------
+    case
+        The run's case (its lines, line types and motion).
+    dataset
+        The run's result dataset.
+
+    Returns
+    -------
+    dict
+        JSON-ready: the window, per line the statistics and ``strength``, and the warnings
+        (:func:`format_summary` prints it).
     """
     motion = case.motion
     start = motion.ramp_duration if motion is not None else 0.0

@@ -127,6 +127,16 @@ def cable_groups(case: Case) -> xr.Dataset:
 
     Every variable has ``units`` and ``long_name``; the attributes say where the period and
     amplitude come from, and carry the case text, floatmoor version and creation time.
+
+    Parameters
+    ----------
+    case
+        The case (its lines, line types, environment and motion).
+
+    Returns
+    -------
+    xarray.Dataset
+        The groups of each section.
     """
     period, amplitude, origin = characteristic_motion(case)
     rows = [_section_groups(case, s, line.length, period, amplitude)

@@ -95,6 +95,11 @@ def check_input(inp: UncertainInput) -> None:
     """Check that ``inp`` names a known distribution with exactly its parameters, finite and
     physical.
 
+    Parameters
+    ----------
+    inp
+        The input to check.
+
     Raises
     ------
     ValueError
@@ -145,6 +150,16 @@ def marginal(inp: UncertainInput) -> ot.Distribution:
 
 def joint_distribution(inputs: Sequence[UncertainInput]) -> ot.Distribution:
     """The joint distribution of independent ``inputs``, in their order.
+
+    Parameters
+    ----------
+    inputs
+        The uncertain inputs.
+
+    Returns
+    -------
+    openturns.Distribution
+        Their independent joint distribution (dimension ``len(inputs)``).
 
     Raises
     ------

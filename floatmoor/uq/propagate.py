@@ -23,7 +23,13 @@ __all__ = ["QuadratureMethod", "RegressionMethod", "Method", "design", "fit", "p
 
 @dataclass(frozen=True)
 class QuadratureMethod:
-    """Projection by full tensor Gauss quadrature on the total-degree basis of ``order``."""
+    """Projection by full tensor Gauss quadrature on the total-degree basis of ``order``.
+
+    Attributes
+    ----------
+    order
+        Total polynomial degree of the basis (order + 1 nodes per input).
+    """
 
     order: int
 
@@ -31,7 +37,19 @@ class QuadratureMethod:
 @dataclass(frozen=True)
 class RegressionMethod:
     """LAR on the hyperbolic basis of ``order`` and ``q_norm`` from a Latin hypercube of
-    ``samples`` runs drawn with ``seed``."""
+    ``samples`` runs drawn with ``seed``.
+
+    Attributes
+    ----------
+    order
+        Largest polynomial degree of the candidate basis.
+    q_norm
+        Hyperbolic truncation q (1: total degree; smaller keeps fewer interactions).
+    samples
+        Number of model runs.
+    seed
+        Seed of the Latin hypercube.
+    """
 
     order: int
     q_norm: float
@@ -45,7 +63,20 @@ Method = QuadratureMethod | RegressionMethod
 def design(inputs: Sequence[UncertainInput],
            method: Method) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """The input values (n, d) at which to run the model, and the quadrature weights (n,)
-    (None for regression)."""
+    (None for regression).
+
+    Parameters
+    ----------
+    inputs
+        The uncertain inputs (d of them).
+    method
+        :class:`QuadratureMethod` or :class:`RegressionMethod`.
+
+    Returns
+    -------
+    tuple
+        (nodes, weights).
+    """
     if isinstance(method, QuadratureMethod):
         return quadrature_design(inputs, method.order)
     return lhs_design(inputs, method.samples, method.seed), None
@@ -53,7 +84,22 @@ def design(inputs: Sequence[UncertainInput],
 
 def fit(inputs: Sequence[UncertainInput], method: Method, nodes: NDArray[np.float64],
         weights: NDArray[np.float64] | None, outputs: NDArray[np.float64]) -> Surrogate:
-    """The surrogate of the model outputs (n, m) at the design's ``nodes``."""
+    """The surrogate of the model outputs (n, m) at the design's ``nodes``.
+
+    Parameters
+    ----------
+    inputs, method
+        As for :func:`design`.
+    nodes, weights
+        What :func:`design` gave.
+    outputs
+        The model's outputs (n, m) at the nodes.
+
+    Returns
+    -------
+    Surrogate
+        The fitted gPC surrogate.
+    """
     if isinstance(method, QuadratureMethod):
         if weights is None:
             raise ValueError("a quadrature fit needs the design's weights")

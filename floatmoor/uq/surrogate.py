@@ -64,8 +64,12 @@ class Surrogate:
         Polynomial degree and hyperbolic truncation (1 for quadrature: total degree <= order).
     n_outputs, n_runs, dropped
         Outputs m; model runs used; runs dropped for non-finite outputs (regression only).
-    mean, variance, std
-        Output statistics (m,).
+    mean
+        Output means (m,).
+    variance
+        Output variances (m,).
+    std
+        Output standard deviations (m,).
     sobol_first, sobol_total
         First-order and total Sobol' indices (d, m); NaN for an output whose std is below
         :data:`ZERO_STD` times ``|mean|`` (no variance to share).

@@ -48,7 +48,17 @@ def taut_string(T: ArrayLike = 108.0, m: ArrayLike = 3.0, x: ArrayLike = 1.5,
 
 @dataclass(frozen=True)
 class ModelParameter:
-    """A parameter of a built-in model: its units, default and meaning."""
+    """A parameter of a built-in model: its units, default and meaning.
+
+    Attributes
+    ----------
+    units
+        Its units (SI).
+    default
+        Its value where a study does not make it uncertain.
+    long_name
+        What it is.
+    """
 
     units: str
     default: float
@@ -57,7 +67,17 @@ class ModelParameter:
 
 @dataclass(frozen=True)
 class BuiltinModel:
-    """A model a study can name instead of a case: ``function(**parameters) -> output``."""
+    """A model a study can name instead of a case: ``function(**parameters) -> output``.
+
+    Attributes
+    ----------
+    function
+        The model.
+    parameters
+        Its parameters by name.
+    output_name, output_units, output_long_name
+        Its output's name, units and meaning.
+    """
 
     function: Callable[..., NDArray[np.float64]]
     parameters: dict[str, ModelParameter]

@@ -89,7 +89,22 @@ def wavenumber(omega: ArrayLike, depth: float = math.inf,
 
 def angular_frequency(k: ArrayLike, depth: float = math.inf,
                       gravity: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
-    """omega = sqrt(g k tanh(k h)) [rad/s] for wavenumbers ``k`` [rad/m] (the inverse map)."""
+    """omega = sqrt(g k tanh(k h)) [rad/s] for wavenumbers ``k`` [rad/m] (the inverse map).
+
+    Parameters
+    ----------
+    k
+        Wavenumbers [rad/m].
+    depth
+        Water depth h [m] (inf: deep water).
+    gravity
+        g [m/s^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        omega with the shape of ``k``.
+    """
     kk = np.asarray(k, dtype=float)
     t = 1.0 if math.isinf(depth) else np.tanh(kk * depth)
     return np.sqrt(gravity * kk * t)
@@ -97,14 +112,44 @@ def angular_frequency(k: ArrayLike, depth: float = math.inf,
 
 def wavelength(period: ArrayLike, depth: float = math.inf,
                gravity: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
-    """Wavelength 2 pi / k [m] of linear waves of period ``period`` [s]."""
+    """Wavelength 2 pi / k [m] of linear waves of period ``period`` [s].
+
+    Parameters
+    ----------
+    period
+        Wave periods [s].
+    depth
+        Water depth h [m] (inf: deep water).
+    gravity
+        g [m/s^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Wavelengths with the shape of ``period``.
+    """
     return 2.0 * np.pi / wavenumber(2.0 * np.pi / np.asarray(period, dtype=float), depth,
                                     gravity)
 
 
 def group_velocity(omega: ArrayLike, depth: float = math.inf,
                    gravity: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
-    """Group velocity c_g = d omega / d k = (omega / 2k)(1 + 2kh / sinh(2kh)) [m/s]."""
+    """Group velocity c_g = d omega / d k = (omega / 2k)(1 + 2kh / sinh(2kh)) [m/s].
+
+    Parameters
+    ----------
+    omega
+        Angular frequencies [rad/s].
+    depth
+        Water depth h [m] (inf: deep water).
+    gravity
+        g [m/s^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        c_g with the shape of ``omega``.
+    """
     w = np.asarray(omega, dtype=float)
     k = wavenumber(w, depth, gravity)
     if math.isinf(depth):

@@ -192,6 +192,22 @@ def airy_kinematics(field: WaveField, points: ArrayLike, t: float,
     """Airy kinematics at ``points`` (P, 3) [m] at time ``t`` [s] (module docstring).
 
     For points that stay put over many times use :class:`PointKinematics`.
+
+    Parameters
+    ----------
+    field
+        The sea.
+    points
+        Positions (x, y, z) [m], shape (P, 3).
+    t
+        Time [s].
+    stretching
+        ``"wheeler"`` (default), ``"vertical"`` or ``"none"`` (module docstring).
+
+    Returns
+    -------
+    Kinematics
+        The elevation, velocities and accelerations at the points.
     """
     return PointKinematics(field, points, stretching)(t)
 

@@ -146,7 +146,24 @@ def jonswap(omega: ArrayLike, hs: float, tp: float, gamma: float = DEFAULT_GAMMA
 def pierson_moskowitz(omega: ArrayLike, hs: float, tp: float,
                       gravity: float = STANDARD_GRAVITY) -> NDArray[np.float64]:
     """Pierson-Moskowitz spectrum: JONSWAP with gamma = 1,
-    S = 5/16 Hs^2 omega_p^4 omega^-5 exp(-5/4 (omega/omega_p)^-4)."""
+    S = 5/16 Hs^2 omega_p^4 omega^-5 exp(-5/4 (omega/omega_p)^-4).
+
+    Parameters
+    ----------
+    omega
+        Angular frequencies [rad/s] (>= 0; S(0) = 0).
+    hs
+        Significant wave height [m].
+    tp
+        Peak period [s].
+    gravity
+        g [m/s^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        S [m^2 s/rad] with the shape of ``omega``.
+    """
     return jonswap(omega, hs, tp, 1.0, gravity)
 
 
@@ -166,7 +183,18 @@ def spectral_moment(omega: ArrayLike, density: ArrayLike, n: int = 0) -> float:
 
 
 def significant_height(m0: float) -> float:
-    """Hs = 4 sqrt(m0) [m]."""
+    """Hs = 4 sqrt(m0) [m].
+
+    Parameters
+    ----------
+    m0
+        Zeroth spectral moment (the variance of the elevation) [m^2].
+
+    Returns
+    -------
+    float
+        Hs [m].
+    """
     return 4.0 * math.sqrt(m0)
 
 

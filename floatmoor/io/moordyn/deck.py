@@ -83,7 +83,22 @@ class DeckSection:
 
 @dataclass(frozen=True)
 class Deck:
-    """A parsed MoorDyn input file."""
+    """A parsed MoorDyn input file.
+
+    Attributes
+    ----------
+    source
+        Its path, for messages.
+    title
+        The title line(s) before the first section.
+    line_types, points, lines, options, outputs
+        The rows of the ``LINE TYPES``, ``POINTS``, ``LINES``, ``OPTIONS`` and ``OUTPUTS``
+        sections, in file order.
+    other_sections
+        Sections read as text only, in file order (bodies, rods, failures, ...).
+    bodies
+        The body rows (kept as their split fields) by body number, for body-attached points.
+    """
 
     source: str  #: path, for messages
     title: str = ""

@@ -88,6 +88,16 @@ _LINE_COLUMNS = ("ID", "LineType", "AttachA", "AttachB", "UnstrLen", "NumSegs", 
 def read_deck(path: str | Path) -> Deck:
     """Read and parse the MoorDyn input file at ``path``.
 
+    Parameters
+    ----------
+    path
+        The input file (deck).
+
+    Returns
+    -------
+    Deck
+        Its parsed contents.
+
     Raises
     ------
     CaseError
@@ -168,6 +178,18 @@ def deck_integer(text: str) -> int | None:
 
 def parse_deck(text: str, source: str = "<deck>") -> Deck:
     """Parse the text of a MoorDyn input file (see the module docstring).
+
+    Parameters
+    ----------
+    text
+        The file's text.
+    source
+        Where the text came from, for messages.
+
+    Returns
+    -------
+    Deck
+        Its parsed contents.
 
     Raises
     ------

@@ -28,6 +28,18 @@ def _table(rows: list[list[str]]) -> list[str]:
 def deck_text(deck: Deck, notes: Sequence[str] = ()) -> str:
     """The v2 input file text of ``deck``, with ``notes`` as comments in its title block.
 
+    Parameters
+    ----------
+    deck
+        The contents to write.
+    notes
+        Lines of comment (what MoorDyn cannot represent, where the deck came from).
+
+    Returns
+    -------
+    str
+        The file's text.
+
     Raises
     ------
     ValueError

@@ -6,3 +6,12 @@ bounded), :mod:`.values` (numbers, units and key paths for messages), :mod:`.imp
 -> case file text, checked by the case loader before anything is written), :mod:`.cli`.
 The mapping is documented in docs/guide/mooring_systems.md#orcaflex-models.
 """
+
+from floatmoor._exports import lazy_exports
+
+#: Public name -> the module that defines it (docs/development.md#public-api).
+_API = {
+    "read_model": "floatmoor.io.orcaflex.reader",
+    "import_model": "floatmoor.io.orcaflex.importer",
+}
+__all__, __getattr__, __dir__ = lazy_exports(__name__, _API)

@@ -674,6 +674,18 @@ def import_model(model: dict[str, Any], source: str) -> ImportResult:
     :func:`floatmoor.io.orcaflex.reader.read_model`), checked by the case loader, and what was
     not imported.
 
+    Parameters
+    ----------
+    model
+        The model's data (:func:`floatmoor.io.orcaflex.reader.read_model`).
+    source
+        The model file's path, for messages and the case's comments.
+
+    Returns
+    -------
+    ImportResult
+        The case file text and what was not imported.
+
     Raises
     ------
     CaseError

@@ -101,6 +101,16 @@ def parse_model(text: str, source: str = "<model>") -> dict[str, Any]:
 def read_model(path: str | os.PathLike[str]) -> dict[str, Any]:
     """Read and parse the OrcaFlex text data file at ``path`` (see the module docstring).
 
+    Parameters
+    ----------
+    path
+        The ``.yml`` file.
+
+    Returns
+    -------
+    dict
+        The model's data, as plain dicts, lists, strings and numbers.
+
     Raises
     ------
     CaseError

@@ -86,7 +86,18 @@ IMPLICIT_ERROR_SHARE = 0.25
 @dataclass(frozen=True)
 class DynamicLineState:
     """A saved state: time, node positions and velocities, fairlead position and velocity,
-    and the friction anchors (None: at the nodes, no stored shear)."""
+    and the friction anchors (None: at the nodes, no stored shear).
+
+    Attributes
+    ----------
+    time
+        The line's time [s].
+    positions, velocities
+        Node positions [m] and velocities [m/s] (nodes, 3).
+    fairlead, fairlead_velocity
+        The fairlead's position [m] and velocity [m/s] (3,).
+    friction_anchors
+        Where each node's seabed friction spring is anchored (nodes, 3) [m], or None."""
 
     time: float
     positions: NDArray[np.float64]
@@ -112,6 +123,10 @@ class DynamicLine(PathStepper):
         holds nothing at rest), unless ``initial_positions`` (nodes, 3) are given.
     name
         Named in error messages.
+    initial_positions
+        Node positions (nodes, 3) [m] to start from instead of the catenary (at rest).
+    time
+        The line's time at the start [s].
     """
 
     model = "dynamic"
