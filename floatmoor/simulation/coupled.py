@@ -49,7 +49,6 @@ from floatmoor.mooring.dg.batch import DynamicLineBatch
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.groups import GroupSamples, SystemGroup, system_groups
 
@@ -222,7 +221,7 @@ class MooredBody:
                                          for k in g.body_points]).reshape(-1, 3)
                                for g in self.groups]
             for g in self.groups:
-                if isinstance(g.solver, DynamicSystem):
+                if g.solver.has_memory:
                     g.solver.time = float(time)
         for ln, p, solo in zip(self.lines, fairleads, self.independent):
             if not solo:
@@ -238,7 +237,7 @@ class MooredBody:
             else:
                 self.models.append(None)
                 self._qs.append(QuasiStaticLine.from_case(moved, self.environment, self.seabed))
-        dynamic = [i for i, m in enumerate(self.models) if isinstance(m, DynamicLine)]
+        dynamic = [i for i, m in enumerate(self.models) if m is not None and m.batched]
         self._batch_index = np.array(dynamic, dtype=np.int64)
         self._batch = DynamicLineBatch([self.models[i] for i in dynamic]) if dynamic else None
         if self._batch is not None:
@@ -247,7 +246,7 @@ class MooredBody:
         self._solved = [i for i, solo in enumerate(self.independent)
                         if solo and self.models[i] is None]
         self._evaluated = [i for i, m in enumerate(self.models)
-                           if m is not None and not isinstance(m, DynamicLine)]
+                           if m is not None and not m.batched]
         self._batch_arms = np.ascontiguousarray(self.arms[self._batch_index])
         self._samples = tuple(np.zeros((len(dynamic), 3)) for _ in range(4))
 
@@ -330,7 +329,8 @@ class MooredBody:
     # -- line forces -----------------------------------------------------------------------
     def _quasi_static(self, i: int, p: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
         ff, af, lb = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1)
-        self._qs[i].solve_path(np.zeros(1), p[None, :], ff, af, lb, np.zeros(1))
+        self._qs[i].solve_path(np.zeros(1), p[None, :], np.zeros((1, 3)), ff, af, lb,
+                               np.zeros(1))
         self.laid_length[i] = lb[0]
         return ff[0], af[0]
 
@@ -390,15 +390,13 @@ class MooredBody:
         for group, arms in zip(self.groups, self.group_arms):
             pos, vel = points_state(x, v, arms, self.centre)
             group.advance(time, pos, vel)
-        if not any(m is not None and not isinstance(m, DynamicLine) for m in self.models):
+        if not self._evaluated:
             return
         pos, vel = points_state(x, v, self.arms, self.centre)
         times, ff, af, lb, steps = self._sample
         times[0] = time
-        for i, model in enumerate(self.models):
-            if model is None or isinstance(model, DynamicLine):
-                continue
-            model.solve_path(times, pos[i:i + 1], vel[i:i + 1], ff, af, lb, steps)
+        for i in self._evaluated:
+            self.models[i].solve_path(times, pos[i:i + 1], vel[i:i + 1], ff, af, lb, steps)
             self.laid_length[i] = lb[0]
 
     def _advance_dynamic(self, t_mid: float, x_mid: NDArray, v_mid: NDArray, t_end: float,
