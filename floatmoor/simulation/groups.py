@@ -11,7 +11,7 @@ section on its two points, every point's position and the sections' laid lengths
 
 A forced-motion run solves an independent line as a :class:`SingleLine`, a group of one
 section to one body point with the same interface (``lines``, ``path_lines``,
-``solve_path(time, path, velocity, out)``, ``part``-able outputs, ``line_shape``,
+``empty_samples``, ``solve_path(time, path, velocity, samples)``, ``line_shape``, ``store``,
 ``failed_index``), so that one chunk loop (:mod:`floatmoor.simulation.forced`) serves both.
 """
 
@@ -81,7 +81,7 @@ class SampleSink(Protocol):
 
 @dataclass
 class LineSamples:
-    """An independent line's outputs over a run of samples (views of the recorder's rows)."""
+    """An independent line's outputs over a run of samples (its model's arrays)."""
 
     fairlead_force: NDArray[np.float64]  #: (n, 3) [N]
     anchor_force: NDArray[np.float64]  #: (n, 3) [N]
@@ -119,11 +119,6 @@ class SingleLine:
     def lines(self) -> tuple[int, ...]:
         """The case's lines it solves (its own)."""
         return (self.index,)
-
-    @property
-    def solver(self) -> PathStepper:
-        """Its model (the protocol's object, as a group's solver)."""
-        return self.model
 
     def path_lines(self, case: Case) -> list[Line]:
         """The line whose prescribed fairlead motion drives it."""
