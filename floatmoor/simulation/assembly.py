@@ -16,9 +16,10 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Sequence
+from typing import Sequence
 
 import numpy as np
+import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import generalised_force, points_state
@@ -49,9 +50,6 @@ from floatmoor.waves.settings import (
     JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
 )
 from floatmoor.wind.force import RotorThrust
-
-if TYPE_CHECKING:
-    import xarray as xr
 
 __all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "CoupledSettings",
            "settings_from_case", "key_origin", "start_positions", "refuse_long_runs"]
@@ -270,11 +268,11 @@ class MooredSystem:
     loads: BodyLoads | None = None
     sea: WaveField | None = None
     equilibrium: NDArray[np.float64] | None = None
-    database: "xr.Dataset | None" = None
+    database: xr.Dataset | None = None
     second_order: dict[str, str] = field(default_factory=dict)
 
 
-def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation | None:
+def _excitation(sea: WaveField, ds: xr.Dataset, case: Case) -> WaveExcitation | None:
     """The first-order excitation of the sea (zero for components outside the database's
     frequencies); a direction outside the database's is refused (CaseError)."""
     if sea.n_components == 0:
@@ -296,7 +294,7 @@ def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation 
     return WaveExcitation(sea, X)
 
 
-def _second_order(case: Case, settings: CoupledSettings, sea: WaveField, ds: "xr.Dataset"
+def _second_order(case: Case, settings: CoupledSettings, sea: WaveField, ds: xr.Dataset
                   ) -> tuple[SecondOrderForce | None, dict[str, str]]:
     """The second-order wave force of the run and its description (result attributes), or
     (None, {}); refused before any run starts when the database cannot give it.
