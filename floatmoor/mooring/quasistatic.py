@@ -18,6 +18,7 @@ from floatmoor.mooring._quasistatic_kernels import quasi_static_series
 from floatmoor.mooring.catenary import (
     CatenarySolution, catenary_profile, describe_failure, solve_catenary,
 )
+from floatmoor.mooring.stepping import PathStepper
 
 __all__ = ["QuasiStaticLine", "SHAPE_POINTS"]
 
@@ -26,7 +27,7 @@ __all__ = ["QuasiStaticLine", "SHAPE_POINTS"]
 SHAPE_POINTS = 51
 
 
-class QuasiStaticLine:
+class QuasiStaticLine(PathStepper):
     """A mooring line modelled as a quasi-static elastic catenary.
 
     Parameters
@@ -41,6 +42,7 @@ class QuasiStaticLine:
     """
 
     model = "quasi-static"
+    has_memory = False  # solved at each instant (its warm start is its only state)
 
     def __init__(self, line: Line, environment: Environment, seabed: Seabed) -> None:
         self.line = line
@@ -61,6 +63,8 @@ class QuasiStaticLine:
         self._failure = np.zeros(2, dtype=np.int64)
         #: Index in the last path where the solve failed, -1 if it did not.
         self.failed_index = -1
+        #: the fairlead of the last solved sample (:meth:`end_forces`) [m]
+        self._fairlead = np.asarray(line.fairlead, dtype=float).copy()
 
     @classmethod
     def from_case(cls, line: Line, environment: Environment, seabed: Seabed) -> "QuasiStaticLine":
@@ -86,6 +90,24 @@ class QuasiStaticLine:
                                 seabed_z=self.seabed_z, arc_lengths=arc_lengths,
                                 solution=solution)
 
+    def current_shape(self, fairlead: NDArray[np.float64]
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Node positions (n, 3) [m] and tensions (n,) [N] at :attr:`arc_length` of the
+        static line with its fairlead at ``fairlead`` (warm-started, updates the warm
+        start)."""
+        return self.profile(fairlead, self.arc_length)
+
+    def end_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Forces the line exerts on its fairlead and anchor [N] at the fairlead of its last
+        solved sample (the warm start left as it is)."""
+        guess = (self._warm[0], self._warm[1]) if np.all(np.isfinite(self._warm)) else None
+        sol = solve_catenary(self.anchor, self._fairlead, self.length, self.axial_stiffness,
+                             self.weight, self.friction, seabed_z=self.seabed_z,
+                             initial_guess=guess, tol=self.tolerance,
+                             max_iter=self.max_iterations)
+        return (np.asarray(sol.fairlead_force, dtype=float),
+                np.asarray(sol.anchor_force, dtype=float))
+
     def solve(self, fairlead: NDArray[np.float64]) -> CatenarySolution:
         """Static solution for one fairlead position (warm-started, updates the warm start)."""
         guess = (self._warm[0], self._warm[1]) if np.all(np.isfinite(self._warm)) else None
@@ -97,8 +119,9 @@ class QuasiStaticLine:
         return solution
 
     def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
-                   fairlead_force: NDArray[np.float64], anchor_force: NDArray[np.float64],
-                   laid_length: NDArray[np.float64], iterations: NDArray[np.float64]) -> None:
+                   velocity: NDArray[np.float64], fairlead_force: NDArray[np.float64],
+                   anchor_force: NDArray[np.float64], laid_length: NDArray[np.float64],
+                   iterations: NDArray[np.float64]) -> None:
         """Solve along a fairlead path, writing into the given arrays.
 
         Parameters
@@ -107,6 +130,9 @@ class QuasiStaticLine:
             Times of the path [s], shape (n,), used in error messages.
         path
             Fairlead positions [m], shape (n, 3).
+        velocity
+            Fairlead velocities [m/s], (n, 3): the protocol's argument (a static line does
+            not use them).
         fairlead_force, anchor_force
             Outputs [N], shape (n, 3).
         laid_length, iterations
@@ -133,3 +159,5 @@ class QuasiStaticLine:
             raise SolverError(f"line '{self.name}' (quasi-static): fairlead force at t = "
                               f"{time[index]:.6g} s, fairlead at {np.array2string(point, precision=6)}"
                               f" m: {reason}")
+        if len(path):
+            self._fairlead[:] = path[-1]

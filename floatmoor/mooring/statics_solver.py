@@ -40,7 +40,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.errors import SolverError
 from floatmoor.mooring import _statics_solver_kernels as _k
-from floatmoor.mooring.catenary import PROFILE_NAMES, describe_failure
+from floatmoor.mooring.catenary import PROFILE_NAMES, catenary_profile, describe_failure
+from floatmoor.mooring.quasistatic import SHAPE_POINTS
+from floatmoor.mooring.stepping import MooringSolver
 from floatmoor.mooring.statics_arrays import (
     KIND_FREE, StaticSolution, StaticSystem, build_static_system, vector_text,
 )
@@ -95,7 +97,7 @@ class _Workspace:
         self.check_surface = self.free.copy()
 
 
-class SystemStatics:
+class SystemStatics(MooringSolver):
     """The statics solver of one system, with its warm start (free-point positions and the
     sections' catenary warm starts), like the quasi-static line model's.
 
@@ -109,6 +111,9 @@ class SystemStatics:
         Newton iterations per equilibrium.
     """
 
+    model = "quasi-static"
+    has_memory = False  # an equilibrium at each instant (the warm start is its only state)
+
     def __init__(self, system: StaticSystem, force_rtol: float = FORCE_RTOL,
                  max_iterations: int = MAX_ITERATIONS) -> None:
         self.system = system
@@ -121,6 +126,20 @@ class SystemStatics:
         self.failed_index = -1
 
     # ------------------------------------------------------------------ state
+    def section_arc_length(self, j: int) -> NDArray[np.float64]:
+        """Unstretched arc lengths from its start of section j's recorded shape points [m]
+        (equally spaced, as a quasi-static line's)."""
+        return np.linspace(0.0, self.system.length[j], SHAPE_POINTS)
+
+    def section_shape(self, j: int, positions: NDArray[np.float64]
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Positions (n, 3) [m] and tensions (n,) [N] at :meth:`section_arc_length` of
+        section j's catenary between its points at ``positions`` (points, 3)."""
+        s = self.system
+        return catenary_profile(positions[s.section_start[j]], positions[s.section_end[j]],
+                                s.length[j], s.axial_stiffness[j], s.weight[j], s.friction[j],
+                                seabed_z=s.seabed_z, n_points=SHAPE_POINTS)
+
     def state_arrays(self) -> dict[str, NDArray[np.float64]]:
         """The warm start as named arrays (for a checkpoint): point positions, the sections'
         (HF, VF) and which free points rest on the seabed (1.0) or not (0.0)."""
@@ -194,11 +213,14 @@ class SystemStatics:
         return self._solution(self._ws, pos, pinned)
 
     def solve_path(self, time: NDArray[np.float64], body_path: NDArray[np.float64],
-                   positions: NDArray[np.float64], start_force: NDArray[np.float64],
+                   body_velocities: NDArray[np.float64], start_force: NDArray[np.float64],
                    end_force: NDArray[np.float64], laid_length: NDArray[np.float64],
-                   iterations: NDArray[np.float64], residual: NDArray[np.float64] | None = None,
+                   positions: NDArray[np.float64], iterations: NDArray[np.float64], *,
+                   residual: NDArray[np.float64] | None = None,
                    on_seabed: NDArray[np.bool_] | None = None) -> None:
-        """Equilibria along a path of body-point positions, written into the given arrays.
+        """Equilibria along a path of body-point positions, written into the given arrays
+        (the arguments in the order of :meth:`MooringSolver.solve_path
+        <floatmoor.mooring.stepping.MooringSolver.solve_path>` and of the dynamic system's).
 
         Parameters
         ----------
@@ -206,12 +228,14 @@ class SystemStatics:
             (n,) times of the path [s], for messages.
         body_path
             (n, n_body, 3) body-point positions [m].
-        positions
-            (n, n_points, 3) output point positions [m].
+        body_velocities
+            (n, n_body, 3) their velocities [m/s] (statics does not use them).
         start_force, end_force
             (n, n_sections, 3) output forces of the sections on their start / end points [N].
         laid_length
             (n, n_sections) output laid lengths [m].
+        positions
+            (n, n_points, 3) output point positions [m].
         iterations
             (n,) output Newton iterations.
         residual

@@ -15,9 +15,11 @@ import math
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Sequence
+from pathlib import Path
+from typing import Sequence
 
 import numpy as np
+import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import generalised_force, points_state
@@ -33,10 +35,10 @@ from floatmoor.hydro.second_order import (
 )
 from floatmoor.hydro.state_space_file import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
-from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.statics_solver import case_statics
+from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.groups import SystemGroup, body_point_line, system_groups
 from floatmoor.waves.excitation_series import WaveExcitation
@@ -44,36 +46,67 @@ from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.second_order import (
     MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce, newman_on_grid,
 )
-from floatmoor.waves.settings import build
+from floatmoor.waves.settings import (
+    JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
+)
 from floatmoor.wind.force import RotorThrust
 
-if TYPE_CHECKING:
-    import xarray as xr
+__all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "CoupledSettings",
+           "settings_from_case", "key_origin", "start_positions", "refuse_long_runs"]
 
-    from floatmoor.simulation.coupled_run import CoupledSettings
-
-__all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "LineModel",
-           "key_origin", "start_positions", "refuse_long_runs"]
-
-LineModel = QuasiStaticLine | QuasiDynamicLine | DynamicLine
 _MODELS = {"quasi-static": QuasiStaticLine.from_case,
            "quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
 
 
-def build_line_models(case: Case) -> list[LineModel | None]:
+@dataclass(frozen=True)
+class CoupledSettings:
+    """What a coupled run needs beyond the case's lines and floater."""
+
+    time_step: float  #: body time step [s]; the output interval must be a multiple of it
+    waves: RegularWaveSettings | JonswapSettings | StillWaterSettings = field(
+        default_factory=StillWaterSettings)
+    #: cosine ramp of the wave excitation [s] (0: none)
+    ramp_duration: float = 0.0
+    #: initial displacement from the static equilibrium (Surge, Sway, Heave [m], Roll, Pitch,
+    #: Yaw [rad]); the body and its lines start at rest there
+    initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
+    database: str | Path | None = None  #: default: hydrodb/<hydro.database>.nc
+    linear_damping: NDArray[np.float64] | None = None  #: B_1 (6, 6)
+    quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
+    #: second-order wave loads ("none", "mean", "newman", "full": floatmoor.waves.second_order)
+    second_order: str = "none"
+    #: mean drift route of "mean" and "newman" ("far_field" or "near_field")
+    drift_coefficients: str = "far_field"
+
+
+def settings_from_case(case: Case) -> CoupledSettings:
+    """The coupled-run settings a case file gives (``[waves]``, ``[initial]``,
+    ``[simulation] time_step``, default the output interval)."""
+    sim = case.simulation
+    waves = case.waves
+    return CoupledSettings(
+        time_step=sim.time_step if sim.time_step is not None else sim.output_interval,
+        waves=waves.settings if waves is not None else StillWaterSettings(),
+        ramp_duration=waves.ramp_duration if waves is not None else 0.0,
+        initial_offset=tuple(case.initial_offset),
+        second_order=waves.second_order if waves is not None else "none",
+        drift_coefficients=waves.drift_coefficients if waves is not None else "far_field")
+
+
+def build_line_models(case: Case) -> list[PathStepper | None]:
     """One model object per independent line (one section from a fixed to a body point), as
     the case chooses; None for the lines of a system group (:mod:`.groups`). Each starts with
     its fairlead where the case's motion puts it at t = 0 (:func:`~floatmoor.body_motion.
     start_line`); a quasi-dynamic line whose fairlead moves then starts in that motion
     (:meth:`QuasiDynamicLine.start_moving`, docs/theory/quasi_dynamic.md#the-start-of-a-run)."""
-    models: list[LineModel | None] = []
+    models: list[PathStepper | None] = []
     for line in case.lines:
         if not case.is_independent(line):
             models.append(None)
             continue
         model = _MODELS[line.model](start_line(case.motion, line), case.environment,
                                     case.seabed)
-        if isinstance(model, QuasiDynamicLine) and case.motion is not None:
+        if case.motion is not None:
             model.start_moving(
                 lambda t, line=line: prescribed_fairlead_state(case.motion, line, t),
                 case.simulation.output_interval)
@@ -99,7 +132,7 @@ def start_positions(case: Case) -> dict[str, NDArray[np.float64]] | None:
     return moved or None
 
 
-def refuse_long_runs(case: Case, models: Sequence[LineModel | None],
+def refuse_long_runs(case: Case, models: Sequence[PathStepper | None],
                      groups: Sequence[SystemGroup] = ()) -> None:
     """Refuse, before the first step, a dynamic line (or a system's line with the shortest
     step) whose explicit steps over the run would exceed ``MAX_DYNAMIC_STEPS``
@@ -110,9 +143,8 @@ def refuse_long_runs(case: Case, models: Sequence[LineModel | None],
     CaseError
     """
     what = f"the run (simulation.duration {case.simulation.duration:g} s)"
-    solvers = [g.solver for g in groups if isinstance(g.solver, DynamicSystem)]
-    for model in [*models, *solvers]:
-        if isinstance(model, (DynamicLine, DynamicSystem)):
+    for model in [*models, *(g.solver for g in groups)]:
+        if model is not None:
             model.refuse_long_work(case.simulation.duration, what, case.source)
 
 
@@ -230,17 +262,17 @@ class MooredSystem:
 
     case: Case
     points: tuple[Point, ...]
-    line_models: list[LineModel | None] = field(default_factory=list)
+    line_models: list[PathStepper | None] = field(default_factory=list)
     groups: list[SystemGroup] = field(default_factory=list)
     moored: MooredBody | None = None
     loads: BodyLoads | None = None
     sea: WaveField | None = None
     equilibrium: NDArray[np.float64] | None = None
-    database: "xr.Dataset | None" = None
+    database: xr.Dataset | None = None
     second_order: dict[str, str] = field(default_factory=dict)
 
 
-def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation | None:
+def _excitation(sea: WaveField, ds: xr.Dataset, case: Case) -> WaveExcitation | None:
     """The first-order excitation of the sea (zero for components outside the database's
     frequencies); a direction outside the database's is refused (CaseError)."""
     if sea.n_components == 0:
@@ -262,7 +294,7 @@ def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation 
     return WaveExcitation(sea, X)
 
 
-def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "xr.Dataset"
+def _second_order(case: Case, settings: CoupledSettings, sea: WaveField, ds: xr.Dataset
                   ) -> tuple[SecondOrderForce | None, dict[str, str]]:
     """The second-order wave force of the run and its description (result attributes), or
     (None, {}); refused before any run starts when the database cannot give it.
@@ -366,7 +398,7 @@ def _system_force(case: Case, centre: NDArray[np.float64]
     return force
 
 
-def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSystem:
+def assemble(case: Case, settings: CoupledSettings | None = None) -> MooredSystem:
     """Assemble a case's moored system.
 
     Parameters

@@ -49,7 +49,6 @@ from floatmoor.mooring.dg.batch import DynamicLineBatch
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.mooring.dg.system import DynamicSystem
 from floatmoor.mooring.stepping import PathStepper
 from floatmoor.simulation.groups import GroupSamples, SystemGroup, system_groups
 
@@ -137,7 +136,9 @@ def equilibrium(body: CumminsBody, lines: Sequence[Line], arms: NDArray[np.float
                        f"{_MAX_NEWTON} Newton steps")
 
 
-_STEPPERS = {"quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
+#: The line models by the case's ``model`` key.
+_MODELS = {"quasi-static": QuasiStaticLine.from_case,
+           "quasi-dynamic": QuasiDynamicLine.from_case, "dynamic": DynamicLine.from_case}
 
 
 class MooredBody:
@@ -179,8 +180,8 @@ class MooredBody:
         self.arms = np.array([np.subtract(ln.fairlead, self.centre) for ln in self.lines],
                              dtype=float).reshape(-1, 3)
         self.external = external if external is not None else (lambda t, x, v: np.zeros(6))
+        #: the model of each independent line (None: a line of a group)
         self.models: list[PathStepper | None] = []
-        self._qs: list[QuasiStaticLine | None] = []
         #: the dynamic lines (built by :meth:`start`), advanced and evaluated together, and
         #: their indices among the lines
         self._batch: DynamicLineBatch | None = None
@@ -209,7 +210,7 @@ class MooredBody:
         fairlead there (a dynamic line settled)."""
         self.body.start(time, position)
         fairleads, _ = points_state(self.body.x, np.zeros(6), self.arms, self.centre)
-        self.models, self._qs = [], []
+        self.models = []
         if not self._solo:
             body_points = {p.name: np.subtract(p.position, self.centre)
                            for p in self.case.points if p.kind == "body"}
@@ -222,32 +223,27 @@ class MooredBody:
                                          for k in g.body_points]).reshape(-1, 3)
                                for g in self.groups]
             for g in self.groups:
-                if isinstance(g.solver, DynamicSystem):
+                if g.solver.has_memory:
                     g.solver.time = float(time)
         for ln, p, solo in zip(self.lines, fairleads, self.independent):
             if not solo:
                 self.models.append(None)
-                self._qs.append(None)
                 continue
             moved = replace(ln, fairlead=tuple(float(c) for c in p))
-            if ln.model in _STEPPERS:
-                model = _STEPPERS[ln.model](moved, self.environment, self.seabed)
+            model = _MODELS[ln.model](moved, self.environment, self.seabed)
+            if model.has_memory:
                 model.time = float(time)
-                self.models.append(model)
-                self._qs.append(None)
-            else:
-                self.models.append(None)
-                self._qs.append(QuasiStaticLine.from_case(moved, self.environment, self.seabed))
-        dynamic = [i for i, m in enumerate(self.models) if isinstance(m, DynamicLine)]
+            self.models.append(model)
+        dynamic = [i for i, m in enumerate(self.models) if m is not None and m.batched]
         self._batch_index = np.array(dynamic, dtype=np.int64)
         self._batch = DynamicLineBatch([self.models[i] for i in dynamic]) if dynamic else None
         if self._batch is not None:
             self._batch.one_interval[:] = self.dashpot_number() <= ONE_INTERVAL_LIMIT
         self._at_mid = False
-        self._solved = [i for i, solo in enumerate(self.independent)
-                        if solo and self.models[i] is None]
+        self._solved = [i for i, m in enumerate(self.models)
+                        if m is not None and not m.has_memory]
         self._evaluated = [i for i, m in enumerate(self.models)
-                           if m is not None and not isinstance(m, DynamicLine)]
+                           if m is not None and m.has_memory and not m.batched]
         self._batch_arms = np.ascontiguousarray(self.arms[self._batch_index])
         self._samples = tuple(np.zeros((len(dynamic), 3)) for _ in range(4))
 
@@ -277,11 +273,10 @@ class MooredBody:
         ``line{i}/...`` (each model's ``state_arrays``) and ``laid_length``; with the case it
         is all a checkpoint needs (the models' operators are rebuilt by :meth:`start`)."""
         out = {f"body/{k}": np.array(v) for k, v in self.body.state_arrays().items()}
-        for i, (model, qs) in enumerate(zip(self.models, self._qs)):
-            line = qs if model is None else model
-            if line is None:  # a line of a group
+        for i, model in enumerate(self.models):
+            if model is None:  # a line of a group
                 continue
-            out.update({f"line{i}/{k}": np.array(v) for k, v in line.state_arrays().items()})
+            out.update({f"line{i}/{k}": np.array(v) for k, v in model.state_arrays().items()})
         for g, group in enumerate(self.groups):
             out.update({f"group{g}/{k}": np.array(v) for k, v in group.state_arrays().items()})
         out["laid_length"] = self.laid_length.copy()
@@ -295,9 +290,9 @@ class MooredBody:
             return {k[len(prefix):]: v for k, v in arrays.items() if k.startswith(prefix)}
 
         self.body.set_state_arrays(part("body/"))
-        for i, (model, qs) in enumerate(zip(self.models, self._qs)):
-            if model is not None or qs is not None:
-                (qs if model is None else model).set_state_arrays(part(f"line{i}/"))
+        for i, model in enumerate(self.models):
+            if model is not None:
+                model.set_state_arrays(part(f"line{i}/"))
         for g, group in enumerate(self.groups):
             group.set_state_arrays(part(f"group{g}/"))
         self.laid_length[:] = arrays["laid_length"]
@@ -309,28 +304,28 @@ class MooredBody:
         """Arc lengths of each line's recorded shape [m] (each model's ``arc_length``, as in
         forced-motion runs)."""
         arcs = {i: g.arc_lengths[i] for g in self.groups for i in g.lines}
-        return [np.asarray(arcs[i] if i in arcs else (qs if model is None else model).arc_length,
-                           dtype=float) for i, (qs, model) in enumerate(zip(self._qs, self.models))]
+        return [np.asarray(arcs[i] if i in arcs else model.arc_length, dtype=float)
+                for i, model in enumerate(self.models)]
 
     def line_shapes(self, fairleads: NDArray[np.float64]
                     ) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
         """(positions (n, 3) [m], effective tensions (n,) [N]) of every line now: the memory
-        models' states, the quasi-static catenaries at the fairleads (n_lines, 3)."""
+        models' states, the quasi-static catenaries at the fairleads (n_lines, 3)
+        (:meth:`PathStepper.current_shape`), the groups' lines from their groups."""
         out = []
         owner = {i: g for g in self.groups for i in g.lines}
         for i, model in enumerate(self.models):
             if i in owner:
                 out.append(owner[i].line_shape(self.case, i))
-            elif model is None:
-                out.append(self._qs[i].profile(fairleads[i], self._qs[i].arc_length))
             else:
-                out.append((model.r.reshape(-1, 3), model.tension()))
+                out.append(model.current_shape(fairleads[i]))
         return out
 
     # -- line forces -----------------------------------------------------------------------
     def _quasi_static(self, i: int, p: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
         ff, af, lb = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1)
-        self._qs[i].solve_path(np.zeros(1), p[None, :], ff, af, lb, np.zeros(1))
+        self.models[i].solve_path(np.zeros(1), p[None, :], np.zeros((1, 3)), ff, af, lb,
+                                  np.zeros(1))
         self.laid_length[i] = lb[0]
         return ff[0], af[0]
 
@@ -390,15 +385,13 @@ class MooredBody:
         for group, arms in zip(self.groups, self.group_arms):
             pos, vel = points_state(x, v, arms, self.centre)
             group.advance(time, pos, vel)
-        if not any(m is not None and not isinstance(m, DynamicLine) for m in self.models):
+        if not self._evaluated:
             return
         pos, vel = points_state(x, v, self.arms, self.centre)
         times, ff, af, lb, steps = self._sample
         times[0] = time
-        for i, model in enumerate(self.models):
-            if model is None or isinstance(model, DynamicLine):
-                continue
-            model.solve_path(times, pos[i:i + 1], vel[i:i + 1], ff, af, lb, steps)
+        for i in self._evaluated:
+            self.models[i].solve_path(times, pos[i:i + 1], vel[i:i + 1], ff, af, lb, steps)
             self.laid_length[i] = lb[0]
 
     def _advance_dynamic(self, t_mid: float, x_mid: NDArray, v_mid: NDArray, t_end: float,

@@ -23,7 +23,7 @@ from floatmoor.simulation.checkpoint import (
     CheckpointError, RunIdentity, check_checkpoint, read_checkpoint, remove_stale_temporaries,
     write_checkpoint,
 )
-from floatmoor.simulation.assembly import assemble
+from floatmoor.simulation.assembly import CoupledSettings, assemble, settings_from_case
 from floatmoor.simulation.coupled import MooredBody
 from floatmoor.simulation.forced import RunResult, output_times, shape_stride
 from floatmoor.simulation.line_accuracy import (NOT_YET_ESTIMATED, LineRefinement, RunProbe,
@@ -50,41 +50,6 @@ CHUNK_STEPS = 500
 #: the last write adds 40 to 60 ms, but the partial writes every FLUSH_INTERVAL_S (the same
 #: 10 s) append them anyway (docs/guide/running.md#checkpoints).
 CHECKPOINT_INTERVAL_S = 10.0
-
-
-@dataclass(frozen=True)
-class CoupledSettings:
-    """What a coupled run needs beyond the case's lines and floater."""
-
-    time_step: float  #: body time step [s]; the output interval must be a multiple of it
-    waves: RegularWaveSettings | JonswapSettings | StillWaterSettings = field(
-        default_factory=StillWaterSettings)
-    #: cosine ramp of the wave excitation [s] (0: none)
-    ramp_duration: float = 0.0
-    #: initial displacement from the static equilibrium (Surge, Sway, Heave [m], Roll, Pitch,
-    #: Yaw [rad]); the body and its lines start at rest there
-    initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
-    database: str | Path | None = None  #: default: hydrodb/<hydro.database>.nc
-    linear_damping: NDArray[np.float64] | None = None  #: B_1 (6, 6)
-    quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
-    #: second-order wave loads ("none", "mean", "newman", "full": floatmoor.waves.second_order)
-    second_order: str = "none"
-    #: mean drift route of "mean" and "newman" ("far_field" or "near_field")
-    drift_coefficients: str = "far_field"
-
-
-def settings_from_case(case: Case) -> CoupledSettings:
-    """The coupled-run settings a case file gives (``[waves]``, ``[initial]``,
-    ``[simulation] time_step``, default the output interval)."""
-    sim = case.simulation
-    waves = case.waves
-    return CoupledSettings(
-        time_step=sim.time_step if sim.time_step is not None else sim.output_interval,
-        waves=waves.settings if waves is not None else StillWaterSettings(),
-        ramp_duration=waves.ramp_duration if waves is not None else 0.0,
-        initial_offset=tuple(case.initial_offset),
-        second_order=waves.second_order if waves is not None else "none",
-        drift_coefficients=waves.drift_coefficients if waves is not None else "far_field")
 
 
 def irregular_sea(waves: RegularWaveSettings | JonswapSettings | StillWaterSettings) -> bool:

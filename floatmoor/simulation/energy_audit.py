@@ -121,7 +121,7 @@ def audit_step(moored: MooredBody) -> StepAudit:
     for the step's duration); the step itself is unchanged.
     """
     models = moored.models
-    dynamic = [isinstance(m, DynamicLine) for m in models]
+    dynamic = [m is not None and m.resolves_dynamics for m in models]
     e0 = [line_energy(m) if d else 0.0 for m, d in zip(models, dynamic)]
     d0 = [line_dissipation_rate(m) if d else 0.0 for m, d in zip(models, dynamic)]
     stages: list[tuple[NDArray[np.float64], NDArray[np.float64]]] = []

@@ -20,12 +20,11 @@ from floatmoor.case.schema import Case, Line, Simulation
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.body_motion import (body_motion_state, is_body_motion, prescribed_fairlead_state,
                                    start_line)
-from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.stepping import PathStepper
-from floatmoor.simulation.assembly import LineModel, assemble
+from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.line_accuracy import (LineAccuracy, checked_line, describe,
                                                 probe_frequency)
-from floatmoor.simulation.groups import GroupSamples, SystemGroup, body_point_line
+from floatmoor.simulation.groups import SingleLine, SystemGroup, body_point_line
 from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.simulation.validity import ValidityMonitor
 
@@ -127,6 +126,8 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     system = assemble(case)
     models, groups = system.line_models, system.groups
     accuracy = check_line_accuracy(case, models)
+    # every independent line a group of one: one chunk loop solves and records them all
+    units = [SingleLine(i, m) for i, m in enumerate(models) if m is not None] + groups
     stride = shape_stride(case)
     attrs = {"line_accuracy": "\n".join(describe(a) for a in accuracy)} if accuracy else None
     recorder = Recorder(case, times, output, flush_interval,
@@ -137,7 +138,7 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
     with recorder.partial_on_failure():
         for start in range(0, times.size, CHUNK_SAMPLES):
             stop = min(start + CHUNK_SAMPLES, times.size)
-            _solve_chunk(case, models, groups, recorder, start, stop)
+            _solve_chunk(case, units, recorder, start, stop)
             off = recorder.offset  # the chunk's samples are still in the window
             monitor.check(times[start:stop],
                           recorder.series["fairlead_position"][:, start - off:stop - off])
@@ -150,7 +151,8 @@ def run_forced_motion(case: Case, *, output: str | Path | None = None,
                      simulated_time_s=recorder.simulated_time, line_accuracy=accuracy)
 
 
-def check_line_accuracy(case: Case, models: list[LineModel | None]) -> tuple[LineAccuracy, ...]:
+def check_line_accuracy(case: Case, models: list[PathStepper | None]
+                        ) -> tuple[LineAccuracy, ...]:
     """Check every independent dynamic line whose element count the accuracy chose
     (:mod:`floatmoor.simulation.line_accuracy`) along its prescribed path, replacing in
     ``models`` those the check refined; lines under a still fairlead are not checked.
@@ -165,8 +167,7 @@ def check_line_accuracy(case: Case, models: list[LineModel | None]) -> tuple[Lin
         return ()
     results = []
     for i, (line, model) in enumerate(zip(case.lines, models)):
-        if not isinstance(model, DynamicLine) or line.dynamic.elements is not None \
-                or not model.settings.motion_frequency > 0.0:
+        if model is None or not model.accuracy_checked or line.dynamic.elements is not None:
             continue
         # built as the run builds it: its fairlead where the motion starts
         resolved = replace(start_line(motion, line), dynamic=model.settings)
@@ -185,74 +186,35 @@ def check_line_accuracy(case: Case, models: list[LineModel | None]) -> tuple[Lin
         omega = model.settings.motion_frequency  # the run's, as the rule and its steps use
         checked = replace(checked, dynamic=replace(checked.dynamic, motion_frequency=omega))
         if checked.dynamic != model.settings:
-            models[i] = DynamicLine.from_case(checked, case.environment, case.seabed)
+            models[i] = type(model).from_case(checked, case.environment, case.seabed)
         results.append(result)
     return tuple(results)
 
 
-def _shape_nodes(models: list[LineModel | None], groups: list[SystemGroup]
+def _shape_nodes(models: list[PathStepper | None], groups: list[SystemGroup]
                  ) -> list[NDArray[np.float64]]:
     """Arc lengths of every line's shape nodes: its model's, or its group's."""
     arcs = {i: g.arc_lengths[i] for g in groups for i in g.lines}
     return [m.arc_length if m is not None else arcs[i] for i, m in enumerate(models)]
 
 
-def _solve_chunk(case: Case, models: list[LineModel | None], groups: list[SystemGroup],
-                 recorder: Recorder, start: int, stop: int) -> None:
-    """Solve samples [start, stop) of every line and group; on failure keep what every one
-    completed.
-
-    With shape output, each line is solved in segments ending at the shape samples, whose
-    node positions and tensions are then taken from the model's state.
-    """
+def _solve_chunk(case: Case, units: list[SingleLine | SystemGroup], recorder: Recorder,
+                 start: int, stop: int) -> None:
+    """Solve samples [start, stop) of every independent line and group; on failure keep
+    what every one completed (the others stop where the first failure did)."""
     t = recorder.time[start:stop]
     failure: SolverError | None = None
     limit = stop
     recorder.reserve(stop)
-    series = recorder.series
     off = recorder.offset  # sample k is at k - off in the recorder's arrays
-    stride = recorder.shape_stride
-    for i, (line, model) in enumerate(zip(case.lines, models)):
-        if limit <= start:
-            break
-        if model is None:  # a line of a system group
-            continue
-        path, velocity = prescribed_fairlead_state(case.motion, line, t[:limit - start])
-        series["fairlead_position"][i, start - off:limit - off] = path
-        cuts = {start, limit}
-        if stride:
-            cuts.update(k + 1 for k in range(start, limit) if k % stride == 0)
-        bounds = sorted(cuts)
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            w = slice(a - off, b - off)
-            outputs = (series["fairlead_force"][i, w], series["anchor_force"][i, w],
-                       series["laid_length"][i, w], series["solver_iterations"][i, w])
-            seg = slice(a - start, b - start)
-            try:
-                if isinstance(model, PathStepper):
-                    model.solve_path(t[seg], path[seg], velocity[seg], *outputs)
-                else:
-                    model.solve_path(t[seg], path[seg], *outputs)
-            except SolverError as err:
-                failure = failure or err
-                limit = a + model.failed_index
-                break
-            if stride and (b - 1) % stride == 0:
-                if isinstance(model, PathStepper):
-                    recorder.store_shape(i, (b - 1) // stride, model.r.reshape(-1, 3),
-                                         model.tension())
-                else:
-                    positions, tension = model.profile(path[b - 1 - start],
-                                                       recorder.shape_arc_length[i])
-                    recorder.store_shape(i, (b - 1) // stride, positions, tension)
-    for group in groups:
+    for unit in units:
         if limit <= start:
             break
         try:
-            _solve_group_chunk(case, group, recorder, start, limit)
+            _solve_unit_chunk(case, unit, recorder, start, limit)
         except SolverError as err:
             failure = failure or err
-            limit = start + group.failed_index
+            limit = start + unit.failed_index
     if recorder.prescribed is not None:
         x, dx = body_motion_state(case.motion, t[:limit - start])
         recorder.prescribed["prescribed_displacement"][start - off:limit - off] = x
@@ -260,6 +222,18 @@ def _solve_chunk(case: Case, models: list[LineModel | None], groups: list[System
     recorder.advance(limit)
     if failure is not None:
         raise failure
+
+
+def _unit_path(case: Case, unit: SingleLine | SystemGroup, t: NDArray[np.float64]
+               ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Positions and velocities (n, points, 3) of a unit's body points under the case's
+    prescribed motion (each moves as the fairlead of its :meth:`path_lines` line)."""
+    lines = unit.path_lines(case)
+    pos = np.zeros((t.size, len(lines), 3))
+    vel = np.zeros((t.size, len(lines), 3))
+    for k, line in enumerate(lines):
+        pos[:, k], vel[:, k] = prescribed_fairlead_state(case.motion, line, t)
+    return pos, vel
 
 
 def body_points_state(case: Case, names: list[str], t: NDArray[np.float64]
@@ -274,21 +248,21 @@ def body_points_state(case: Case, names: list[str], t: NDArray[np.float64]
     return pos, vel
 
 
-def _solve_group_chunk(case: Case, group: SystemGroup, recorder: Recorder, start: int,
-                       stop: int) -> None:
-    """Solve samples [start, stop) of a system group, in segments ending at the shape
-    samples, and record its lines, points and sections.
+def _solve_unit_chunk(case: Case, unit: SingleLine | SystemGroup, recorder: Recorder,
+                      start: int, stop: int) -> None:
+    """Solve samples [start, stop) of an independent line or a system group, in segments
+    ending at the shape samples (whose shapes are then taken from the unit's state), and
+    record them.
 
     Raises
     ------
     SolverError
-        As the group's solver, after recording the samples it solved
-        (``group.failed_index`` counts from ``start``).
+        As the unit's solver, after recording the samples it solved
+        (``unit.failed_index`` counts from ``start``).
     """
     t = recorder.time[start:stop]
-    names = [case.points[k].name for k in group.body_points]
-    path, velocity = body_points_state(case, names, t)
-    samples = GroupSamples.empty(t.size, len(group.points), len(group.sections))
+    path, velocity = _unit_path(case, unit, t)
+    samples = unit.empty_samples(t.size)
     stride = recorder.shape_stride
     cuts = {start, stop}
     if stride:
@@ -298,18 +272,16 @@ def _solve_group_chunk(case: Case, group: SystemGroup, recorder: Recorder, start
     try:
         for a, b in zip(bounds[:-1], bounds[1:]):
             seg = slice(a - start, b - start)
-            part = GroupSamples(samples.positions[seg], samples.start_force[seg],
-                                samples.end_force[seg], samples.laid_length[seg],
-                                samples.iterations[seg])
             try:
-                group.solve_path(t[seg], path[seg], velocity[seg], part)
+                unit.solve_path(t[seg], path[seg], velocity[seg], samples.part(seg))
             except SolverError:
-                done = a + group.failed_index
+                done = a + unit.failed_index
                 raise
             done = b
             if stride and (b - 1) % stride == 0:
-                for i in group.lines:
-                    recorder.store_shape(i, (b - 1) // stride, *group.line_shape(case, i))
+                for i in unit.lines:
+                    recorder.store_shape(i, (b - 1) // stride,
+                                         *unit.line_shape(case, i, path[b - 1 - start]))
     finally:
-        recorder.store_group(case, group, samples, start, done)
-        group.failed_index = done - start
+        unit.store(case, recorder, samples, path, start, done)
+        unit.failed_index = done - start

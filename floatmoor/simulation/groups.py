@@ -8,12 +8,18 @@ equilibrium of its free points at every instant), a dynamic one by the DG system
 (:class:`~floatmoor.mooring.dg.system.DynamicSystem`: sections and points advanced together).
 Both take the positions (and velocities) of their body points and give the forces of every
 section on its two points, every point's position and the sections' laid lengths.
+
+A forced-motion run solves an independent line as a :class:`SingleLine`, a group of one
+section to one body point with the same interface (``lines``, ``path_lines``,
+``empty_samples``, ``solve_path(time, path, velocity, samples)``, ``line_shape``, ``store``,
+``failed_index``), so that one chunk loop (:mod:`floatmoor.simulation.forced`) serves both.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,12 +27,12 @@ from numpy.typing import NDArray
 from floatmoor.case.schema import Case, Line
 from floatmoor.disjoint_sets import DisjointSets
 from floatmoor.errors import CaseError, SolverError
-from floatmoor.mooring.catenary import catenary_profile
 from floatmoor.mooring.dg.system import DynamicSystem
-from floatmoor.mooring.quasistatic import SHAPE_POINTS
+from floatmoor.mooring.stepping import MooringSolver, PathStepper
 from floatmoor.mooring.statics_solver import SystemStatics, build_static_system
 
-__all__ = ["SystemGroup", "GroupSamples", "system_groups", "body_point_line"]
+__all__ = ["SystemGroup", "GroupSamples", "SingleLine", "LineSamples", "system_groups",
+           "body_point_line"]
 
 
 def body_point_line(case: Case, name: str) -> Line:
@@ -55,6 +61,101 @@ class GroupSamples:
         return cls(np.zeros((n, points, 3)), np.zeros((n, sections, 3)),
                    np.zeros((n, sections, 3)), np.zeros((n, sections)), np.zeros(n))
 
+    def part(self, rows: slice) -> "GroupSamples":
+        """The samples ``rows`` (views)."""
+        return GroupSamples(self.positions[rows], self.start_force[rows],
+                            self.end_force[rows], self.laid_length[rows], self.iterations[rows])
+
+
+class SampleSink(Protocol):
+    """Where a forced-motion run's units record their samples (the run's recorder)."""
+
+    def store_line(self, line: int, samples: "LineSamples", path: NDArray[np.float64],
+                   start: int, stop: int) -> None:
+        """Record samples [start, stop) of an independent line."""
+
+    def store_group(self, case: Case, group: "SystemGroup", samples: GroupSamples,
+                    start: int, stop: int) -> None:
+        """Record samples [start, stop) of a system group."""
+
+
+@dataclass
+class LineSamples:
+    """An independent line's outputs over a run of samples (its model's arrays)."""
+
+    fairlead_force: NDArray[np.float64]  #: (n, 3) [N]
+    anchor_force: NDArray[np.float64]  #: (n, 3) [N]
+    laid_length: NDArray[np.float64]  #: (n,) [m]
+    steps: NDArray[np.float64]  #: (n,) Newton iterations or time steps per sample
+
+    @classmethod
+    def empty(cls, n: int) -> "LineSamples":
+        return cls(np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n), np.zeros(n))
+
+    def part(self, rows: slice) -> "LineSamples":
+        """The samples ``rows`` (views)."""
+        return LineSamples(self.fairlead_force[rows], self.anchor_force[rows],
+                           self.laid_length[rows], self.steps[rows])
+
+
+@dataclass
+class SingleLine:
+    """An independent line (one section from a fixed point to a body point) as a group of
+    one: its model, stepped along the path of its fairlead.
+
+    Attributes
+    ----------
+    index
+        Its index in ``case.lines``.
+    model
+        Its line model.
+    """
+
+    index: int
+    model: PathStepper
+    failed_index: int = -1
+
+    @property
+    def lines(self) -> tuple[int, ...]:
+        """The case's lines it solves (its own)."""
+        return (self.index,)
+
+    def path_lines(self, case: Case) -> list[Line]:
+        """The line whose prescribed fairlead motion drives it."""
+        return [case.lines[self.index]]
+
+    def empty_samples(self, n: int) -> LineSamples:
+        """Outputs for ``n`` samples."""
+        return LineSamples.empty(n)
+
+    def store(self, case: Case, sink: SampleSink, samples: LineSamples,
+              path: NDArray[np.float64], start: int, stop: int) -> None:
+        """Record samples [start, stop) (``samples`` and ``path`` from ``start``)."""
+        sink.store_line(self.index, samples, path[:, 0], start, stop)
+
+    def solve_path(self, time: NDArray[np.float64], path: NDArray[np.float64],
+                   velocity: NDArray[np.float64], out: LineSamples) -> None:
+        """Step the line along its fairlead's path (n, 1, 3), writing ``out``.
+
+        Raises
+        ------
+        SolverError
+            As the model; :attr:`failed_index` is the first sample not solved.
+        """
+        try:
+            self.model.solve_path(time, path[:, 0], velocity[:, 0], out.fairlead_force,
+                                  out.anchor_force, out.laid_length, out.steps)
+        except SolverError:
+            self.failed_index = self.model.failed_index
+            raise
+        self.failed_index = -1
+
+    def line_shape(self, case: Case, line_index: int, path: NDArray[np.float64]
+                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Node positions (n, 3) [m] and tensions (n,) [N] of the line now, its fairlead at
+        ``path`` (1, 3)."""
+        return self.model.current_shape(path[0])
+
 
 @dataclass
 class SystemGroup:
@@ -72,7 +173,8 @@ class SystemGroup:
     body_points
         Indices in ``case.points`` of its body points, in the order the solver takes them.
     solver
-        The statics (quasi-static) or the DG system (dynamic).
+        The statics (quasi-static) or the DG system (dynamic): a
+        :class:`~floatmoor.mooring.stepping.MooringSolver`.
     """
 
     model: str
@@ -80,7 +182,7 @@ class SystemGroup:
     points: tuple[int, ...]
     sections: tuple[int, ...]
     body_points: tuple[int, ...]
-    solver: SystemStatics | DynamicSystem
+    solver: MooringSolver
     #: unstretched arc length of every shape node of each of its lines, from the line's start
     arc_lengths: dict[int, NDArray[np.float64]] = field(default_factory=dict)
     #: the last solved point positions (quasi-static shapes are drawn between them)
@@ -102,15 +204,11 @@ class SystemGroup:
             As the solver; :attr:`failed_index` is the first sample not solved.
         """
         try:
-            if isinstance(self.solver, SystemStatics):
-                self.solver.solve_path(time, body_positions, out.positions, out.start_force,
-                                       out.end_force, out.laid_length, out.iterations)
-            else:
-                self.solver.solve_path(time, body_positions, body_velocities, out.start_force,
-                                       out.end_force, out.laid_length, out.positions,
-                                       out.iterations)
+            self.solver.solve_path(time, body_positions, body_velocities, out.start_force,
+                                   out.end_force, out.laid_length, out.positions,
+                                   out.iterations)
         except SolverError:
-            self.failed_index = _failed_index(self.solver, time.size)
+            self.failed_index = max(int(self.solver.failed_index), 0)
             raise
         self.failed_index = -1
         self.last_positions = out.positions[-1].copy()
@@ -120,7 +218,7 @@ class SystemGroup:
                 body_velocities: NDArray[np.float64]) -> None:
         """Advance a dynamic group to ``t1``, its body points moving to the given positions
         and velocities (bodies, 3); a quasi-static group has no memory (nothing to do)."""
-        if isinstance(self.solver, DynamicSystem):
+        if self.solver.has_memory:
             sample = self._one()
             self.solver.solve_path(np.array([float(t1)]), body_positions[None],
                                    body_velocities[None], sample.start_force,
@@ -134,7 +232,7 @@ class SystemGroup:
         ``body_velocities`` (bodies, 3): a quasi-static group's equilibrium there (warm
         started), a dynamic group's state with the end fluxes answering those velocities."""
         sample = self._one()
-        if isinstance(self.solver, SystemStatics):
+        if not self.solver.has_memory:
             sol = self.solver.solve(body_positions)
             sample.positions[0] = sol.positions
             sample.start_force[0], sample.end_force[0] = sol.start_force, sol.end_force
@@ -164,26 +262,33 @@ class SystemGroup:
     def _one(self) -> GroupSamples:
         return GroupSamples.empty(1, len(self.points), len(self.sections))
 
-    def line_shape(self, case: Case, line_index: int
+    def path_lines(self, case: Case) -> list[Line]:
+        """For each of its body points, the line whose prescribed fairlead motion moves it
+        (:func:`body_point_line`)."""
+        return [body_point_line(case, case.points[k].name) for k in self.body_points]
+
+    def empty_samples(self, n: int) -> GroupSamples:
+        """Outputs for ``n`` samples."""
+        return GroupSamples.empty(n, len(self.points), len(self.sections))
+
+    def store(self, case: Case, sink: SampleSink, samples: GroupSamples,
+              path: NDArray[np.float64], start: int, stop: int) -> None:
+        """Record samples [start, stop) of its lines, points and sections (``samples``
+        from ``start``; the body points' ``path`` is in the samples' positions)."""
+        sink.store_group(case, self, samples, start, stop)
+
+    def line_shape(self, case: Case, line_index: int, path: NDArray[np.float64] | None = None
                    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Node positions (n, 3) [m] and tensions (n,) [N] of one of its lines now, its
-        sections one after another."""
+        sections one after another (``path``, its body points now, is not needed: the last
+        solved point positions place the sections)."""
         line = case.lines[line_index]
         positions, tensions = [], []
         for section in line.sections:
             j = self._solver_section(case, section.line, section.index)
-            if isinstance(self.solver, DynamicSystem):
-                positions.append(self.solver.section_positions(j))
-                tensions.append(self.solver.section_tensions(j))
-            else:
-                s = self.solver.system
-                a = self.last_positions[s.section_start[j]]
-                b = self.last_positions[s.section_end[j]]
-                p, t = catenary_profile(a, b, s.length[j], s.axial_stiffness[j], s.weight[j],
-                                        s.friction[j], seabed_z=s.seabed_z,
-                                        n_points=SHAPE_POINTS)
-                positions.append(p)
-                tensions.append(t)
+            p, t = self.solver.section_shape(j, self.last_positions)
+            positions.append(p)
+            tensions.append(t)
         return np.concatenate(positions), np.concatenate(tensions)
 
     def _solver_section(self, case: Case, line: str, index: int) -> int:
@@ -200,11 +305,6 @@ class SystemGroup:
     def set_state_arrays(self, arrays: dict[str, NDArray[np.float64]]) -> None:
         """Restore a state of :meth:`state_arrays`."""
         self.solver.set_state_arrays(arrays)
-
-
-def _failed_index(solver: SystemStatics | DynamicSystem, n: int) -> int:
-    """The first sample the solver's last path did not solve."""
-    return max(int(solver.failed_index), 0)
 
 
 def _components(case: Case, lines: list[int]) -> list[list[int]]:
@@ -260,7 +360,7 @@ def system_groups(case: Case, body_positions: dict[str, NDArray[np.float64]] | N
             except SolverError as err:
                 raise CaseError(case.source, f"lines[{members[0]}]", "a mooring system with a "
                                 "static equilibrium at rest", str(err)) from None
-            solver: SystemStatics | DynamicSystem = statics
+            solver: MooringSolver = statics
             body = [index[n] for n in statics.system.body_point_names]
             order = [section_index[_label_key(n)] for n in statics.system.section_names]
             point_order = [index[n] for n in statics.system.point_names]
@@ -283,12 +383,10 @@ def system_groups(case: Case, body_positions: dict[str, NDArray[np.float64]] | N
             arcs, offset = [], 0.0
             for s in line.sections:
                 j = group._solver_section(case, s.line, s.index)
-                local = solver.lines[j].arc_length if isinstance(solver, DynamicSystem) \
-                    else np.linspace(0.0, s.length, SHAPE_POINTS)
-                arcs.append(offset + local)
+                arcs.append(offset + solver.section_arc_length(j))
                 offset += s.length
             group.arc_lengths[i] = np.concatenate(arcs)
-        if isinstance(solver, SystemStatics):
+        if not solver.has_memory:
             group.last_positions = solver.state_arrays()["positions"]
         groups.append(group)
     return groups

@@ -533,8 +533,8 @@ class RunProbe:
         settings what the run uses, raised by earlier passes' probes)."""
         chosen = [(i, replace(line, dynamic=models[i].settings))
                   for i, (line, model) in enumerate(zip(lines, models))
-                  if isinstance(model, DynamicLine) and line.dynamic.elements is None
-                  and model.settings.motion_frequency > 0.0]
+                  if model is not None and model.accuracy_checked
+                  and line.dynamic.elements is None]
         return (cls(chosen, environment, seabed, ramp, probe_cycles(irregular), raised_from)
                 if chosen else None)
 

@@ -28,8 +28,6 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from typing import TYPE_CHECKING
-
 from floatmoor.case.limits import dynamic_nodes_bound
 from floatmoor.case.schema import Case
 from floatmoor.errors import SolverError
@@ -39,9 +37,7 @@ from floatmoor.io.variables import attributes
 from floatmoor.io.netcdf3_format import NetCDF3Error
 from floatmoor.io.netcdf_stream import NetCDF3Stream
 from floatmoor.signals import deferred_interrupts, signal_name
-
-if TYPE_CHECKING:
-    from floatmoor.simulation.groups import GroupSamples, SystemGroup
+from floatmoor.simulation.groups import GroupSamples, LineSamples, SystemGroup
 
 __all__ = ["Recorder", "FLUSH_INTERVAL_S", "WINDOW_BYTES", "STATUS_ROOM", "VALIDITY_ATTRIBUTE",
            "estimated_output_bytes"]
@@ -359,7 +355,7 @@ class Recorder:
         if self.path is not None and _time.perf_counter() - self._last_flush > self.flush_interval:
             self.write(status=f"running: partial results up to t = {self.simulated_time:.6g} s")
 
-    def store_group(self, case: Case, group: "SystemGroup", samples: "GroupSamples",
+    def store_group(self, case: Case, group: SystemGroup, samples: GroupSamples,
                     start: int, stop: int) -> None:
         """Record samples [start, stop) of a system group (``samples`` from ``start``): its
         lines' series (fairlead and anchor forces: of the end sections on the line's end
@@ -397,6 +393,21 @@ class Recorder:
         for j, k in enumerate(group.points):
             system["point_position"][k, start:stop] = samples.positions[:n, j]
             system["point_force"][k, start:stop] = force[:, j]
+
+    def store_line(self, line: int, samples: LineSamples, path: NDArray[np.float64],
+                   start: int, stop: int) -> None:
+        """Record samples [start, stop) of independent line ``line`` (``samples`` and its
+        fairlead's ``path`` (n, 3) from ``start``)."""
+        n = stop - start
+        if n <= 0:
+            return
+        series = self.series
+        start, stop = start - self.offset, stop - self.offset  # in the window
+        series["fairlead_position"][line, start:stop] = path[:n]
+        series["fairlead_force"][line, start:stop] = samples.fairlead_force[:n]
+        series["anchor_force"][line, start:stop] = samples.anchor_force[:n]
+        series["laid_length"][line, start:stop] = samples.laid_length[:n]
+        series["solver_iterations"][line, start:stop] = samples.steps[:n]
 
     def store_shape(self, line: int, index: int, positions: NDArray[np.float64],
                     tension: NDArray[np.float64]) -> None:

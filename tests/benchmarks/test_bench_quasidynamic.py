@@ -65,7 +65,7 @@ def test_quasi_dynamic_step_cost_against_quasi_static_and_dynamic():
     def quasi_static():
         model = QuasiStaticLine.from_case(line, case.environment, case.seabed)
         start = time.perf_counter()
-        model.solve_path(t, p, *out)
+        model.solve_path(t, p, v, *out)
         return time.perf_counter() - start
 
     def quasi_dynamic(n_points):

@@ -48,9 +48,9 @@ def test_system_statics_series_against_moorpy():
     n_pts, n_sec = len(system.point_names), len(system.section_names)
 
     def run(statics: SystemStatics, k: int) -> None:
-        statics.solve_path(np.arange(k, dtype=float), path[:k], np.zeros((k, n_pts, 3)),
+        statics.solve_path(np.arange(k, dtype=float), path[:k], np.zeros_like(path[:k]),
                            np.zeros((k, n_sec, 3)), np.zeros((k, n_sec, 3)),
-                           np.zeros((k, n_sec)), np.zeros(k))
+                           np.zeros((k, n_sec)), np.zeros((k, n_pts, 3)), np.zeros(k))
 
     run(SystemStatics(system), 10)  # compile
     statics = SystemStatics(system)

@@ -82,7 +82,7 @@ def test_kernel_matches_numpy_oracle(name):
     qs = QuasiStaticLine.from_case(line, case.environment, case.seabed)
     n = t.size
     sf, sa = np.zeros((n, 3)), np.zeros((n, 3))
-    qs.solve_path(t, p, sf, sa, np.zeros(n), np.zeros(n))
+    qs.solve_path(t, p, np.zeros_like(p), sf, sa, np.zeros(n), np.zeros(n))
     ref = oracle.run(
         oracle.QDLine(anchor=line.anchor, L=line.length, EA=lt.axial_stiffness,
                       W=lt.weight_in_water(case.environment), CB=qs.friction,
@@ -117,7 +117,7 @@ def test_chained_logs_stay_exact_over_long_runs():
     qs = QuasiStaticLine.from_case(line, case.environment, case.seabed)
     n = t.size
     sf, sa = np.zeros((n, 3)), np.zeros((n, 3))
-    qs.solve_path(t, p, sf, sa, np.zeros(n), np.zeros(n))
+    qs.solve_path(t, p, np.zeros_like(p), sf, sa, np.zeros(n), np.zeros(n))
     qd_line = oracle.QDLine(anchor=line.anchor, L=line.length, EA=lt.axial_stiffness,
                             W=lt.weight_in_water(case.environment), CB=qs.friction, seabed=True,
                             m=lt.mass_per_length, rho_w=case.environment.water_density,

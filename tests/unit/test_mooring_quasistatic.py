@@ -33,7 +33,7 @@ def test_path_kernel_matches_oracle():
     n = t.size
     ff, af = np.zeros((n, 3)), np.zeros((n, 3))
     lb, it = np.zeros(n), np.zeros(n)
-    model.solve_path(t, path, ff, af, lb, it)
+    model.solve_path(t, path, np.zeros_like(path), ff, af, lb, it)
     w = line.line_type.weight_in_water(case.environment)
     worst = 0.0
     for k in range(0, n, 7):
@@ -58,7 +58,7 @@ def test_path_kernel_matches_oracle():
 def test_single_solve_matches_path_solve():
     case, line, model, t, path = _model_and_path()
     ff, af = np.zeros((3, 3)), np.zeros((3, 3))
-    model.solve_path(t[:3], path[:3], ff, af, np.zeros(3), np.zeros(3))
+    model.solve_path(t[:3], path[:3], np.zeros((3, 3)), ff, af, np.zeros(3), np.zeros(3))
     other = QuasiStaticLine(line, case.environment, case.seabed)
     for k in range(3):
         sol = other.solve(path[k])
@@ -74,7 +74,7 @@ def test_failure_names_line_time_and_reason():
     ff, af = np.zeros((n, 3)), np.zeros((n, 3))
     lb, it = np.zeros(n), np.zeros(n)
     with pytest.raises(SolverError) as info:
-        model.solve_path(t, bad, ff, af, lb, it)
+        model.solve_path(t, bad, np.zeros_like(bad), ff, af, lb, it)
     message = str(info.value)
     assert "line 'chain'" in message and f"t = {t[700]:.6g} s" in message
     assert model.failed_index == 700

@@ -195,7 +195,7 @@ def _series(system, t, path):
     out = dict(positions=np.empty((n, npnt, 3)), start_force=np.empty((n, ns, 3)),
                end_force=np.empty((n, ns, 3)), laid_length=np.empty((n, ns)),
                iterations=np.empty(n), residual=np.empty(n))
-    SystemStatics(system).solve_path(t, path, **out)
+    SystemStatics(system).solve_path(t, path, np.zeros_like(path), **out)
     return out
 
 
@@ -396,7 +396,8 @@ def test_clump_lifts_off_and_lands_along_a_path():
     n = len(t)
     out = _series(system, t, path)
     on_seabed = np.empty((n, len(system.point_names)), dtype=bool)
-    SystemStatics(system).solve_path(t, path, **{k: np.empty_like(v) for k, v in out.items()},
+    SystemStatics(system).solve_path(t, path, np.zeros_like(path),
+                                     **{k: np.empty_like(v) for k, v in out.items()},
                                      on_seabed=on_seabed)
     c = system.point_index("clump")
     rests = on_seabed[:, c]

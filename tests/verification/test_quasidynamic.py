@@ -89,7 +89,7 @@ def test_fairlead_at_rest_gives_the_quasi_static_tension():
     qd.solve_path(t, p, v, ff, af, np.zeros(n), np.zeros(n), factor=k)
     sf, sa = np.zeros((n, 3)), np.zeros((n, 3))
     QuasiStaticLine.from_case(line, case.environment, case.seabed).solve_path(
-        t, p, sf, sa, np.zeros(n), np.zeros(n))
+        t, p, v, sf, sa, np.zeros(n), np.zeros(n))
     dev = max(np.abs(k - 1.0).max(), np.abs(ff - sf).max() / np.abs(sf).max(),
               np.abs(af - sa).max() / np.abs(sf).max())
     print(f"at rest: max |k_QD - 1| = {np.abs(k - 1.0).max():.2e}, forces against the "

@@ -130,6 +130,8 @@ class DynamicLine(PathStepper):
     """
 
     model = "dynamic"
+    batched = True  # coupled runs: advanced with the body's other dynamic lines (dg.batch)
+    resolves_dynamics = True
 
     def __init__(self, properties: CableProperties, settings: DynamicSettings,
                  anchor: NDArray[np.float64], fairlead: NDArray[np.float64], *,
@@ -243,6 +245,12 @@ class DynamicLine(PathStepper):
                               f"for an axial wave speed of {self.properties.wave_speed:.3g} "
                               "m/s; the axial stiffness or mass per length is out of range")
         return dt
+
+    @property
+    def accuracy_checked(self) -> bool:
+        """Whether its element count can be checked along a motion (one with a frequency:
+        :mod:`floatmoor.simulation.line_accuracy`)."""
+        return self.settings.motion_frequency > 0.0
 
     def refuse_long_work(self, duration: float, what: str, source: str = "",
                          line: str | None = None) -> None:

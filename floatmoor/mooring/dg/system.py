@@ -34,6 +34,7 @@ from floatmoor.mooring.dg.line import SETTLE_CHUNK_TAU, SETTLE_MAX_TIME_TAU, SET
     SETTLE_TOLERANCE, DynamicLine, SettleReport
 from floatmoor.mooring.dg.resolution import AutoIntegration
 from floatmoor.mooring.dg.system_implicit import SystemImplicit, system_integration
+from floatmoor.mooring.stepping import MooringSolver
 from floatmoor.mooring.dg.system_parts import PointLike, SystemSection, catenary_positions, \
     point_contact, resolved_sections, section_properties, static_start
 
@@ -57,7 +58,7 @@ KINETIC_CHUNK_TAU = 0.003
 _KINDS = {"fixed": _s.FIXED, "free": _s.FREE, "body": _s.BODY}
 
 
-class DynamicSystem:
+class DynamicSystem(MooringSolver):
     """Sections and points of a mooring system solved by the DG cable model.
 
     Parameters
@@ -79,6 +80,7 @@ class DynamicSystem:
     """
 
     model = "dynamic"
+    resolves_dynamics = True
 
     def __init__(self, points: Sequence[PointLike], sections: Sequence[SystemSection], *,
                  initial_positions: NDArray[np.float64] | None = None,
@@ -220,6 +222,16 @@ class DynamicSystem:
         """Effective tension at every node of section j in the current state [N]."""
         self.end_forces()
         return np.linalg.norm(self._section(self._w.N, j), axis=-1)
+
+    def section_arc_length(self, j: int) -> NDArray[np.float64]:
+        """Unstretched arc length of every node of section j from its start [m]."""
+        return self.lines[j].arc_length
+
+    def section_shape(self, j: int, positions: NDArray[np.float64]
+                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Node positions (nodes, 3) [m] and tensions (nodes,) [N] of section j now (its
+        state: ``positions``, the points', are those of the state)."""
+        return self.section_positions(j), self.section_tensions(j)
 
     @property
     def body_positions(self) -> NDArray[np.float64]:
