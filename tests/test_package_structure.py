@@ -12,8 +12,9 @@ well). Circles:
 * imports inside functions (lazy imports, made to defer a heavy dependency such as capytaine
   or matplotlib) are dependencies too: the graph with them added must have no cycle either.
   A lazy import may defer a cost; it may not hide a circle;
-* imports under ``if TYPE_CHECKING:`` are annotations only and are not edges of these two
-  graphs.
+* imports under ``if TYPE_CHECKING:`` couple modules too (an annotation names the other's
+  class): the graph with every import must have no cycle either, so that such an import
+  cannot hide a circle the other two graphs would show.
 
 Direction (docs/development.md#1-package-layout-and-import-order): the layer table of that
 section is the one declaration of the layers, lowest first (:func:`_layer_table` reads it); a
@@ -260,6 +261,30 @@ def test_imports_including_lazy_ones_run_one_way() -> None:
     circles = _components(graph)
     assert not circles, ("import circles once the imports inside functions are counted:\n"
                          + _describe(graph))
+
+
+def _graph_of_every_import() -> dict[str, Set[str]]:
+    """Module-level, function-level and ``TYPE_CHECKING`` imports alike."""
+    return {module: frozenset(target for target, _, _ in _statements(module)
+                              if target in MODULES and target != module)
+            for module in MODULES}
+
+
+def test_imports_including_type_checking_ones_run_one_way() -> None:
+    graph = _graph_of_every_import()
+    circles = _components(graph)
+    assert not circles, ("import circles once the TYPE_CHECKING imports are counted:\n"
+                         + _describe(graph))
+
+
+def test_every_import_graph_sees_a_type_checking_circle() -> None:
+    """A circle closed only by a ``TYPE_CHECKING`` import (as one once hid in the simulation
+    layer) is a circle of the graph of every import."""
+    graph = {"a": frozenset({"b"}), "b": frozenset({"a"})}  # b -> a under TYPE_CHECKING
+    assert _components(graph) == [{"a", "b"}]
+    source = "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import floatmoor.errors\n"
+    kinds = {kind for _, kind, _ in _import_statements(source, "floatmoor.case.schema", False)}
+    assert kinds == {TYPE_CHECKING_ONLY}
 
 
 #: The page whose section 1 table declares the layers.

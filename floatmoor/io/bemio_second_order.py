@@ -21,24 +21,33 @@ docs/guide/hydro_databases.md#imported-second-order-data); the ``.12d`` itself c
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.io.bem_data import SecondOrder
 
-if TYPE_CHECKING:
-    from floatmoor.io.bemio import _File
-
 __all__ = ["read_bemio_mean_drift", "BEMIO_DRIFT_ROUTES"]
+
+
+class _Datasets(Protocol):
+    """What this reader asks of the open file (:mod:`floatmoor.io.bemio`'s strict access)."""
+
+    name: str
+
+    def has(self, where: str) -> bool: ...
+
+    def has_group(self, where: str) -> bool: ...
+
+    def array(self, where: str, what: str, shape: tuple[int, ...]) -> NDArray[np.float64]: ...
 
 #: BEMIO's mean drift groups, the floatmoor variable each goes to and the route's name.
 BEMIO_DRIFT_ROUTES = (("momentum_conservation", "far_field", "momentum conservation"),
                       ("pressure_integration", "near_field", "pressure integration"))
 
 
-def read_bemio_mean_drift(file: "_File", body: int, shape: tuple[int, int, int],
+def read_bemio_mean_drift(file: _Datasets, body: int, shape: tuple[int, int, int],
                           order: NDArray[np.int64], dir_order: NDArray[np.int64],
                           rho_g: float) -> SecondOrder | None:
     """The body's mean drift, SI, (omega sorted, direction sorted, DOF), or None when the
