@@ -122,26 +122,6 @@ _CASE = {
     # line types
     "line_types": "The line materials, one table per name (`[line_types.chain]`); lines and "
                   "sections name them with `type`.",
-    "line_types.<name>.mass_per_length": "Dry mass per unstretched length.",
-    "line_types.<name>.axial_stiffness": "Axial stiffness EA.",
-    "line_types.<name>.diameter": "Diameter the drag and added-mass coefficients refer to "
-                                  "(for chain, usually the volume-equivalent diameter).",
-    "line_types.<name>.material_density": "Density of the line's material; with the mass "
-                                          "it gives the displaced volume, hence the submerged "
-                                          "weight.",
-    "line_types.<name>.normal_drag_coefficient": "Morison drag coefficient normal to the line, "
-                                                 "on its diameter.",
-    "line_types.<name>.tangential_drag_coefficient": "Drag coefficient along the line.",
-    "line_types.<name>.added_mass_coefficient": "Added-mass coefficient normal to the line, "
-                                                "on the material area m / rho_material.",
-    "line_types.<name>.tangential_added_mass_coefficient": "Added-mass coefficient along the "
-                                                           "line.",
-    "line_types.<name>.internal_damping_ratio": "Kelvin-Voigt axial damping, as the damping "
-                                                "ratio of the line's first longitudinal mode "
-                                                "(dynamic model).",
-    "line_types.<name>.minimum_breaking_load": "Minimum breaking load (MBL), for the safety "
-                                               "factors of the run summary; without it "
-                                               "`floatmoor check` warns on large strains.",
     # points
     "points": "Named points of a mooring system: anchors (`fixed`), fairleads (`body`) and "
               "joints, clump weights and buoys (`free`); lines connect them by name "

@@ -29,6 +29,7 @@ from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
+from floatmoor.case.setting import read_settings
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, FRICTION_MODELS, INTERNAL_DAMPING_METHODS, LINE_MODELS,
     POINT_KINDS, SEABED_CONTACT_METHODS, TIME_INTEGRATIONS, Case, CircularMotion, DynamicSettings, Environment,
@@ -195,20 +196,7 @@ def _seabed(t: TableReader) -> Seabed:
 
 
 def _line_type(name: str, t: TableReader) -> LineType:
-    line_type = LineType(
-        name=name,
-        mass_per_length=t.number("mass_per_length", unit="kg/m", gt=0.0),
-        axial_stiffness=t.number("axial_stiffness", unit="N", gt=0.0),
-        diameter=t.number("diameter", unit="m", gt=0.0),
-        material_density=t.number("material_density", unit="kg/m^3", gt=0.0),
-        normal_drag_coefficient=t.number("normal_drag_coefficient", unit="-", ge=0.0),
-        tangential_drag_coefficient=t.number("tangential_drag_coefficient", unit="-", ge=0.0),
-        added_mass_coefficient=t.number("added_mass_coefficient", unit="-", ge=0.0),
-        tangential_added_mass_coefficient=t.number("tangential_added_mass_coefficient", unit="-",
-                                                   ge=0.0, default=0.0),
-        internal_damping_ratio=t.number("internal_damping_ratio", unit="-", ge=0.0, default=0.0),
-        minimum_breaking_load=t.number("minimum_breaking_load", unit="N", gt=0.0, default=None),
-    )
+    line_type = LineType(name=name, **read_settings(LineType, t))
     t.finish()
     return line_type
 

@@ -16,6 +16,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.case.setting import setting
+
 __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
@@ -83,20 +85,36 @@ class Seabed:
 
 @dataclass(frozen=True)
 class LineType:
-    """Properties of a line material (docs/theory/cable.md)."""
+    """Properties of a line material (docs/theory/cable.md); ``[line_types.NAME]``."""
 
     name: str
-    mass_per_length: float  #: dry mass per unstretched length [kg/m]
-    axial_stiffness: float  #: EA [N]
-    diameter: float  #: the one the drag coefficients refer to [m]
-    material_density: float  #: [kg/m^3]
-    normal_drag_coefficient: float  #: C_dn [-]
-    tangential_drag_coefficient: float  #: C_dt [-]
-    added_mass_coefficient: float  #: C_a, on the material area m/rho_c [-]
-    tangential_added_mass_coefficient: float  #: [-]
-    internal_damping_ratio: float  #: axial damping ratio [-]
-    #: minimum breaking load (``minimum_breaking_load``) [N], or None when not given
-    minimum_breaking_load: float | None = None
+    mass_per_length: float = setting(  #: [kg/m]
+        "number", unit="kg/m", gt=0.0, doc="Dry mass per unstretched length.")
+    axial_stiffness: float = setting("number", unit="N", gt=0.0, doc="Axial stiffness EA.")
+    diameter: float = setting(
+        "number", unit="m", gt=0.0, doc="Diameter the drag and added-mass coefficients refer to "
+        "(for chain, usually the volume-equivalent diameter).")
+    material_density: float = setting(
+        "number", unit="kg/m^3", gt=0.0, doc="Density of the line's material; with the mass it "
+        "gives the displaced volume, hence the submerged weight.")
+    normal_drag_coefficient: float = setting(  #: C_dn
+        "number", unit="-", ge=0.0, doc="Morison drag coefficient normal to the line, on its "
+        "diameter.")
+    tangential_drag_coefficient: float = setting(  #: C_dt
+        "number", unit="-", ge=0.0, doc="Drag coefficient along the line.")
+    added_mass_coefficient: float = setting(  #: C_a, on the material area m/rho_c
+        "number", unit="-", ge=0.0, doc="Added-mass coefficient normal to the line, on the "
+        "material area m / rho_material.")
+    tangential_added_mass_coefficient: float = setting(
+        "number", unit="-", ge=0.0, default=0.0, doc="Added-mass coefficient along the line.")
+    internal_damping_ratio: float = setting(
+        "number", unit="-", ge=0.0, default=0.0, doc="Kelvin-Voigt axial damping, as the "
+        "damping ratio of the line's first longitudinal mode (dynamic model).")
+    #: minimum breaking load [N], or None when not given
+    minimum_breaking_load: float | None = setting(
+        "number", unit="N", gt=0.0, default=None, field_default=None, doc="Minimum breaking "
+        "load (MBL), for the safety factors of the run summary; without it `floatmoor check` "
+        "warns on large strains.")
 
     def weight_in_water(self, environment: Environment) -> float:
         """Submerged weight per unstretched length, m g (1 - rho_w / rho_c) [N/m]."""

@@ -19,11 +19,12 @@ import numpy as np
 import pytest
 
 from floatmoor.body.morison import DragSettings, MorisonCoefficients
-from floatmoor.case import key_docs
+from floatmoor.case import key_docs, schema
 from floatmoor.case.load import load_case
 from floatmoor.case.reader import recording
 from floatmoor.case.reference import leaf_of, merge_records, table_of
 from floatmoor.case.schema import BODY_DOFS
+from floatmoor.case.setting import settings_of
 from floatmoor.uq.input_reference import PAGE, ROOT, input_files, record_inputs, reference_page
 from floatmoor.uq.inputs import DISTRIBUTIONS
 from floatmoor.uq.study import load_study
@@ -124,10 +125,16 @@ def _docs_and_modules():
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
 def test_every_key_read_is_described(kind):
     docs, entries, _ = _docs_and_modules()[kind]
-    missing = [path for path in entries if path not in docs.descriptions]
-    assert not missing, f"keys without a description in floatmoor/case/key_docs.py: {missing}"
-    empty = [path for path, text in docs.descriptions.items() if len(text.split()) < 3]
+    missing = [path for path, entry in entries.items()
+               if path not in docs.descriptions and not entry.doc]
+    assert not missing, ("keys without a description (a setting's doc, or floatmoor/case/"
+                         f"key_docs.py): {missing}")
+    texts = {**docs.descriptions, **{path: entry.doc for path, entry in entries.items()
+                                    if entry.doc}}
+    empty = [path for path, text in texts.items() if len(text.split()) < 3]
     assert not empty, f"descriptions too short to say anything: {empty}"
+    twice = [path for path, entry in entries.items() if entry.doc and path in docs.descriptions]
+    assert not twice, f"keys described both in their declaration and in key_docs: {twice}"
 
 
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
@@ -161,6 +168,22 @@ def test_every_key_a_loader_can_read_is_read(kind):
                           f"the key paths they read: {unlisted}")
     assert not unread, ("keys no shipped case or study reads: add them to a file in "
                         f"tests/data/case_reference: {unread}")
+
+
+def test_every_declared_setting_is_read():
+    """Every key declared on a schema dataclass (floatmoor.case.setting) is read, with its
+    description, in a shipped or fixture case file."""
+    cases, _ = _entries()
+    described = {leaf_of(path) for path, entry in cases.items() if entry.doc}
+    unread = [f"{cls.__name__}.{key}" for cls in _declaring_classes()
+              for key in settings_of(cls) if key not in described]
+    assert _declaring_classes() and not unread, (
+        f"declared settings no case file reads: add them to tests/data/case_reference: {unread}")
+
+
+def _declaring_classes() -> list[type]:
+    return [cls for cls in vars(schema).values()
+            if dataclasses.is_dataclass(cls) and isinstance(cls, type) and settings_of(cls)]
 
 
 def test_drag_keys_are_the_drag_settings():
@@ -241,6 +264,29 @@ def test_renderer_words_requirement_and_range():
     assert "| `b` | number | s | default 3 |  | the key b |" in text
     assert '| `c` | string |  | required | one of "x", "y" | the key c |' in text
     assert '| `d` | integer |  | optional | >= 1; or "auto" | the key d |' in text
+
+
+def test_a_declared_setting_is_read_and_described():
+    """One declaration gives the reader's checks and messages and the reference's row."""
+    from floatmoor.case.reader import ReadContext, TableReader
+    from floatmoor.case.reference import render_section
+    from floatmoor.case.setting import read_settings, setting
+    from floatmoor.errors import CaseError
+
+    @dataclasses.dataclass(frozen=True)
+    class Made:
+        a: float = setting("number", unit="m", gt=0.0, doc="The length a of the thing.")
+        b: str = setting("string", choices=("x", "y"), default="x", doc="The choice b here.")
+
+    with recording() as records:
+        t = TableReader({"a": 2.0}, ("made",), ReadContext("made-up.toml"))
+        assert Made(**read_settings(Made, t)) == Made(a=2.0, b="x")
+    text = render_section("", merge_records(records), key_docs.KeyDocs({}), title="T")
+    assert "| `a` | number | m | required | > 0 | The length a of the thing. |" in text
+    assert '| `b` | string |  | default "x" | one of "x", "y" | The choice b here. |' in text
+    with pytest.raises(CaseError) as error:
+        read_settings(Made, TableReader({"a": -1.0}, ("made",), ReadContext("made-up.toml")))
+    assert error.value.key == "made.a" and "a finite number > 0 [m]" in str(error.value)
 
 
 # -- (e): recording changes nothing ---------------------------------------------------------------
