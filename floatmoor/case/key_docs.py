@@ -16,6 +16,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Mapping
 
+from floatmoor.case.schema import DynamicSettings
+from floatmoor.case.setting import settings_of
+
 __all__ = ["KeyDocs", "CASE", "STUDY"]
 
 
@@ -33,38 +36,6 @@ class KeyDocs:
 
 
 # -- case files -------------------------------------------------------------------------------
-
-_DYNAMIC = {
-    "elements": "Number of discontinuous-Galerkin elements along the line. Left out (or "
-                '"auto"), it is chosen with `order` from `accuracy` and the fairlead motion\'s '
-                "frequency; `floatmoor check` prints the choice (theory/dynamic_line.md).",
-    "order": "Polynomial order of the elements. Left out (or \"auto\"), it is chosen with "
-             "`elements` from `accuracy`.",
-    "cfl": "Explicit time step as a fraction of the stability limit of the axial (snap) wave "
-           "for the SSP-RK3 scheme; the margin below 1 covers the nonlinear terms (snap loads, "
-           "drag, seabed contact).",
-    "max_time_step": "Cap on the line's time step [s]; with implicit integration the step "
-                     "starts from it (0.5 s when not given) and is halved where the estimated "
-                     "error of the fairlead force is too large.",
-    "slack_filter": "Modal velocity filter on elements in compression, which damps the "
-                    "spurious high-order modes of a slack chain.",
-    "seabed_contact": "Treatment of the seabed's normal spring-damper: \"implicit\" "
-                      "(backward-Euler, so the stiff seabed does not limit the step) or "
-                      '"explicit" (resolved by the step, much smaller).',
-    "settle": "Relax the line, fairlead held, to the static equilibrium of its own "
-              "discretisation before the run, so that its mismatch with the catenary "
-              "initial shape does not ring through the run.",
-    "internal_damping": "Treatment of the Kelvin-Voigt internal damping "
-                        "(`line_types.NAME.internal_damping_ratio`): \"implicit\" keeps the "
-                        "axial wave alone setting the step; \"explicit\" puts it in the "
-                        "right-hand side, at a step up to ten times smaller.",
-    "time_integration": '"explicit" (SSP-RK3 at `cfl` of the axial wave\'s limit), "implicit" '
-                        "(generalised-alpha, Chung & Hulbert 1993, steps bounded by accuracy) "
-                        'or "auto": implicit while its steps cost less than the explicit ones '
-                        "they replace, explicit from then on.",
-    "accuracy": "Accepted relative error of the fairlead tension; the element count, order "
-                "and implicit step are chosen for it when not given.",
-}
 
 _DOF_UNITS = {"surge": "m", "sway": "m", "heave": "m", "roll": "deg", "pitch": "deg",
               "yaw": "deg"}
@@ -178,8 +149,6 @@ _CASE = {
                                            "taken on the fairlead's interpolated path.",
     "lines[].dynamic": "Numerics of the dynamic (discontinuous Galerkin) model; by default "
                        "they are chosen from `accuracy` (theory/dynamic_line.md).",
-    **{f"lines[].dynamic.{key}": text for key, text in _DYNAMIC.items()},
-    **{f"lines[].sections[].dynamic.{key}": text for key, text in _DYNAMIC.items()},
     # simulation
     "simulation": "Time span and output sampling of the run.",
     "simulation.duration": "Simulated time span, from t = 0.",
@@ -383,11 +352,8 @@ _CASE = {
 }
 
 _CASE_DEFAULTS = {
-    **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`" for key in _DYNAMIC},
-    **{f"lines[].dynamic.{key}": "{default}" for key in _DYNAMIC},
-    "lines[].dynamic.elements": 'chosen from `accuracy` ("auto")',
-    "lines[].dynamic.order": 'chosen from `accuracy` ("auto")',
-    "lines[].dynamic.max_time_step": "none (implicit: 0.5 s)",
+    **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`"
+       for key in settings_of(DynamicSettings)},
     "lines[].quasi_dynamic.max_time_step": "one step per output sample",
     "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
     "motion.phase_deg": "default 0 (every axis)",

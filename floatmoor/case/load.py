@@ -29,7 +29,7 @@ from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
-from floatmoor.case.setting import read_settings
+from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, FRICTION_MODELS, INTERNAL_DAMPING_METHODS, LINE_MODELS,
     POINT_KINDS, SEABED_CONTACT_METHODS, TIME_INTEGRATIONS, Case, CircularMotion, DynamicSettings, Environment,
@@ -52,18 +52,6 @@ DEFAULT_CATENARY_MAX_ITERATIONS = 100
 #: MooDy reproduced the Lindahl chain with order 5 (chain-experiment paper; docs/cases/lindahl.md).
 #: Without either key, both follow from ``accuracy`` (mooring/dg/resolution.py).
 DEFAULT_DG_ORDER = 5
-#: Default time step as a fraction of the linear SSP-RK3 stability limit of the longitudinal
-#: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
-#: drag, contact) and was stable on the whole Lindahl robustness grid.
-DEFAULT_DG_CFL = 0.8
-#: What ``elements = "auto"`` / ``order = "auto"`` (or leaving them out) means: the DG
-#: discretisation follows ``accuracy`` (floatmoor.mooring.dg.resolution).
-_FROM_ACCURACY = "chosen from accuracy"
-#: Default accepted relative error of the fairlead tension (1 %,
-#: docs/theory/dynamic_line.md#accuracy-driven-discretisation).
-DEFAULT_DG_ACCURACY = 0.01
-#: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
-MAX_DG_ACCURACY = 0.2
 #: Default Simpson stations of the quasi-dynamic model over the suspended length: the 31
 #: integration points of the quasi-dynamic paper's verification study (its Table 3).
 DEFAULT_QD_INTEGRATION_POINTS = 31
@@ -228,28 +216,11 @@ def _points(root: TableReader, environment: Environment) -> list[Point]:
 
 
 def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> DynamicSettings:
-    """``[lines.dynamic]`` (defaults: floatmoor's), or a section's ``dynamic`` table
+    """``[lines.dynamic]`` (defaults: the declared ones), or a section's ``dynamic`` table
     (defaults: its line's)."""
-    d = defaults
-    settings = DynamicSettings(
-        elements=dg.integer("elements", ge=1, le=10_000, default=d.elements if d else None,
-                            auto=_FROM_ACCURACY),
-        order=dg.integer("order", ge=1, le=8, default=d.order if d else None,
-                         auto=_FROM_ACCURACY),
-        cfl=dg.number("cfl", unit="-", gt=0.0, le=1.0, default=d.cfl if d else DEFAULT_DG_CFL),
-        max_time_step=dg.number("max_time_step", unit="s", gt=0.0,
-                                default=d.max_time_step if d else None),
-        slack_filter=dg.boolean("slack_filter", default=d.slack_filter if d else True),
-        seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
-                                 default=d.seabed_contact if d else "implicit"),
-        settle=dg.boolean("settle", default=d.settle if d else True),
-        internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
-                                   default=d.internal_damping if d else "implicit"),
-        time_integration=dg.string("time_integration", choices=TIME_INTEGRATIONS,
-                                   default=d.time_integration if d else "auto"),
-        accuracy=dg.number("accuracy", unit="-", gt=0.0, le=MAX_DG_ACCURACY,
-                           default=d.accuracy if d else DEFAULT_DG_ACCURACY),
-    )
+    inherited = None if defaults is None else {
+        key: getattr(defaults, key) for key in settings_of(DynamicSettings)}
+    settings = DynamicSettings(**read_settings(DynamicSettings, dg, inherited))
     dg.finish()
     return settings
 

@@ -136,29 +136,91 @@ class QuasiStaticSettings:
     seabed_friction: bool  #: apply seabed friction on the resting length
 
 
+#: Default time step as a fraction of the linear SSP-RK3 stability limit of the longitudinal
+#: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
+#: drag, contact) and was stable on the whole Lindahl robustness grid.
+DEFAULT_DG_CFL = 0.8
+#: What ``elements = "auto"`` / ``order = "auto"`` (or leaving them out) means: the DG
+#: discretisation follows ``accuracy`` (floatmoor.mooring.dg.resolution).
+_FROM_ACCURACY = "chosen from accuracy"
+#: Default accepted relative error of the fairlead tension (1 %,
+#: docs/theory/dynamic_line.md#accuracy-driven-discretisation).
+DEFAULT_DG_ACCURACY = 0.01
+#: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
+MAX_DG_ACCURACY = 0.2
+
+
 @dataclass(frozen=True)
 class DynamicSettings:
-    """Numerics of the discontinuous Galerkin cable (``[lines.dynamic]``)."""
+    """Numerics of the discontinuous Galerkin cable (``[lines.dynamic]``; a section's
+    ``dynamic`` table takes the same keys, its defaults the line's)."""
 
     #: number of elements; None: chosen from ``accuracy`` (mooring/dg/resolution.py)
-    elements: int | None
+    elements: int | None = setting(
+        "integer", ge=1, le=10_000, default=None, auto=_FROM_ACCURACY,
+        default_text='chosen from `accuracy` ("auto")',
+        doc="Number of discontinuous-Galerkin elements along the line. Left out (or "
+            '"auto"), it is chosen with `order` from `accuracy` and the fairlead motion\'s '
+            "frequency; `floatmoor check` prints the choice (theory/dynamic_line.md).")
     #: polynomial order p (1 to 8); None: chosen from ``accuracy``
-    order: int | None
-    cfl: float  #: time step as a fraction of the linear SSP-RK3 stability limit [-]
-    max_time_step: float | None  #: user cap on the time step [s]
-    slack_filter: bool  #: modal filter on elements in compression
-    seabed_contact: str  #: "implicit" or "explicit" normal spring-damper
+    order: int | None = setting(
+        "integer", ge=1, le=8, default=None, auto=_FROM_ACCURACY,
+        default_text='chosen from `accuracy` ("auto")',
+        doc="Polynomial order of the elements. Left out (or \"auto\"), it is chosen with "
+            "`elements` from `accuracy`.")
+    #: time step as a fraction of the linear SSP-RK3 stability limit [-]
+    cfl: float = setting(
+        "number", unit="-", gt=0.0, le=1.0, default=DEFAULT_DG_CFL,
+        doc="Explicit time step as a fraction of the stability limit of the axial (snap) "
+            "wave for the SSP-RK3 scheme; the margin below 1 covers the nonlinear terms "
+            "(snap loads, drag, seabed contact).")
+    #: user cap on the time step [s]
+    max_time_step: float | None = setting(
+        "number", unit="s", gt=0.0, default=None, default_text="none (implicit: 0.5 s)",
+        doc="Cap on the line's time step [s]; with implicit integration the step starts from "
+            "it (0.5 s when not given) and is halved where the estimated error of the "
+            "fairlead force is too large.")
+    #: modal filter on elements in compression
+    slack_filter: bool = setting(
+        "boolean", default=True,
+        doc="Modal velocity filter on elements in compression, which damps the spurious "
+            "high-order modes of a slack chain.")
+    #: "implicit" or "explicit" normal spring-damper
+    seabed_contact: str = setting(
+        "string", choices=SEABED_CONTACT_METHODS, default="implicit",
+        doc="Treatment of the seabed's normal spring-damper: \"implicit\" (backward-Euler, "
+            'so the stiff seabed does not limit the step) or "explicit" (resolved by the '
+            "step, much smaller).")
     #: relax the line to the static equilibrium of its discretisation before the run
-    settle: bool = True
+    settle: bool = setting(
+        "boolean", default=True, field_default=True,
+        doc="Relax the line, fairlead held, to the static equilibrium of its own "
+            "discretisation before the run, so that its mismatch with the catenary initial "
+            "shape does not ring through the run.")
     #: "implicit" (a backward-Euler step after each SSP-RK3 step, so the axial wave alone sets
     #: the time step) or "explicit" (in the right-hand side) Kelvin-Voigt internal damping
-    internal_damping: str = "implicit"
+    internal_damping: str = setting(
+        "string", choices=INTERNAL_DAMPING_METHODS, default="implicit",
+        field_default="implicit",
+        doc="Treatment of the Kelvin-Voigt internal damping "
+            "(`line_types.NAME.internal_damping_ratio`): \"implicit\" keeps the axial wave "
+            'alone setting the step; "explicit" puts it in the right-hand side, at a step up '
+            "to ten times smaller.")
     #: "explicit" (SSP-RK3, ``cfl`` of the axial wave's stability limit) or "implicit"
     #: (generalised-alpha, steps of at most ``max_time_step``, halved where the estimated error
-    #: of the fairlead force exceeds ``accuracy``'s share)
-    time_integration: str = "explicit"
+    #: of the fairlead force exceeds ``accuracy``'s share); a case file's default is "auto"
+    time_integration: str = setting(
+        "string", choices=TIME_INTEGRATIONS, default="auto", field_default="explicit",
+        doc='"explicit" (SSP-RK3 at `cfl` of the axial wave\'s limit), "implicit" '
+            "(generalised-alpha, Chung & Hulbert 1993, steps bounded by accuracy) or \"auto\": "
+            "implicit while its steps cost less than the explicit ones they replace, explicit "
+            "from then on.")
     #: relative error of the fairlead tension accepted [-]
-    accuracy: float = 0.01
+    accuracy: float = setting(
+        "number", unit="-", gt=0.0, le=MAX_DG_ACCURACY, default=DEFAULT_DG_ACCURACY,
+        field_default=DEFAULT_DG_ACCURACY,
+        doc="Accepted relative error of the fairlead tension; the element count, order and "
+            "implicit step are chosen for it when not given.")
     #: characteristic angular frequency of the fairlead motion [rad/s] (the case's waves or
     #: prescribed motion; 0 when none is declared): what the choice of numerics resolves
     motion_frequency: float = 0.0
