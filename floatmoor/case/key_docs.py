@@ -69,27 +69,9 @@ _CASE = {
     # environment
     "environment": "Water and gravity: still water at z = 0, a flat seabed at "
                    "z = -water_depth (theory/environment.md).",
-    "environment.water_density": "Density of the water, for buoyancy, drag, added mass and the "
-                                 "hydrodynamic database.",
-    "environment.water_depth": "Depth of the flat seabed below the still water line.",
-    "environment.gravity": "Acceleration of gravity.",
-    "environment.current_velocity": "Steady, uniform current [x, y, z], in the drag of the "
-                                    "lines and of a floater's Morison members.",
     # seabed
     "seabed": "Seabed contact of the lines: a normal spring-damper and friction, smoothed "
               "Coulomb or a stick spring (theory/dynamic_line.md, theory/cable.md).",
-    "seabed.stiffness": "Normal stiffness of the seabed per unit contact area.",
-    "seabed.damping_ratio": "Damping ratio of the normal contact spring-damper.",
-    "seabed.friction_coefficient": "Coulomb friction coefficient along the seabed; also the "
-                                   "quasi-static catenary's friction on its resting length.",
-    "seabed.slip_speed": "Sliding speed at which the smoothed friction reaches its full "
-                         "value (the \"coulomb\" friction model).",
-    "seabed.friction_model": "Seabed friction law of dynamic lines: \"coulomb\", the "
-                             "Coulomb force regularised by the slip speed, or "
-                             "\"stick_spring\", a spring of the seabed's normal stiffness to "
-                             "a friction anchor per node, capped at the friction coefficient "
-                             "times the normal contact force, the anchor moved by return "
-                             "mapping at committed steps (theory/cable.md).",
     # line types
     "line_types": "The line materials, one table per name (`[line_types.chain]`); lines and "
                   "sections name them with `type`.",
@@ -151,13 +133,6 @@ _CASE = {
                        "they are chosen from `accuracy` (theory/dynamic_line.md).",
     # simulation
     "simulation": "Time span and output sampling of the run.",
-    "simulation.duration": "Simulated time span, from t = 0.",
-    "simulation.output_interval": "Sampling interval of the output time series.",
-    "simulation.shape_output_interval": "Sampling interval of the line shapes, a multiple of "
-                                        "`output_interval`; no shapes are written without it.",
-    "simulation.time_step": "Time step of the floater in coupled runs, dividing "
-                            "`output_interval`; default the output interval. Only with a "
-                            "`[floater]` (lines take their own steps).",
     # motion
     "motion": "Prescribed motion of the body points (the fairleads); without it, and without "
               "a `[floater]`, they stay at rest. Not with a `[floater]`.",

@@ -20,7 +20,7 @@ import numpy as np
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import BEM_BUILD_KEYS, check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
-    MAX_GRAVITY, MAX_NESTING_DEPTH, MIN_GRAVITY, check_sizes, nesting_depth, parse_toml,
+    MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
 )
 from floatmoor.case.files import read_input_text
 from floatmoor.case.motion_body import read_body_motion
@@ -160,25 +160,13 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
 # -- tables -----------------------------------------------------------------------------------
 
 def _environment(t: TableReader) -> Environment:
-    env = Environment(
-        water_density=t.number("water_density", unit="kg/m^3", gt=0.0),
-        water_depth=t.number("water_depth", unit="m", gt=0.0),
-        gravity=t.number("gravity", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY),
-        current_velocity=t.vector("current_velocity", size=3, unit="m/s",
-                                  default=(0.0, 0.0, 0.0)),  # type: ignore[arg-type]
-    )
+    env = Environment(**read_settings(Environment, t))
     t.finish()
     return env
 
 
 def _seabed(t: TableReader) -> Seabed:
-    seabed = Seabed(
-        stiffness=t.number("stiffness", unit="Pa/m", gt=0.0),
-        damping_ratio=t.number("damping_ratio", unit="-", ge=0.0),
-        friction_coefficient=t.number("friction_coefficient", unit="-", ge=0.0),
-        slip_speed=t.number("slip_speed", unit="m/s", gt=0.0),
-        friction_model=t.string("friction_model", choices=FRICTION_MODELS, default="coulomb"),
-    )
+    seabed = Seabed(**read_settings(Seabed, t))
     t.finish()
     return seabed
 
@@ -336,25 +324,32 @@ def _line(t: TableReader, line_types: dict[str, LineType],
     return line, paths
 
 
+#: How far a ratio of intervals may be from a whole number and still be one [-]: interval
+#: values typed in decimal (0.05 against 0.2) are not exact binary fractions, and a step or
+#: shape interval off by more than this relative part is a typing mistake.
+INTERVAL_RATIO_TOLERANCE = 1e-6
+
+
 def _simulation(t: TableReader) -> Simulation:
-    duration = t.number("duration", unit="s", gt=0.0)
-    interval = t.number("output_interval", unit="s", gt=0.0)
+    """``[simulation]``: the declared keys, then the checks between them."""
+    simulation = Simulation(**read_settings(Simulation, t))
+    duration, interval = simulation.duration, simulation.output_interval
     if interval > duration:
         raise t.error("output_interval", f"a number <= simulation.duration ({duration:g} s) [s]",
                       interval)
-    time_step = t.number("time_step", unit="s", gt=0.0, default=None)
+    time_step = simulation.time_step
     if time_step is not None and (time_step > interval or abs(
-            interval / time_step - round(interval / time_step)) > 1e-6 * interval / time_step):
+            interval / time_step - round(interval / time_step))
+            > INTERVAL_RATIO_TOLERANCE * interval / time_step):
         raise t.error("time_step", "a number dividing simulation.output_interval "
                       f"({interval:g} s) [s]", time_step)
-    shape = t.number("shape_output_interval", unit="s", gt=0.0, default=None)
+    shape = simulation.shape_output_interval
     if shape is not None and (shape < interval or abs(shape / interval - round(shape / interval))
-                              > 1e-6 * shape / interval):
+                              > INTERVAL_RATIO_TOLERANCE * shape / interval):
         raise t.error("shape_output_interval", "a multiple of simulation.output_interval "
                       f"({interval:g} s) [s]", shape)
     t.finish()
-    return Simulation(duration=duration, output_interval=interval, shape_output_interval=shape,
-                      time_step=time_step)
+    return simulation
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.case.limits import MAX_GRAVITY, MIN_GRAVITY
 from floatmoor.case.setting import setting
 
 __all__ = [
@@ -58,10 +59,18 @@ CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")
 class Environment:
     """Water and gravity. Still water at z = 0, flat seabed at z = -water_depth."""
 
-    water_density: float  #: [kg/m^3]
-    water_depth: float  #: [m]
-    gravity: float  #: [m/s^2]
-    current_velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)  #: steady, uniform [m/s]
+    water_density: float = setting(  #: [kg/m^3]
+        "number", unit="kg/m^3", gt=0.0, doc="Density of the water, for buoyancy, drag, added "
+        "mass and the hydrodynamic database.")
+    water_depth: float = setting(  #: [m]
+        "number", unit="m", gt=0.0, doc="Depth of the flat seabed below the still water line.")
+    gravity: float = setting(  #: [m/s^2]
+        "number", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY,
+        doc="Acceleration of gravity.")
+    current_velocity: tuple[float, float, float] = setting(  #: steady, uniform [m/s]
+        "vector", size=3, unit="m/s", default=(0.0, 0.0, 0.0), field_default=(0.0, 0.0, 0.0),
+        doc="Steady, uniform current [x, y, z], in the drag of the lines and of a floater's "
+            "Morison members.")
 
     @property
     def seabed_z(self) -> float:
@@ -74,13 +83,26 @@ class Seabed:
     """Seabed contact (gpc paper eq. 7): normal spring-damper and friction, smoothed Coulomb
     or a stick spring (docs/theory/cable.md#seabed-friction)."""
 
-    stiffness: float  #: normal stiffness per unit contact area [Pa/m]
-    damping_ratio: float  #: of the normal contact [-]
-    friction_coefficient: float  #: Coulomb, also the quasi-static catenary's C_B [-]
-    slip_speed: float  #: speed at which full friction is reached [m/s]
+    stiffness: float = setting(  #: normal stiffness per unit contact area [Pa/m]
+        "number", unit="Pa/m", gt=0.0,
+        doc="Normal stiffness of the seabed per unit contact area.")
+    damping_ratio: float = setting(  #: of the normal contact [-]
+        "number", unit="-", ge=0.0, doc="Damping ratio of the normal contact spring-damper.")
+    friction_coefficient: float = setting(  #: Coulomb, also the quasi-static catenary's C_B [-]
+        "number", unit="-", ge=0.0, doc="Coulomb friction coefficient along the seabed; also "
+        "the quasi-static catenary's friction on its resting length.")
+    slip_speed: float = setting(  #: speed at which full friction is reached [m/s]
+        "number", unit="m/s", gt=0.0, doc="Sliding speed at which the smoothed friction "
+        "reaches its full value (the \"coulomb\" friction model).")
     #: dynamic lines' friction law: "coulomb" (regularised by slip_speed) or "stick_spring"
     #: (an anchor per node, return mapping; docs/theory/cable.md#seabed-friction)
-    friction_model: str = "coulomb"
+    friction_model: str = setting(
+        "string", choices=FRICTION_MODELS, default="coulomb", field_default="coulomb",
+        doc="Seabed friction law of dynamic lines: \"coulomb\", the Coulomb force "
+            "regularised by the slip speed, or \"stick_spring\", a spring of the seabed's "
+            "normal stiffness to a friction anchor per node, capped at the friction "
+            "coefficient times the normal contact force, the anchor moved by return mapping "
+            "at committed steps (theory/cable.md).")
 
 
 @dataclass(frozen=True)
@@ -442,13 +464,22 @@ Motion = CircularMotion | HarmonicMotion | TableMotion | BodyHarmonicMotion | Bo
 
 @dataclass(frozen=True)
 class Simulation:
-    """Time span and output sampling."""
+    """Time span and output sampling (``[simulation]``)."""
 
-    duration: float  #: [s]
-    output_interval: float  #: [s]
-    shape_output_interval: float | None = None  #: line shape sampling [s], None = no shapes
+    duration: float = setting(  #: [s]
+        "number", unit="s", gt=0.0, doc="Simulated time span, from t = 0.")
+    output_interval: float = setting(  #: [s], <= duration (floatmoor.case.load)
+        "number", unit="s", gt=0.0, doc="Sampling interval of the output time series.")
     #: body step of a coupled run [s] (dividing the output interval); None = the output interval
-    time_step: float | None = None
+    time_step: float | None = setting(
+        "number", unit="s", gt=0.0, default=None, field_default=None,
+        doc="Time step of the floater in coupled runs, dividing `output_interval`; default "
+            "the output interval. Only with a `[floater]` (lines take their own steps).")
+    #: line shape sampling [s], None = no shapes
+    shape_output_interval: float | None = setting(
+        "number", unit="s", gt=0.0, default=None, field_default=None,
+        doc="Sampling interval of the line shapes, a multiple of `output_interval`; no shapes "
+            "are written without it.")
 
 
 #: Floater geometry kinds a case file may give (``floater.geometry.kind``).
