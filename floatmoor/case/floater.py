@@ -55,8 +55,9 @@ import numpy as np
 from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import MISSING, TableReader, _Found
+from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, HYDRO_CHECKS, HYDRO_SOURCES, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
+    GEOMETRY_KINDS, HYDRO_CHECKS, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
     RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
     HydroSettings, Member, MeshGeometry, SemisubmersibleGeometry,
 )
@@ -295,8 +296,9 @@ def is_database_path(text: str) -> bool:
 
 def read_hydro(t: TableReader) -> HydroSettings:
     """Read ``[hydro]``."""
-    database = t.string("database")
-    source = t.string("source", choices=HYDRO_SOURCES, default="bem")
+    declared = settings_of(HydroSettings)
+    database = declared["database"].read(t, "database")
+    source = declared["source"].read(t, "source")
     if source == "imported":
         if not (_is_name(database) or (is_database_path(database)
                                        and database.endswith(".nc")
@@ -356,16 +358,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
         database=database,
         frequencies=tuple(float(v) for v in values),
         directions=tuple(math.radians(d) for d in directions_deg),
-        # required by the loader except for a mesh hull without a lid (check_panel_size)
-        panel_size=t.number("panel_size", unit="m", gt=0.0, default=None),
-        lid=t.boolean("lid", default=True),
-        lid_depth=t.number("lid_depth", unit="m", gt=0.0, default=None),
-        infinite_depth=t.boolean("infinite_depth", default=False),
-        symmetry=t.boolean("symmetry", default=True),
-        radial_panels=t.integer("radial_panels", ge=1, le=1000, default=None),
-        drift_waterline_panel_size=t.number("drift_waterline_panel_size", unit="m", gt=0.0,
-                                            default=None),
-        drift_panel_size=t.number("drift_panel_size", unit="m", gt=0.0, default=None),
+        **read_settings(HydroSettings, t, skip=("database", "source")),
         accept_failed_checks=_accepted_checks(t),
     )
     t.finish()

@@ -243,34 +243,10 @@ _CASE = {
     "hydro": "The hydrodynamic database of the floater (`hydrodb/NAME.nc`): how `floatmoor "
              "hydro build` computes it with the BEM, or that it was imported "
              "(theory/hydrodynamics.md).",
-    "hydro.database": "Name of the database file in `hydrodb/` (`NAME` for "
-                      "`hydrodb/NAME.nc`); with `source = \"imported\"` also the path of "
-                      "the `.nc` that `floatmoor hydro import` made (a `/` in it or ending in "
-                      "`.nc`), relative to the case file's folder.",
-    "hydro.source": "`bem` (built from the keys below) or `imported` (made by `floatmoor "
-                    "hydro import` from WAMIT or BEMIO files; then no build keys).",
     "hydro.frequency_ranges": "BEM frequencies as [first, last, count] triples, evenly "
                               "spaced; with or instead of `frequencies`.",
     "hydro.frequencies": "BEM frequencies, listed; with or instead of `frequency_ranges`.",
     "hydro.directions_deg": "Wave directions of the excitation, distinct and increasing.",
-    "hydro.panel_size": "Target panel edge of a parametric hull, or of a mesh hull's lid; "
-                        "not needed for a mesh hull without a lid.",
-    "hydro.lid": "Close the hull's water plane with a lid of panels just below the water line, "
-                 "against the BEM's irregular frequencies.",
-    "hydro.lid_depth": "Depth of the lid below the water line; default where wavenumber "
-                       "times depth is 0.15 at the highest frequency.",
-    "hydro.infinite_depth": "Solve the BEM in infinite depth instead of "
-                            "environment.water_depth.",
-    "hydro.symmetry": "Use the hull's symmetries in the BEM.",
-    "hydro.radial_panels": "Panels across the bottom of a cylinder, centre to rim.",
-    "hydro.drift_waterline_panel_size": "Panel height at the water line of the mesh the mean "
-                                        "drift is solved on (`hydro build --drift`), graded "
-                                        "to panel_size below; default from the highest "
-                                        "frequency (guide/hydro_databases.md#mean-drift).",
-    "hydro.drift_panel_size": "Panel size of the mean drift's mesh away from the water line; "
-                              "default panel_size. Finer panels resolve the near field's "
-                              "body-motion terms at a large resonant response "
-                              "(guide/hydro_databases.md#mean-drift).",
     "hydro.accept_failed_checks": "Database checks whose failure a run of this case "
                                   "accepts; a run refuses a database failing any other.",
     # waves

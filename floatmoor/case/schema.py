@@ -654,26 +654,56 @@ class HydroSettings:
     None, the flags False.
     """
 
-    database: str  #: database name: ``hydrodb/NAME.nc``
+    database: str = setting(  #: database name: ``hydrodb/NAME.nc``
+        "string", doc="Name of the database file in `hydrodb/` (`NAME` for `hydrodb/NAME.nc`); "
+        "with `source = \"imported\"` also the path of the `.nc` that `floatmoor hydro "
+        "import` made (a `/` in it or ending in `.nc`), relative to the case file's folder.")
     frequencies: tuple[float, ...]  #: finite wave frequencies, increasing [rad/s]
     directions: tuple[float, ...]  #: wave propagation directions, increasing [rad]
-    panel_size: float | None  #: target panel edge length [m] (None: imported)
-    lid: bool  #: lid on the interior waterplane against irregular frequencies
-    lid_depth: float | None  #: [m] below the still water line, None = from the top frequency
-    infinite_depth: bool  #: solve in deep water (allows omega = 0) instead of water_depth
-    symmetry: bool  #: use the mesh symmetries capytaine supports
-    radial_panels: int | None = None  #: cylinder only: panels across the bottom radius
+    #: target panel edge length [m] (None: imported; required by the loader except for a mesh
+    #: hull without a lid, floatmoor.case.floater.check_panel_size)
+    panel_size: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, doc="Target panel edge of a parametric hull, "
+        "or of a mesh hull's lid; not needed for a mesh hull without a lid.")
+    #: lid on the interior waterplane against irregular frequencies
+    lid: bool = setting(
+        "boolean", default=True, doc="Close the hull's water plane with a lid of panels just "
+        "below the water line, against the BEM's irregular frequencies.")
+    #: [m] below the still water line, None = from the top frequency
+    lid_depth: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, doc="Depth of the lid below the water line; "
+        "default where wavenumber times depth is 0.15 at the highest frequency.")
+    #: solve in deep water (allows omega = 0) instead of water_depth
+    infinite_depth: bool = setting(
+        "boolean", default=False, doc="Solve the BEM in infinite depth instead of "
+        "environment.water_depth.")
+    symmetry: bool = setting(  #: use the mesh symmetries capytaine supports
+        "boolean", default=True, doc="Use the hull's symmetries in the BEM.")
+    radial_panels: int | None = setting(  #: cylinder only: panels across the bottom radius
+        "integer", ge=1, le=1000, default=None, field_default=None,
+        doc="Panels across the bottom of a cylinder, centre to rim.")
     #: panel height at the still water line of the mean drift's mesh (walls graded from it to
     #: ``panel_size``) [m]; None: the default rule of floatmoor.hydro.drift_build. Not a
     #: first-order input: the database's own mesh is uniform
-    drift_waterline_panel_size: float | None = None
+    drift_waterline_panel_size: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, field_default=None,
+        doc="Panel height at the water line of the mesh the mean drift is solved on (`hydro "
+            "build --drift`), graded to panel_size below; default from the highest frequency "
+            "(guide/hydro_databases.md#mean-drift).")
     #: panel size of the mean drift's mesh away from the water line [m]; None: ``panel_size``.
     #: Not a first-order input either (docs/guide/hydro_databases.md#mean-drift)
-    drift_panel_size: float | None = None
+    drift_panel_size: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, field_default=None,
+        doc="Panel size of the mean drift's mesh away from the water line; default "
+            "panel_size. Finer panels resolve the near field's body-motion terms at a large "
+            "resonant response (guide/hydro_databases.md#mean-drift).")
     #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
     accept_failed_checks: tuple[str, ...] = ()
     #: ``"bem"`` (built by ``floatmoor hydro build``) or ``"imported"`` (``hydro import``)
-    source: str = "bem"
+    source: str = setting(
+        "string", choices=HYDRO_SOURCES, default="bem", field_default="bem",
+        doc="`bem` (built from the keys below) or `imported` (made by `floatmoor hydro "
+            "import` from WAMIT or BEMIO files; then no build keys).")
 
 
 @dataclass(frozen=True)
