@@ -26,12 +26,13 @@ import numpy as np
 
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Environment
+from floatmoor.case.setting import read_settings
+from floatmoor.case.wind import WindSettings
 from floatmoor.waves.realisation import SPACINGS
 from floatmoor.waves.second_order import DRIFT_ROUTES, SECOND_ORDER_MODELS
 from floatmoor.waves.settings import (
     GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
-from floatmoor.wind.force import SPECTRA, WindSettings
 
 __all__ = ["WaveCase", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
 
@@ -117,21 +118,9 @@ def read_initial(t: TableReader) -> tuple[float, float, float, float, float, flo
 
 
 def read_wind(t: TableReader, duration: float) -> WindSettings:
-    """``[wind]``: the rotor thrust's wind (floatmoor.wind.force.WindSettings); a turbulent
+    """``[wind]``: the rotor thrust's wind (floatmoor.case.wind.WindSettings); a turbulent
     wind needs its cutoff above two frequency steps 1 / duration."""
-    settings = WindSettings(
-        mean_speed=t.number("mean_speed", unit="m/s", gt=0.0),
-        reference_height=t.number("reference_height", unit="m", gt=0.0, default=90.0),
-        spectrum=t.string("spectrum", choices=tuple(SPECTRA), default="npd"),
-        seed=t.integer("seed", ge=0, default=0),
-        direction_deg=t.number("direction_deg", unit="deg", default=0.0),
-        relative_velocity=t.boolean("relative_velocity", default=True),
-        cutoff_hz=t.number("cutoff_hz", unit="Hz", gt=0.0, default=0.5),
-        hub_height=t.number("hub_height", unit="m", gt=0.0, default=90.0))
-    try:
-        settings.validate()
-    except ValueError as err:
-        raise t.error("mean_speed", f"a valid wind ({err})", settings.mean_speed) from None
+    settings = WindSettings(**read_settings(WindSettings, t))
     if settings.spectrum != "steady" and not settings.cutoff_hz > 2.0 / duration:
         raise t.error("cutoff_hz", f"a frequency above 2 / simulation.duration = "
                       f"{2.0 / duration:.3g} Hz (a longer run, or spectrum = \"steady\")",

@@ -289,17 +289,6 @@ _CASE = {
     # wind
     "wind": "Rotor thrust of the NREL 5 MW turbine in a steady or turbulent wind "
             "(theory/environment.md).",
-    "wind.mean_speed": "One-hour mean wind speed at `reference_height`.",
-    "wind.reference_height": "Height of `mean_speed` above the still water line.",
-    "wind.spectrum": "`npd` (turbulent, the NPD spectrum of DNV-RP-C205) or `steady` "
-                     "(constant wind).",
-    "wind.seed": "Seed of the turbulent wind's random phases.",
-    "wind.direction_deg": "Direction the wind blows towards, from +x towards +y.",
-    "wind.relative_velocity": "Thrust on the wind relative to the moving rotor "
-                              "(quasi-steady; gives the negative aerodynamic damping above "
-                              "rated speed).",
-    "wind.cutoff_hz": "Highest frequency of the turbulent wind; above 2 / duration.",
-    "wind.hub_height": "Height of the rotor hub.",
 }
 
 _CASE_DEFAULTS = {

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from floatmoor.case.limits import MAX_GRAVITY, MIN_GRAVITY
 from floatmoor.case.setting import setting
+from floatmoor.case.wind import WindSettings
 
 __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
@@ -751,8 +752,8 @@ class Case:
     waves: Any = None
     #: the floater's offset from its static equilibrium at t = 0 (``[initial]``) [m, rad]
     initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
-    #: the rotor's wind (``[wind]``: floatmoor.wind.force.WindSettings), or None
-    wind: Any = None
+    #: the rotor's wind (``[wind]``), or None
+    wind: WindSettings | None = None
     #: the title as the case file gives it, placeholders unfilled ("" = same as ``title``)
     title_template: str = ""
     #: every point of the mooring system, the ``[[points]]`` then the lines' implicit ones
