@@ -26,7 +26,7 @@ import numpy as np
 
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Environment
-from floatmoor.case.setting import read_settings
+from floatmoor.case.setting import Setting, read_settings, setting, settings_of
 from floatmoor.case.wind import WindSettings
 from floatmoor.waves.realisation import SPACINGS
 from floatmoor.waves.second_order import DRIFT_ROUTES, SECOND_ORDER_MODELS
@@ -41,50 +41,54 @@ WAVE_KINDS = ("still", "regular", "jonswap")
 RAMP_PERIODS = 2.0
 
 
+#: ``[waves] kind``: which sea, hence which settings class the table's other keys fill.
+WAVE_KIND = Setting("string", choices=WAVE_KINDS, doc="`still` water, `regular` (Airy) waves "
+                    "or a `jonswap` irregular sea.")
+
+
 @dataclass(frozen=True)
 class WaveCase:
     """The sea of a coupled case, the ramp of its excitation and its second-order loads."""
 
     settings: StillWaterSettings | RegularWaveSettings | JonswapSettings
-    ramp_duration: float  #: [s]
+    ramp_duration: float = setting(  #: [s]
+        "number", unit="s", ge=0.0, default_text="two (peak) periods",
+        doc="Duration of the cosine ramp of the wave excitation.")
     #: second-order wave loads: "none", "mean", "newman" or "full"
-    second_order: str = "none"
+    second_order: str = setting(
+        "string", choices=SECOND_ORDER_MODELS, default="none", field_default="none",
+        doc="Second-order wave loads: `none` (first order only), the constant `mean` drift, "
+            "the slow drift by `newman`'s approximation, or the `full` difference-frequency "
+            "QTF of the database (theory/hydrodynamics.md, guide/rao_and_drift.md).")
     #: mean drift route of "mean" and "newman": "far_field" or "near_field"
-    drift_coefficients: str = "far_field"
+    drift_coefficients: str = setting(
+        "string", choices=DRIFT_ROUTES, default="far_field", field_default="far_field",
+        doc="Mean drift route of `mean` and `newman`: `far_field` (momentum: Surge, Sway, "
+            "Yaw; Heave, Roll, Pitch from the near field) or `near_field` (pressure "
+            "integration, all six DOFs).")
 
 
 def read_waves(t: TableReader, environment: Environment, duration: float) -> WaveCase:
     """``[waves]``, checked for physical values (steepness, breaking, gamma range)."""
-    kind = t.string("kind", choices=WAVE_KINDS)
+    kind = WAVE_KIND.read(t, "kind")
     if kind == "still":
         settings: StillWaterSettings | RegularWaveSettings | JonswapSettings = \
             StillWaterSettings()
         period = 0.0
     elif kind == "regular":
-        settings = RegularWaveSettings(
-            height=t.number("height", unit="m", gt=0.0),
-            period=t.number("period", unit="s", gt=0.0),
-            direction_deg=t.number("direction_deg", unit="deg", default=0.0),
-            phase_deg=t.number("phase_deg", unit="deg", default=0.0))
+        settings = RegularWaveSettings(**read_settings(RegularWaveSettings, t))
         period = settings.period
     else:
-        gamma = t.number("gamma", unit="-", ge=GAMMA_RANGE[0], default=3.3)
+        gamma = settings_of(JonswapSettings)["gamma"].read(t, "gamma")
         if gamma > GAMMA_RANGE[1]:
             raise t.error("gamma", f"a number in [{GAMMA_RANGE[0]:g}, {GAMMA_RANGE[1]:g}]",
                           gamma)
-        settings = JonswapSettings(
-            hs=t.number("hs", unit="m", gt=0.0), tp=t.number("tp", unit="s", gt=0.0),
-            seed=t.integer("seed", ge=0), gamma=gamma,
-            direction_deg=t.number("direction_deg", unit="deg", default=0.0),
-            spacing=t.string("spacing", choices=tuple(SPACINGS), default="equal"),
-            n_components=t.integer("n_components", ge=1, default=None),
-            frequency_step=t.number("frequency_step", unit="rad/s", gt=0.0, default=None),
-            omega_min=t.number("omega_min", unit="rad/s", gt=0.0, default=None),
-            omega_max=t.number("omega_max", unit="rad/s", gt=0.0, default=None))
+        settings = JonswapSettings(**read_settings(JonswapSettings, t, skip=("gamma",)),
+                                   gamma=gamma)
         period = settings.tp
-    ramp = t.number("ramp_duration", unit="s", ge=0.0, default=RAMP_PERIODS * period)
-    second_order = t.string("second_order", choices=SECOND_ORDER_MODELS, default="none")
-    route = t.string("drift_coefficients", choices=DRIFT_ROUTES, default="far_field")
+    read = read_settings(WaveCase, t, {"ramp_duration": RAMP_PERIODS * period})
+    ramp, second_order, route = read["ramp_duration"], read["second_order"], \
+        read["drift_coefficients"]
     if kind == "still" and second_order != "none":
         raise t.error("second_order", '"none" in still water (kind = "still": no waves to '
                       "drift the floater)", second_order)

@@ -251,32 +251,6 @@ _CASE = {
                                   "accepts; a run refuses a database failing any other.",
     # waves
     "waves": "The sea of a coupled case (theory/environment.md).",
-    "waves.kind": "`still` water, `regular` (Airy) waves or a `jonswap` irregular sea.",
-    "waves.height": "Wave height, crest to trough (`regular`).",
-    "waves.period": "Wave period (`regular`).",
-    "waves.phase_deg": "Phase of the regular wave at the origin (`regular`).",
-    "waves.direction_deg": "Direction the waves travel in, from the x axis (`regular`, "
-                           "`jonswap`).",
-    "waves.hs": "Significant wave height, 4 sqrt(m0) (`jonswap`).",
-    "waves.tp": "Peak period (`jonswap`).",
-    "waves.seed": "Seed of the random phases, so a case always names its sea (`jonswap`).",
-    "waves.gamma": "Peak-enhancement factor, 1 to 10 (`jonswap`).",
-    "waves.spacing": "Frequencies `equal`ly spaced or one `random-in-bin` (`jonswap`).",
-    "waves.n_components": "Number of frequency bins (`jonswap`, `random-in-bin` only).",
-    "waves.frequency_step": "Frequency step of an `equal` spacing; default 2 pi / duration, "
-                            "a larger one is an error as the sea would repeat (`jonswap`).",
-    "waves.omega_min": "Lowest realised frequency; default half the peak frequency "
-                       "(`jonswap`).",
-    "waves.omega_max": "Highest realised frequency; default four times the peak frequency "
-                       "(`jonswap`).",
-    "waves.ramp_duration": "Duration of the cosine ramp of the wave excitation.",
-    "waves.second_order": "Second-order wave loads: `none` (first order only), the constant "
-                          "`mean` drift, the slow drift by `newman`'s approximation, or the "
-                          "`full` difference-frequency QTF of the database "
-                          "(theory/hydrodynamics.md, guide/rao_and_drift.md).",
-    "waves.drift_coefficients": "Mean drift route of `mean` and `newman`: `far_field` "
-                                "(momentum: Surge, Sway, Yaw; Heave, Roll, Pitch from the near "
-                                "field) or `near_field` (pressure integration, all six DOFs).",
     # initial
     "initial": "The floater's displacement from its static equilibrium at t = 0 (a free "
                "decay); body and lines start at rest there.",
@@ -297,7 +271,6 @@ _CASE_DEFAULTS = {
     "lines[].quasi_dynamic.max_time_step": "one step per output sample",
     "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
     "motion.phase_deg": "default 0 (every axis)",
-    "waves.ramp_duration": "two (peak) periods",
     "floater.drag.<coefficient>": "the preset's",
     "floater.geometry": "required unless `hydro.source = \"imported\"`",
     "floater.geometry.draft": "from the mass",
