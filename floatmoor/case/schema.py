@@ -61,15 +61,18 @@ class Environment:
     """Water and gravity. Still water at z = 0, flat seabed at z = -water_depth."""
 
     water_density: float = setting(  #: [kg/m^3]
-        "number", unit="kg/m^3", gt=0.0, doc="Density of the water, for buoyancy, drag, added "
+        "number", scale="water_density",
+        unit="kg/m^3", gt=0.0, doc="Density of the water, for buoyancy, drag, added "
         "mass and the hydrodynamic database.")
     water_depth: float = setting(  #: [m]
-        "number", unit="m", gt=0.0, doc="Depth of the flat seabed below the still water line.")
+        "number", scale="length",
+        unit="m", gt=0.0, doc="Depth of the flat seabed below the still water line.")
     gravity: float = setting(  #: [m/s^2]
-        "number", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY,
+        "number", scale="same", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY,
         doc="Acceleration of gravity.")
     current_velocity: tuple[float, float, float] = setting(  #: steady, uniform [m/s]
-        "vector", size=3, unit="m/s", default=(0.0, 0.0, 0.0), field_default=(0.0, 0.0, 0.0),
+        "vector", scale="velocity",
+        size=3, unit="m/s", default=(0.0, 0.0, 0.0), field_default=(0.0, 0.0, 0.0),
         doc="Steady, uniform current [x, y, z], in the drag of the lines and of a floater's "
             "Morison members.")
 
@@ -85,20 +88,24 @@ class Seabed:
     or a stick spring (docs/theory/cable.md#seabed-friction)."""
 
     stiffness: float = setting(  #: normal stiffness per unit contact area [Pa/m]
-        "number", unit="Pa/m", gt=0.0,
+        "number", scale="seabed_stiffness", unit="Pa/m", gt=0.0,
         doc="Normal stiffness of the seabed per unit contact area.")
     damping_ratio: float = setting(  #: of the normal contact [-]
-        "number", unit="-", ge=0.0, doc="Damping ratio of the normal contact spring-damper.")
+        "number", scale="same",
+        unit="-", ge=0.0, doc="Damping ratio of the normal contact spring-damper.")
     friction_coefficient: float = setting(  #: Coulomb, also the quasi-static catenary's C_B [-]
-        "number", unit="-", ge=0.0, doc="Coulomb friction coefficient along the seabed; also "
+        "number", scale="same",
+        unit="-", ge=0.0, doc="Coulomb friction coefficient along the seabed; also "
         "the quasi-static catenary's friction on its resting length.")
     slip_speed: float = setting(  #: speed at which full friction is reached [m/s]
-        "number", unit="m/s", gt=0.0, doc="Sliding speed at which the smoothed friction "
+        "number", scale="velocity",
+        unit="m/s", gt=0.0, doc="Sliding speed at which the smoothed friction "
         "reaches its full value (the \"coulomb\" friction model).")
     #: dynamic lines' friction law: "coulomb" (regularised by slip_speed) or "stick_spring"
     #: (an anchor per node, return mapping; docs/theory/cable.md#seabed-friction)
     friction_model: str = setting(
-        "string", choices=FRICTION_MODELS, default="coulomb", field_default="coulomb",
+        "string", scale="same",
+        choices=FRICTION_MODELS, default="coulomb", field_default="coulomb",
         doc="Seabed friction law of dynamic lines: \"coulomb\", the Coulomb force "
             "regularised by the slip speed, or \"stick_spring\", a spring of the seabed's "
             "normal stiffness to a friction anchor per node, capped at the friction "
@@ -112,30 +119,41 @@ class LineType:
 
     name: str
     mass_per_length: float = setting(  #: [kg/m]
-        "number", unit="kg/m", gt=0.0, doc="Dry mass per unstretched length.")
-    axial_stiffness: float = setting("number", unit="N", gt=0.0, doc="Axial stiffness EA.")
+        "number", scale="mass_per_length",
+        unit="kg/m", gt=0.0, doc="Dry mass per unstretched length.")
+    axial_stiffness: float = setting(
+        "number", scale="force",
+        unit="N", gt=0.0, doc="Axial stiffness EA.")
     diameter: float = setting(
-        "number", unit="m", gt=0.0, doc="Diameter the drag and added-mass coefficients refer to "
+        "number", scale="diameter",
+        unit="m", gt=0.0, doc="Diameter the drag and added-mass coefficients refer to "
         "(for chain, usually the volume-equivalent diameter).")
     material_density: float = setting(
-        "number", unit="kg/m^3", gt=0.0, doc="Density of the line's material; with the mass it "
+        "number", scale="same",
+        unit="kg/m^3", gt=0.0, doc="Density of the line's material; with the mass it "
         "gives the displaced volume, hence the submerged weight.")
     normal_drag_coefficient: float = setting(  #: C_dn
-        "number", unit="-", ge=0.0, doc="Morison drag coefficient normal to the line, on its "
+        "number", scale="drag_coefficient",
+        unit="-", ge=0.0, doc="Morison drag coefficient normal to the line, on its "
         "diameter.")
     tangential_drag_coefficient: float = setting(  #: C_dt
-        "number", unit="-", ge=0.0, doc="Drag coefficient along the line.")
+        "number", scale="drag_coefficient",
+        unit="-", ge=0.0, doc="Drag coefficient along the line.")
     added_mass_coefficient: float = setting(  #: C_a, on the material area m/rho_c
-        "number", unit="-", ge=0.0, doc="Added-mass coefficient normal to the line, on the "
+        "number", scale="added_mass_coefficient",
+        unit="-", ge=0.0, doc="Added-mass coefficient normal to the line, on the "
         "material area m / rho_material.")
     tangential_added_mass_coefficient: float = setting(
-        "number", unit="-", ge=0.0, default=0.0, doc="Added-mass coefficient along the line.")
+        "number", scale="added_mass_coefficient",
+        unit="-", ge=0.0, default=0.0, doc="Added-mass coefficient along the line.")
     internal_damping_ratio: float = setting(
-        "number", unit="-", ge=0.0, default=0.0, doc="Kelvin-Voigt axial damping, as the "
+        "number", scale="same",
+        unit="-", ge=0.0, default=0.0, doc="Kelvin-Voigt axial damping, as the "
         "damping ratio of the line's first longitudinal mode (dynamic model).")
     #: minimum breaking load [N], or None when not given
     minimum_breaking_load: float | None = setting(
-        "number", unit="N", gt=0.0, default=None, field_default=None, doc="Minimum breaking "
+        "number", scale="force",
+        unit="N", gt=0.0, default=None, field_default=None, doc="Minimum breaking "
         "load (MBL), for the safety factors of the run summary; without it `floatmoor check` "
         "warns on large strains.")
 
@@ -180,50 +198,51 @@ class DynamicSettings:
 
     #: number of elements; None: chosen from ``accuracy`` (mooring/dg/resolution.py)
     elements: int | None = setting(
-        "integer", ge=1, le=10_000, default=None, auto=_FROM_ACCURACY,
+        "integer", scale="same", ge=1, le=10_000, default=None, auto=_FROM_ACCURACY,
         default_text='chosen from `accuracy` ("auto")',
         doc="Number of discontinuous-Galerkin elements along the line. Left out (or "
             '"auto"), it is chosen with `order` from `accuracy` and the fairlead motion\'s '
             "frequency; `floatmoor check` prints the choice (theory/dynamic_line.md).")
     #: polynomial order p (1 to 8); None: chosen from ``accuracy``
     order: int | None = setting(
-        "integer", ge=1, le=8, default=None, auto=_FROM_ACCURACY,
+        "integer", scale="same", ge=1, le=8, default=None, auto=_FROM_ACCURACY,
         default_text='chosen from `accuracy` ("auto")',
         doc="Polynomial order of the elements. Left out (or \"auto\"), it is chosen with "
             "`elements` from `accuracy`.")
     #: time step as a fraction of the linear SSP-RK3 stability limit [-]
     cfl: float = setting(
-        "number", unit="-", gt=0.0, le=1.0, default=DEFAULT_DG_CFL,
+        "number", scale="same", unit="-", gt=0.0, le=1.0, default=DEFAULT_DG_CFL,
         doc="Explicit time step as a fraction of the stability limit of the axial (snap) "
             "wave for the SSP-RK3 scheme; the margin below 1 covers the nonlinear terms "
             "(snap loads, drag, seabed contact).")
     #: user cap on the time step [s]
     max_time_step: float | None = setting(
-        "number", unit="s", gt=0.0, default=None, default_text="none (implicit: 0.5 s)",
+        "number", scale="time",
+        unit="s", gt=0.0, default=None, default_text="none (implicit: 0.5 s)",
         doc="Cap on the line's time step [s]; with implicit integration the step starts from "
             "it (0.5 s when not given) and is halved where the estimated error of the "
             "fairlead force is too large.")
     #: modal filter on elements in compression
     slack_filter: bool = setting(
-        "boolean", default=True,
+        "boolean", scale="same", default=True,
         doc="Modal velocity filter on elements in compression, which damps the spurious "
             "high-order modes of a slack chain.")
     #: "implicit" or "explicit" normal spring-damper
     seabed_contact: str = setting(
-        "string", choices=SEABED_CONTACT_METHODS, default="implicit",
+        "string", scale="same", choices=SEABED_CONTACT_METHODS, default="implicit",
         doc="Treatment of the seabed's normal spring-damper: \"implicit\" (backward-Euler, "
             'so the stiff seabed does not limit the step) or "explicit" (resolved by the '
             "step, much smaller).")
     #: relax the line to the static equilibrium of its discretisation before the run
     settle: bool = setting(
-        "boolean", default=True, field_default=True,
+        "boolean", scale="same", default=True, field_default=True,
         doc="Relax the line, fairlead held, to the static equilibrium of its own "
             "discretisation before the run, so that its mismatch with the catenary initial "
             "shape does not ring through the run.")
     #: "implicit" (a backward-Euler step after each SSP-RK3 step, so the axial wave alone sets
     #: the time step) or "explicit" (in the right-hand side) Kelvin-Voigt internal damping
     internal_damping: str = setting(
-        "string", choices=INTERNAL_DAMPING_METHODS, default="implicit",
+        "string", scale="same", choices=INTERNAL_DAMPING_METHODS, default="implicit",
         field_default="implicit",
         doc="Treatment of the Kelvin-Voigt internal damping "
             "(`line_types.NAME.internal_damping_ratio`): \"implicit\" keeps the axial wave "
@@ -233,14 +252,15 @@ class DynamicSettings:
     #: (generalised-alpha, steps of at most ``max_time_step``, halved where the estimated error
     #: of the fairlead force exceeds ``accuracy``'s share); a case file's default is "auto"
     time_integration: str = setting(
-        "string", choices=TIME_INTEGRATIONS, default="auto", field_default="explicit",
+        "string", scale="same",
+        choices=TIME_INTEGRATIONS, default="auto", field_default="explicit",
         doc='"explicit" (SSP-RK3 at `cfl` of the axial wave\'s limit), "implicit" '
             "(generalised-alpha, Chung & Hulbert 1993, steps bounded by accuracy) or \"auto\": "
             "implicit while its steps cost less than the explicit ones they replace, explicit "
             "from then on.")
     #: relative error of the fairlead tension accepted [-]
     accuracy: float = setting(
-        "number", unit="-", gt=0.0, le=MAX_DG_ACCURACY, default=DEFAULT_DG_ACCURACY,
+        "number", scale="same", unit="-", gt=0.0, le=MAX_DG_ACCURACY, default=DEFAULT_DG_ACCURACY,
         field_default=DEFAULT_DG_ACCURACY,
         doc="Accepted relative error of the fairlead tension; the element count, order and "
             "implicit step are chosen for it when not given.")
@@ -468,17 +488,18 @@ class Simulation:
     """Time span and output sampling (``[simulation]``)."""
 
     duration: float = setting(  #: [s]
-        "number", unit="s", gt=0.0, doc="Simulated time span, from t = 0.")
+        "number", scale="time", unit="s", gt=0.0, doc="Simulated time span, from t = 0.")
     output_interval: float = setting(  #: [s], <= duration (floatmoor.case.load)
-        "number", unit="s", gt=0.0, doc="Sampling interval of the output time series.")
+        "number", scale="time",
+        unit="s", gt=0.0, doc="Sampling interval of the output time series.")
     #: body step of a coupled run [s] (dividing the output interval); None = the output interval
     time_step: float | None = setting(
-        "number", unit="s", gt=0.0, default=None, field_default=None,
+        "number", scale="time", unit="s", gt=0.0, default=None, field_default=None,
         doc="Time step of the floater in coupled runs, dividing `output_interval`; default "
             "the output interval. Only with a `[floater]` (lines take their own steps).")
     #: line shape sampling [s], None = no shapes
     shape_output_interval: float | None = setting(
-        "number", unit="s", gt=0.0, default=None, field_default=None,
+        "number", scale="time", unit="s", gt=0.0, default=None, field_default=None,
         doc="Sampling interval of the line shapes, a multiple of `output_interval`; no shapes "
             "are written without it.")
 

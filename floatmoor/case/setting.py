@@ -45,7 +45,8 @@ class Setting:
     ``kind`` names the :class:`~floatmoor.case.reader.TableReader` accessor that reads it;
     ``default`` is what a file that leaves the key out gets (:data:`MISSING`: required);
     ``default_text`` words a default the reader computes from other values (``"{default}"``
-    in it stands for the recorded one); ``doc`` is the reference page's description.
+    in it stands for the recorded one); ``doc`` is the reference page's description;
+    ``scale`` how ``floatmoor scale`` rewrites the value.
     """
 
     kind: str
@@ -60,6 +61,9 @@ class Setting:
     auto: str | None = None  #: what "auto" means, for an integer that may be "auto"
     default: Any = MISSING
     default_text: str | None = None
+    #: quantity kind under a change of scale (floatmoor.similitude.laws.QUANTITY_KINDS:
+    #: "length", "force", "same", ...); "" for a table ``floatmoor scale`` maps by hand
+    scale: str = ""
 
     def read(self, t: TableReader, key: str, default: Any = MISSING) -> Any:
         """Read ``key`` of ``t`` as declared (``default``: a computed one, else the
