@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from floatmoor.case.reader import TableReader
-from floatmoor.case.schema import Environment
+from floatmoor.case.schema import Case, Environment
 from floatmoor.case.setting import Setting, read_settings, setting, settings_of
 from floatmoor.case.wind import WindSettings
 from floatmoor.waves.realisation import SPACINGS
@@ -34,7 +34,7 @@ from floatmoor.waves.settings import (
     GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
 
-__all__ = ["WaveCase", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
+__all__ = ["WaveCase", "CoupledCase", "STILL_WATER", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
 
 WAVE_KINDS = ("still", "regular", "jonswap")
 #: Default excitation ramp in (peak) wave periods.
@@ -66,6 +66,35 @@ class WaveCase:
         doc="Mean drift route of `mean` and `newman`: `far_field` (momentum: Surge, Sway, "
             "Yaw; Heave, Roll, Pitch from the near field) or `near_field` (pressure "
             "integration, all six DOFs).")
+
+
+#: The sea of a case without ``[waves]``: still water, no ramp, no second-order loads.
+STILL_WATER = WaveCase(StillWaterSettings(), 0.0)
+
+
+@dataclass(frozen=True)
+class CoupledCase:
+    """What a coupled run takes from its case: a typed, read-only view built from a loaded
+    case, whose reader checked it (``[simulation] time_step`` divides ``output_interval``
+    within :data:`floatmoor.case.load.INTERVAL_RATIO_TOLERANCE`), so the time loop checks
+    nothing again."""
+
+    time_step: float  #: the body's step [s]: ``simulation.time_step``, or the output interval
+    steps_per_output: int  #: body steps per output sample
+    waves: WaveCase  #: the sea (:data:`STILL_WATER` without ``[waves]``)
+    #: offset from the static equilibrium at t = 0 (Surge, Sway, Heave [m], Roll, Pitch,
+    #: Yaw [rad])
+    initial_offset: tuple[float, float, float, float, float, float]
+
+    @classmethod
+    def of(cls, case: Case) -> "CoupledCase":
+        """The view of ``case`` (a case with a ``[floater]``)."""
+        sim = case.simulation
+        step = sim.time_step if sim.time_step is not None else sim.output_interval
+        return cls(time_step=float(step),
+                   steps_per_output=int(round(sim.output_interval / step)),
+                   waves=case.waves if case.waves is not None else STILL_WATER,
+                   initial_offset=tuple(case.initial_offset))  # type: ignore[arg-type]
 
 
 def read_waves(t: TableReader, environment: Environment, duration: float) -> WaveCase:

@@ -24,6 +24,7 @@ from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
+from floatmoor.case.coupling import CoupledCase, WaveCase
 from floatmoor.case.schema import Case, Point
 from floatmoor.errors import CaseError, FloatmoorError, FloatmoorWarning, SolverError
 from floatmoor.hydro.database import load_for_case
@@ -262,7 +263,7 @@ def _excitation(sea: WaveField, ds: "xr.Dataset", case: Case) -> WaveExcitation 
     return WaveExcitation(sea, X)
 
 
-def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "xr.Dataset"
+def _second_order(case: Case, waves: WaveCase, sea: WaveField, ds: "xr.Dataset"
                   ) -> tuple[SecondOrderForce | None, dict[str, str]]:
     """The second-order wave force of the run and its description (result attributes), or
     (None, {}); refused before any run starts when the database cannot give it.
@@ -272,7 +273,7 @@ def _second_order(case: Case, settings: "CoupledSettings", sea: WaveField, ds: "
     CaseError
         Naming the case file, the key, the database, what was expected and what was found.
     """
-    model, route = settings.second_order, settings.drift_coefficients
+    model, route = waves.second_order, waves.drift_coefficients
     if model == "none":
         return None, {}
     path = ds.attrs.get("path", "the database")
@@ -395,7 +396,8 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
     env = case.environment
-    dt = float(settings.time_step)
+    view = CoupledCase.of(case)
+    dt = view.time_step
     # the case's database, refused when missing, damaged or built from other inputs
     ds = load_for_case(case, settings.database)
     if case.floater.radiation == "state-space" and not has_state_space(ds):
@@ -405,15 +407,15 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
                         f"{case.hydro.database if case.hydro else 'NAME'}')",
                         f'"state-space" with {ds.attrs.get("path", "the database")}, which '
                         "holds none")
-    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
+    sea = build(view.waves.settings, env.water_depth, env.gravity, case.simulation.duration)
     # before the body: a sea on a database without excitation forces (or without the
     # second-order coefficients the case asks for) is refused at once
     excitation = _excitation(sea, ds, case)
-    second, second_attrs = _second_order(case, settings, sea, ds)
+    second, second_attrs = _second_order(case, view.waves, sea, ds)
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)
     rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
-    loads = BodyLoads(excitation, rotor, None, settings.ramp_duration, dt, second)
+    loads = BodyLoads(excitation, rotor, None, view.waves.ramp_duration, dt, second)
     centre = np.asarray(case.floater.reference_point, dtype=float)
     # built as for a fresh start, so that a checkpoint's state fits the same operators
     moored = MooredBody(body, case.lines, env, case.seabed, centre, loads, case=case)
@@ -424,7 +426,7 @@ def assemble(case: Case, settings: "CoupledSettings | None" = None) -> MooredSys
     x_eq = equilibrium(body, [ln for ln, s in zip(case.lines, solo) if s],
                        moored.arms[solo] if len(solo) else moored.arms, centre, env, case.seabed,
                        mean_force=mean_force, system_force=_system_force(case, centre))
-    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    moored.start(x_eq + np.asarray(view.initial_offset, dtype=float))
     refuse_long_runs(case, moored.models)
     moored.equilibrium_position = x_eq
     if case.floater.drag is not None:

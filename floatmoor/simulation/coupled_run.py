@@ -8,13 +8,14 @@ from __future__ import annotations
 import time as _time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import points_state
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.schema import Case, Line
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.io.netcdf3_format import NetCDF3Error
@@ -54,37 +55,19 @@ CHECKPOINT_INTERVAL_S = 10.0
 
 @dataclass(frozen=True)
 class CoupledSettings:
-    """What a coupled run needs beyond the case's lines and floater."""
+    """Options of a coupled run that its case file does not give. What the case gives (the
+    body step, the sea, the initial offset) the run takes from the case itself
+    (:class:`floatmoor.case.coupling.CoupledCase`), checked once by its reader."""
 
-    time_step: float  #: body time step [s]; the output interval must be a multiple of it
-    waves: RegularWaveSettings | JonswapSettings | StillWaterSettings = field(
-        default_factory=StillWaterSettings)
-    #: cosine ramp of the wave excitation [s] (0: none)
-    ramp_duration: float = 0.0
-    #: initial displacement from the static equilibrium (Surge, Sway, Heave [m], Roll, Pitch,
-    #: Yaw [rad]); the body and its lines start at rest there
-    initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
     database: str | Path | None = None  #: default: hydrodb/<hydro.database>.nc
     linear_damping: NDArray[np.float64] | None = None  #: B_1 (6, 6)
     quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
-    #: second-order wave loads ("none", "mean", "newman", "full": floatmoor.waves.second_order)
-    second_order: str = "none"
-    #: mean drift route of "mean" and "newman" ("far_field" or "near_field")
-    drift_coefficients: str = "far_field"
 
 
 def settings_from_case(case: Case) -> CoupledSettings:
-    """The coupled-run settings a case file gives (``[waves]``, ``[initial]``,
-    ``[simulation] time_step``, default the output interval)."""
-    sim = case.simulation
-    waves = case.waves
-    return CoupledSettings(
-        time_step=sim.time_step if sim.time_step is not None else sim.output_interval,
-        waves=waves.settings if waves is not None else StillWaterSettings(),
-        ramp_duration=waves.ramp_duration if waves is not None else 0.0,
-        initial_offset=tuple(case.initial_offset),
-        second_order=waves.second_order if waves is not None else "none",
-        drift_coefficients=waves.drift_coefficients if waves is not None else "far_field")
+    """The options of a plain run of ``case``: none beyond the case (its database, no
+    additional damping)."""
+    return CoupledSettings()
 
 
 def irregular_sea(waves: RegularWaveSettings | JonswapSettings | StillWaterSettings) -> bool:
@@ -237,8 +220,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     completed one removes it too. With ``simulation.shape_output_interval`` the lines'
     shapes are recorded too.
 
-    ``settings`` (default :func:`settings_from_case`) replaces the case's ``[waves]``,
-    ``[initial]`` and ``simulation.time_step``.
+    ``settings`` (default :func:`settings_from_case`) gives the options the case does not:
+    another database file, additional linear or quadratic damping.
 
     Raises
     ------
@@ -321,12 +304,10 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
         which rewrites it from its start.
     """
     ckpt = checkpoint_path(output) if output is not None else None
-    dt = float(settings.time_step)
+    view = CoupledCase.of(case)
+    dt = view.time_step
     times = output_times(case.simulation)
-    stride = int(round(case.simulation.output_interval / dt))
-    if stride < 1 or abs(stride * dt - case.simulation.output_interval) > 1e-9 * dt:
-        raise ValueError(f"the output interval {case.simulation.output_interval} s must be a "
-                         f"multiple of the body time step {dt} s")
+    stride = view.steps_per_output
     system = assemble(case, settings)
     moored, loads = system.moored, system.loads
     body, x_eq = moored.body, system.equilibrium
@@ -337,8 +318,8 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
     # a resumed run keeps what its file says of them)
     probe = None if resume else RunProbe.for_run(
         list(rule_lines), moored.models, case.environment, case.seabed,
-        settings.ramp_duration, raised_from=raised_from,
-        irregular=irregular_sea(settings.waves))
+        view.waves.ramp_duration, raised_from=raised_from,
+        irregular=irregular_sea(view.waves.settings))
     not_yet = NOT_YET_ESTIMATED + "".join(
         f"\nline '{rule_lines[i].name}': raised to {raised[i]} elements from "
         f"{describe_raises(history)}; the run started again from t = 0"
@@ -444,7 +425,7 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
     if probe is not None and not probe.done:
         recorder.set_attribute("line_accuracy", "not estimated: the run ended before the wave "
                                f"ramp and {probe.cycles} "
-                               f"{'peak' if irregular_sea(settings.waves) else 'wave'} periods")
+                               f"{'peak' if irregular_sea(view.waves.settings) else 'wave'} periods")
     dataset = recorder.result(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()
