@@ -52,6 +52,9 @@ from pathlib import Path
 
 import numpy as np
 
+from floatmoor.case.drag import (
+    DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, PRESETS, DragSettings,
+)
 from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import MISSING, TableReader, _Found
@@ -124,14 +127,10 @@ def read_floater(t: TableReader, environment: Environment,
                    drag=drag, radiation=radiation)
 
 
-def _drag(t: TableReader):
-    """``[floater.drag]``: Morison drag on the members (floatmoor.body.morison.DragSettings:
+def _drag(t: TableReader) -> DragSettings:
+    """``[floater.drag]``: Morison drag on the members (floatmoor.case.drag.DragSettings:
     ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
     ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
-    from floatmoor.body.morison import (
-        DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, PRESETS, DragSettings,
-    )
-
     try:
         settings = DragSettings.from_settings(t.data)
     except (ValueError, TypeError) as err:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.case.drag import DragSettings
 from floatmoor.case.limits import MAX_GRAVITY, MIN_GRAVITY
 from floatmoor.case.setting import setting
 from floatmoor.case.wind import WindSettings
@@ -645,8 +646,8 @@ class Floater:
     #: the hull (``[floater.geometry]``); None for a floater whose database is imported and
     #: that gives none (its hydrostatics come from the database; no drag members)
     geometry: FloaterGeometry | None
-    #: Morison drag on the members (``[floater.drag]``: floatmoor.body.morison.DragSettings)
-    drag: Any = None
+    #: Morison drag on the members (``[floater.drag]``), or None
+    drag: DragSettings | None = None
     #: radiation memory path (one of :data:`RADIATION_METHODS`)
     radiation: str = "convolution"
 
