@@ -13,7 +13,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
-__all__ = ["MorisonCoefficients", "DragSettings", "DEEPCWIND_OC4", "NO_DRAG", "PRESETS",
+from floatmoor.case.setting import Setting, setting
+
+__all__ = ["MorisonCoefficients", "DragSettings", "DRAG_PRESET", "DEEPCWIND_OC4", "NO_DRAG",
+           "PRESETS",
            "HEAVE_PLATE_AREAS", "DEFAULT_STRIP_LENGTH", "MIN_STRIPS"]
 
 #: Longest strip [m] by default. The wave velocity varies with depth like e^{kz}; the midpoint
@@ -30,6 +33,10 @@ MIN_STRIPS = 4
 HEAVE_PLATE_AREAS = ("disc", "annulus")
 
 
+#: How a coefficient's default is worded on the reference page.
+_PRESETS = "the preset's"
+
+
 def _check_coefficient(name: str, value: float) -> None:
     if not isinstance(value, (int, float)) or isinstance(value, bool):
         raise ValueError(f"drag: {name} must be a number, got {value!r}")
@@ -41,12 +48,26 @@ def _check_coefficient(name: str, value: float) -> None:
 class MorisonCoefficients:
     """Drag coefficients per member kind [-] (module docstring for where each applies)."""
 
-    column_transverse: float = 0.0  #: Cd_t of vertical columns (above any heave plate)
-    heave_plate_transverse: float = 0.0  #: Cd_t of a heave plate's side (plate diameter)
-    heave_plate_axial: float = 0.0  #: Cd of a heave plate's axial drag (A_plate)
-    member_transverse: float = 0.0  #: Cd_t of pontoons and braces
-    member_axial: float = 0.0  #: axial (skin-friction) Cd of pontoons and braces, on pi D ds
-    column_axial: float = 0.0  #: Cd of a plate-less column's bottom disc, pi/4 D^2
+    column_transverse: float = setting(  #: Cd_t of vertical columns (above any heave plate)
+        "number", scale="same", unit="-", ge=0.0, field_default=0.0, default_text=_PRESETS,
+        doc="Transverse drag coefficient of the vertical columns (above any heave plate), "
+            "overriding the preset's.")
+    heave_plate_transverse: float = setting(  #: Cd_t of a heave plate's side (plate diameter)
+        "number", scale="same", unit="-", ge=0.0, field_default=0.0, default_text=_PRESETS,
+        doc="Transverse drag coefficient of a heave plate's side, on the plate's diameter.")
+    heave_plate_axial: float = setting(  #: Cd of a heave plate's axial drag (A_plate)
+        "number", scale="same", unit="-", ge=0.0, field_default=0.0, default_text=_PRESETS,
+        doc="Axial drag coefficient of a heave plate, on the area of `heave_plate_area`.")
+    member_transverse: float = setting(  #: Cd_t of pontoons and braces
+        "number", scale="same", unit="-", ge=0.0, field_default=0.0, default_text=_PRESETS,
+        doc="Transverse drag coefficient of the pontoons and braces.")
+    member_axial: float = setting(  #: axial (skin-friction) Cd of pontoons and braces, on pi D ds
+        "number", scale="same", unit="-", ge=0.0, field_default=0.0, default_text=_PRESETS,
+        doc="Axial (skin-friction) drag coefficient of the pontoons and braces, on their "
+            "wetted area.")
+    column_axial: float = setting(  #: Cd of a plate-less column's bottom disc, pi/4 D^2
+        "number", scale="same", unit="-", ge=0.0, field_default=0.0, default_text=_PRESETS,
+        doc="Axial drag coefficient of the bottom disc of a column without a heave plate.")
 
     def validate(self) -> None:
         """Raise ValueError unless every coefficient is a finite number >= 0."""
@@ -71,6 +92,10 @@ DEEPCWIND_OC4 = MorisonCoefficients(
 NO_DRAG = MorisonCoefficients()
 #: Named presets, the values of ``[floater.drag] preset``.
 PRESETS: dict[str, MorisonCoefficients] = {"deepcwind_oc4": DEEPCWIND_OC4, "none": NO_DRAG}
+#: ``[floater.drag] preset``: the coefficients the table's own keys override.
+DRAG_PRESET = Setting("string", choices=tuple(PRESETS), default="none", scale="same",
+                      doc="Set of drag coefficients to start from: `none` or `deepcwind_oc4` "
+                          "(the OC4 DeepCwind semisubmersible's).")
 
 
 @dataclass(frozen=True)
@@ -78,12 +103,25 @@ class DragSettings:
     """Morison drag of a floater: coefficients and discretisation (``[floater.drag]``)."""
 
     coefficients: MorisonCoefficients = NO_DRAG
-    strip_length: float = DEFAULT_STRIP_LENGTH  #: longest strip [m]
-    min_strips: int = MIN_STRIPS  #: fewest strips per submerged part
-    heave_plate_area: str = "disc"  #: "disc" (HydroDyn) or "annulus"
+    strip_length: float = setting(  #: longest strip [m]
+        "number", scale="length", unit="m", gt=0.0, default=DEFAULT_STRIP_LENGTH,
+        field_default=DEFAULT_STRIP_LENGTH,
+        doc="Longest strip the members are cut into for the drag integral.")
+    min_strips: int = setting(  #: fewest strips per submerged part
+        "integer", scale="same", ge=1, default=MIN_STRIPS, field_default=MIN_STRIPS,
+        doc="Fewest strips per submerged part, so that small bodies are resolved.")
+    heave_plate_area: str = setting(  #: "disc" (HydroDyn) or "annulus"
+        "string", scale="same", choices=HEAVE_PLATE_AREAS, default="disc", field_default="disc",
+        doc="Area of a heave plate's axial drag: the full `disc` (as OpenFAST HydroDyn) or "
+            "the `annulus` outside the column.")
     #: coarse sampling interval of the fluid velocity [s]: None picks it from the highest
-    #: wave frequency (KINEMATICS_PHASE_STEP); 0 evaluates every half step exactly
-    kinematics_interval: float | None = None
+    #: wave frequency (floatmoor.body.morison.KINEMATICS_PHASE_STEP); 0 evaluates every half
+    #: step exactly
+    kinematics_interval: float | None = setting(
+        "number", scale="time", unit="s", ge=0.0, auto="from the highest wave frequency",
+        default=None, field_default=None, default_text='default "auto"',
+        doc="Sampling interval of the wave velocity at the strips, interpolated in between; "
+            '"auto" picks it from the highest wave frequency, 0 evaluates every half step.')
 
     @classmethod
     def from_settings(cls, table: Mapping[str, Any]) -> DragSettings:

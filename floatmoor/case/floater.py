@@ -52,9 +52,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floatmoor.case.drag import (
-    DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, PRESETS, DragSettings,
-)
+from floatmoor.case.drag import DRAG_PRESET, PRESETS, DragSettings, MorisonCoefficients
 from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import MISSING, TableReader, _Found
@@ -128,28 +126,12 @@ def read_floater(t: TableReader, environment: Environment,
 
 
 def _drag(t: TableReader) -> DragSettings:
-    """``[floater.drag]``: Morison drag on the members (floatmoor.case.drag.DragSettings:
-    ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
-    ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
-    try:
-        settings = DragSettings.from_settings(t.data)
-    except (ValueError, TypeError) as err:
-        raise t.error(next(iter(t.data), "preset"), f"valid drag settings ({err})",
-                      t.data) from None
-    if t.context.recorder is not None:  # what DragSettings.from_settings reads, for the record
-        own = {"preset": ("string", "", "", tuple(PRESETS), "none"),
-               "strip_length": ("number", "m", "> 0", (), DEFAULT_STRIP_LENGTH),
-               "min_strips": ("integer", "", ">= 1", (), MIN_STRIPS),
-               "heave_plate_area": ("string", "", "", HEAVE_PLATE_AREAS, "disc"),
-               "kinematics_interval": ("number", "s", ">= 0", ("auto",), "auto")}
-        for key in t.data:
-            kind, unit, bounds, choices, default = own.get(key, ("number", "-", ">= 0", (),
-                                                                MISSING))
-            t.claim(key, kind, unit=unit, bounds=bounds, choices=choices, default=default,
-                    name=None if key in own else "<coefficient>")
-    else:
-        for key in t.data:  # all read by DragSettings.from_settings
-            t.claim(key, "drag setting")
+    """``[floater.drag]``: Morison drag on the members, a ``preset``'s coefficients with the
+    table's own overriding them, and the strips' discretisation (floatmoor.case.drag)."""
+    preset = PRESETS[DRAG_PRESET.read(t, "preset")]
+    coefficients = MorisonCoefficients(**read_settings(MorisonCoefficients, t, {
+        key: getattr(preset, key) for key in settings_of(MorisonCoefficients)}))
+    settings = DragSettings(coefficients=coefficients, **read_settings(DragSettings, t))
     t.finish()
     return settings
 

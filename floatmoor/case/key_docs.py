@@ -222,23 +222,6 @@ _CASE = {
     "floater.geometry.members[].diameter": "Diameter of the member.",
     "floater.drag": "Morison drag on the columns and members (theory/floater.md); needs "
                     "columns or members.",
-    "floater.drag.preset": "Set of drag coefficients to start from: `none` or "
-                           "`deepcwind_oc4` (the OC4 DeepCwind semisubmersible's).",
-    "floater.drag.<coefficient>": "A drag coefficient overriding the preset's: "
-                                  "`column_transverse`, `column_axial` (bottom disc of a "
-                                  "plate-less column), `heave_plate_transverse`, "
-                                  "`heave_plate_axial`, `member_transverse` or `member_axial`.",
-    "floater.drag.strip_length": "Longest strip the members are cut into for the drag "
-                                 "integral.",
-    "floater.drag.min_strips": "Fewest strips per submerged part, so that small bodies are "
-                               "resolved.",
-    "floater.drag.heave_plate_area": "Area of a heave plate's axial drag: the full `disc` "
-                                     "(as OpenFAST HydroDyn) or the `annulus` outside the "
-                                     "column.",
-    "floater.drag.kinematics_interval": "Sampling interval of the wave velocity at the "
-                                        "strips, interpolated in between; \"auto\" picks it "
-                                        "from the highest wave frequency, 0 evaluates every "
-                                        "half step.",
     # hydro
     "hydro": "The hydrodynamic database of the floater (`hydrodb/NAME.nc`): how `floatmoor "
              "hydro build` computes it with the BEM, or that it was imported "
@@ -271,7 +254,6 @@ _CASE_DEFAULTS = {
     "lines[].quasi_dynamic.max_time_step": "one step per output sample",
     "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
     "motion.phase_deg": "default 0 (every axis)",
-    "floater.drag.<coefficient>": "the preset's",
     "floater.geometry": "required unless `hydro.source = \"imported\"`",
     "floater.geometry.draft": "from the mass",
     "floater.geometry.format": "from the file's extension",

@@ -271,15 +271,21 @@ class TableReader:
 
     # -- scalars -------------------------------------------------------------------------------
     def number(self, key: str, *, unit: str, gt: float | None = None, ge: float | None = None,
-               lt: float | None = None, le: float | None = None, default: Any = MISSING) -> float:
-        """A finite number (TOML integer or float) within the given bounds."""
+               lt: float | None = None, le: float | None = None, default: Any = MISSING,
+               auto: str | None = None) -> float:
+        """A finite number (TOML integer or float) within the given bounds; with ``auto``
+        (what it means, for the message) also the string "auto", read as None."""
         if self.context.recorder is not None:
             self._record(key, "number", unit=unit, bounds=_bound_text(gt, ge, lt, le),
-                         default=default)
+                         choices=("auto",) if auto is not None else None, default=default)
         expected = _number_text("a finite number", unit, gt, ge, lt, le)
+        if auto is not None:
+            expected += f' or "auto" ({auto})'
         value = self._get(key, default, expected)
         if value is default and default is not MISSING:
             return value
+        if auto is not None and value == "auto":
+            return None  # type: ignore[return-value]
         return self._check_number(key, value, expected, gt, ge, lt, le)
 
     def _check_number(self, key: str | Path, value: Any, expected: str, gt: float | None,

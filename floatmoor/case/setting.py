@@ -29,7 +29,7 @@ __all__ = ["Setting", "setting", "settings_of", "read_settings"]
 _METADATA_KEY = "floatmoor_setting"
 #: The accessor keywords each kind of setting takes (besides ``default``).
 _OPTIONS = {
-    "number": ("unit", "gt", "ge", "lt", "le"),
+    "number": ("unit", "gt", "ge", "lt", "le", "auto"),
     "integer": ("ge", "le", "auto"),
     "string": ("choices",),
     "boolean": (),
@@ -58,7 +58,7 @@ class Setting:
     le: float | None = None
     choices: tuple[str, ...] | None = None
     size: int | None = None
-    auto: str | None = None  #: what "auto" means, for an integer that may be "auto"
+    auto: str | None = None  #: what "auto" means, for a number that may be "auto"
     default: Any = MISSING
     default_text: str | None = None
     #: quantity kind under a change of scale (floatmoor.similitude.laws.QUANTITY_KINDS:

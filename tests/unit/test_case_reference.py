@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatmoor.body.morison import DragSettings, MorisonCoefficients
+from floatmoor.case.drag import DragSettings, MorisonCoefficients
 from floatmoor.case import key_docs, schema
 from floatmoor.case.load import load_case
 from floatmoor.case.reader import recording
@@ -43,7 +43,6 @@ COMPUTED = {"default": "defaults", "gt": "allowed", "ge": "allowed", "lt": "allo
 
 #: Accessor calls whose key is not a literal, by (module, function), with the generic paths
 #: they read (each must be read in a shipped or fixture file) and why the key is computed.
-DRAG_KEYS = ("preset", "heave_plate_area", "strip_length", "min_strips", "kinematics_interval")
 DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
     # the optional loads of a point, read in a loop over (key, unit)
     ("load.py", "_points"): ("points[].mass", "points[].volume", "points[].drag_area",
@@ -57,9 +56,6 @@ DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
                                "campaign.zip.<key>"),
     # the six harmonic DOF tables of a body motion
     ("motion_body.py", "_harmonic"): tuple(f"motion.{dof}" for dof in BODY_DOFS),
-    # DragSettings.from_settings reads the table; claimed key by key for the record
-    ("floater.py", "_drag"): tuple(f"floater.drag.{k}" for k in DRAG_KEYS)
-    + ("floater.drag.<coefficient>",),
     # resolve_case_file(t, key, ...) only raises errors naming the key
     # the parameters of each distribution
     ("study.py", "_inputs"): tuple(f"inputs[].{p}" for ps in DISTRIBUTIONS.values() for p in ps),
@@ -183,20 +179,23 @@ def test_every_declared_setting_is_read():
 
 def _declaring_classes() -> list[type]:
     """The dataclasses whose fields declare case-file settings."""
-    from floatmoor.case import coupling, wind
+    from floatmoor.case import coupling, drag, wind
     from floatmoor.waves import settings as wave_settings
 
-    return [cls for module in (schema, coupling, wind, wave_settings)
+    return [cls for module in (schema, coupling, drag, wind, wave_settings)
             for cls in vars(module).values()
             if dataclasses.is_dataclass(cls) and isinstance(cls, type) and settings_of(cls)]
 
 
 def test_drag_keys_are_the_drag_settings():
-    """The drag keys claimed for the record are the ones DragSettings.from_settings takes."""
-    own = {f.name for f in dataclasses.fields(DragSettings)} - {"coefficients"}
-    assert own | {"preset"} == set(DRAG_KEYS)
-    named = set(re.findall(r"`(\w+)`", key_docs.CASE.descriptions["floater.drag.<coefficient>"]))
-    assert {f.name for f in dataclasses.fields(MorisonCoefficients)} == named
+    """Every field of the drag settings but the coefficients table is a declared key, read
+    in [floater.drag] with the preset (floatmoor.case.drag)."""
+    cases, _ = _entries()
+    declared = set(settings_of(DragSettings)) | set(settings_of(MorisonCoefficients))
+    fields = ({f.name for f in dataclasses.fields(DragSettings)} - {"coefficients"}
+              | {f.name for f in dataclasses.fields(MorisonCoefficients)})
+    assert declared == fields
+    assert {leaf_of(p) for p in cases if table_of(p) == "floater.drag"} == declared | {"preset"}
 
 
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
