@@ -120,15 +120,7 @@ _CASE = {
                                   "overrides the line's `[lines.dynamic]`.",
     "lines[].quasi_static": "Numerics of the quasi-static catenary (also the static "
                             "catenary of the other models).",
-    "lines[].quasi_static.tolerance": "Newton iterations stop when the end-point mismatch is "
-                                      "below this fraction of the line length.",
-    "lines[].quasi_static.max_iterations": "Most Newton iterations of one catenary solve.",
-    "lines[].quasi_static.seabed_friction": "Apply seabed friction on the resting length.",
     "lines[].quasi_dynamic": "Numerics of the quasi-dynamic model.",
-    "lines[].quasi_dynamic.integration_points": "Odd number of composite-Simpson stations "
-                                                "over the suspended length at rest.",
-    "lines[].quasi_dynamic.max_time_step": "Cap on the step of the backward differences, "
-                                           "taken on the fairlead's interpolated path.",
     "lines[].dynamic": "Numerics of the dynamic (discontinuous Galerkin) model; by default "
                        "they are chosen from `accuracy` (theory/dynamic_line.md).",
     # simulation
@@ -251,7 +243,6 @@ _CASE = {
 _CASE_DEFAULTS = {
     **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`"
        for key in settings_of(DynamicSettings)},
-    "lines[].quasi_dynamic.max_time_step": "one step per output sample",
     "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
     "motion.phase_deg": "default 0 (every axis)",
     "floater.geometry": "required unless `hydro.source = \"imported\"`",

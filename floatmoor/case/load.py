@@ -31,10 +31,9 @@ from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
 from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, FRICTION_MODELS, INTERNAL_DAMPING_METHODS, LINE_MODELS,
-    POINT_KINDS, SEABED_CONTACT_METHODS, TIME_INTEGRATIONS, Case, CircularMotion, DynamicSettings, Environment,
-    HarmonicMotion, Line, LineType, Motion, Point, Section,
-    QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
+    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, MAX_QD_INTEGRATION_POINTS, POINT_KINDS,
+    Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
+    Point, QuasiDynamicSettings, QuasiStaticSettings, Seabed, Section, Simulation, TableMotion,
 )
 from floatmoor.case.system_checks import (
     MAX_STATIC_STRAIN, SEABED_TOLERANCE, check_lines, check_motion, check_system,
@@ -44,18 +43,10 @@ from floatmoor.errors import CaseError
 
 __all__ = ["load_case", "parse_case", "MAX_STATIC_STRAIN", "SEABED_TOLERANCE"]
 
-#: Newton tolerance of the quasi-static catenary, relative to the line length [-]. The
-#: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
-DEFAULT_CATENARY_TOLERANCE = 1e-12
-DEFAULT_CATENARY_MAX_ITERATIONS = 100
 #: Order of a DG line whose elements are given but not its order (and of imported decks):
 #: MooDy reproduced the Lindahl chain with order 5 (chain-experiment paper; docs/cases/lindahl.md).
 #: Without either key, both follow from ``accuracy`` (mooring/dg/resolution.py).
 DEFAULT_DG_ORDER = 5
-#: Default Simpson stations of the quasi-dynamic model over the suspended length: the 31
-#: integration points of the quasi-dynamic paper's verification study (its Table 3).
-DEFAULT_QD_INTEGRATION_POINTS = 31
-MAX_QD_INTEGRATION_POINTS = 10_001
 
 
 def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
@@ -256,26 +247,15 @@ def _line(t: TableReader, line_types: dict[str, LineType],
         raise t.error("model", "one of " + ", ".join(f'"{m}"' for m in AVAILABLE_LINE_MODELS)
                       + f' (the "{model}" model is not available in this version)', model)
     qs = t.table("quasi_static", required=False)
-    settings = QuasiStaticSettings(
-        tolerance=qs.number("tolerance", unit="-", gt=0.0, le=1e-6,
-                            default=DEFAULT_CATENARY_TOLERANCE),
-        max_iterations=qs.integer("max_iterations", ge=1, le=10_000,
-                                  default=DEFAULT_CATENARY_MAX_ITERATIONS),
-        seabed_friction=qs.boolean("seabed_friction", default=True),
-    )
+    settings = QuasiStaticSettings(**read_settings(QuasiStaticSettings, qs))
     qs.finish()
     dynamic = _dynamic_settings(t.table("dynamic", required=False), None)
     qd = t.table("quasi_dynamic", required=False)
-    points = qd.integer("integration_points", ge=3, le=MAX_QD_INTEGRATION_POINTS,
-                        default=DEFAULT_QD_INTEGRATION_POINTS)
-    if points % 2 == 0:
+    quasi_dynamic = QuasiDynamicSettings(**read_settings(QuasiDynamicSettings, qd))
+    if quasi_dynamic.integration_points % 2 == 0:
         raise qd.error("integration_points", f"an odd integer >= 3 and <= "
                        f"{MAX_QD_INTEGRATION_POINTS} (the composite Simpson rule needs an even "
-                       "number of intervals)", points)
-    quasi_dynamic = QuasiDynamicSettings(
-        integration_points=points,
-        max_time_step=qd.number("max_time_step", unit="s", gt=0.0, default=None),
-    )
+                       "number of intervals)", quasi_dynamic.integration_points)
     qd.finish()
     # sections: the short form (type, length) or the array; (type, length, end, path)
     if t.has("sections"):

@@ -30,7 +30,7 @@ from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import parse_case
 from floatmoor.case.reader import format_path
 from floatmoor.case.schema import (
-    Case, DynamicSettings, Environment, LineType, Seabed, Simulation,
+    Case, DynamicSettings, Environment, LineType, QuasiDynamicSettings, Seabed, Simulation,
 )
 from floatmoor.case.setting import settings_of
 from floatmoor.errors import CaseError
@@ -66,8 +66,7 @@ KEY_KINDS: dict[str, str] = {
     "points.*.drag_area": "point_drag_area", "points.*.added_mass_coefficient": "same",
     **{f"lines.*.{k}": "same" for k in ("name", "type", "model", "start", "end")},
     "lines.*.length": "length", "lines.*.anchor": "length", "lines.*.fairlead": "length",
-    "lines.*.quasi_static.*": "same", "lines.*.quasi_dynamic.integration_points": "same",
-    "lines.*.quasi_dynamic.max_time_step": "time",
+    "lines.*.quasi_static.*": "same", **_declared("lines.*.quasi_dynamic", QuasiDynamicSettings),
     **_declared("lines.*.dynamic", DynamicSettings),
     "lines.*.sections.*.type": "same", "lines.*.sections.*.length": "length",
     "lines.*.sections.*.end": "same",
