@@ -26,10 +26,9 @@ import numpy as np
 
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Case, Environment
+from floatmoor.case.sea import DRIFT_ROUTES, SECOND_ORDER_MODELS
 from floatmoor.case.setting import Setting, read_settings, setting, settings_of
 from floatmoor.case.wind import WindSettings
-from floatmoor.waves.realisation import SPACINGS
-from floatmoor.waves.second_order import DRIFT_ROUTES, SECOND_ORDER_MODELS
 from floatmoor.waves.settings import (
     GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
