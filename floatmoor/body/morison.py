@@ -77,8 +77,8 @@ of OC4. NREL/TP-5000-60601.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, fields, replace
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -86,6 +86,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.body._morison_kernels import drag_force, lagrange_fill, lagrange_weights
 from floatmoor.body.kinematics import rotation_matrix
+from floatmoor.case.drag import (
+    DEEPCWIND_OC4, DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, NO_DRAG, PRESETS,
+    DragSettings, MorisonCoefficients,
+)
 from floatmoor.case.schema import (
     Column, CylinderGeometry, Floater, Member, MeshGeometry, SemisubmersibleGeometry,
 )
@@ -97,16 +101,6 @@ __all__ = ["MorisonCoefficients", "DragSettings", "Strips", "MorisonDrag", "buil
            "DEEPCWIND_OC4", "NO_DRAG", "PRESETS", "HEAVE_PLATE_AREAS",
            "DEFAULT_STRIP_LENGTH", "MIN_STRIPS", "KINEMATICS_PHASE_STEP"]
 
-#: Longest strip [m] by default. The wave velocity varies with depth like e^{kz}; the midpoint
-#: rule's relative error on e^{kz} over a strip ds is (k ds)^2 / 24: 2.8 % at the top of a
-#: full-scale JONSWAP band (2.0 rad/s, k = 0.41 rad/m) where there is little energy, 6e-5 at
-#: the LC34 peak (0.44 rad/s). The body-motion part is linear along a strip (the midpoint
-#: rule integrates |u_n| u_n of it to O(ds^2) as well). Measured on the DeepCwind preset, 2 m
-#: against 0.25 m strips: 6.2e-4 of the largest force or moment (still water, random motion;
-#: tests/body/test_morison.py::test_strip_length_convergence).
-DEFAULT_STRIP_LENGTH = 2.0
-#: Fewest strips per submerged part, so that small (model-scale) bodies are still resolved.
-MIN_STRIPS = 4
 #: Coarse sampling of the fluid velocity: omega_max * interval <= this phase [rad]. The
 #: remainder of cubic Lagrange interpolation between the middle nodes is at most
 #: (9/16) (omega h)^4 / 24 of the amplitude: 1.5e-3 at omega_max and 3e-6 at a quarter of it
@@ -114,119 +108,9 @@ MIN_STRIPS = 4
 #: the LC34 sea (Hs 10.5 m, Tp 14.3 s, 3094 components to 2 rad/s, dt/2 = 0.025 s, 10 half
 #: steps per sample): 2.8e-4 of the largest fluid velocity, 2.1e-4 of the largest surge drag.
 KINEMATICS_PHASE_STEP = 0.5
-#: Heave-plate axial drag areas (module docstring, "Heave-plate area").
-HEAVE_PLATE_AREAS = ("disc", "annulus")
-
 #: Strip kinds (Strips.kind codes).
 KIND_COLUMN, KIND_PLATE_SIDE, KIND_PLATE_AXIAL, KIND_COLUMN_AXIAL, KIND_MEMBER = range(5)
 KIND_NAMES = ("column", "heave_plate_side", "heave_plate_axial", "column_axial", "member")
-
-
-def _check_coefficient(name: str, value: float) -> None:
-    if not isinstance(value, (int, float)) or isinstance(value, bool):
-        raise ValueError(f"drag: {name} must be a number, got {value!r}")
-    if not math.isfinite(value) or value < 0.0:
-        raise ValueError(f"drag: {name} must be finite and >= 0, got {value!r}")
-
-
-@dataclass(frozen=True)
-class MorisonCoefficients:
-    """Drag coefficients per member kind [-] (module docstring for where each applies)."""
-
-    column_transverse: float = 0.0  #: Cd_t of vertical columns (above any heave plate)
-    heave_plate_transverse: float = 0.0  #: Cd_t of a heave plate's side (plate diameter)
-    heave_plate_axial: float = 0.0  #: Cd of a heave plate's axial drag (A_plate)
-    member_transverse: float = 0.0  #: Cd_t of pontoons and braces
-    member_axial: float = 0.0  #: axial (skin-friction) Cd of pontoons and braces, on pi D ds
-    column_axial: float = 0.0  #: Cd of a plate-less column's bottom disc, pi/4 D^2
-
-    def validate(self) -> None:
-        """Raise ValueError unless every coefficient is a finite number >= 0."""
-        for f in fields(self):
-            _check_coefficient(f.name, getattr(self, f.name))
-
-
-#: OC4 DeepCwind, quasi-dynamic paper Table 6 (docs/cases/deepcwind.md): upper columns Cd_t 0.600;
-#: lower columns (the heave-plate bases) Cd_t 0.600 and Cd long 1.60 (the heave plates' axial
-#: drag); cross braces (pontoons and braces here) Cd_t 0.564. The tower column (dry) and the
-#: mooring elements (own model) are not the floater's. No axial drag on the central column's
-#: bottom (Table 6 gives none; OpenFAST's OC4 model has AxCd = 0 there).
-#: For comparison, OpenFAST's r-test OC4 HydroDyn file uses Cd_t 0.56 (central column), 0.61
-#: (upper columns), 0.68 (bases), 0.63 (pontoons, braces) and an effective heave-plate axial
-#: Cd of 4.8 on the full 24 m disc (AxCd = 9.6 with HydroDyn's 1/4 factor).
-DEEPCWIND_OC4 = MorisonCoefficients(
-    column_transverse=0.600, heave_plate_transverse=0.600, heave_plate_axial=1.60,
-    member_transverse=0.564)
-#: No drag: the default of the cylinder buoy (the gpc paper gives the buoy no Morison coefficients,
-#: docs/cases/cylinder_buoy.md; its buoy model is potential flow plus the lines), and of any case that does
-#: not ask for drag.
-NO_DRAG = MorisonCoefficients()
-#: Named presets, the values of ``[floater.drag] preset``.
-PRESETS: dict[str, MorisonCoefficients] = {"deepcwind_oc4": DEEPCWIND_OC4, "none": NO_DRAG}
-
-
-@dataclass(frozen=True)
-class DragSettings:
-    """Morison drag of a floater: coefficients and discretisation (``[floater.drag]``)."""
-
-    coefficients: MorisonCoefficients = NO_DRAG
-    strip_length: float = DEFAULT_STRIP_LENGTH  #: longest strip [m]
-    min_strips: int = MIN_STRIPS  #: fewest strips per submerged part
-    heave_plate_area: str = "disc"  #: "disc" (HydroDyn) or "annulus"
-    #: coarse sampling interval of the fluid velocity [s]: None picks it from the highest
-    #: wave frequency (KINEMATICS_PHASE_STEP); 0 evaluates every half step exactly
-    kinematics_interval: float | None = None
-
-    @classmethod
-    def from_settings(cls, table: Mapping[str, Any]) -> DragSettings:
-        """Settings from a ``[floater.drag]``-style table: an optional ``preset`` (a key of
-        :data:`PRESETS`, default ``"none"``), then coefficient overrides by field name of
-        :class:`MorisonCoefficients`, and the discretisation fields of this class
-        (``kinematics_interval = "auto"`` is None). Validated.
-
-        Raises
-        ------
-        ValueError
-            Unknown keys or preset, or invalid values.
-        """
-        data = dict(table)
-        preset = data.pop("preset", "none")
-        if not isinstance(preset, str) or preset.lower() not in PRESETS:
-            raise ValueError(f"drag: unknown preset {preset!r}; known: {sorted(PRESETS)}")
-        coef_names = {f.name for f in fields(MorisonCoefficients)}
-        own_names = {f.name for f in fields(cls)} - {"coefficients"}
-        unknown = sorted(set(data) - coef_names - own_names)
-        if unknown:
-            raise ValueError(f"drag: unknown key(s) {unknown}; known: "
-                             f"{sorted(coef_names | own_names | {'preset'})}")
-        overrides = {k: data.pop(k) for k in list(data) if k in coef_names}
-        coefficients = replace(PRESETS[preset.lower()], **overrides)
-        if data.get("kinematics_interval") == "auto":
-            data["kinematics_interval"] = None
-        out = cls(coefficients=coefficients, **data)
-        out.validate()
-        return out
-
-    def validate(self) -> None:
-        """Raise ValueError with a clear message for any invalid field."""
-        if not isinstance(self.coefficients, MorisonCoefficients):
-            raise ValueError("drag: coefficients must be MorisonCoefficients")
-        self.coefficients.validate()
-        s = self.strip_length
-        if (not isinstance(s, (int, float)) or isinstance(s, bool) or not math.isfinite(s)
-                or s <= 0.0):
-            raise ValueError(f"drag: strip_length must be a finite length > 0 m, got {s!r}")
-        n = self.min_strips
-        if not isinstance(n, int) or isinstance(n, bool) or n < 1:
-            raise ValueError(f"drag: min_strips must be an integer >= 1, got {n!r}")
-        if self.heave_plate_area not in HEAVE_PLATE_AREAS:
-            raise ValueError(f"drag: heave_plate_area must be one of {HEAVE_PLATE_AREAS}, "
-                             f"got {self.heave_plate_area!r}")
-        k = self.kinematics_interval
-        if k is not None and (not isinstance(k, (int, float)) or isinstance(k, bool)
-                              or not math.isfinite(k) or k < 0.0):
-            raise ValueError(f"drag: kinematics_interval must be 'auto' (None) or a time "
-                             f">= 0 s, got {k!r}")
 
 
 @dataclass(frozen=True)

@@ -25,19 +25,24 @@ from dataclasses import dataclass
 import numpy as np
 
 from floatmoor.case.reader import TableReader
-from floatmoor.case.schema import Environment
-from floatmoor.waves.realisation import SPACINGS
-from floatmoor.waves.second_order import DRIFT_ROUTES, SECOND_ORDER_MODELS
+from floatmoor.case.schema import Case, Environment
+from floatmoor.case.sea import DRIFT_ROUTES, SECOND_ORDER_MODELS
+from floatmoor.case.setting import Setting, read_settings, setting, settings_of
+from floatmoor.case.wind import WindSettings
 from floatmoor.waves.settings import (
     GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
 )
-from floatmoor.wind.force import SPECTRA, WindSettings
 
-__all__ = ["WaveCase", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
+__all__ = ["WaveCase", "CoupledCase", "STILL_WATER", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
 
 WAVE_KINDS = ("still", "regular", "jonswap")
 #: Default excitation ramp in (peak) wave periods.
 RAMP_PERIODS = 2.0
+
+
+#: ``[waves] kind``: which sea, hence which settings class the table's other keys fill.
+WAVE_KIND = Setting("string", choices=WAVE_KINDS, doc="`still` water, `regular` (Airy) waves "
+                    "or a `jonswap` irregular sea.")
 
 
 @dataclass(frozen=True)
@@ -45,45 +50,73 @@ class WaveCase:
     """The sea of a coupled case, the ramp of its excitation and its second-order loads."""
 
     settings: StillWaterSettings | RegularWaveSettings | JonswapSettings
-    ramp_duration: float  #: [s]
+    ramp_duration: float = setting(  #: [s]
+        "number", unit="s", ge=0.0, default_text="two (peak) periods",
+        doc="Duration of the cosine ramp of the wave excitation.")
     #: second-order wave loads: "none", "mean", "newman" or "full"
-    second_order: str = "none"
+    second_order: str = setting(
+        "string", choices=SECOND_ORDER_MODELS, default="none", field_default="none",
+        doc="Second-order wave loads: `none` (first order only), the constant `mean` drift, "
+            "the slow drift by `newman`'s approximation, or the `full` difference-frequency "
+            "QTF of the database (theory/hydrodynamics.md, guide/rao_and_drift.md).")
     #: mean drift route of "mean" and "newman": "far_field" or "near_field"
-    drift_coefficients: str = "far_field"
+    drift_coefficients: str = setting(
+        "string", choices=DRIFT_ROUTES, default="far_field", field_default="far_field",
+        doc="Mean drift route of `mean` and `newman`: `far_field` (momentum: Surge, Sway, "
+            "Yaw; Heave, Roll, Pitch from the near field) or `near_field` (pressure "
+            "integration, all six DOFs).")
+
+
+#: The sea of a case without ``[waves]``: still water, no ramp, no second-order loads.
+STILL_WATER = WaveCase(StillWaterSettings(), 0.0)
+
+
+@dataclass(frozen=True)
+class CoupledCase:
+    """What a coupled run takes from its case: a typed, read-only view built from a loaded
+    case, whose reader checked it (``[simulation] time_step`` divides ``output_interval``
+    within :data:`floatmoor.case.load.INTERVAL_RATIO_TOLERANCE`), so the time loop checks
+    nothing again."""
+
+    time_step: float  #: the body's step [s]: ``simulation.time_step``, or the output interval
+    steps_per_output: int  #: body steps per output sample
+    waves: WaveCase  #: the sea (:data:`STILL_WATER` without ``[waves]``)
+    #: offset from the static equilibrium at t = 0 (Surge, Sway, Heave [m], Roll, Pitch,
+    #: Yaw [rad])
+    initial_offset: tuple[float, float, float, float, float, float]
+
+    @classmethod
+    def of(cls, case: Case) -> "CoupledCase":
+        """The view of ``case`` (a case with a ``[floater]``)."""
+        sim = case.simulation
+        step = sim.time_step if sim.time_step is not None else sim.output_interval
+        return cls(time_step=float(step),
+                   steps_per_output=int(round(sim.output_interval / step)),
+                   waves=case.waves if case.waves is not None else STILL_WATER,
+                   initial_offset=tuple(case.initial_offset))  # type: ignore[arg-type]
 
 
 def read_waves(t: TableReader, environment: Environment, duration: float) -> WaveCase:
     """``[waves]``, checked for physical values (steepness, breaking, gamma range)."""
-    kind = t.string("kind", choices=WAVE_KINDS)
+    kind = WAVE_KIND.read(t, "kind")
     if kind == "still":
         settings: StillWaterSettings | RegularWaveSettings | JonswapSettings = \
             StillWaterSettings()
         period = 0.0
     elif kind == "regular":
-        settings = RegularWaveSettings(
-            height=t.number("height", unit="m", gt=0.0),
-            period=t.number("period", unit="s", gt=0.0),
-            direction_deg=t.number("direction_deg", unit="deg", default=0.0),
-            phase_deg=t.number("phase_deg", unit="deg", default=0.0))
+        settings = RegularWaveSettings(**read_settings(RegularWaveSettings, t))
         period = settings.period
     else:
-        gamma = t.number("gamma", unit="-", ge=GAMMA_RANGE[0], default=3.3)
+        gamma = settings_of(JonswapSettings)["gamma"].read(t, "gamma")
         if gamma > GAMMA_RANGE[1]:
             raise t.error("gamma", f"a number in [{GAMMA_RANGE[0]:g}, {GAMMA_RANGE[1]:g}]",
                           gamma)
-        settings = JonswapSettings(
-            hs=t.number("hs", unit="m", gt=0.0), tp=t.number("tp", unit="s", gt=0.0),
-            seed=t.integer("seed", ge=0), gamma=gamma,
-            direction_deg=t.number("direction_deg", unit="deg", default=0.0),
-            spacing=t.string("spacing", choices=tuple(SPACINGS), default="equal"),
-            n_components=t.integer("n_components", ge=1, default=None),
-            frequency_step=t.number("frequency_step", unit="rad/s", gt=0.0, default=None),
-            omega_min=t.number("omega_min", unit="rad/s", gt=0.0, default=None),
-            omega_max=t.number("omega_max", unit="rad/s", gt=0.0, default=None))
+        settings = JonswapSettings(**read_settings(JonswapSettings, t, skip=("gamma",)),
+                                   gamma=gamma)
         period = settings.tp
-    ramp = t.number("ramp_duration", unit="s", ge=0.0, default=RAMP_PERIODS * period)
-    second_order = t.string("second_order", choices=SECOND_ORDER_MODELS, default="none")
-    route = t.string("drift_coefficients", choices=DRIFT_ROUTES, default="far_field")
+    read = read_settings(WaveCase, t, {"ramp_duration": RAMP_PERIODS * period})
+    ramp, second_order, route = read["ramp_duration"], read["second_order"], \
+        read["drift_coefficients"]
     if kind == "still" and second_order != "none":
         raise t.error("second_order", '"none" in still water (kind = "still": no waves to '
                       "drift the floater)", second_order)
@@ -117,21 +150,9 @@ def read_initial(t: TableReader) -> tuple[float, float, float, float, float, flo
 
 
 def read_wind(t: TableReader, duration: float) -> WindSettings:
-    """``[wind]``: the rotor thrust's wind (floatmoor.wind.force.WindSettings); a turbulent
+    """``[wind]``: the rotor thrust's wind (floatmoor.case.wind.WindSettings); a turbulent
     wind needs its cutoff above two frequency steps 1 / duration."""
-    settings = WindSettings(
-        mean_speed=t.number("mean_speed", unit="m/s", gt=0.0),
-        reference_height=t.number("reference_height", unit="m", gt=0.0, default=90.0),
-        spectrum=t.string("spectrum", choices=tuple(SPECTRA), default="npd"),
-        seed=t.integer("seed", ge=0, default=0),
-        direction_deg=t.number("direction_deg", unit="deg", default=0.0),
-        relative_velocity=t.boolean("relative_velocity", default=True),
-        cutoff_hz=t.number("cutoff_hz", unit="Hz", gt=0.0, default=0.5),
-        hub_height=t.number("hub_height", unit="m", gt=0.0, default=90.0))
-    try:
-        settings.validate()
-    except ValueError as err:
-        raise t.error("mean_speed", f"a valid wind ({err})", settings.mean_speed) from None
+    settings = WindSettings(**read_settings(WindSettings, t))
     if settings.spectrum != "steady" and not settings.cutoff_hz > 2.0 / duration:
         raise t.error("cutoff_hz", f"a frequency above 2 / simulation.duration = "
                       f"{2.0 / duration:.3g} Hz (a longer run, or spectrum = \"steady\")",

@@ -52,11 +52,13 @@ from pathlib import Path
 
 import numpy as np
 
+from floatmoor.case.drag import DRAG_PRESET, PRESETS, DragSettings, MorisonCoefficients
 from floatmoor.case.files import resolve_case_file
 from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import MISSING, TableReader, _Found
+from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, HYDRO_CHECKS, HYDRO_SOURCES, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
+    GEOMETRY_KINDS, HYDRO_CHECKS, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
     RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
     HydroSettings, Member, MeshGeometry, SemisubmersibleGeometry,
 )
@@ -123,33 +125,13 @@ def read_floater(t: TableReader, environment: Environment,
                    drag=drag, radiation=radiation)
 
 
-def _drag(t: TableReader):
-    """``[floater.drag]``: Morison drag on the members (floatmoor.body.morison.DragSettings:
-    ``preset = "deepcwind_oc4"`` or ``"none"``, coefficient overrides by name,
-    ``heave_plate_area``, ``strip_length``, ``min_strips``, ``kinematics_interval``)."""
-    from floatmoor.body.morison import (
-        DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, PRESETS, DragSettings,
-    )
-
-    try:
-        settings = DragSettings.from_settings(t.data)
-    except (ValueError, TypeError) as err:
-        raise t.error(next(iter(t.data), "preset"), f"valid drag settings ({err})",
-                      t.data) from None
-    if t.context.recorder is not None:  # what DragSettings.from_settings reads, for the record
-        own = {"preset": ("string", "", "", tuple(PRESETS), "none"),
-               "strip_length": ("number", "m", "> 0", (), DEFAULT_STRIP_LENGTH),
-               "min_strips": ("integer", "", ">= 1", (), MIN_STRIPS),
-               "heave_plate_area": ("string", "", "", HEAVE_PLATE_AREAS, "disc"),
-               "kinematics_interval": ("number", "s", ">= 0", ("auto",), "auto")}
-        for key in t.data:
-            kind, unit, bounds, choices, default = own.get(key, ("number", "-", ">= 0", (),
-                                                                MISSING))
-            t.claim(key, kind, unit=unit, bounds=bounds, choices=choices, default=default,
-                    name=None if key in own else "<coefficient>")
-    else:
-        for key in t.data:  # all read by DragSettings.from_settings
-            t.claim(key, "drag setting")
+def _drag(t: TableReader) -> DragSettings:
+    """``[floater.drag]``: Morison drag on the members, a ``preset``'s coefficients with the
+    table's own overriding them, and the strips' discretisation (floatmoor.case.drag)."""
+    preset = PRESETS[DRAG_PRESET.read(t, "preset")]
+    coefficients = MorisonCoefficients(**read_settings(MorisonCoefficients, t, {
+        key: getattr(preset, key) for key in settings_of(MorisonCoefficients)}))
+    settings = DragSettings(coefficients=coefficients, **read_settings(DragSettings, t))
     t.finish()
     return settings
 
@@ -295,8 +277,9 @@ def is_database_path(text: str) -> bool:
 
 def read_hydro(t: TableReader) -> HydroSettings:
     """Read ``[hydro]``."""
-    database = t.string("database")
-    source = t.string("source", choices=HYDRO_SOURCES, default="bem")
+    declared = settings_of(HydroSettings)
+    database = declared["database"].read(t, "database")
+    source = declared["source"].read(t, "source")
     if source == "imported":
         if not (_is_name(database) or (is_database_path(database)
                                        and database.endswith(".nc")
@@ -356,16 +339,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
         database=database,
         frequencies=tuple(float(v) for v in values),
         directions=tuple(math.radians(d) for d in directions_deg),
-        # required by the loader except for a mesh hull without a lid (check_panel_size)
-        panel_size=t.number("panel_size", unit="m", gt=0.0, default=None),
-        lid=t.boolean("lid", default=True),
-        lid_depth=t.number("lid_depth", unit="m", gt=0.0, default=None),
-        infinite_depth=t.boolean("infinite_depth", default=False),
-        symmetry=t.boolean("symmetry", default=True),
-        radial_panels=t.integer("radial_panels", ge=1, le=1000, default=None),
-        drift_waterline_panel_size=t.number("drift_waterline_panel_size", unit="m", gt=0.0,
-                                            default=None),
-        drift_panel_size=t.number("drift_panel_size", unit="m", gt=0.0, default=None),
+        **read_settings(HydroSettings, t, skip=("database", "source")),
         accept_failed_checks=_accepted_checks(t),
     )
     t.finish()

@@ -16,6 +16,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Mapping
 
+from floatmoor.case.schema import DynamicSettings
+from floatmoor.case.setting import settings_of
+
 __all__ = ["KeyDocs", "CASE", "STUDY"]
 
 
@@ -33,38 +36,6 @@ class KeyDocs:
 
 
 # -- case files -------------------------------------------------------------------------------
-
-_DYNAMIC = {
-    "elements": "Number of discontinuous-Galerkin elements along the line. Left out (or "
-                '"auto"), it is chosen with `order` from `accuracy` and the fairlead motion\'s '
-                "frequency; `floatmoor check` prints the choice (theory/dynamic_line.md).",
-    "order": "Polynomial order of the elements. Left out (or \"auto\"), it is chosen with "
-             "`elements` from `accuracy`.",
-    "cfl": "Explicit time step as a fraction of the stability limit of the axial (snap) wave "
-           "for the SSP-RK3 scheme; the margin below 1 covers the nonlinear terms (snap loads, "
-           "drag, seabed contact).",
-    "max_time_step": "Cap on the line's time step [s]; with implicit integration the step "
-                     "starts from it (0.5 s when not given) and is halved where the estimated "
-                     "error of the fairlead force is too large.",
-    "slack_filter": "Modal velocity filter on elements in compression, which damps the "
-                    "spurious high-order modes of a slack chain.",
-    "seabed_contact": "Treatment of the seabed's normal spring-damper: \"implicit\" "
-                      "(backward-Euler, so the stiff seabed does not limit the step) or "
-                      '"explicit" (resolved by the step, much smaller).',
-    "settle": "Relax the line, fairlead held, to the static equilibrium of its own "
-              "discretisation before the run, so that its mismatch with the catenary "
-              "initial shape does not ring through the run.",
-    "internal_damping": "Treatment of the Kelvin-Voigt internal damping "
-                        "(`line_types.NAME.internal_damping_ratio`): \"implicit\" keeps the "
-                        "axial wave alone setting the step; \"explicit\" puts it in the "
-                        "right-hand side, at a step up to ten times smaller.",
-    "time_integration": '"explicit" (SSP-RK3 at `cfl` of the axial wave\'s limit), "implicit" '
-                        "(generalised-alpha, Chung & Hulbert 1993, steps bounded by accuracy) "
-                        'or "auto": implicit while its steps cost less than the explicit ones '
-                        "they replace, explicit from then on.",
-    "accuracy": "Accepted relative error of the fairlead tension; the element count, order "
-                "and implicit step are chosen for it when not given.",
-}
 
 _DOF_UNITS = {"surge": "m", "sway": "m", "heave": "m", "roll": "deg", "pitch": "deg",
               "yaw": "deg"}
@@ -98,50 +69,12 @@ _CASE = {
     # environment
     "environment": "Water and gravity: still water at z = 0, a flat seabed at "
                    "z = -water_depth (theory/environment.md).",
-    "environment.water_density": "Density of the water, for buoyancy, drag, added mass and the "
-                                 "hydrodynamic database.",
-    "environment.water_depth": "Depth of the flat seabed below the still water line.",
-    "environment.gravity": "Acceleration of gravity.",
-    "environment.current_velocity": "Steady, uniform current [x, y, z], in the drag of the "
-                                    "lines and of a floater's Morison members.",
     # seabed
     "seabed": "Seabed contact of the lines: a normal spring-damper and friction, smoothed "
               "Coulomb or a stick spring (theory/dynamic_line.md, theory/cable.md).",
-    "seabed.stiffness": "Normal stiffness of the seabed per unit contact area.",
-    "seabed.damping_ratio": "Damping ratio of the normal contact spring-damper.",
-    "seabed.friction_coefficient": "Coulomb friction coefficient along the seabed; also the "
-                                   "quasi-static catenary's friction on its resting length.",
-    "seabed.slip_speed": "Sliding speed at which the smoothed friction reaches its full "
-                         "value (the \"coulomb\" friction model).",
-    "seabed.friction_model": "Seabed friction law of dynamic lines: \"coulomb\", the "
-                             "Coulomb force regularised by the slip speed, or "
-                             "\"stick_spring\", a spring of the seabed's normal stiffness to "
-                             "a friction anchor per node, capped at the friction coefficient "
-                             "times the normal contact force, the anchor moved by return "
-                             "mapping at committed steps (theory/cable.md).",
     # line types
     "line_types": "The line materials, one table per name (`[line_types.chain]`); lines and "
                   "sections name them with `type`.",
-    "line_types.<name>.mass_per_length": "Dry mass per unstretched length.",
-    "line_types.<name>.axial_stiffness": "Axial stiffness EA.",
-    "line_types.<name>.diameter": "Diameter the drag and added-mass coefficients refer to "
-                                  "(for chain, usually the volume-equivalent diameter).",
-    "line_types.<name>.material_density": "Density of the line's material; with the mass "
-                                          "it gives the displaced volume, hence the submerged "
-                                          "weight.",
-    "line_types.<name>.normal_drag_coefficient": "Morison drag coefficient normal to the line, "
-                                                 "on its diameter.",
-    "line_types.<name>.tangential_drag_coefficient": "Drag coefficient along the line.",
-    "line_types.<name>.added_mass_coefficient": "Added-mass coefficient normal to the line, "
-                                                "on the material area m / rho_material.",
-    "line_types.<name>.tangential_added_mass_coefficient": "Added-mass coefficient along the "
-                                                           "line.",
-    "line_types.<name>.internal_damping_ratio": "Kelvin-Voigt axial damping, as the damping "
-                                                "ratio of the line's first longitudinal mode "
-                                                "(dynamic model).",
-    "line_types.<name>.minimum_breaking_load": "Minimum breaking load (MBL), for the safety "
-                                               "factors of the run summary; without it "
-                                               "`floatmoor check` warns on large strains.",
     # points
     "points": "Named points of a mooring system: anchors (`fixed`), fairleads (`body`) and "
               "joints, clump weights and buoys (`free`); lines connect them by name "
@@ -187,28 +120,11 @@ _CASE = {
                                   "overrides the line's `[lines.dynamic]`.",
     "lines[].quasi_static": "Numerics of the quasi-static catenary (also the static "
                             "catenary of the other models).",
-    "lines[].quasi_static.tolerance": "Newton iterations stop when the end-point mismatch is "
-                                      "below this fraction of the line length.",
-    "lines[].quasi_static.max_iterations": "Most Newton iterations of one catenary solve.",
-    "lines[].quasi_static.seabed_friction": "Apply seabed friction on the resting length.",
     "lines[].quasi_dynamic": "Numerics of the quasi-dynamic model.",
-    "lines[].quasi_dynamic.integration_points": "Odd number of composite-Simpson stations "
-                                                "over the suspended length at rest.",
-    "lines[].quasi_dynamic.max_time_step": "Cap on the step of the backward differences, "
-                                           "taken on the fairlead's interpolated path.",
     "lines[].dynamic": "Numerics of the dynamic (discontinuous Galerkin) model; by default "
                        "they are chosen from `accuracy` (theory/dynamic_line.md).",
-    **{f"lines[].dynamic.{key}": text for key, text in _DYNAMIC.items()},
-    **{f"lines[].sections[].dynamic.{key}": text for key, text in _DYNAMIC.items()},
     # simulation
     "simulation": "Time span and output sampling of the run.",
-    "simulation.duration": "Simulated time span, from t = 0.",
-    "simulation.output_interval": "Sampling interval of the output time series.",
-    "simulation.shape_output_interval": "Sampling interval of the line shapes, a multiple of "
-                                        "`output_interval`; no shapes are written without it.",
-    "simulation.time_step": "Time step of the floater in coupled runs, dividing "
-                            "`output_interval`; default the output interval. Only with a "
-                            "`[floater]` (lines take their own steps).",
     # motion
     "motion": "Prescribed motion of the body points (the fairleads); without it, and without "
               "a `[floater]`, they stay at rest. Not with a `[floater]`.",
@@ -298,85 +214,18 @@ _CASE = {
     "floater.geometry.members[].diameter": "Diameter of the member.",
     "floater.drag": "Morison drag on the columns and members (theory/floater.md); needs "
                     "columns or members.",
-    "floater.drag.preset": "Set of drag coefficients to start from: `none` or "
-                           "`deepcwind_oc4` (the OC4 DeepCwind semisubmersible's).",
-    "floater.drag.<coefficient>": "A drag coefficient overriding the preset's: "
-                                  "`column_transverse`, `column_axial` (bottom disc of a "
-                                  "plate-less column), `heave_plate_transverse`, "
-                                  "`heave_plate_axial`, `member_transverse` or `member_axial`.",
-    "floater.drag.strip_length": "Longest strip the members are cut into for the drag "
-                                 "integral.",
-    "floater.drag.min_strips": "Fewest strips per submerged part, so that small bodies are "
-                               "resolved.",
-    "floater.drag.heave_plate_area": "Area of a heave plate's axial drag: the full `disc` "
-                                     "(as OpenFAST HydroDyn) or the `annulus` outside the "
-                                     "column.",
-    "floater.drag.kinematics_interval": "Sampling interval of the wave velocity at the "
-                                        "strips, interpolated in between; \"auto\" picks it "
-                                        "from the highest wave frequency, 0 evaluates every "
-                                        "half step.",
     # hydro
     "hydro": "The hydrodynamic database of the floater (`hydrodb/NAME.nc`): how `floatmoor "
              "hydro build` computes it with the BEM, or that it was imported "
              "(theory/hydrodynamics.md).",
-    "hydro.database": "Name of the database file in `hydrodb/` (`NAME` for "
-                      "`hydrodb/NAME.nc`); with `source = \"imported\"` also the path of "
-                      "the `.nc` that `floatmoor hydro import` made (a `/` in it or ending in "
-                      "`.nc`), relative to the case file's folder.",
-    "hydro.source": "`bem` (built from the keys below) or `imported` (made by `floatmoor "
-                    "hydro import` from WAMIT or BEMIO files; then no build keys).",
     "hydro.frequency_ranges": "BEM frequencies as [first, last, count] triples, evenly "
                               "spaced; with or instead of `frequencies`.",
     "hydro.frequencies": "BEM frequencies, listed; with or instead of `frequency_ranges`.",
     "hydro.directions_deg": "Wave directions of the excitation, distinct and increasing.",
-    "hydro.panel_size": "Target panel edge of a parametric hull, or of a mesh hull's lid; "
-                        "not needed for a mesh hull without a lid.",
-    "hydro.lid": "Close the hull's water plane with a lid of panels just below the water line, "
-                 "against the BEM's irregular frequencies.",
-    "hydro.lid_depth": "Depth of the lid below the water line; default where wavenumber "
-                       "times depth is 0.15 at the highest frequency.",
-    "hydro.infinite_depth": "Solve the BEM in infinite depth instead of "
-                            "environment.water_depth.",
-    "hydro.symmetry": "Use the hull's symmetries in the BEM.",
-    "hydro.radial_panels": "Panels across the bottom of a cylinder, centre to rim.",
-    "hydro.drift_waterline_panel_size": "Panel height at the water line of the mesh the mean "
-                                        "drift is solved on (`hydro build --drift`), graded "
-                                        "to panel_size below; default from the highest "
-                                        "frequency (guide/hydro_databases.md#mean-drift).",
-    "hydro.drift_panel_size": "Panel size of the mean drift's mesh away from the water line; "
-                              "default panel_size. Finer panels resolve the near field's "
-                              "body-motion terms at a large resonant response "
-                              "(guide/hydro_databases.md#mean-drift).",
     "hydro.accept_failed_checks": "Database checks whose failure a run of this case "
                                   "accepts; a run refuses a database failing any other.",
     # waves
     "waves": "The sea of a coupled case (theory/environment.md).",
-    "waves.kind": "`still` water, `regular` (Airy) waves or a `jonswap` irregular sea.",
-    "waves.height": "Wave height, crest to trough (`regular`).",
-    "waves.period": "Wave period (`regular`).",
-    "waves.phase_deg": "Phase of the regular wave at the origin (`regular`).",
-    "waves.direction_deg": "Direction the waves travel in, from the x axis (`regular`, "
-                           "`jonswap`).",
-    "waves.hs": "Significant wave height, 4 sqrt(m0) (`jonswap`).",
-    "waves.tp": "Peak period (`jonswap`).",
-    "waves.seed": "Seed of the random phases, so a case always names its sea (`jonswap`).",
-    "waves.gamma": "Peak-enhancement factor, 1 to 10 (`jonswap`).",
-    "waves.spacing": "Frequencies `equal`ly spaced or one `random-in-bin` (`jonswap`).",
-    "waves.n_components": "Number of frequency bins (`jonswap`, `random-in-bin` only).",
-    "waves.frequency_step": "Frequency step of an `equal` spacing; default 2 pi / duration, "
-                            "a larger one is an error as the sea would repeat (`jonswap`).",
-    "waves.omega_min": "Lowest realised frequency; default half the peak frequency "
-                       "(`jonswap`).",
-    "waves.omega_max": "Highest realised frequency; default four times the peak frequency "
-                       "(`jonswap`).",
-    "waves.ramp_duration": "Duration of the cosine ramp of the wave excitation.",
-    "waves.second_order": "Second-order wave loads: `none` (first order only), the constant "
-                          "`mean` drift, the slow drift by `newman`'s approximation, or the "
-                          "`full` difference-frequency QTF of the database "
-                          "(theory/hydrodynamics.md, guide/rao_and_drift.md).",
-    "waves.drift_coefficients": "Mean drift route of `mean` and `newman`: `far_field` "
-                                "(momentum: Surge, Sway, Yaw; Heave, Roll, Pitch from the near "
-                                "field) or `near_field` (pressure integration, all six DOFs).",
     # initial
     "initial": "The floater's displacement from its static equilibrium at t = 0 (a free "
                "decay); body and lines start at rest there.",
@@ -389,30 +238,13 @@ _CASE = {
     # wind
     "wind": "Rotor thrust of the NREL 5 MW turbine in a steady or turbulent wind "
             "(theory/environment.md).",
-    "wind.mean_speed": "One-hour mean wind speed at `reference_height`.",
-    "wind.reference_height": "Height of `mean_speed` above the still water line.",
-    "wind.spectrum": "`npd` (turbulent, the NPD spectrum of DNV-RP-C205) or `steady` "
-                     "(constant wind).",
-    "wind.seed": "Seed of the turbulent wind's random phases.",
-    "wind.direction_deg": "Direction the wind blows towards, from +x towards +y.",
-    "wind.relative_velocity": "Thrust on the wind relative to the moving rotor "
-                              "(quasi-steady; gives the negative aerodynamic damping above "
-                              "rated speed).",
-    "wind.cutoff_hz": "Highest frequency of the turbulent wind; above 2 / duration.",
-    "wind.hub_height": "Height of the rotor hub.",
 }
 
 _CASE_DEFAULTS = {
-    **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`" for key in _DYNAMIC},
-    **{f"lines[].dynamic.{key}": "{default}" for key in _DYNAMIC},
-    "lines[].dynamic.elements": 'chosen from `accuracy` ("auto")',
-    "lines[].dynamic.order": 'chosen from `accuracy` ("auto")',
-    "lines[].dynamic.max_time_step": "none (implicit: 0.5 s)",
-    "lines[].quasi_dynamic.max_time_step": "one step per output sample",
+    **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`"
+       for key in settings_of(DynamicSettings)},
     "motion.ramp_duration": "one period (the longest moving one); 0 for a table",
     "motion.phase_deg": "default 0 (every axis)",
-    "waves.ramp_duration": "two (peak) periods",
-    "floater.drag.<coefficient>": "the preset's",
     "floater.geometry": "required unless `hydro.source = \"imported\"`",
     "floater.geometry.draft": "from the mass",
     "floater.geometry.format": "from the file's extension",

@@ -20,7 +20,7 @@ import numpy as np
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import BEM_BUILD_KEYS, check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
-    MAX_GRAVITY, MAX_NESTING_DEPTH, MIN_GRAVITY, check_sizes, nesting_depth, parse_toml,
+    MAX_NESTING_DEPTH, check_sizes, nesting_depth, parse_toml,
 )
 from floatmoor.case.files import read_input_text
 from floatmoor.case.motion_body import read_body_motion
@@ -29,11 +29,11 @@ from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import MISSING, ReadContext, TableReader
+from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, FRICTION_MODELS, INTERNAL_DAMPING_METHODS, LINE_MODELS,
-    POINT_KINDS, SEABED_CONTACT_METHODS, TIME_INTEGRATIONS, Case, CircularMotion, DynamicSettings, Environment,
-    HarmonicMotion, Line, LineType, Motion, Point, Section,
-    QuasiDynamicSettings, QuasiStaticSettings, Seabed, Simulation, TableMotion,
+    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, MAX_QD_INTEGRATION_POINTS, POINT_KINDS,
+    Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
+    Point, QuasiDynamicSettings, QuasiStaticSettings, Seabed, Section, Simulation, TableMotion,
 )
 from floatmoor.case.system_checks import (
     MAX_STATIC_STRAIN, SEABED_TOLERANCE, check_lines, check_motion, check_system,
@@ -43,30 +43,10 @@ from floatmoor.errors import CaseError
 
 __all__ = ["load_case", "parse_case", "MAX_STATIC_STRAIN", "SEABED_TOLERANCE"]
 
-#: Newton tolerance of the quasi-static catenary, relative to the line length [-]. The
-#: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
-DEFAULT_CATENARY_TOLERANCE = 1e-12
-DEFAULT_CATENARY_MAX_ITERATIONS = 100
 #: Order of a DG line whose elements are given but not its order (and of imported decks):
 #: MooDy reproduced the Lindahl chain with order 5 (chain-experiment paper; docs/cases/lindahl.md).
 #: Without either key, both follow from ``accuracy`` (mooring/dg/resolution.py).
 DEFAULT_DG_ORDER = 5
-#: Default time step as a fraction of the linear SSP-RK3 stability limit of the longitudinal
-#: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
-#: drag, contact) and was stable on the whole Lindahl robustness grid.
-DEFAULT_DG_CFL = 0.8
-#: What ``elements = "auto"`` / ``order = "auto"`` (or leaving them out) means: the DG
-#: discretisation follows ``accuracy`` (floatmoor.mooring.dg.resolution).
-_FROM_ACCURACY = "chosen from accuracy"
-#: Default accepted relative error of the fairlead tension (1 %,
-#: docs/theory/dynamic_line.md#accuracy-driven-discretisation).
-DEFAULT_DG_ACCURACY = 0.01
-#: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
-MAX_DG_ACCURACY = 0.2
-#: Default Simpson stations of the quasi-dynamic model over the suspended length: the 31
-#: integration points of the quasi-dynamic paper's verification study (its Table 3).
-DEFAULT_QD_INTEGRATION_POINTS = 31
-MAX_QD_INTEGRATION_POINTS = 10_001
 
 
 def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
@@ -171,44 +151,19 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
 # -- tables -----------------------------------------------------------------------------------
 
 def _environment(t: TableReader) -> Environment:
-    env = Environment(
-        water_density=t.number("water_density", unit="kg/m^3", gt=0.0),
-        water_depth=t.number("water_depth", unit="m", gt=0.0),
-        gravity=t.number("gravity", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY),
-        current_velocity=t.vector("current_velocity", size=3, unit="m/s",
-                                  default=(0.0, 0.0, 0.0)),  # type: ignore[arg-type]
-    )
+    env = Environment(**read_settings(Environment, t))
     t.finish()
     return env
 
 
 def _seabed(t: TableReader) -> Seabed:
-    seabed = Seabed(
-        stiffness=t.number("stiffness", unit="Pa/m", gt=0.0),
-        damping_ratio=t.number("damping_ratio", unit="-", ge=0.0),
-        friction_coefficient=t.number("friction_coefficient", unit="-", ge=0.0),
-        slip_speed=t.number("slip_speed", unit="m/s", gt=0.0),
-        friction_model=t.string("friction_model", choices=FRICTION_MODELS, default="coulomb"),
-    )
+    seabed = Seabed(**read_settings(Seabed, t))
     t.finish()
     return seabed
 
 
 def _line_type(name: str, t: TableReader) -> LineType:
-    line_type = LineType(
-        name=name,
-        mass_per_length=t.number("mass_per_length", unit="kg/m", gt=0.0),
-        axial_stiffness=t.number("axial_stiffness", unit="N", gt=0.0),
-        diameter=t.number("diameter", unit="m", gt=0.0),
-        material_density=t.number("material_density", unit="kg/m^3", gt=0.0),
-        normal_drag_coefficient=t.number("normal_drag_coefficient", unit="-", ge=0.0),
-        tangential_drag_coefficient=t.number("tangential_drag_coefficient", unit="-", ge=0.0),
-        added_mass_coefficient=t.number("added_mass_coefficient", unit="-", ge=0.0),
-        tangential_added_mass_coefficient=t.number("tangential_added_mass_coefficient", unit="-",
-                                                   ge=0.0, default=0.0),
-        internal_damping_ratio=t.number("internal_damping_ratio", unit="-", ge=0.0, default=0.0),
-        minimum_breaking_load=t.number("minimum_breaking_load", unit="N", gt=0.0, default=None),
-    )
+    line_type = LineType(name=name, **read_settings(LineType, t))
     t.finish()
     return line_type
 
@@ -240,28 +195,11 @@ def _points(root: TableReader, environment: Environment) -> list[Point]:
 
 
 def _dynamic_settings(dg: TableReader, defaults: DynamicSettings | None) -> DynamicSettings:
-    """``[lines.dynamic]`` (defaults: floatmoor's), or a section's ``dynamic`` table
+    """``[lines.dynamic]`` (defaults: the declared ones), or a section's ``dynamic`` table
     (defaults: its line's)."""
-    d = defaults
-    settings = DynamicSettings(
-        elements=dg.integer("elements", ge=1, le=10_000, default=d.elements if d else None,
-                            auto=_FROM_ACCURACY),
-        order=dg.integer("order", ge=1, le=8, default=d.order if d else None,
-                         auto=_FROM_ACCURACY),
-        cfl=dg.number("cfl", unit="-", gt=0.0, le=1.0, default=d.cfl if d else DEFAULT_DG_CFL),
-        max_time_step=dg.number("max_time_step", unit="s", gt=0.0,
-                                default=d.max_time_step if d else None),
-        slack_filter=dg.boolean("slack_filter", default=d.slack_filter if d else True),
-        seabed_contact=dg.string("seabed_contact", choices=SEABED_CONTACT_METHODS,
-                                 default=d.seabed_contact if d else "implicit"),
-        settle=dg.boolean("settle", default=d.settle if d else True),
-        internal_damping=dg.string("internal_damping", choices=INTERNAL_DAMPING_METHODS,
-                                   default=d.internal_damping if d else "implicit"),
-        time_integration=dg.string("time_integration", choices=TIME_INTEGRATIONS,
-                                   default=d.time_integration if d else "auto"),
-        accuracy=dg.number("accuracy", unit="-", gt=0.0, le=MAX_DG_ACCURACY,
-                           default=d.accuracy if d else DEFAULT_DG_ACCURACY),
-    )
+    inherited = None if defaults is None else {
+        key: getattr(defaults, key) for key in settings_of(DynamicSettings)}
+    settings = DynamicSettings(**read_settings(DynamicSettings, dg, inherited))
     dg.finish()
     return settings
 
@@ -309,26 +247,15 @@ def _line(t: TableReader, line_types: dict[str, LineType],
         raise t.error("model", "one of " + ", ".join(f'"{m}"' for m in AVAILABLE_LINE_MODELS)
                       + f' (the "{model}" model is not available in this version)', model)
     qs = t.table("quasi_static", required=False)
-    settings = QuasiStaticSettings(
-        tolerance=qs.number("tolerance", unit="-", gt=0.0, le=1e-6,
-                            default=DEFAULT_CATENARY_TOLERANCE),
-        max_iterations=qs.integer("max_iterations", ge=1, le=10_000,
-                                  default=DEFAULT_CATENARY_MAX_ITERATIONS),
-        seabed_friction=qs.boolean("seabed_friction", default=True),
-    )
+    settings = QuasiStaticSettings(**read_settings(QuasiStaticSettings, qs))
     qs.finish()
     dynamic = _dynamic_settings(t.table("dynamic", required=False), None)
     qd = t.table("quasi_dynamic", required=False)
-    points = qd.integer("integration_points", ge=3, le=MAX_QD_INTEGRATION_POINTS,
-                        default=DEFAULT_QD_INTEGRATION_POINTS)
-    if points % 2 == 0:
+    quasi_dynamic = QuasiDynamicSettings(**read_settings(QuasiDynamicSettings, qd))
+    if quasi_dynamic.integration_points % 2 == 0:
         raise qd.error("integration_points", f"an odd integer >= 3 and <= "
                        f"{MAX_QD_INTEGRATION_POINTS} (the composite Simpson rule needs an even "
-                       "number of intervals)", points)
-    quasi_dynamic = QuasiDynamicSettings(
-        integration_points=points,
-        max_time_step=qd.number("max_time_step", unit="s", gt=0.0, default=None),
-    )
+                       "number of intervals)", quasi_dynamic.integration_points)
     qd.finish()
     # sections: the short form (type, length) or the array; (type, length, end, path)
     if t.has("sections"):
@@ -377,25 +304,32 @@ def _line(t: TableReader, line_types: dict[str, LineType],
     return line, paths
 
 
+#: How far a ratio of intervals may be from a whole number and still be one [-]: interval
+#: values typed in decimal (0.05 against 0.2) are not exact binary fractions, and a step or
+#: shape interval off by more than this relative part is a typing mistake.
+INTERVAL_RATIO_TOLERANCE = 1e-6
+
+
 def _simulation(t: TableReader) -> Simulation:
-    duration = t.number("duration", unit="s", gt=0.0)
-    interval = t.number("output_interval", unit="s", gt=0.0)
+    """``[simulation]``: the declared keys, then the checks between them."""
+    simulation = Simulation(**read_settings(Simulation, t))
+    duration, interval = simulation.duration, simulation.output_interval
     if interval > duration:
         raise t.error("output_interval", f"a number <= simulation.duration ({duration:g} s) [s]",
                       interval)
-    time_step = t.number("time_step", unit="s", gt=0.0, default=None)
+    time_step = simulation.time_step
     if time_step is not None and (time_step > interval or abs(
-            interval / time_step - round(interval / time_step)) > 1e-6 * interval / time_step):
+            interval / time_step - round(interval / time_step))
+            > INTERVAL_RATIO_TOLERANCE * interval / time_step):
         raise t.error("time_step", "a number dividing simulation.output_interval "
                       f"({interval:g} s) [s]", time_step)
-    shape = t.number("shape_output_interval", unit="s", gt=0.0, default=None)
+    shape = simulation.shape_output_interval
     if shape is not None and (shape < interval or abs(shape / interval - round(shape / interval))
-                              > 1e-6 * shape / interval):
+                              > INTERVAL_RATIO_TOLERANCE * shape / interval):
         raise t.error("shape_output_interval", "a multiple of simulation.output_interval "
                       f"({interval:g} s) [s]", shape)
     t.finish()
-    return Simulation(duration=duration, output_interval=interval, shape_output_interval=shape,
-                      time_step=time_step)
+    return simulation
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:

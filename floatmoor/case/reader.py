@@ -103,6 +103,10 @@ class KeyRecord:
     default: Any = MISSING
     size: int | None = None  #: length of a vector
     table: str = ""  #: concrete path of the table the key is in (``lines[2].dynamic``)
+    #: the key's description, for a key declared as a setting (floatmoor.case.setting)
+    doc: str = ""
+    #: the wording of a default computed from other values (``"{default}"``: the recorded one)
+    default_text: str | None = None
 
 
 #: The recorder of the current :func:`recording` block (None: not recording).
@@ -203,6 +207,17 @@ class TableReader:
         self.context = context
         self.generic = generic
         self._read: set[str] = set()
+        self._note: tuple[str, str | None] = ("", None)
+
+    @contextmanager
+    def describing(self, doc: str, default_text: str | None) -> Iterator[None]:
+        """Record the keys read inside the block with this description (and wording of a
+        computed default): a declared setting's (floatmoor.case.setting)."""
+        self._note = (doc, default_text)
+        try:
+            yield
+        finally:
+            self._note = ("", None)
 
     def _record(self, key: str, kind: str, *, unit: str = "", bounds: str = "",
                 choices: tuple[str, ...] | None = None, default: Any = MISSING,
@@ -211,7 +226,7 @@ class TableReader:
         itself)."""
         self.context.recorder(KeyRecord(  # type: ignore[misc]
             self.context.source, generic_path(self.generic, name or key), kind, unit, bounds,
-            tuple(choices or ()), default, size, format_path(self.path)))
+            tuple(choices or ()), default, size, format_path(self.path), *self._note))
 
     def claim(self, key: str, kind: str, *, unit: str = "", bounds: str = "",
               choices: tuple[str, ...] = (), default: Any = MISSING,
@@ -256,15 +271,21 @@ class TableReader:
 
     # -- scalars -------------------------------------------------------------------------------
     def number(self, key: str, *, unit: str, gt: float | None = None, ge: float | None = None,
-               lt: float | None = None, le: float | None = None, default: Any = MISSING) -> float:
-        """A finite number (TOML integer or float) within the given bounds."""
+               lt: float | None = None, le: float | None = None, default: Any = MISSING,
+               auto: str | None = None) -> float:
+        """A finite number (TOML integer or float) within the given bounds; with ``auto``
+        (what it means, for the message) also the string "auto", read as None."""
         if self.context.recorder is not None:
             self._record(key, "number", unit=unit, bounds=_bound_text(gt, ge, lt, le),
-                         default=default)
+                         choices=("auto",) if auto is not None else None, default=default)
         expected = _number_text("a finite number", unit, gt, ge, lt, le)
+        if auto is not None:
+            expected += f' or "auto" ({auto})'
         value = self._get(key, default, expected)
         if value is default and default is not MISSING:
             return value
+        if auto is not None and value == "auto":
+            return None  # type: ignore[return-value]
         return self._check_number(key, value, expected, gt, ge, lt, le)
 
     def _check_number(self, key: str | Path, value: Any, expected: str, gt: float | None,

@@ -4,7 +4,8 @@ The accessors of :class:`~floatmoor.case.reader.TableReader` state each key's ty
 bounds, choices and default; :func:`~floatmoor.case.reader.recording` collects them as
 :class:`~floatmoor.case.reader.KeyRecord` objects while files are loaded. Here the records of
 many files are merged into one :class:`KeyEntry` per generic key path and rendered as
-Markdown tables, one per TOML table, with the descriptions of
+Markdown tables, one per TOML table, with the descriptions declared with the keys
+(:mod:`floatmoor.case.setting`) or, for keys not yet declared so, those of
 :mod:`floatmoor.case.key_docs`. A key the loaders read is thus on the page with the type and
 range the loader checks, and it cannot be there without a description (the tests check both
 ways).
@@ -44,6 +45,10 @@ class KeyEntry:
     defaults: tuple[Any, ...]  #: distinct defaults given (empty: never optional)
     required: bool  #: read without a default somewhere
     always: bool  #: read in every instance of its table that was read
+    #: the description declared with the key (floatmoor.case.setting), "" for one of key_docs
+    doc: str = ""
+    #: the declared wording of a computed default, or None
+    default_text: str | None = None
 
     @property
     def is_table(self) -> bool:
@@ -105,7 +110,10 @@ def merge_records(records: Sequence[KeyRecord]) -> dict[str, KeyEntry]:
             sizes=_unique(r.size for r in group if r.size is not None),
             defaults=_unique(r.default for r in group if r.default is not MISSING),
             required=any(r.default is MISSING for r in group),
-            always=seen_in >= instances[table_of(path)])
+            always=seen_in >= instances[table_of(path)],
+            doc=next((r.doc for r in group if r.doc), ""),
+            default_text=next((r.default_text for r in group if r.default_text is not None),
+                              None))
     return entries
 
 
@@ -196,7 +204,7 @@ def render_section(table: str, entries: Mapping[str, KeyEntry], docs: KeyDocs,
         lines.append("| " + " | ".join(_cell(text) for text in (
             f"`{leaf_of(entry.path)}`", docs.types.get(entry.path, _type_text(entry)),
             ", ".join(entry.units),
-            _need_text(entry, docs.defaults.get(entry.path)),
+            _need_text(entry, docs.defaults.get(entry.path, entry.default_text)),
             docs.allowed.get(entry.path, _allowed_text(entry)),
-            descriptions.get(entry.path, ""))) + " |")
+            entry.doc or descriptions.get(entry.path, ""))) + " |")
     return "\n".join(lines) + "\n"

@@ -16,6 +16,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from floatmoor.case.drag import DragSettings
+from floatmoor.case.limits import MAX_GRAVITY, MIN_GRAVITY
+from floatmoor.case.setting import setting
+from floatmoor.case.wind import WindSettings
+
 __all__ = [
     "Environment", "Seabed", "LineType", "QuasiStaticSettings", "Line", "CircularMotion",
     "HarmonicMotion", "TableMotion", "Motion", "Simulation", "Case", "LINE_MODELS",
@@ -56,10 +61,21 @@ CIRCULAR_SENSES = ("away-from-anchor-at-top", "toward-anchor-at-top")
 class Environment:
     """Water and gravity. Still water at z = 0, flat seabed at z = -water_depth."""
 
-    water_density: float  #: [kg/m^3]
-    water_depth: float  #: [m]
-    gravity: float  #: [m/s^2]
-    current_velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)  #: steady, uniform [m/s]
+    water_density: float = setting(  #: [kg/m^3]
+        "number", scale="water_density",
+        unit="kg/m^3", gt=0.0, doc="Density of the water, for buoyancy, drag, added "
+        "mass and the hydrodynamic database.")
+    water_depth: float = setting(  #: [m]
+        "number", scale="length",
+        unit="m", gt=0.0, doc="Depth of the flat seabed below the still water line.")
+    gravity: float = setting(  #: [m/s^2]
+        "number", scale="same", unit="m/s^2", ge=MIN_GRAVITY, le=MAX_GRAVITY,
+        doc="Acceleration of gravity.")
+    current_velocity: tuple[float, float, float] = setting(  #: steady, uniform [m/s]
+        "vector", scale="velocity",
+        size=3, unit="m/s", default=(0.0, 0.0, 0.0), field_default=(0.0, 0.0, 0.0),
+        doc="Steady, uniform current [x, y, z], in the drag of the lines and of a floater's "
+            "Morison members.")
 
     @property
     def seabed_z(self) -> float:
@@ -72,31 +88,75 @@ class Seabed:
     """Seabed contact (gpc paper eq. 7): normal spring-damper and friction, smoothed Coulomb
     or a stick spring (docs/theory/cable.md#seabed-friction)."""
 
-    stiffness: float  #: normal stiffness per unit contact area [Pa/m]
-    damping_ratio: float  #: of the normal contact [-]
-    friction_coefficient: float  #: Coulomb, also the quasi-static catenary's C_B [-]
-    slip_speed: float  #: speed at which full friction is reached [m/s]
+    stiffness: float = setting(  #: normal stiffness per unit contact area [Pa/m]
+        "number", scale="seabed_stiffness", unit="Pa/m", gt=0.0,
+        doc="Normal stiffness of the seabed per unit contact area.")
+    damping_ratio: float = setting(  #: of the normal contact [-]
+        "number", scale="same",
+        unit="-", ge=0.0, doc="Damping ratio of the normal contact spring-damper.")
+    friction_coefficient: float = setting(  #: Coulomb, also the quasi-static catenary's C_B [-]
+        "number", scale="same",
+        unit="-", ge=0.0, doc="Coulomb friction coefficient along the seabed; also "
+        "the quasi-static catenary's friction on its resting length.")
+    slip_speed: float = setting(  #: speed at which full friction is reached [m/s]
+        "number", scale="velocity",
+        unit="m/s", gt=0.0, doc="Sliding speed at which the smoothed friction "
+        "reaches its full value (the \"coulomb\" friction model).")
     #: dynamic lines' friction law: "coulomb" (regularised by slip_speed) or "stick_spring"
     #: (an anchor per node, return mapping; docs/theory/cable.md#seabed-friction)
-    friction_model: str = "coulomb"
+    friction_model: str = setting(
+        "string", scale="same",
+        choices=FRICTION_MODELS, default="coulomb", field_default="coulomb",
+        doc="Seabed friction law of dynamic lines: \"coulomb\", the Coulomb force "
+            "regularised by the slip speed, or \"stick_spring\", a spring of the seabed's "
+            "normal stiffness to a friction anchor per node, capped at the friction "
+            "coefficient times the normal contact force, the anchor moved by return mapping "
+            "at committed steps (theory/cable.md).")
 
 
 @dataclass(frozen=True)
 class LineType:
-    """Properties of a line material (docs/theory/cable.md)."""
+    """Properties of a line material (docs/theory/cable.md); ``[line_types.NAME]``."""
 
     name: str
-    mass_per_length: float  #: dry mass per unstretched length [kg/m]
-    axial_stiffness: float  #: EA [N]
-    diameter: float  #: the one the drag coefficients refer to [m]
-    material_density: float  #: [kg/m^3]
-    normal_drag_coefficient: float  #: C_dn [-]
-    tangential_drag_coefficient: float  #: C_dt [-]
-    added_mass_coefficient: float  #: C_a, on the material area m/rho_c [-]
-    tangential_added_mass_coefficient: float  #: [-]
-    internal_damping_ratio: float  #: axial damping ratio [-]
-    #: minimum breaking load (``minimum_breaking_load``) [N], or None when not given
-    minimum_breaking_load: float | None = None
+    mass_per_length: float = setting(  #: [kg/m]
+        "number", scale="mass_per_length",
+        unit="kg/m", gt=0.0, doc="Dry mass per unstretched length.")
+    axial_stiffness: float = setting(
+        "number", scale="force",
+        unit="N", gt=0.0, doc="Axial stiffness EA.")
+    diameter: float = setting(
+        "number", scale="diameter",
+        unit="m", gt=0.0, doc="Diameter the drag and added-mass coefficients refer to "
+        "(for chain, usually the volume-equivalent diameter).")
+    material_density: float = setting(
+        "number", scale="same",
+        unit="kg/m^3", gt=0.0, doc="Density of the line's material; with the mass it "
+        "gives the displaced volume, hence the submerged weight.")
+    normal_drag_coefficient: float = setting(  #: C_dn
+        "number", scale="drag_coefficient",
+        unit="-", ge=0.0, doc="Morison drag coefficient normal to the line, on its "
+        "diameter.")
+    tangential_drag_coefficient: float = setting(  #: C_dt
+        "number", scale="drag_coefficient",
+        unit="-", ge=0.0, doc="Drag coefficient along the line.")
+    added_mass_coefficient: float = setting(  #: C_a, on the material area m/rho_c
+        "number", scale="added_mass_coefficient",
+        unit="-", ge=0.0, doc="Added-mass coefficient normal to the line, on the "
+        "material area m / rho_material.")
+    tangential_added_mass_coefficient: float = setting(
+        "number", scale="added_mass_coefficient",
+        unit="-", ge=0.0, default=0.0, doc="Added-mass coefficient along the line.")
+    internal_damping_ratio: float = setting(
+        "number", scale="same",
+        unit="-", ge=0.0, default=0.0, doc="Kelvin-Voigt axial damping, as the "
+        "damping ratio of the line's first longitudinal mode (dynamic model).")
+    #: minimum breaking load [N], or None when not given
+    minimum_breaking_load: float | None = setting(
+        "number", scale="force",
+        unit="N", gt=0.0, default=None, field_default=None, doc="Minimum breaking "
+        "load (MBL), for the safety factors of the run summary; without it `floatmoor check` "
+        "warns on large strains.")
 
     def weight_in_water(self, environment: Environment) -> float:
         """Submerged weight per unstretched length, m g (1 - rho_w / rho_c) [N/m]."""
@@ -109,38 +169,119 @@ class LineType:
         return float(np.sqrt(self.axial_stiffness / self.mass_per_length))
 
 
+#: Newton tolerance of the quasi-static catenary, relative to the line length [-]. The
+#: equations then hold to ~1e-12 L, far below the 1e-9 L the verification tests demand.
+DEFAULT_CATENARY_TOLERANCE = 1e-12
+DEFAULT_CATENARY_MAX_ITERATIONS = 100
+#: Default Simpson stations of the quasi-dynamic model over the suspended length: the 31
+#: integration points of the quasi-dynamic paper's verification study (its Table 3).
+DEFAULT_QD_INTEGRATION_POINTS = 31
+MAX_QD_INTEGRATION_POINTS = 10_001
+
+
 @dataclass(frozen=True)
 class QuasiStaticSettings:
     """Numerics of the quasi-static catenary (``[lines.quasi_static]``)."""
 
-    tolerance: float  #: Newton stops when the end-point mismatch is below tolerance * L [-]
-    max_iterations: int
-    seabed_friction: bool  #: apply seabed friction on the resting length
+    tolerance: float = setting(  #: Newton stops when the end-point mismatch is below it * L [-]
+        "number", scale="same", unit="-", gt=0.0, le=1e-6, default=DEFAULT_CATENARY_TOLERANCE,
+        doc="Newton iterations stop when the end-point mismatch is below this fraction of the "
+            "line length.")
+    max_iterations: int = setting(
+        "integer", scale="same", ge=1, le=10_000, default=DEFAULT_CATENARY_MAX_ITERATIONS,
+        doc="Most Newton iterations of one catenary solve.")
+    seabed_friction: bool = setting(  #: apply seabed friction on the resting length
+        "boolean", scale="same", default=True,
+        doc="Apply seabed friction on the resting length.")
+
+
+#: Default time step as a fraction of the linear SSP-RK3 stability limit of the longitudinal
+#: wave (mooring/dg/reference.py): 0.8 leaves a margin for the nonlinear terms (snap loads,
+#: drag, contact) and was stable on the whole Lindahl robustness grid.
+DEFAULT_DG_CFL = 0.8
+#: What ``elements = "auto"`` / ``order = "auto"`` (or leaving them out) means: the DG
+#: discretisation follows ``accuracy`` (floatmoor.mooring.dg.resolution).
+_FROM_ACCURACY = "chosen from accuracy"
+#: Default accepted relative error of the fairlead tension (1 %,
+#: docs/theory/dynamic_line.md#accuracy-driven-discretisation).
+DEFAULT_DG_ACCURACY = 0.01
+#: Largest accuracy a case may ask for: beyond 20 % error a tension is not a result.
+MAX_DG_ACCURACY = 0.2
 
 
 @dataclass(frozen=True)
 class DynamicSettings:
-    """Numerics of the discontinuous Galerkin cable (``[lines.dynamic]``)."""
+    """Numerics of the discontinuous Galerkin cable (``[lines.dynamic]``; a section's
+    ``dynamic`` table takes the same keys, its defaults the line's)."""
 
     #: number of elements; None: chosen from ``accuracy`` (mooring/dg/resolution.py)
-    elements: int | None
+    elements: int | None = setting(
+        "integer", scale="same", ge=1, le=10_000, default=None, auto=_FROM_ACCURACY,
+        default_text='chosen from `accuracy` ("auto")',
+        doc="Number of discontinuous-Galerkin elements along the line. Left out (or "
+            '"auto"), it is chosen with `order` from `accuracy` and the fairlead motion\'s '
+            "frequency; `floatmoor check` prints the choice (theory/dynamic_line.md).")
     #: polynomial order p (1 to 8); None: chosen from ``accuracy``
-    order: int | None
-    cfl: float  #: time step as a fraction of the linear SSP-RK3 stability limit [-]
-    max_time_step: float | None  #: user cap on the time step [s]
-    slack_filter: bool  #: modal filter on elements in compression
-    seabed_contact: str  #: "implicit" or "explicit" normal spring-damper
+    order: int | None = setting(
+        "integer", scale="same", ge=1, le=8, default=None, auto=_FROM_ACCURACY,
+        default_text='chosen from `accuracy` ("auto")',
+        doc="Polynomial order of the elements. Left out (or \"auto\"), it is chosen with "
+            "`elements` from `accuracy`.")
+    #: time step as a fraction of the linear SSP-RK3 stability limit [-]
+    cfl: float = setting(
+        "number", scale="same", unit="-", gt=0.0, le=1.0, default=DEFAULT_DG_CFL,
+        doc="Explicit time step as a fraction of the stability limit of the axial (snap) "
+            "wave for the SSP-RK3 scheme; the margin below 1 covers the nonlinear terms "
+            "(snap loads, drag, seabed contact).")
+    #: user cap on the time step [s]
+    max_time_step: float | None = setting(
+        "number", scale="time",
+        unit="s", gt=0.0, default=None, default_text="none (implicit: 0.5 s)",
+        doc="Cap on the line's time step [s]; with implicit integration the step starts from "
+            "it (0.5 s when not given) and is halved where the estimated error of the "
+            "fairlead force is too large.")
+    #: modal filter on elements in compression
+    slack_filter: bool = setting(
+        "boolean", scale="same", default=True,
+        doc="Modal velocity filter on elements in compression, which damps the spurious "
+            "high-order modes of a slack chain.")
+    #: "implicit" or "explicit" normal spring-damper
+    seabed_contact: str = setting(
+        "string", scale="same", choices=SEABED_CONTACT_METHODS, default="implicit",
+        doc="Treatment of the seabed's normal spring-damper: \"implicit\" (backward-Euler, "
+            'so the stiff seabed does not limit the step) or "explicit" (resolved by the '
+            "step, much smaller).")
     #: relax the line to the static equilibrium of its discretisation before the run
-    settle: bool = True
+    settle: bool = setting(
+        "boolean", scale="same", default=True, field_default=True,
+        doc="Relax the line, fairlead held, to the static equilibrium of its own "
+            "discretisation before the run, so that its mismatch with the catenary initial "
+            "shape does not ring through the run.")
     #: "implicit" (a backward-Euler step after each SSP-RK3 step, so the axial wave alone sets
     #: the time step) or "explicit" (in the right-hand side) Kelvin-Voigt internal damping
-    internal_damping: str = "implicit"
+    internal_damping: str = setting(
+        "string", scale="same", choices=INTERNAL_DAMPING_METHODS, default="implicit",
+        field_default="implicit",
+        doc="Treatment of the Kelvin-Voigt internal damping "
+            "(`line_types.NAME.internal_damping_ratio`): \"implicit\" keeps the axial wave "
+            'alone setting the step; "explicit" puts it in the right-hand side, at a step up '
+            "to ten times smaller.")
     #: "explicit" (SSP-RK3, ``cfl`` of the axial wave's stability limit) or "implicit"
     #: (generalised-alpha, steps of at most ``max_time_step``, halved where the estimated error
-    #: of the fairlead force exceeds ``accuracy``'s share)
-    time_integration: str = "explicit"
+    #: of the fairlead force exceeds ``accuracy``'s share); a case file's default is "auto"
+    time_integration: str = setting(
+        "string", scale="same",
+        choices=TIME_INTEGRATIONS, default="auto", field_default="explicit",
+        doc='"explicit" (SSP-RK3 at `cfl` of the axial wave\'s limit), "implicit" '
+            "(generalised-alpha, Chung & Hulbert 1993, steps bounded by accuracy) or \"auto\": "
+            "implicit while its steps cost less than the explicit ones they replace, explicit "
+            "from then on.")
     #: relative error of the fairlead tension accepted [-]
-    accuracy: float = 0.01
+    accuracy: float = setting(
+        "number", scale="same", unit="-", gt=0.0, le=MAX_DG_ACCURACY, default=DEFAULT_DG_ACCURACY,
+        field_default=DEFAULT_DG_ACCURACY,
+        doc="Accepted relative error of the fairlead tension; the element count, order and "
+            "implicit step are chosen for it when not given.")
     #: characteristic angular frequency of the fairlead motion [rad/s] (the case's waves or
     #: prescribed motion; 0 when none is declared): what the choice of numerics resolves
     motion_frequency: float = 0.0
@@ -158,8 +299,16 @@ class QuasiDynamicSettings:
     Its static catenary is the quasi-static model's, set by ``[lines.quasi_static]``.
     """
 
-    integration_points: int = 31  #: odd number of Simpson stations over the suspended length
-    max_time_step: float | None = None  #: cap on the step of the backward differences [s]
+    #: odd number of Simpson stations over the suspended length (odd: floatmoor.case.load)
+    integration_points: int = setting(
+        "integer", scale="same", ge=3, le=MAX_QD_INTEGRATION_POINTS,
+        default=DEFAULT_QD_INTEGRATION_POINTS, field_default=DEFAULT_QD_INTEGRATION_POINTS,
+        doc="Odd number of composite-Simpson stations over the suspended length at rest.")
+    max_time_step: float | None = setting(  #: cap on the step of the backward differences [s]
+        "number", scale="time", unit="s", gt=0.0, default=None, field_default=None,
+        default_text="one step per output sample",
+        doc="Cap on the step of the backward differences, taken on the fairlead's "
+            "interpolated path.")
 
 
 #: The settings of a line whose case file has no ``[lines.quasi_dynamic]`` table.
@@ -362,13 +511,23 @@ Motion = CircularMotion | HarmonicMotion | TableMotion | BodyHarmonicMotion | Bo
 
 @dataclass(frozen=True)
 class Simulation:
-    """Time span and output sampling."""
+    """Time span and output sampling (``[simulation]``)."""
 
-    duration: float  #: [s]
-    output_interval: float  #: [s]
-    shape_output_interval: float | None = None  #: line shape sampling [s], None = no shapes
+    duration: float = setting(  #: [s]
+        "number", scale="time", unit="s", gt=0.0, doc="Simulated time span, from t = 0.")
+    output_interval: float = setting(  #: [s], <= duration (floatmoor.case.load)
+        "number", scale="time",
+        unit="s", gt=0.0, doc="Sampling interval of the output time series.")
     #: body step of a coupled run [s] (dividing the output interval); None = the output interval
-    time_step: float | None = None
+    time_step: float | None = setting(
+        "number", scale="time", unit="s", gt=0.0, default=None, field_default=None,
+        doc="Time step of the floater in coupled runs, dividing `output_interval`; default "
+            "the output interval. Only with a `[floater]` (lines take their own steps).")
+    #: line shape sampling [s], None = no shapes
+    shape_output_interval: float | None = setting(
+        "number", scale="time", unit="s", gt=0.0, default=None, field_default=None,
+        doc="Sampling interval of the line shapes, a multiple of `output_interval`; no shapes "
+            "are written without it.")
 
 
 #: Floater geometry kinds a case file may give (``floater.geometry.kind``).
@@ -512,8 +671,8 @@ class Floater:
     #: the hull (``[floater.geometry]``); None for a floater whose database is imported and
     #: that gives none (its hydrostatics come from the database; no drag members)
     geometry: FloaterGeometry | None
-    #: Morison drag on the members (``[floater.drag]``: floatmoor.body.morison.DragSettings)
-    drag: Any = None
+    #: Morison drag on the members (``[floater.drag]``), or None
+    drag: DragSettings | None = None
     #: radiation memory path (one of :data:`RADIATION_METHODS`)
     radiation: str = "convolution"
 
@@ -543,26 +702,56 @@ class HydroSettings:
     None, the flags False.
     """
 
-    database: str  #: database name: ``hydrodb/NAME.nc``
+    database: str = setting(  #: database name: ``hydrodb/NAME.nc``
+        "string", doc="Name of the database file in `hydrodb/` (`NAME` for `hydrodb/NAME.nc`); "
+        "with `source = \"imported\"` also the path of the `.nc` that `floatmoor hydro "
+        "import` made (a `/` in it or ending in `.nc`), relative to the case file's folder.")
     frequencies: tuple[float, ...]  #: finite wave frequencies, increasing [rad/s]
     directions: tuple[float, ...]  #: wave propagation directions, increasing [rad]
-    panel_size: float | None  #: target panel edge length [m] (None: imported)
-    lid: bool  #: lid on the interior waterplane against irregular frequencies
-    lid_depth: float | None  #: [m] below the still water line, None = from the top frequency
-    infinite_depth: bool  #: solve in deep water (allows omega = 0) instead of water_depth
-    symmetry: bool  #: use the mesh symmetries capytaine supports
-    radial_panels: int | None = None  #: cylinder only: panels across the bottom radius
+    #: target panel edge length [m] (None: imported; required by the loader except for a mesh
+    #: hull without a lid, floatmoor.case.floater.check_panel_size)
+    panel_size: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, doc="Target panel edge of a parametric hull, "
+        "or of a mesh hull's lid; not needed for a mesh hull without a lid.")
+    #: lid on the interior waterplane against irregular frequencies
+    lid: bool = setting(
+        "boolean", default=True, doc="Close the hull's water plane with a lid of panels just "
+        "below the water line, against the BEM's irregular frequencies.")
+    #: [m] below the still water line, None = from the top frequency
+    lid_depth: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, doc="Depth of the lid below the water line; "
+        "default where wavenumber times depth is 0.15 at the highest frequency.")
+    #: solve in deep water (allows omega = 0) instead of water_depth
+    infinite_depth: bool = setting(
+        "boolean", default=False, doc="Solve the BEM in infinite depth instead of "
+        "environment.water_depth.")
+    symmetry: bool = setting(  #: use the mesh symmetries capytaine supports
+        "boolean", default=True, doc="Use the hull's symmetries in the BEM.")
+    radial_panels: int | None = setting(  #: cylinder only: panels across the bottom radius
+        "integer", ge=1, le=1000, default=None, field_default=None,
+        doc="Panels across the bottom of a cylinder, centre to rim.")
     #: panel height at the still water line of the mean drift's mesh (walls graded from it to
     #: ``panel_size``) [m]; None: the default rule of floatmoor.hydro.drift_build. Not a
     #: first-order input: the database's own mesh is uniform
-    drift_waterline_panel_size: float | None = None
+    drift_waterline_panel_size: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, field_default=None,
+        doc="Panel height at the water line of the mesh the mean drift is solved on (`hydro "
+            "build --drift`), graded to panel_size below; default from the highest frequency "
+            "(guide/hydro_databases.md#mean-drift).")
     #: panel size of the mean drift's mesh away from the water line [m]; None: ``panel_size``.
     #: Not a first-order input either (docs/guide/hydro_databases.md#mean-drift)
-    drift_panel_size: float | None = None
+    drift_panel_size: float | None = setting(
+        "number", unit="m", gt=0.0, default=None, field_default=None,
+        doc="Panel size of the mean drift's mesh away from the water line; default "
+            "panel_size. Finer panels resolve the near field's body-motion terms at a large "
+            "resonant response (guide/hydro_databases.md#mean-drift).")
     #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
     accept_failed_checks: tuple[str, ...] = ()
     #: ``"bem"`` (built by ``floatmoor hydro build``) or ``"imported"`` (``hydro import``)
-    source: str = "bem"
+    source: str = setting(
+        "string", choices=HYDRO_SOURCES, default="bem", field_default="bem",
+        doc="`bem` (built from the keys below) or `imported` (made by `floatmoor hydro "
+            "import` from WAMIT or BEMIO files; then no build keys).")
 
 
 @dataclass(frozen=True)
@@ -610,8 +799,8 @@ class Case:
     waves: Any = None
     #: the floater's offset from its static equilibrium at t = 0 (``[initial]``) [m, rad]
     initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
-    #: the rotor's wind (``[wind]``: floatmoor.wind.force.WindSettings), or None
-    wind: Any = None
+    #: the rotor's wind (``[wind]``), or None
+    wind: WindSettings | None = None
     #: the title as the case file gives it, placeholders unfilled ("" = same as ``title``)
     title_template: str = ""
     #: every point of the mooring system, the ``[[points]]`` then the lines' implicit ones

@@ -29,7 +29,10 @@ from floatmoor.case.files import read_input_text
 from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import parse_case
 from floatmoor.case.reader import format_path
-from floatmoor.case.schema import Case
+from floatmoor.case.schema import (
+    Case, DynamicSettings, Environment, LineType, QuasiDynamicSettings, Seabed, Simulation,
+)
+from floatmoor.case.setting import settings_of
 from floatmoor.errors import CaseError
 from floatmoor.similitude.decimals import SIGNIFICANT_DIGITS, rounded, scaled_value
 from floatmoor.similitude.groups import cable_groups
@@ -43,39 +46,31 @@ __all__ = ["ScaledCase", "KEY_KINDS", "SIGNIFICANT_DIGITS", "scale_case_text",
 #: a group (~1e-15), with a wide margin, far below any physical difference.
 GROUP_TOLERANCE = 1e-9
 
-_LINE_DYNAMIC = {"elements": "same", "order": "same", "cfl": "same", "max_time_step": "time",
-                 "slack_filter": "same", "seabed_contact": "same", "settle": "same",
-                 "internal_damping": "same", "time_integration": "same", "accuracy": "same"}
 _REFUSE = "refuse"
+
+
+def _declared(table: str, cls: type) -> dict[str, str]:
+    """The quantity kinds the settings of ``cls`` declare (floatmoor.case.setting), under
+    ``table``."""
+    return {f"{table}.{key}": spec.scale for key, spec in settings_of(cls).items()}
+
 
 #: Quantity kind of every key (``*`` = any entry name or index); kinds of
 #: :data:`floatmoor.similitude.laws.QUANTITY_KINDS`, ``diameter`` (beta), or a refusal.
 KEY_KINDS: dict[str, str] = {
     "title": "same", "description": "same",
-    "environment.water_density": "water_density", "environment.water_depth": "length",
-    "environment.gravity": "same", "environment.current_velocity": "velocity",
-    "seabed.stiffness": "seabed_stiffness", "seabed.damping_ratio": "same",
-    "seabed.friction_coefficient": "same", "seabed.slip_speed": "velocity",
-    "seabed.friction_model": "same",
-    "line_types.*.mass_per_length": "mass_per_length", "line_types.*.axial_stiffness": "force",
-    "line_types.*.diameter": "diameter", "line_types.*.material_density": "same",
-    "line_types.*.normal_drag_coefficient": "drag_coefficient",
-    "line_types.*.tangential_drag_coefficient": "drag_coefficient",
-    "line_types.*.added_mass_coefficient": "added_mass_coefficient",
-    "line_types.*.tangential_added_mass_coefficient": "added_mass_coefficient",
-    "line_types.*.internal_damping_ratio": "same",
-    "line_types.*.minimum_breaking_load": "force",
+    **_declared("environment", Environment), **_declared("seabed", Seabed),
+    **_declared("line_types.*", LineType),
     "points.*.name": "same", "points.*.kind": "same", "points.*.position": "length",
     "points.*.mass": "point_mass", "points.*.volume": "point_volume",
     "points.*.drag_area": "point_drag_area", "points.*.added_mass_coefficient": "same",
     **{f"lines.*.{k}": "same" for k in ("name", "type", "model", "start", "end")},
     "lines.*.length": "length", "lines.*.anchor": "length", "lines.*.fairlead": "length",
-    "lines.*.quasi_static.*": "same", "lines.*.quasi_dynamic.integration_points": "same",
-    "lines.*.quasi_dynamic.max_time_step": "time",
-    **{f"lines.*.dynamic.{k}": v for k, v in _LINE_DYNAMIC.items()},
+    "lines.*.quasi_static.*": "same", **_declared("lines.*.quasi_dynamic", QuasiDynamicSettings),
+    **_declared("lines.*.dynamic", DynamicSettings),
     "lines.*.sections.*.type": "same", "lines.*.sections.*.length": "length",
     "lines.*.sections.*.end": "same",
-    **{f"lines.*.sections.*.dynamic.{k}": v for k, v in _LINE_DYNAMIC.items()},
+    **_declared("lines.*.sections.*.dynamic", DynamicSettings),
     "motion.kind": "same", "motion.sense": "same", "motion.phase_deg": "same",
     "motion.radius": "length", "motion.period": "time", "motion.ramp_duration": "time",
     "motion.amplitude": "length", "motion.reference_point": "length",
@@ -84,8 +79,7 @@ KEY_KINDS: dict[str, str] = {
     **{f"motion.{d}.{k}": v for d in ("roll", "pitch", "yaw") for k, v in
        (("amplitude_deg", "same"), ("period", "time"), ("phase_deg", "same"))},
     "motion.file": "motion_table",
-    "simulation.duration": "time", "simulation.output_interval": "time",
-    "simulation.shape_output_interval": "time", "simulation.time_step": "time",
+    **_declared("simulation", Simulation),
     "campaign.*": _REFUSE + ": the swept values are not rewritten; scale the case without "
     "its [campaign] and sweep the scaled values",
     "floater.name": "same", "floater.mass": "mass", "floater.centre_of_mass": "length",

@@ -26,6 +26,7 @@ from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
+from floatmoor.case.coupling import CoupledCase, WaveCase
 from floatmoor.case.schema import Case, Point
 from floatmoor.errors import CaseError, FloatmoorError, FloatmoorWarning, SolverError
 from floatmoor.hydro.database import load_for_case
@@ -46,9 +47,7 @@ from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.second_order import (
     MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce, newman_on_grid,
 )
-from floatmoor.waves.settings import (
-    JonswapSettings, RegularWaveSettings, StillWaterSettings, build,
-)
+from floatmoor.waves.settings import build
 from floatmoor.wind.force import RotorThrust
 
 __all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "CoupledSettings",
@@ -60,37 +59,19 @@ _MODELS = {"quasi-static": QuasiStaticLine.from_case,
 
 @dataclass(frozen=True)
 class CoupledSettings:
-    """What a coupled run needs beyond the case's lines and floater."""
+    """Options of a coupled run that its case file does not give. What the case gives (the
+    body step, the sea, the initial offset) the run takes from the case itself
+    (:class:`floatmoor.case.coupling.CoupledCase`), checked once by its reader."""
 
-    time_step: float  #: body time step [s]; the output interval must be a multiple of it
-    waves: RegularWaveSettings | JonswapSettings | StillWaterSettings = field(
-        default_factory=StillWaterSettings)
-    #: cosine ramp of the wave excitation [s] (0: none)
-    ramp_duration: float = 0.0
-    #: initial displacement from the static equilibrium (Surge, Sway, Heave [m], Roll, Pitch,
-    #: Yaw [rad]); the body and its lines start at rest there
-    initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
     database: str | Path | None = None  #: default: hydrodb/<hydro.database>.nc
     linear_damping: NDArray[np.float64] | None = None  #: B_1 (6, 6)
     quadratic_damping: NDArray[np.float64] | None = None  #: B_2 (6, 6)
-    #: second-order wave loads ("none", "mean", "newman", "full": floatmoor.waves.second_order)
-    second_order: str = "none"
-    #: mean drift route of "mean" and "newman" ("far_field" or "near_field")
-    drift_coefficients: str = "far_field"
 
 
 def settings_from_case(case: Case) -> CoupledSettings:
-    """The coupled-run settings a case file gives (``[waves]``, ``[initial]``,
-    ``[simulation] time_step``, default the output interval)."""
-    sim = case.simulation
-    waves = case.waves
-    return CoupledSettings(
-        time_step=sim.time_step if sim.time_step is not None else sim.output_interval,
-        waves=waves.settings if waves is not None else StillWaterSettings(),
-        ramp_duration=waves.ramp_duration if waves is not None else 0.0,
-        initial_offset=tuple(case.initial_offset),
-        second_order=waves.second_order if waves is not None else "none",
-        drift_coefficients=waves.drift_coefficients if waves is not None else "far_field")
+    """The options of a plain run of ``case``: none beyond the case (its database, no
+    additional damping)."""
+    return CoupledSettings()
 
 
 def build_line_models(case: Case) -> list[PathStepper | None]:
@@ -294,7 +275,7 @@ def _excitation(sea: WaveField, ds: xr.Dataset, case: Case) -> WaveExcitation | 
     return WaveExcitation(sea, X)
 
 
-def _second_order(case: Case, settings: CoupledSettings, sea: WaveField, ds: xr.Dataset
+def _second_order(case: Case, waves: WaveCase, sea: WaveField, ds: xr.Dataset
                   ) -> tuple[SecondOrderForce | None, dict[str, str]]:
     """The second-order wave force of the run and its description (result attributes), or
     (None, {}); refused before any run starts when the database cannot give it.
@@ -304,7 +285,7 @@ def _second_order(case: Case, settings: CoupledSettings, sea: WaveField, ds: xr.
     CaseError
         Naming the case file, the key, the database, what was expected and what was found.
     """
-    model, route = settings.second_order, settings.drift_coefficients
+    model, route = waves.second_order, waves.drift_coefficients
     if model == "none":
         return None, {}
     path = ds.attrs.get("path", "the database")
@@ -427,7 +408,8 @@ def assemble(case: Case, settings: CoupledSettings | None = None) -> MooredSyste
     if settings is None:
         raise ValueError("a floater case is assembled with its CoupledSettings")
     env = case.environment
-    dt = float(settings.time_step)
+    view = CoupledCase.of(case)
+    dt = view.time_step
     # the case's database, refused when missing, damaged or built from other inputs
     ds = load_for_case(case, settings.database)
     if case.floater.radiation == "state-space" and not has_state_space(ds):
@@ -437,15 +419,15 @@ def assemble(case: Case, settings: CoupledSettings | None = None) -> MooredSyste
                         f"{case.hydro.database if case.hydro else 'NAME'}')",
                         f'"state-space" with {ds.attrs.get("path", "the database")}, which '
                         "holds none")
-    sea = build(settings.waves, env.water_depth, env.gravity, case.simulation.duration)
+    sea = build(view.waves.settings, env.water_depth, env.gravity, case.simulation.duration)
     # before the body: a sea on a database without excitation forces (or without the
     # second-order coefficients the case asks for) is refused at once
     excitation = _excitation(sea, ds, case)
-    second, second_attrs = _second_order(case, settings, sea, ds)
+    second, second_attrs = _second_order(case, view.waves, sea, ds)
     body = build_body(case.floater, ds, env, dt, linear_damping=settings.linear_damping,
                       quadratic_damping=settings.quadratic_damping)
     rotor = RotorThrust(case.wind, case.simulation.duration) if case.wind is not None else None
-    loads = BodyLoads(excitation, rotor, None, settings.ramp_duration, dt, second)
+    loads = BodyLoads(excitation, rotor, None, view.waves.ramp_duration, dt, second)
     centre = np.asarray(case.floater.reference_point, dtype=float)
     # built as for a fresh start, so that a checkpoint's state fits the same operators
     moored = MooredBody(body, case.lines, env, case.seabed, centre, loads, case=case)
@@ -456,7 +438,7 @@ def assemble(case: Case, settings: CoupledSettings | None = None) -> MooredSyste
     x_eq = equilibrium(body, [ln for ln, s in zip(case.lines, solo) if s],
                        moored.arms[solo] if len(solo) else moored.arms, centre, env, case.seabed,
                        mean_force=mean_force, system_force=_system_force(case, centre))
-    moored.start(x_eq + np.asarray(settings.initial_offset, dtype=float))
+    moored.start(x_eq + np.asarray(view.initial_offset, dtype=float))
     refuse_long_runs(case, moored.models)
     moored.equilibrium_position = x_eq
     if case.floater.drag is not None:

@@ -8,13 +8,14 @@ from __future__ import annotations
 import time as _time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import points_state
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.schema import Case, Line
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.io.netcdf3_format import NetCDF3Error
@@ -202,8 +203,8 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     completed one removes it too. With ``simulation.shape_output_interval`` the lines'
     shapes are recorded too.
 
-    ``settings`` (default :func:`settings_from_case`) replaces the case's ``[waves]``,
-    ``[initial]`` and ``simulation.time_step``.
+    ``settings`` (default :func:`settings_from_case`) gives the options the case does not:
+    another database file, additional linear or quadratic damping.
 
     Raises
     ------
@@ -286,12 +287,10 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
         which rewrites it from its start.
     """
     ckpt = checkpoint_path(output) if output is not None else None
-    dt = float(settings.time_step)
+    view = CoupledCase.of(case)
+    dt = view.time_step
     times = output_times(case.simulation)
-    stride = int(round(case.simulation.output_interval / dt))
-    if stride < 1 or abs(stride * dt - case.simulation.output_interval) > 1e-9 * dt:
-        raise ValueError(f"the output interval {case.simulation.output_interval} s must be a "
-                         f"multiple of the body time step {dt} s")
+    stride = view.steps_per_output
     system = assemble(case, settings)
     moored, loads = system.moored, system.loads
     body, x_eq = moored.body, system.equilibrium
@@ -302,8 +301,8 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
     # a resumed run keeps what its file says of them)
     probe = None if resume else RunProbe.for_run(
         list(rule_lines), moored.models, case.environment, case.seabed,
-        settings.ramp_duration, raised_from=raised_from,
-        irregular=irregular_sea(settings.waves))
+        view.waves.ramp_duration, raised_from=raised_from,
+        irregular=irregular_sea(view.waves.settings))
     not_yet = NOT_YET_ESTIMATED + "".join(
         f"\nline '{rule_lines[i].name}': raised to {raised[i]} elements from "
         f"{describe_raises(history)}; the run started again from t = 0"
@@ -409,7 +408,7 @@ def _run_pass(case: Case, rule_lines: tuple[Line, ...], settings: CoupledSetting
     if probe is not None and not probe.done:
         recorder.set_attribute("line_accuracy", "not estimated: the run ended before the wave "
                                f"ramp and {probe.cycles} "
-                               f"{'peak' if irregular_sea(settings.waves) else 'wave'} periods")
+                               f"{'peak' if irregular_sea(view.waves.settings) else 'wave'} periods")
     dataset = recorder.result(status="complete")
     if ckpt is not None and ckpt.is_file():
         ckpt.unlink()

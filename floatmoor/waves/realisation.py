@@ -68,6 +68,7 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
+from floatmoor.case.sea import SPACINGS  # frequency discretisations (module docstring)
 from floatmoor.waves.dispersion import STANDARD_GRAVITY, wavenumber
 from floatmoor.waves.spectra import DEFAULT_GAMMA, jonswap, jonswap_moment
 from floatmoor.waves.synthesis import harmonic_sum
@@ -76,8 +77,6 @@ __all__ = ["WaveField", "SPACINGS", "wave_elevation"]
 
 log = logging.getLogger(__name__)
 
-#: Frequency discretisations of irregular seas (see the module docstring).
-SPACINGS = ("equal", "random-in-bin")
 
 
 def _frozen(a: ArrayLike, dtype: type = float) -> NDArray[Any]:

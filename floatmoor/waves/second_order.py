@@ -38,16 +38,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from floatmoor.case.sea import DRIFT_ROUTES, SECOND_ORDER_MODELS
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.synthesis import harmonic_sum
 
 __all__ = ["SECOND_ORDER_MODELS", "DRIFT_ROUTES", "MeanDriftForce", "NewmanForce", "QTFForce",
            "SecondOrderForce", "hat_weights", "newman_on_grid"]
 
-#: The case's ``[waves] second_order`` choices ("none": first-order forces only).
-SECOND_ORDER_MODELS = ("none", "mean", "newman", "full")
-#: The case's ``[waves] drift_coefficients`` choices (docs/theory/hydrodynamics.md).
-DRIFT_ROUTES = ("far_field", "near_field")
 
 #: Relative tolerance of a uniform time grid (as floatmoor.waves.synthesis: the rounding
 #: np.arange and np.linspace leave, in units of the largest time).

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from floatmoor.case.setting import setting
 from floatmoor.waves.dispersion import STANDARD_GRAVITY, wavelength
 from floatmoor.waves.realisation import SPACINGS, WaveField
 from floatmoor.waves.spectra import DEFAULT_GAMMA
@@ -48,6 +49,8 @@ GAMMA_RANGE = (1.0, 10.0)
 #: Default realised band as multiples of omega_p: below 0.5 omega_p the spectrum holds
 #: exp(-1.25 * 16) ~ 2e-9 of m0; above 4 omega_p the omega^-5 tail holds about 1.25/4^4 = 0.5 %.
 DEFAULT_OMEGA_RANGE_FACTORS = (0.5, 4.0)
+#: The description of ``[waves] direction_deg``, a key of both wave kinds.
+DIRECTION_DOC = "Direction the waves travel in, from the x axis (`regular`, `jonswap`)."
 
 
 def _positive(name: str, value: float) -> None:
@@ -84,10 +87,13 @@ class RegularWaveSettings:
         Phase [deg]: the crest passes x = y = 0 at t = phase_deg / 360 * T.
     """
 
-    height: float
-    period: float
-    direction_deg: float = 0.0
-    phase_deg: float = 0.0
+    height: float = setting("number", unit="m", gt=0.0,
+                            doc="Wave height, crest to trough (`regular`).")
+    period: float = setting("number", unit="s", gt=0.0, doc="Wave period (`regular`).")
+    direction_deg: float = setting("number", unit="deg", default=0.0, field_default=0.0,
+                                   doc=DIRECTION_DOC)
+    phase_deg: float = setting("number", unit="deg", default=0.0, field_default=0.0,
+                               doc="Phase of the regular wave at the origin (`regular`).")
 
     def validate(self, depth: float = math.inf, gravity: float = STANDARD_GRAVITY) -> None:
         """Raise ValueError for unphysical or breaking waves (module docstring)."""
@@ -133,16 +139,33 @@ class JonswapSettings:
         Realised band [rad/s]; default 0.5 and 4 times omega_p.
     """
 
-    hs: float
-    tp: float
-    seed: int
-    gamma: float = DEFAULT_GAMMA
-    direction_deg: float = 0.0
-    spacing: str = "equal"
-    n_components: int | None = None
-    frequency_step: float | None = None
-    omega_min: float | None = None
-    omega_max: float | None = None
+    hs: float = setting("number", unit="m", gt=0.0,
+                        doc="Significant wave height, 4 sqrt(m0) (`jonswap`).")
+    tp: float = setting("number", unit="s", gt=0.0, doc="Peak period (`jonswap`).")
+    seed: int = setting("integer", ge=0, doc="Seed of the random phases, so a case always "
+                        "names its sea (`jonswap`).")
+    #: a case file's is read first, and checked against GAMMA_RANGE[1] with its own message
+    gamma: float = setting("number", unit="-", ge=GAMMA_RANGE[0], default=DEFAULT_GAMMA,
+                           field_default=DEFAULT_GAMMA,
+                           doc="Peak-enhancement factor, 1 to 10 (`jonswap`).")
+    direction_deg: float = setting("number", unit="deg", default=0.0, field_default=0.0,
+                                   doc=DIRECTION_DOC)
+    spacing: str = setting("string", choices=SPACINGS, default="equal", field_default="equal",
+                           doc="Frequencies `equal`ly spaced or one `random-in-bin` "
+                               "(`jonswap`).")
+    n_components: int | None = setting(
+        "integer", ge=1, default=None, field_default=None,
+        doc="Number of frequency bins (`jonswap`, `random-in-bin` only).")
+    frequency_step: float | None = setting(
+        "number", unit="rad/s", gt=0.0, default=None, field_default=None,
+        doc="Frequency step of an `equal` spacing; default 2 pi / duration, a larger one is "
+            "an error as the sea would repeat (`jonswap`).")
+    omega_min: float | None = setting(
+        "number", unit="rad/s", gt=0.0, default=None, field_default=None,
+        doc="Lowest realised frequency; default half the peak frequency (`jonswap`).")
+    omega_max: float | None = setting(
+        "number", unit="rad/s", gt=0.0, default=None, field_default=None,
+        doc="Highest realised frequency; default four times the peak frequency (`jonswap`).")
 
     def band(self) -> tuple[float, float]:
         """(omega_min, omega_max) [rad/s] with the defaults filled in."""

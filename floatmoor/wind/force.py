@@ -40,94 +40,32 @@ profile.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import generalised_force, points_state
+from floatmoor.case.wind import DEFAULT_CUTOFF_HZ, SPECTRA, WindSettings
 from floatmoor.wind.realisation import WindField, npd_wind, steady_wind
 from floatmoor.wind.spectrum import npd_profile, speed_at_10m
-from floatmoor.wind.thrust import HUB_HEIGHT, NREL_5MW, ThrustCurve
+from floatmoor.wind.thrust import NREL_5MW, ThrustCurve
 
-__all__ = ["WindSettings", "RotorThrust", "SPECTRA", "DEFAULT_CUTOFF_HZ"]
+__all__ = ["WindSettings", "RotorThrust", "SPECTRA", "DEFAULT_CUTOFF_HZ", "speed_10m",
+           "hub_mean_speed"]
 
-#: Wind spectra: "npd" (turbulent, DNV-RP-C205 2.3.4) and "steady" (constant wind).
-SPECTRA = ("npd", "steady")
-#: Upper end of the realised wind band [Hz]: above it the NPD spectrum at 90 m for 13.05 m/s
-#: holds 4.7 % of its variance, gusts shorter than 2 s that a 126 m rotor largely averages out
-#: (the averaging itself is not modelled).
-DEFAULT_CUTOFF_HZ = 0.5
 _GRID_TOLERANCE = 1e-6  # fraction of a half step: a time counts as on the prepared grid
 
 
-@dataclass(frozen=True)
-class WindSettings:
-    """Wind on the rotor, mirroring the case's ``[wind]`` keys.
+def speed_10m(settings: WindSettings) -> float:
+    """U0, the 1-hour mean at 10 m [m/s] (NPD profile) of ``settings``' mean speed."""
+    return speed_at_10m(float(settings.mean_speed), float(settings.reference_height))
 
-    Attributes
-    ----------
-    mean_speed
-        1-hour mean wind speed at ``reference_height`` [m/s] (LC43: 13.05).
-    reference_height
-        Height of ``mean_speed`` above the still water line [m] (default the hub, 90 m).
-    spectrum
-        "npd" or "steady".
-    seed
-        Seed of the random phases and frequencies.
-    direction_deg
-        Direction the wind blows towards, from +x towards +y [deg] (LC43: 0).
-    relative_velocity
-        Thrust from the wind relative to the moving hub (aerodynamic damping) if True.
-    cutoff_hz
-        Upper end of the realised band [Hz].
-    hub_height
-        Hub height above the reference point [m].
-    """
 
-    mean_speed: float
-    reference_height: float = HUB_HEIGHT
-    spectrum: str = "npd"
-    seed: int = 0
-    direction_deg: float = 0.0
-    relative_velocity: bool = True
-    cutoff_hz: float = DEFAULT_CUTOFF_HZ
-    hub_height: float = HUB_HEIGHT
-
-    def validate(self) -> None:
-        """Raise ValueError naming the offending key."""
-        def positive(name: str) -> None:
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                    or not math.isfinite(value) or value <= 0.0:
-                raise ValueError(f"wind.{name} must be a finite number > 0, got {value!r}")
-
-        for name in ("mean_speed", "reference_height", "cutoff_hz", "hub_height"):
-            positive(name)
-        if self.spectrum not in SPECTRA:
-            raise ValueError(f"wind.spectrum must be one of {', '.join(SPECTRA)}, "
-                             f"got {self.spectrum!r}")
-        if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) \
-                or self.seed < 0:
-            raise ValueError(f"wind.seed must be an integer >= 0, got {self.seed!r}")
-        d = self.direction_deg
-        if isinstance(d, bool) or not isinstance(d, (int, float)) or not math.isfinite(d):
-            raise ValueError(f"wind.direction_deg must be a finite number, got {d!r}")
-        if not isinstance(self.relative_velocity, bool):
-            raise ValueError(f"wind.relative_velocity must be true or false, "
-                             f"got {self.relative_velocity!r}")
-
-    @property
-    def speed_10m(self) -> float:
-        """U0, the 1-hour mean at 10 m [m/s] (NPD profile)."""
-        return speed_at_10m(float(self.mean_speed), float(self.reference_height))
-
-    @property
-    def hub_mean_speed(self) -> float:
-        """Mean wind speed at the hub [m/s] (NPD profile)."""
-        if self.reference_height == self.hub_height:
-            return float(self.mean_speed)
-        return float(npd_profile(self.speed_10m, self.hub_height))
+def hub_mean_speed(settings: WindSettings) -> float:
+    """Mean wind speed at the hub [m/s] (NPD profile)."""
+    if settings.reference_height == settings.hub_height:
+        return float(settings.mean_speed)
+    return float(npd_profile(speed_10m(settings), settings.hub_height))
 
 
 class RotorThrust:
@@ -159,11 +97,11 @@ class RotorThrust:
         self.direction = np.array([math.cos(beta), math.sin(beta), 0.0])
         #: hub relative to the reference point at rest (1, 3) [m]
         self.hub_arm = np.array([[0.0, 0.0, float(settings.hub_height)]])
-        mean = settings.hub_mean_speed
+        mean = hub_mean_speed(settings)
         if settings.spectrum == "steady":
             self.wind: WindField = steady_wind(mean)
         else:
-            self.wind = npd_wind(mean, settings.hub_height, settings.speed_10m, duration,
+            self.wind = npd_wind(mean, settings.hub_height, speed_10m(settings), duration,
                                  settings.seed, settings.cutoff_hz)
         self._t0 = math.nan
         self._dt_half = math.nan

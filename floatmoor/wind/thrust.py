@@ -47,13 +47,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from floatmoor.case.wind import HUB_HEIGHT  # NREL 5 MW's, the case's default hub height
+
 __all__ = ["ThrustCurve", "NREL_5MW", "NREL_5MW_WIND_SPEED", "NREL_5MW_THRUST",
            "ROTOR_DIAMETER", "HUB_HEIGHT", "CUT_IN_SPEED", "RATED_SPEED", "CUT_OUT_SPEED"]
 
 #: NREL 5 MW rotor diameter [m] (Jonkman et al. 2009, Table 1-1).
 ROTOR_DIAMETER = 126.0
-#: NREL 5 MW hub height above the still water line [m] (Jonkman et al. 2009, Table 1-1).
-HUB_HEIGHT = 90.0
 #: Cut-in, rated and cut-out wind speeds at hub height [m/s] (Jonkman et al. 2009, Table 1-1).
 CUT_IN_SPEED = 3.0
 RATED_SPEED = 11.4

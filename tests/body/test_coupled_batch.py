@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.load import load_case
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg import _implicit_kernels as _ik
@@ -83,7 +84,7 @@ def _system(scheme: type[MooredBody], overrides: list[str] = OVERRIDES):
     settings = settings_from_case(case)
     system = assemble(case, settings)
     system.moored.__class__ = scheme
-    steps = int(round(case.simulation.duration / settings.time_step))
+    steps = int(round(case.simulation.duration / CoupledCase.of(case).time_step))
     system.loads.prepare(system.moored.body.time, steps)
     return system, steps
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.load import load_case
 from floatmoor.errors import SolverError
 from floatmoor.io.netcdf import read_dataset
@@ -22,8 +23,8 @@ def test_buoy_in_regular_waves_writes_a_labelled_dataset(tmp_path) -> None:
         "simulation.duration=4.0", "simulation.output_interval=0.02",
         "simulation.time_step=0.01",
         'waves={kind = "regular", height = 0.04, period = 1.2, ramp_duration = 1.2}'])
-    settings = settings_from_case(case)
-    assert settings.time_step == 0.01 and settings.ramp_duration == 1.2
+    view = CoupledCase.of(case)
+    assert view.time_step == 0.01 and view.waves.ramp_duration == 1.2 and view.steps_per_output == 2
     out = tmp_path / "buoy.nc"
     result = run_coupled(case, output=out)
     ds = read_dataset(out)
@@ -38,7 +39,7 @@ def test_buoy_in_regular_waves_writes_a_labelled_dataset(tmp_path) -> None:
     # the recorded elevation is the incident one at the reference point (unramped)
     from floatmoor.waves.settings import build
 
-    sea = build(settings.waves, case.environment.water_depth, case.environment.gravity,
+    sea = build(view.waves.settings, case.environment.water_depth, case.environment.gravity,
                 case.simulation.duration)
     np.testing.assert_allclose(ds["wave_elevation"].values, sea.elevation(ds["time"].values),
                                rtol=0.0, atol=1e-12)
@@ -235,3 +236,14 @@ def test_three_hour_sea_state_cases_start(name) -> None:
 
         with pytest.raises(CaseError, match="cutoff_hz"):
             load_case(CASES / "deepcwind" / f"{name}.toml", ["simulation.duration=4.0"])
+
+
+def test_a_body_step_the_case_reader_accepts_is_run() -> None:
+    """The body step is checked once, by the case reader (a step dividing the output
+    interval to 1e-6 of the ratio); the time loop took its own, tighter check (1e-9) and
+    refused with a ValueError a case that had loaded."""
+    case = load_case(BUOY_CASE, QS + ["simulation.duration=0.2", "simulation.output_interval=0.02",
+                                      "simulation.time_step=0.0100000001", 'waves={kind = "still"}'])
+    assert CoupledCase.of(case).steps_per_output == 2
+    ds = run_coupled(case).dataset
+    assert ds.sizes["time"] == 11 and np.all(np.isfinite(ds["body_displacement"].values))

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.load import load_case
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled_run import settings_from_case
@@ -26,7 +27,7 @@ def _moored(overrides: list[str]):
     case = load_case(BUOY_CASE, overrides)
     settings = settings_from_case(case)
     system = assemble(case, settings)
-    steps = int(round(case.simulation.duration / settings.time_step))
+    steps = int(round(case.simulation.duration / CoupledCase.of(case).time_step))
     system.loads.prepare(system.moored.body.time, steps)
     return system, steps
 

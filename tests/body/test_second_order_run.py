@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.load import load_case
 from floatmoor.errors import FloatmoorWarning
 from floatmoor.hydro.natural_periods import mooring_stiffness
@@ -94,7 +95,7 @@ def test_newman_run_applies_the_mean_unramped_and_the_rest_ramped_squared() -> N
         f'ramp_duration = {ramp}}}', "simulation.duration=2.5"])
     ds = run_coupled(case).dataset
     settings = settings_from_case(case)
-    sea = build(settings.waves, 0.9, 9.81, case.simulation.duration)
+    sea = build(CoupledCase.of(case).waves.settings, 0.9, 9.81, case.simulation.duration)
     system = assemble(case, settings)
     lookup = DriftLookup(system.database, "far_field")
     inside = lookup.covers(sea.omega)

@@ -157,3 +157,27 @@ def test_case_file_replaced_by_a_fifo_after_the_look_does_not_block(tmp_path, mo
         os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
         reader.join(5.0)
     assert outcome and "FIFO" in outcome[0]
+
+
+@pytest.mark.parametrize("override, key, expected", [
+    ("floater.drag.strip_length=-1.0", "floater.drag.strip_length", "a finite number > 0 [m]"),
+    ('floater.drag.preset="oc4"', "floater.drag.preset", 'one of "deepcwind_oc4", "none"'),
+    ("floater.drag.member_axial=-0.1", "floater.drag.member_axial", "a finite number >= 0 [-]"),
+    ('floater.drag.kinematics_interval="often"', "floater.drag.kinematics_interval",
+     'a finite number >= 0 [s] or "auto"'),
+])
+def test_drag_keys_are_read_like_every_other_key(override, key, expected):
+    """[floater.drag] goes through the reader: the error names the key itself and says what
+    it expected (it named the table and quoted DragSettings' ValueError)."""
+    with pytest.raises(CaseError) as info:
+        load_case(CASES / "deepcwind" / "deepcwind_lc43.toml", [override])
+    assert info.value.key == key and info.value.expected.startswith(expected)
+
+
+def test_drag_preset_and_overrides_are_the_settings():
+    case = load_case(CASES / "deepcwind" / "deepcwind_lc43.toml",
+                     ['floater.drag={preset = "deepcwind_oc4", member_axial = 0.2, '
+                      'kinematics_interval = "auto"}'])
+    drag = case.floater.drag
+    assert drag.coefficients.column_transverse == 0.6 and drag.coefficients.member_axial == 0.2
+    assert drag.kinematics_interval is None and drag.strip_length == 2.0

@@ -18,12 +18,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatmoor.body.morison import DragSettings, MorisonCoefficients
-from floatmoor.case import key_docs
+from floatmoor.case.drag import DragSettings, MorisonCoefficients
+from floatmoor.case import key_docs, schema
 from floatmoor.case.load import load_case
 from floatmoor.case.reader import recording
 from floatmoor.case.reference import leaf_of, merge_records, table_of
 from floatmoor.case.schema import BODY_DOFS
+from floatmoor.case.setting import settings_of
 from floatmoor.uq.input_reference import PAGE, ROOT, input_files, record_inputs, reference_page
 from floatmoor.uq.inputs import DISTRIBUTIONS
 from floatmoor.uq.study import load_study
@@ -42,7 +43,6 @@ COMPUTED = {"default": "defaults", "gt": "allowed", "ge": "allowed", "lt": "allo
 
 #: Accessor calls whose key is not a literal, by (module, function), with the generic paths
 #: they read (each must be read in a shipped or fixture file) and why the key is computed.
-DRAG_KEYS = ("preset", "heave_plate_area", "strip_length", "min_strips", "kinematics_interval")
 DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
     # the optional loads of a point, read in a loop over (key, unit)
     ("load.py", "_points"): ("points[].mass", "points[].volume", "points[].drag_area",
@@ -56,9 +56,6 @@ DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
                                "campaign.zip.<key>"),
     # the six harmonic DOF tables of a body motion
     ("motion_body.py", "_harmonic"): tuple(f"motion.{dof}" for dof in BODY_DOFS),
-    # DragSettings.from_settings reads the table; claimed key by key for the record
-    ("floater.py", "_drag"): tuple(f"floater.drag.{k}" for k in DRAG_KEYS)
-    + ("floater.drag.<coefficient>",),
     # resolve_case_file(t, key, ...) only raises errors naming the key
     # the parameters of each distribution
     ("study.py", "_inputs"): tuple(f"inputs[].{p}" for ps in DISTRIBUTIONS.values() for p in ps),
@@ -124,10 +121,16 @@ def _docs_and_modules():
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
 def test_every_key_read_is_described(kind):
     docs, entries, _ = _docs_and_modules()[kind]
-    missing = [path for path in entries if path not in docs.descriptions]
-    assert not missing, f"keys without a description in floatmoor/case/key_docs.py: {missing}"
-    empty = [path for path, text in docs.descriptions.items() if len(text.split()) < 3]
+    missing = [path for path, entry in entries.items()
+               if path not in docs.descriptions and not entry.doc]
+    assert not missing, ("keys without a description (a setting's doc, or floatmoor/case/"
+                         f"key_docs.py): {missing}")
+    texts = {**docs.descriptions, **{path: entry.doc for path, entry in entries.items()
+                                    if entry.doc}}
+    empty = [path for path, text in texts.items() if len(text.split()) < 3]
     assert not empty, f"descriptions too short to say anything: {empty}"
+    twice = [path for path, entry in entries.items() if entry.doc and path in docs.descriptions]
+    assert not twice, f"keys described both in their declaration and in key_docs: {twice}"
 
 
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
@@ -163,12 +166,36 @@ def test_every_key_a_loader_can_read_is_read(kind):
                         f"tests/data/case_reference: {unread}")
 
 
+def test_every_declared_setting_is_read():
+    """Every key declared on a schema dataclass (floatmoor.case.setting) is read, with its
+    description, in a shipped or fixture case file."""
+    cases, _ = _entries()
+    described = {leaf_of(path) for path, entry in cases.items() if entry.doc}
+    unread = [f"{cls.__name__}.{key}" for cls in _declaring_classes()
+              for key in settings_of(cls) if key not in described]
+    assert _declaring_classes() and not unread, (
+        f"declared settings no case file reads: add them to tests/data/case_reference: {unread}")
+
+
+def _declaring_classes() -> list[type]:
+    """The dataclasses whose fields declare case-file settings."""
+    from floatmoor.case import coupling, drag, wind
+    from floatmoor.waves import settings as wave_settings
+
+    return [cls for module in (schema, coupling, drag, wind, wave_settings)
+            for cls in vars(module).values()
+            if dataclasses.is_dataclass(cls) and isinstance(cls, type) and settings_of(cls)]
+
+
 def test_drag_keys_are_the_drag_settings():
-    """The drag keys claimed for the record are the ones DragSettings.from_settings takes."""
-    own = {f.name for f in dataclasses.fields(DragSettings)} - {"coefficients"}
-    assert own | {"preset"} == set(DRAG_KEYS)
-    named = set(re.findall(r"`(\w+)`", key_docs.CASE.descriptions["floater.drag.<coefficient>"]))
-    assert {f.name for f in dataclasses.fields(MorisonCoefficients)} == named
+    """Every field of the drag settings but the coefficients table is a declared key, read
+    in [floater.drag] with the preset (floatmoor.case.drag)."""
+    cases, _ = _entries()
+    declared = set(settings_of(DragSettings)) | set(settings_of(MorisonCoefficients))
+    fields = ({f.name for f in dataclasses.fields(DragSettings)} - {"coefficients"}
+              | {f.name for f in dataclasses.fields(MorisonCoefficients)})
+    assert declared == fields
+    assert {leaf_of(p) for p in cases if table_of(p) == "floater.drag"} == declared | {"preset"}
 
 
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
@@ -184,8 +211,9 @@ def test_computed_defaults_and_ranges_are_worded(kind):
                 if keyword.arg in COMPUTED and not _static(keyword.value):
                     mapping = getattr(docs, COMPUTED[keyword.arg])
                     unworded += [f"{path} ({keyword.arg}, {module.name}:{call.lineno})"
-                                 for path in entries
-                                 if leaf_of(path) == key and path not in mapping]
+                                 for path, entry in entries.items()
+                                 if leaf_of(path) == key and path not in mapping
+                                 and not (keyword.arg == "default" and entry.default_text)]
     assert not unworded, f"computed values key_docs must word: {unworded}"
 
 
@@ -241,6 +269,29 @@ def test_renderer_words_requirement_and_range():
     assert "| `b` | number | s | default 3 |  | the key b |" in text
     assert '| `c` | string |  | required | one of "x", "y" | the key c |' in text
     assert '| `d` | integer |  | optional | >= 1; or "auto" | the key d |' in text
+
+
+def test_a_declared_setting_is_read_and_described():
+    """One declaration gives the reader's checks and messages and the reference's row."""
+    from floatmoor.case.reader import ReadContext, TableReader
+    from floatmoor.case.reference import render_section
+    from floatmoor.case.setting import read_settings, setting
+    from floatmoor.errors import CaseError
+
+    @dataclasses.dataclass(frozen=True)
+    class Made:
+        a: float = setting("number", unit="m", gt=0.0, doc="The length a of the thing.")
+        b: str = setting("string", choices=("x", "y"), default="x", doc="The choice b here.")
+
+    with recording() as records:
+        t = TableReader({"a": 2.0}, ("made",), ReadContext("made-up.toml"))
+        assert Made(**read_settings(Made, t)) == Made(a=2.0, b="x")
+    text = render_section("", merge_records(records), key_docs.KeyDocs({}), title="T")
+    assert "| `a` | number | m | required | > 0 | The length a of the thing. |" in text
+    assert '| `b` | string |  | default "x" | one of "x", "y" | The choice b here. |' in text
+    with pytest.raises(CaseError) as error:
+        read_settings(Made, TableReader({"a": -1.0}, ("made",), ReadContext("made-up.toml")))
+    assert error.value.key == "made.a" and "a finite number > 0 [m]" in str(error.value)
 
 
 # -- (e): recording changes nothing ---------------------------------------------------------------
