@@ -297,11 +297,7 @@ LAYER_SECTION = "## 1. Package layout and import order"
 #: entry that is no longer an upward import fails :func:`test_excused_upward_imports_still_exist`.
 #: Nothing else may be excused.
 MOVING_BESIDE_THE_SCHEMA = frozenset({
-    ("floatmoor.case.coupling", "floatmoor.waves.realisation"),
-    ("floatmoor.case.coupling", "floatmoor.waves.second_order"),
     ("floatmoor.case.coupling", "floatmoor.waves.settings"),
-    ("floatmoor.case.coupling", "floatmoor.wind.force"),
-    ("floatmoor.case.floater", "floatmoor.body.morison"),
     ("floatmoor.case.limits", "floatmoor.waves.settings"),
     ("floatmoor.case.system_checks", "floatmoor.body_motion"),
     ("floatmoor.case.system_checks", "floatmoor.motion"),

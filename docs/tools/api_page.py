@@ -15,6 +15,7 @@ first appears, and listed with a link where it appears again (``floatmoor.Dynami
 from __future__ import annotations
 
 import argparse
+import ast
 import inspect
 import pkgutil
 import re
@@ -80,11 +81,28 @@ def _defining_module(package: str, name: str, obj: Any) -> str:
     table = getattr(module, "_API", {})
     if name in table:
         return table[name]
-    for candidate in sorted(sys.modules):
-        if candidate.startswith(f"{package}.") and getattr(sys.modules[candidate], name,
-                                                               None) is obj:
+    holding = [candidate for candidate in sorted(sys.modules)
+               if candidate.startswith(f"{package}.")
+               and getattr(sys.modules[candidate], name, None) is obj]
+    for candidate in holding:  # the module that assigns it, whatever else is imported
+        if _assigns(sys.modules[candidate], name):
             return candidate
-    return package
+    return holding[0] if holding else package
+
+
+def _assigns(module: ModuleType, name: str) -> bool:
+    """Whether ``module``'s source assigns ``name`` at its top level (defines it, rather
+    than importing it from another module)."""
+    path = getattr(module, "__file__", None)
+    if not path:
+        return False
+    tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    for node in tree.body:
+        targets = node.targets if isinstance(node, ast.Assign) else (
+            [node.target] if isinstance(node, ast.AnnAssign) else [])
+        if any(isinstance(t, ast.Name) and t.id == name for t in targets):
+            return True
+    return False
 
 
 def _entry(package: str, name: str, obj: Any) -> tuple[list[str], str]:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
+from floatmoor.case.schema import MAX_GRAVITY, MIN_GRAVITY
 from floatmoor.errors import CaseError
 
 if TYPE_CHECKING:
@@ -78,11 +79,6 @@ MAX_BEM_PANELS = 20_000
 #: a mistaken file from being read into memory. The panel count itself is checked when the
 #: file is read, at build time (floatmoor.hydro.mesh_file).
 MAX_MESH_FILE_BYTES = 100 * 1024 * 1024
-#: Range of ``environment.gravity`` [m/s^2]. On Earth g is 9.78 to 9.83 m/s^2 (equator to
-#: poles; standard 9.80665); 1 to 30 admits the Moon (1.6) and a deliberately altered tank or
-#: model gravity. Times scale with sqrt(L / g): a dynamic line settles for 11 sqrt(L / g)
-#: (floatmoor.mooring.dg.line), so g = 1e-9 asked a 33 m chain for 2e6 s of relaxation.
-MIN_GRAVITY, MAX_GRAVITY = 1.0, 30.0
 #: Largest case file [bytes]. The longest shipped case is ~12 kB; 10 MB keeps a mistaken
 #: argument (a data file, /dev/zero) from being read into memory.
 MAX_CASE_FILE_BYTES = 10 * 1024 * 1024

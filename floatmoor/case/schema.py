@@ -17,7 +17,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.drag import DragSettings
-from floatmoor.case.limits import MAX_GRAVITY, MIN_GRAVITY
 from floatmoor.case.setting import setting
 from floatmoor.case.wind import WindSettings
 
@@ -32,6 +31,12 @@ __all__ = [
     "RADIATION_METHODS", "HYDRO_CHECKS", "HYDRO_SOURCES", "POINT_KINDS", "Point", "Section",
     "BODY_DOFS", "BodyHarmonicMotion", "BodyTableMotion", "BodyMotion",
 ]
+
+#: Range of ``environment.gravity`` [m/s^2]. On Earth g is 9.78 to 9.83 m/s^2 (equator to
+#: poles; standard 9.80665); 1 to 30 admits the Moon (1.6) and a deliberately altered tank or
+#: model gravity. Times scale with sqrt(L / g): a dynamic line settles for 11 sqrt(L / g)
+#: (floatmoor.mooring.dg.line), so g = 1e-9 asked a 33 m chain for 2e6 s of relaxation.
+MIN_GRAVITY, MAX_GRAVITY = 1.0, 30.0
 
 #: Every line model name a case file may give (``lines[].model``).
 LINE_MODELS = ("quasi-static", "quasi-dynamic", "dynamic")

@@ -7,7 +7,6 @@ from floatmoor._exports import lazy_exports
 #: Public name -> the module that defines it (docs/development.md#public-api).
 _API = {
     "RotorThrust": "floatmoor.wind.force",
-    "WindSettings": "floatmoor.wind.force",
     "WindField": "floatmoor.wind.realisation",
     "npd_spectrum": "floatmoor.wind.spectrum",
     "ThrustCurve": "floatmoor.wind.thrust",
