@@ -261,10 +261,12 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _warnings_shown() -> Iterator[None]:
     """Show floatmoor's warnings as ``floatmoor: warning: MESSAGE`` on standard error (no
     source line); other warnings as Python shows them. (The format, not the display, is
-    replaced, so that warnings recorded by a caller stay recorded.)"""
+    replaced, so that warnings recorded by a caller stay recorded.) A database's accepted
+    failed checks are always shown (the library says each once:
+    :class:`~floatmoor.errors.AcceptedCheckWarning`)."""
     import warnings
 
-    from floatmoor.errors import FloatmoorWarning
+    from floatmoor.errors import AcceptedCheckWarning, FloatmoorWarning
 
     formatted = warnings.formatwarning
 
@@ -273,11 +275,13 @@ def _warnings_shown() -> Iterator[None]:
             return f"floatmoor: warning: {message}\n"
         return formatted(message, category, filename, lineno, line)
 
-    warnings.formatwarning = format_warning
-    try:
-        yield
-    finally:
-        warnings.formatwarning = formatted
+    with warnings.catch_warnings():
+        warnings.simplefilter("always", AcceptedCheckWarning)
+        warnings.formatwarning = format_warning
+        try:
+            yield
+        finally:
+            warnings.formatwarning = formatted
 
 
 def _command(args: argparse.Namespace) -> int:
