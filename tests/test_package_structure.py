@@ -341,3 +341,19 @@ def test_only_the_command_line_prints() -> None:
     assert not problems, ("library code must not print: return the text, take a progress "
                           "callback or warn, and let floatmoor/cli/ print it:\n"
                           + "\n".join(problems))
+
+
+def test_nothing_below_the_command_line_imports_it() -> None:
+    """The command line is the top layer: only its own modules and ``python -m floatmoor``
+    (floatmoor/__main__.py, the program's entry) import :mod:`floatmoor.cli`."""
+    entry = {"floatmoor.cli", "floatmoor.__main__"}
+    upward = []
+    for module in MODULES:
+        if module in entry or module.startswith("floatmoor.cli."):
+            continue
+        top, lazy = _imports(module)
+        cli = sorted(target for target in top | lazy
+                     if target == "floatmoor.cli" or target.startswith("floatmoor.cli."))
+        if cli:
+            upward.append(f"{module} imports {', '.join(cli)}")
+    assert not upward, "the command line is imported from below:\n" + "\n".join(upward)

@@ -262,8 +262,8 @@ def _warnings_shown() -> Iterator[None]:
     """Show floatmoor's warnings as ``floatmoor: warning: MESSAGE`` on standard error (no
     source line); other warnings as Python shows them. (The format, not the display, is
     replaced, so that warnings recorded by a caller stay recorded.) A database's accepted
-    failed checks are always shown (the library says each once:
-    :class:`~floatmoor.errors.AcceptedCheckWarning`)."""
+    failed checks (:class:`~floatmoor.errors.AcceptedCheckWarning`, which the library raises
+    once per database file) are printed as such a line whatever the filters and recorders."""
     import warnings
 
     from floatmoor.errors import AcceptedCheckWarning, FloatmoorWarning
@@ -277,6 +277,15 @@ def _warnings_shown() -> Iterator[None]:
 
     with warnings.catch_warnings():
         warnings.simplefilter("always", AcceptedCheckWarning)
+        show = warnings.showwarning
+
+        def show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+            if issubclass(category, AcceptedCheckWarning):
+                print(f"floatmoor: warning: {message}", file=sys.stderr)
+            else:
+                show(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show_warning
         warnings.formatwarning = format_warning
         try:
             yield

@@ -23,6 +23,7 @@ __all__ = ["sweep_command", "campaign_reporters", "report_failures", "say_moved_
 
 
 def sweep_command(args: argparse.Namespace) -> int:
+    """``floatmoor sweep``: run the campaign into its checked, locked file; the exit status."""
     from floatmoor.campaign.design import design_from_options
     from floatmoor.io.output_files import output_lock
 
@@ -113,6 +114,7 @@ def campaign_reporters(quiet: bool) -> tuple[Callable[[int, int, float], None],
 
 
 def say_moved_aside(path: Path, backup: Path) -> None:
+    """Say on standard error that ``--restart`` moved ``path`` aside to ``backup``."""
     print(f"floatmoor: --restart: moved the existing {path} aside to {backup}; starting "
           "afresh", file=sys.stderr, flush=True)
 

@@ -19,6 +19,7 @@ __all__ = ["check_command"]
 
 
 def check_command(args: argparse.Namespace) -> int:
+    """``floatmoor check``: load the case, print what follows from it; the exit status."""
     from floatmoor.mooring.strength import check_static_below_mbl, static_line_loads
 
     import warnings

@@ -208,6 +208,7 @@ def _seconds(ds) -> str:
 
 
 def drift_seconds(ds) -> str:
+    """The recorded seconds the mean drift took to compute, as text (``?`` when unknown)."""
     try:
         return f"{float(json.loads(ds.attrs['drift_json'])['drift_seconds']):.1f}"
     except (KeyError, TypeError, ValueError):
@@ -215,6 +216,7 @@ def drift_seconds(ds) -> str:
 
 
 def info_command(args: argparse.Namespace) -> int:
+    """``floatmoor hydro info``: describe a database and where its data came from."""
     from floatmoor.hydro.database import (
         EXCITATION_VARIABLES, database_source, has_excitation, is_imported,
     )

@@ -113,6 +113,8 @@ def _plot_times(args: argparse.Namespace, case: Case, shapes: bool) -> list[floa
 
 
 def run_command(args: argparse.Namespace) -> int:
+    """``floatmoor run``: run the case into its checked, locked output file; the exit
+    status."""
     from floatmoor.io.output_files import output_lock
 
     case = load_case(args.case, args.overrides)
@@ -217,19 +219,22 @@ def _checkpoint_every(args: argparse.Namespace, case: Case) -> float | None:
 def _validity_in_summary() -> Iterator[None]:
     """Keep the run's model-validity warnings for its summary, which prints them (and so does
     the message of a run that stops; both from the output file's ``validity_warnings``):
-    not shown as they are raised, once the progress line has moved on."""
+    not shown as they are raised, once the progress line has moved on. Other warnings are
+    shown as they are raised (a database's accepted failed checks, before the run)."""
     import warnings
 
     from floatmoor.errors import ModelValidityWarning
 
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings():
         warnings.simplefilter("always", ModelValidityWarning)
-        try:
-            yield
-        finally:
-            for w in caught:
-                if not issubclass(w.category, ModelValidityWarning):
-                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+        show = warnings.showwarning  # (a caller's recorder, if any, keeps recording)
+
+        def show_others(message, category, filename, lineno, file=None, line=None) -> None:
+            if not issubclass(category, ModelValidityWarning):
+                show(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show_others
+        yield
 
 
 def _report_run(args: argparse.Namespace, case: Case, result: RunResult, output: Path,

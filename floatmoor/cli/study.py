@@ -16,6 +16,7 @@ __all__ = ["study_command"]
 
 
 def study_command(args: argparse.Namespace) -> int:
+    """``floatmoor study qd-verification``: run the study into its folder; the exit status."""
     from floatmoor.studies import qd_verification
 
     from floatmoor.io.output_files import OutputWriteError, output_lock, write_errors

@@ -25,6 +25,7 @@ __all__ = ["uq_command"]
 
 
 def uq_command(args: argparse.Namespace) -> int:
+    """``floatmoor uq``: run the study into its checked, locked folder; the exit status."""
     from floatmoor.io.output_files import output_lock
     from floatmoor.io.output_folders import check_owned_folder
     from floatmoor.uq.study import load_study
