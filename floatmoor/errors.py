@@ -7,7 +7,7 @@ line can print its message (and nothing else) and choose the exit status.
 from __future__ import annotations
 
 __all__ = ["FloatmoorError", "CaseError", "SolverError", "FloatmoorWarning",
-           "ImplausibleInputWarning", "ModelValidityWarning"]
+           "ImplausibleInputWarning", "ModelValidityWarning", "AcceptedCheckWarning"]
 
 
 class FloatmoorError(Exception):
@@ -70,3 +70,9 @@ class ModelValidityWarning(FloatmoorWarning):
     linear hydrostatics and radiation, a quasi-dynamic line beyond its verified accelerations;
     :mod:`floatmoor.simulation.validity`). Each condition warns once per run; the run records
     the messages in its output file (attribute ``validity_warnings``) and its summary."""
+
+
+class AcceptedCheckWarning(FloatmoorWarning):
+    """A hydrodynamic database fails checks that its case accepts (``[hydro]
+    accept_failed_checks``): the run goes on with it. Said once per database file version and
+    accepted checks (:mod:`floatmoor.hydro.database`); the command line always shows it."""

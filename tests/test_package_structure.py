@@ -534,3 +534,69 @@ def test_code_cites_no_tracker_issue_numbers() -> None:
                                             path.read_text(encoding="utf-8"))
     assert not problems, ("cite the docs page (with its anchor) or paper that holds the "
                           "decision, not the tracker's issue number:\n" + "\n".join(problems))
+
+
+#: The package of the commands, their progress display and their printing: the only code that
+#: may print (docs/development.md#1-package-layout-and-import-order).
+PRINTING_PACKAGE = PACKAGE / "cli"
+
+
+def _printing(name: str, text: str) -> list[str]:
+    """``name:line: what`` of every ``print(`` call and every use of ``sys.stdout`` or
+    ``sys.stderr`` in the source ``text`` (read with :mod:`ast`: text in strings and comments
+    does not count)."""
+    found = []
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                and node.func.id == "print":
+            found.append((node.lineno, "print(...)"))
+        elif isinstance(node, ast.Attribute) and node.attr in ("stdout", "stderr") \
+                and isinstance(node.value, ast.Name) and node.value.id == "sys":
+            found.append((node.lineno, f"sys.{node.attr}"))
+        elif isinstance(node, ast.ImportFrom) and node.module == "sys" \
+                and any(alias.name in ("stdout", "stderr") for alias in node.names):
+            found.append((node.lineno, "from sys import ..."))
+    return [f"{name}:{line}: {what}" for line, what in sorted(found)]
+
+
+def test_printing_finder_names_planted_prints() -> None:
+    planted = ("import sys\n"
+               "from sys import stderr\n"
+               "def f(x):\n"
+               "    print(x)\n"
+               "    sys.stderr.write('print(x)')  # print(x)\n"
+               "    return sys.stdout\n"
+               "    self.print(x)\n")
+    assert _printing("planted.py", planted) == [
+        "planted.py:2: from sys import ...", "planted.py:4: print(...)",
+        "planted.py:5: sys.stderr", "planted.py:6: sys.stdout"]
+
+
+def test_only_the_command_line_prints() -> None:
+    """Library code returns values, takes a ``progress`` callback or warns (a
+    :class:`floatmoor.errors.FloatmoorWarning`); :mod:`floatmoor.cli` prints."""
+    problems = []
+    for path, _ in MODULES.values():
+        if PRINTING_PACKAGE in path.parents:
+            continue
+        problems += _printing(str(path.relative_to(PACKAGE.parent)),
+                              path.read_text(encoding="utf-8"))
+    assert not problems, ("library code must not print: return the text, take a progress "
+                          "callback or warn, and let floatmoor/cli/ print it:\n"
+                          + "\n".join(problems))
+
+
+def test_nothing_below_the_command_line_imports_it() -> None:
+    """The command line is the top layer: only its own modules and ``python -m floatmoor``
+    (floatmoor/__main__.py, the program's entry) import :mod:`floatmoor.cli`."""
+    entry = {"floatmoor.cli", "floatmoor.__main__"}
+    upward = []
+    for module in MODULES:
+        if module in entry or module.startswith("floatmoor.cli."):
+            continue
+        top, lazy = _imports(module)
+        cli = sorted(target for target in top | lazy
+                     if target == "floatmoor.cli" or target.startswith("floatmoor.cli."))
+        if cli:
+            upward.append(f"{module} imports {', '.join(cli)}")
+    assert not upward, "the command line is imported from below:\n" + "\n".join(upward)

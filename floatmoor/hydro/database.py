@@ -647,8 +647,9 @@ def load_for_case(case: Case, path: str | os.PathLike[str] | None = None, *,
     """The database of ``case``, checked to be readable, built from the case's inputs and
     (with ``checks``) to pass the database checks.
 
-    A failed check named in the case's ``[hydro] accept_failed_checks`` is reported on
-    standard error (one line, once per process) instead of refusing the database.
+    A failed check named in the case's ``[hydro] accept_failed_checks`` is reported with an
+    :class:`~floatmoor.errors.AcceptedCheckWarning` (once per process; the command line shows
+    it as one line) instead of refusing the database.
 
     Parameters
     ----------
@@ -717,9 +718,12 @@ _REPORTED: set[tuple[tuple[str, int, int], tuple[str, ...]]] = set()
 
 
 def _enforce_checks(ds: xr.Dataset, path: Path, case: Case) -> None:
-    """Refuse ``ds`` when it fails a check ``case`` does not accept; report accepted ones."""
-    import sys
+    """Refuse ``ds`` when it fails a check ``case`` does not accept; warn of accepted ones
+    (:class:`~floatmoor.errors.AcceptedCheckWarning`, once per file version and accepted
+    checks)."""
+    import warnings
 
+    from floatmoor.errors import AcceptedCheckWarning
     from floatmoor.hydro.checks import describe_failures, run_checks
 
     assert case.hydro is not None
@@ -739,5 +743,6 @@ def _enforce_checks(ds: xr.Dataset, path: Path, case: Case) -> None:
     tolerated = [r for r in failed if r.name in accepted]
     if tolerated and (key, accepted) not in _REPORTED:
         _REPORTED.add((key, accepted))
-        print(f"floatmoor: warning: {path}: failed checks accepted by {case.source} ([hydro] "
-              f"accept_failed_checks): {describe_failures(tolerated)}", file=sys.stderr)
+        warnings.warn(AcceptedCheckWarning(
+            f"{path}: failed checks accepted by {case.source} ([hydro] accept_failed_checks): "
+            f"{describe_failures(tolerated)}"), stacklevel=2)

@@ -12,7 +12,7 @@ the check of every plotted series in :mod:`~floatmoor.plots.series`, what the vi
 the run's case in :mod:`~floatmoor.plots.context`; the body drawn with the lines in
 :mod:`~floatmoor.plots.body_surface` (its panels at rest), :mod:`~floatmoor.plots.body_pose`
 (placed at a time) and :mod:`~floatmoor.plots.body_outline` (its patch in a view);
-:mod:`~floatmoor.plots.cli` holds the ``floatmoor animate`` and ``floatmoor vtk`` commands.
+the ``floatmoor animate`` and ``floatmoor vtk`` commands are in :mod:`floatmoor.cli.plots`.
 """
 
 from floatmoor._exports import lazy_exports

@@ -8,7 +8,8 @@ import re
 from floatmoor.campaign.design import design_from_options
 from floatmoor.case.load import load_case
 from floatmoor.case.naming import MAX_NAME_LENGTH, file_stem
-from floatmoor.cli import _default_stem, main
+from floatmoor.cli import main
+from floatmoor.cli.run_case import default_stem as _default_stem
 from floatmoor.io.netcdf import read_dataset
 from tests.conftest import LINDAHL_CASE
 

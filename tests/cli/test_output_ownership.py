@@ -212,7 +212,7 @@ def test_report_and_compare_on_a_full_disk_fail_in_one_line_leaving_nothing(
 
 
 def test_uq_and_vtk_on_a_full_disk_remove_what_they_wrote(tmp_path, capsys, monkeypatch):
-    import floatmoor.plots.cli as plots_cli
+    import floatmoor.cli.plots as plots_cli
     import floatmoor.uq.run as uq_run
 
     folder = tmp_path / "uq"

@@ -16,7 +16,7 @@ from floatmoor.io.netcdf import read_dataset
 from floatmoor.io.variables import VARIABLE_ATTRIBUTES
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.simulation import forced
-from floatmoor.ui.progress import ProgressReporter
+from floatmoor.cli.progress import ProgressReporter
 from tests.conftest import LINDAHL_CASE
 
 QS = ["--set", 'lines.chain.model="quasi-static"']
@@ -178,7 +178,7 @@ def test_first_run_says_it_compiles_and_a_cached_run_does_not(tmp_path):
     import subprocess
     import sys
 
-    from floatmoor.ui.progress import COMPILING_MESSAGE
+    from floatmoor.cli.progress import COMPILING_MESSAGE
     from tests.conftest import REPO
 
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"),

@@ -20,7 +20,7 @@ import pytest
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation import assembly, forced, recorder
-from floatmoor.ui.progress import ProgressReporter
+from floatmoor.cli.progress import ProgressReporter
 from tests.conftest import LINDAHL_CASE, REPO
 
 QS = ["--set", 'lines.chain.model="quasi-static"']

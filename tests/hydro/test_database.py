@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import warnings
 
 import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import HYDRO_CHECKS
-from floatmoor.errors import CaseError
+from floatmoor.errors import AcceptedCheckWarning, CaseError
 from floatmoor.hydro.checks import run_checks
 from floatmoor.hydro.database import (
     REQUIRED_VARIABLES, HydroDatabaseError, database_path, load_for_case, merge_complex,
@@ -121,14 +122,19 @@ def test_database_failing_a_check_is_refused_naming_check_value_tolerance(buoy_d
 
 
 def test_check_accepted_by_the_case_is_reported_once_not_fatal(buoy_db, tmp_path, capsys):
+    """The library warns (the command line prints); it never writes to standard error."""
     path = _corrupted(buoy_db, tmp_path / "accepted.nc")
     case = load_case(BUOY_CASE, ['hydro.accept_failed_checks=["haskind"]'])
-    ds = load_for_case(case, path)
+    with pytest.warns(AcceptedCheckWarning) as caught:
+        ds = load_for_case(case, path)
     assert ds.attrs["path"] == str(path)
-    err = capsys.readouterr().err.strip().splitlines()
-    assert err == [f"floatmoor: warning: {path}: failed checks accepted by {BUOY_CASE} "
-                   "([hydro] accept_failed_checks): haskind (worst 0.441, tolerance 0.05)"]
-    load_for_case(case, path)
+    assert [str(w.message) for w in caught] == [
+        f"{path}: failed checks accepted by {BUOY_CASE} ([hydro] accept_failed_checks): "
+        "haskind (worst 0.441, tolerance 0.05)"]
+    with warnings.catch_warnings(record=True) as again:
+        warnings.simplefilter("always")
+        load_for_case(case, path)
+    assert again == []
     assert capsys.readouterr().err == ""
     # accepting another check does not accept this one
     other = load_case(BUOY_CASE, ['hydro.accept_failed_checks=["kernel_decay"]'])

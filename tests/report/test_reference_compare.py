@@ -10,7 +10,7 @@ import pytest
 from floatmoor.errors import ModelValidityWarning
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.post.statistics import time_statistics
-from floatmoor.report.cli import compare_command, report_command
+from floatmoor.cli.report import compare_command, report_command
 from floatmoor.report.reference import load_reference
 from floatmoor.simulation.forced import run_forced_motion
 from floatmoor.case.load import load_case

@@ -15,7 +15,7 @@ from floatmoor.io.netcdf import read_dataset, write_dataset
 from floatmoor.post.fatigue import DNV_STUDLESS_CHAIN, chain_nominal_area, fatigue_damage
 from floatmoor.post.statistics import time_statistics
 from floatmoor.report.build import write_report
-from floatmoor.report.cli import report_command
+from floatmoor.cli.report import report_command
 from floatmoor.report.figures import FigureDataError, check_series, decay_fit
 from floatmoor.report.runs import LineChain, load_run
 from floatmoor.simulation.coupled_run import run_coupled

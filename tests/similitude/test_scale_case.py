@@ -233,7 +233,7 @@ def test_every_shipped_case_scales_or_is_refused_by_name(tmp_path: Path) -> None
 def test_the_match_options_set_phi() -> None:
     from argparse import Namespace
 
-    from floatmoor.similitude.cli import law_from_arguments
+    from floatmoor.cli.scale import law_from_arguments
 
     def law(**given):
         args = dict(length_scale="0.1", diameter_scale="0.05", volume_coefficient_ratio=None,

@@ -235,7 +235,7 @@ def test_shipped_files_are_cases_studies_or_report_references():
 def test_page_is_the_generated_one():
     text = (ROOT / PAGE).read_text(encoding="utf-8")
     assert text == reference_page(), (f"{PAGE} is out of date: python -m "
-                                      f"floatmoor.uq.input_reference -o {PAGE}")
+                                      f"floatmoor.cli.case_reference -o {PAGE}")
 
 
 def test_page_has_every_key_in_its_table():

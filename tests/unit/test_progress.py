@@ -9,7 +9,7 @@ import numba
 import pytest
 
 from floatmoor._numba import watch_compilation
-from floatmoor.ui.progress import COMPILING_MESSAGE, ProgressReporter
+from floatmoor.cli.progress import COMPILING_MESSAGE, ProgressReporter
 
 
 class _Clock:

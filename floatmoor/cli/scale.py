@@ -42,7 +42,7 @@ def _positive(text: str | None, option: str, unit: str = "-",
             raise CaseError(option, "", f"a finite number > 0 [{unit}]", f"'{text}'")
     elif not 1.0 / bound <= value <= bound:
         raise CaseError(option, "", f"a number from {1.0 / bound:g} to {bound:g} [{unit}] "
-                        "(floatmoor.similitude.cli.MAX_SCALE_FACTOR)", f"'{text}'")
+                        "(floatmoor.cli.scale.MAX_SCALE_FACTOR)", f"'{text}'")
     return value
 
 

@@ -1,5 +1,5 @@
 """``floatmoor import orcaflex MODEL.yml -o CASE.toml [--force]`` (added to the ``import`` subparsers
-that :func:`floatmoor.io.moordyn.cli.add_moordyn_parsers` makes).
+that :func:`floatmoor.cli.moordyn.add_moordyn_parsers` makes).
 
 The output rules are those of ``import moordyn``: an existing file is refused unless
 ``--force``, and then only a case file is replaced; the output passes the checks of every
@@ -31,7 +31,7 @@ def add_orcaflex_parser(isub: argparse._SubParsersAction) -> None:  # type: igno
 
 def orcaflex_command(args: argparse.Namespace) -> int:
     """Run ``import orcaflex``; CaseError propagates (status 2)."""
-    from floatmoor.io.moordyn.cli import _check_output, _list, _write
+    from floatmoor.cli.moordyn import _check_output, _list, _write
     from floatmoor.io.orcaflex.importer import import_model
     from floatmoor.io.orcaflex.reader import read_model
     from floatmoor.io.output_files import OutputWriteError

@@ -78,7 +78,7 @@ def parse_start(value: Any) -> float | None:
     ReportInputError
         When not a finite number >= 0.
     """
-    from floatmoor.plots.cli import parse_time
+    from floatmoor.cli.plots import parse_time
     from floatmoor.report.runs import ReportInputError
 
     try:
