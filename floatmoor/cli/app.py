@@ -247,7 +247,19 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``floatmoor`` command; returns the exit status."""
+    """Entry point of the ``floatmoor`` command; returns the exit status.
+
+    Parameters
+    ----------
+    argv
+        The command's arguments (default: ``sys.argv[1:]``), e.g. ``["run", "case.toml"]``.
+
+    Returns
+    -------
+    int
+        0 done, 1 a run or check failed, 2 bad input, 130/143 interrupted
+        (:mod:`floatmoor.cli.status`).
+    """
     args = _parser().parse_args(argv)
     with interrupt_handling(), _warnings_shown():
         try:
