@@ -291,17 +291,6 @@ def test_every_import_graph_sees_a_type_checking_circle() -> None:
 DEVELOPMENT_PAGE = PACKAGE.parent / "docs" / "development.md"
 #: The heading of that section.
 LAYER_SECTION = "## 1. Package layout and import order"
-#: Upward imports from the case layer into the models' settings modules, excused while those
-#: settings are being moved beside the case schema (one declaration per setting in ``case/``):
-#: (importer, imported module). They are being moved; empty this set once they are, since an
-#: entry that is no longer an upward import fails :func:`test_excused_upward_imports_still_exist`.
-#: Nothing else may be excused.
-MOVING_BESIDE_THE_SCHEMA = frozenset({
-    ("floatmoor.case.coupling", "floatmoor.waves.settings"),
-    ("floatmoor.case.limits", "floatmoor.waves.settings"),
-    ("floatmoor.case.system_checks", "floatmoor.body_motion"),
-    ("floatmoor.case.system_checks", "floatmoor.motion"),
-})
 
 
 def _layer_table(text: str) -> list[tuple[str, tuple[str, ...]]]:
@@ -448,21 +437,11 @@ def test_every_module_is_in_one_layer() -> None:
 
 def test_imports_run_down_the_layers() -> None:
     """No module imports a module of a higher layer, by any kind of import
-    (docs/development.md#1-package-layout-and-import-order); only
-    :data:`MOVING_BESIDE_THE_SCHEMA` is excused."""
-    upward = [text for module, target, text in _package_upward_imports()
-              if (module, target) not in MOVING_BESIDE_THE_SCHEMA]
+    (docs/development.md#1-package-layout-and-import-order); none is excused."""
+    upward = [text for module, target, text in _package_upward_imports()]
     assert not upward, ("imports from a lower layer to a higher one (move the code to the layer "
                         "it belongs to, or pass the higher layer's answer in):\n"
                         + "\n".join(upward))
-
-
-def test_excused_upward_imports_still_exist() -> None:
-    """Each excuse is still needed: once a move is done, its entry is removed."""
-    found = {(module, target) for module, target, _ in _package_upward_imports()}
-    stale = sorted(MOVING_BESIDE_THE_SCHEMA - found)
-    assert not stale, ("no longer upward imports: remove them from MOVING_BESIDE_THE_SCHEMA:\n"
-                       + "\n".join(f"{module} -> {target}" for module, target in stale))
 
 
 def _size_problem(name: str, text: str) -> str | None:

@@ -26,14 +26,12 @@ import numpy as np
 
 from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Case, Environment
-from floatmoor.case.sea import DRIFT_ROUTES, SECOND_ORDER_MODELS
-from floatmoor.case.setting import Setting, read_settings, setting, settings_of
+from floatmoor.case.sea import (GAMMA_RANGE, JonswapSettings, RegularWaveSettings,
+                                StillWaterSettings, WaveCase, WaveSettings)
+from floatmoor.case.setting import Setting, read_settings, settings_of
 from floatmoor.case.wind import WindSettings
-from floatmoor.waves.settings import (
-    GAMMA_RANGE, JonswapSettings, RegularWaveSettings, StillWaterSettings,
-)
 
-__all__ = ["WaveCase", "CoupledCase", "STILL_WATER", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
+__all__ = ["CoupledCase", "STILL_WATER", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
 
 WAVE_KINDS = ("still", "regular", "jonswap")
 #: Default excitation ramp in (peak) wave periods.
@@ -43,28 +41,6 @@ RAMP_PERIODS = 2.0
 #: ``[waves] kind``: which sea, hence which settings class the table's other keys fill.
 WAVE_KIND = Setting("string", choices=WAVE_KINDS, doc="`still` water, `regular` (Airy) waves "
                     "or a `jonswap` irregular sea.")
-
-
-@dataclass(frozen=True)
-class WaveCase:
-    """The sea of a coupled case, the ramp of its excitation and its second-order loads."""
-
-    settings: StillWaterSettings | RegularWaveSettings | JonswapSettings
-    ramp_duration: float = setting(  #: [s]
-        "number", unit="s", ge=0.0, default_text="two (peak) periods",
-        doc="Duration of the cosine ramp of the wave excitation.")
-    #: second-order wave loads: "none", "mean", "newman" or "full"
-    second_order: str = setting(
-        "string", choices=SECOND_ORDER_MODELS, default="none", field_default="none",
-        doc="Second-order wave loads: `none` (first order only), the constant `mean` drift, "
-            "the slow drift by `newman`'s approximation, or the `full` difference-frequency "
-            "QTF of the database (theory/hydrodynamics.md, guide/rao_and_drift.md).")
-    #: mean drift route of "mean" and "newman": "far_field" or "near_field"
-    drift_coefficients: str = setting(
-        "string", choices=DRIFT_ROUTES, default="far_field", field_default="far_field",
-        doc="Mean drift route of `mean` and `newman`: `far_field` (momentum: Surge, Sway, "
-            "Yaw; Heave, Roll, Pitch from the near field) or `near_field` (pressure "
-            "integration, all six DOFs).")
 
 
 #: The sea of a case without ``[waves]``: still water, no ramp, no second-order loads.
@@ -100,8 +76,7 @@ def read_waves(t: TableReader, environment: Environment, duration: float) -> Wav
     """``[waves]``, checked for physical values (steepness, breaking, gamma range)."""
     kind = WAVE_KIND.read(t, "kind")
     if kind == "still":
-        settings: StillWaterSettings | RegularWaveSettings | JonswapSettings = \
-            StillWaterSettings()
+        settings: WaveSettings = StillWaterSettings()
         period = 0.0
     elif kind == "regular":
         settings = RegularWaveSettings(**read_settings(RegularWaveSettings, t))

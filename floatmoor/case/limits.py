@@ -15,6 +15,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from floatmoor.case.schema import MAX_GRAVITY, MIN_GRAVITY
+from floatmoor.case.sea import JonswapSettings
 from floatmoor.errors import CaseError
 
 if TYPE_CHECKING:
@@ -231,8 +232,6 @@ def _check_panels(case: "Case", context: "ReadContext") -> None:
 
 
 def _check_components(case: "Case", context: "ReadContext") -> None:
-    from floatmoor.waves.settings import JonswapSettings
-
     duration = case.simulation.duration
     waves = case.waves.settings if case.waves is not None else None
     if isinstance(waves, JonswapSettings):

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.drag import DragSettings
+from floatmoor.case.sea import WaveCase
 from floatmoor.case.setting import setting
 from floatmoor.case.wind import WindSettings
 
@@ -800,8 +801,8 @@ class Case:
     floater: Floater | None = None
     #: the BEM database settings of the floater, or None
     hydro: HydroSettings | None = None
-    #: the sea of a coupled run (``[waves]``: floatmoor.case.coupling.WaveCase), or None
-    waves: Any = None
+    #: the sea of a coupled run (``[waves]``), or None
+    waves: WaveCase | None = None
     #: the floater's offset from its static equilibrium at t = 0 (``[initial]``) [m, rad]
     initial_offset: tuple[float, float, float, float, float, float] = (0.0,) * 6
     #: the rotor's wind (``[wind]``), or None

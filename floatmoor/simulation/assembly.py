@@ -26,8 +26,9 @@ from floatmoor.body.kinematics import generalised_force, points_state
 from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
-from floatmoor.case.coupling import CoupledCase, WaveCase
+from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.schema import Case, Point
+from floatmoor.case.sea import WaveCase
 from floatmoor.errors import CaseError, FloatmoorError, FloatmoorWarning, SolverError
 from floatmoor.hydro.database import load_for_case
 from floatmoor.hydro.excitation_transfer import ExcitationInterpolator

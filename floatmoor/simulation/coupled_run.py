@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 from floatmoor.body.kinematics import points_state
 from floatmoor.case.coupling import CoupledCase
 from floatmoor.case.schema import Case, Line
+from floatmoor.case.sea import RegularWaveSettings, StillWaterSettings, WaveSettings
 from floatmoor.errors import CaseError, SolverError
 from floatmoor.io.netcdf3_format import NetCDF3Error
 from floatmoor.io.output_files import OutputWriteError
@@ -33,9 +34,6 @@ from floatmoor.simulation.recorder import FLUSH_INTERVAL_S, Recorder
 from floatmoor.simulation.validity import ValidityMonitor
 from floatmoor.signals import deferred_interrupts
 from floatmoor.waves.synthesis import harmonic_sum
-from floatmoor.waves.settings import (
-    JonswapSettings, RegularWaveSettings, StillWaterSettings,
-)
 
 __all__ = ["CoupledSettings", "run_coupled", "check_coupled_case", "settings_from_case"]
 
@@ -53,7 +51,7 @@ CHUNK_STEPS = 500
 CHECKPOINT_INTERVAL_S = 10.0
 
 
-def irregular_sea(waves: RegularWaveSettings | JonswapSettings | StillWaterSettings) -> bool:
+def irregular_sea(waves: WaveSettings) -> bool:
     """Whether a run's waves are an irregular sea, whose probe records
     :data:`~floatmoor.simulation.line_accuracy.IRREGULAR_PROBE_CYCLES` peak periods."""
     return not isinstance(waves, (RegularWaveSettings, StillWaterSettings))

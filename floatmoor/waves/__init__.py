@@ -6,10 +6,10 @@ from floatmoor._exports import lazy_exports
 
 #: Public name -> the module that defines it (docs/development.md#public-api).
 _API = {
-    "wavenumber": "floatmoor.waves.dispersion",
-    "angular_frequency": "floatmoor.waves.dispersion",
-    "wavelength": "floatmoor.waves.dispersion",
-    "group_velocity": "floatmoor.waves.dispersion",
+    "wavenumber": "floatmoor.dispersion",
+    "angular_frequency": "floatmoor.dispersion",
+    "wavelength": "floatmoor.dispersion",
+    "group_velocity": "floatmoor.dispersion",
     "jonswap": "floatmoor.waves.spectra",
     "pierson_moskowitz": "floatmoor.waves.spectra",
     "significant_height": "floatmoor.waves.spectra",

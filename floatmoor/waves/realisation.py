@@ -69,7 +69,7 @@ import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.case.sea import SPACINGS  # frequency discretisations (module docstring)
-from floatmoor.waves.dispersion import STANDARD_GRAVITY, wavenumber
+from floatmoor.dispersion import STANDARD_GRAVITY, wavenumber
 from floatmoor.waves.spectra import DEFAULT_GAMMA, jonswap, jonswap_moment
 from floatmoor.waves.synthesis import harmonic_sum
 

@@ -37,7 +37,8 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from floatmoor.waves.dispersion import STANDARD_GRAVITY
+from floatmoor.case.sea import DEFAULT_GAMMA  # the case's default (DNV-RP-C205 3.5.5.5)
+from floatmoor.dispersion import STANDARD_GRAVITY
 
 __all__ = ["SIGMA_BELOW_PEAK", "SIGMA_ABOVE_PEAK", "DEFAULT_GAMMA", "jonswap",
            "pierson_moskowitz", "jonswap_alpha", "shape_integral", "spectral_moment",
@@ -47,8 +48,6 @@ __all__ = ["SIGMA_BELOW_PEAK", "SIGMA_ABOVE_PEAK", "DEFAULT_GAMMA", "jonswap",
 #: JONSWAP spectral width parameters (DNV-RP-C205 3.5.5.1).
 SIGMA_BELOW_PEAK = 0.07
 SIGMA_ABOVE_PEAK = 0.09
-#: Peak-enhancement factor when nothing else is known (DNV-RP-C205 3.5.5.5, North Sea average).
-DEFAULT_GAMMA = 3.3
 
 #: Requested relative accuracy of the shape integral; the quadrature reaches ~1e-14 here,
 #: far below the 1e-6 on Hs that the tests ask.

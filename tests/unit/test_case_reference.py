@@ -179,10 +179,9 @@ def test_every_declared_setting_is_read():
 
 def _declaring_classes() -> list[type]:
     """The dataclasses whose fields declare case-file settings."""
-    from floatmoor.case import coupling, drag, wind
-    from floatmoor.waves import settings as wave_settings
+    from floatmoor.case import coupling, drag, sea, wind
 
-    return [cls for module in (schema, coupling, drag, wind, wave_settings)
+    return [cls for module in (schema, coupling, drag, sea, wind)
             for cls in vars(module).values()
             if dataclasses.is_dataclass(cls) and isinstance(cls, type) and settings_of(cls)]
 

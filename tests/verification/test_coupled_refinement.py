@@ -167,7 +167,7 @@ def test_a_refined_run_resumes_with_the_raised_elements(tmp_path, monkeypatch, p
 
 def test_an_irregular_seas_probe_records_its_longer_window():
     from floatmoor.mooring.dg.line import DynamicLine
-    from floatmoor.waves.settings import JonswapSettings, RegularWaveSettings
+    from floatmoor.case.sea import JonswapSettings, RegularWaveSettings
 
     case = load_case(BUOY, PROBED)
     models = [DynamicLine.from_case(case.lines[0], case.environment, case.seabed), None, None]

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.waves.dispersion import (angular_frequency, group_velocity, wavelength,
+from floatmoor.dispersion import (angular_frequency, group_velocity, wavelength,
                                         wavenumber)
 
 G = 9.81

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.waves.settings import (JonswapSettings, RegularWaveSettings,
-                                      StillWaterSettings, build)
+from floatmoor.case.sea import JonswapSettings, RegularWaveSettings, StillWaterSettings
+from floatmoor.waves.settings import build
 
 G = 9.81
 
