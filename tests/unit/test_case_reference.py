@@ -12,6 +12,7 @@ from __future__ import annotations
 import ast
 import dataclasses
 import re
+import typing
 from functools import lru_cache
 from pathlib import Path
 
@@ -184,6 +185,24 @@ def _declaring_classes() -> list[type]:
     return [cls for module in (schema, coupling, drag, sea, wind)
             for cls in vars(module).values()
             if dataclasses.is_dataclass(cls) and isinstance(cls, type) and settings_of(cls)]
+
+
+def test_every_case_table_field_has_its_real_type():
+    """No field of a case table's dataclass is typed ``Any`` (``Case.waves`` is the sea's
+    :class:`~floatmoor.case.sea.WaveCase`): a reader of the schema sees what each table
+    holds."""
+    from floatmoor.case import coupling, drag, sea, wind
+    from floatmoor.case.sea import WaveCase
+
+    untyped = [f"{module.__name__}.{cls.__name__}.{field.name}"
+               for module in (schema, coupling, drag, sea, wind)
+               for cls in vars(module).values()
+               if dataclasses.is_dataclass(cls) and isinstance(cls, type)
+               and cls.__module__ == module.__name__
+               for field in dataclasses.fields(cls)
+               if typing.get_type_hints(cls)[field.name] is typing.Any]
+    assert not untyped, f"case fields typed Any: {untyped}"
+    assert typing.get_type_hints(schema.Case)["waves"] == WaveCase | None
 
 
 def test_drag_keys_are_the_drag_settings():
