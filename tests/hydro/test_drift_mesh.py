@@ -95,11 +95,12 @@ def test_drift_panel_size_sets_the_mesh_below_the_water_line(deepcwind_case):
     from floatmoor.case.load import load_case
     from floatmoor.hydro.drift_build import drift_panel_size
 
-    assert drift_panel_size(deepcwind_case) == deepcwind_case.hydro.panel_size
-    finer = load_case(DEEPCWIND_CASE, ["hydro.drift_panel_size=1.4"])
-    assert drift_panel_size(finer) == 1.4
+    assert drift_panel_size(deepcwind_case) == 1.4  # the case's key
+    assert deepcwind_case.hydro.panel_size == 2.0
+    coarser = load_case(DEEPCWIND_CASE, ["hydro.drift_panel_size=2.0"])
+    assert drift_panel_size(coarser) == 2.0
     # the water line's default panel is finer than either, so it stays graded
-    assert drift_waterline_panel_size(finer) == drift_waterline_panel_size(deepcwind_case)
+    assert drift_waterline_panel_size(coarser) == drift_waterline_panel_size(deepcwind_case)
     # a water line panel not finer than the drift's own panels: uniform
     assert drift_waterline_panel_size(load_case(DEEPCWIND_CASE, [
         "hydro.drift_panel_size=0.1"])) is None
