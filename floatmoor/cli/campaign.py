@@ -66,7 +66,8 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
     from floatmoor.campaign.store import failed_runs
     from floatmoor.io.output_files import OutputWriteError, file_state
 
-    progress, compiling = campaign_reporters(args.quiet)
+    progress, compiling = campaign_reporters(args.quiet, workers_text(args.workers,
+                                                                        args.scheduler))
     before = file_state(output)
     try:
         with watch_compilation(compiling, lambda seconds: None):
@@ -92,25 +93,60 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
     return EXIT_OK
 
 
-def campaign_reporters(quiet: bool) -> tuple[Callable[[int, int, float], None],
-                                              Callable[[], None]]:
+def campaign_reporters(quiet: bool, workers: str = "") -> tuple[
+        Callable[[int, int, float], None], Callable[[], None]]:
     """The progress callback of a campaign's runs (runs done, runs in total, seconds left)
-    and the compiling notice (said once: kernels compile in this process with one worker)."""
+    and the compiling notice (said once: kernels compile in this process with one worker).
+
+    Before the runs it says how many there are (and how many a resumed campaign already
+    holds) and on what (``workers``, e.g. ``"2 local workers"``); once the first runs give an
+    estimate it says the wall time to finish, once, then each finished run says what is left.
+    """
     from floatmoor.cli.progress import COMPILING_MESSAGE
 
-    said = []
+    said: list[str] = []
 
     def progress(done: int, total: int, left: float) -> None:
-        if not quiet:
-            eta = "" if left != left else f", ~{left:.0f} s left"
-            print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
+        if quiet:
+            return
+        if not said:
+            said.append("count")
+            before = f" ({done} already done)" if done else ""
+            where = f" on {workers}" if workers else ""
+            print(f"floatmoor: {total} runs{before}{where}; the wall-time estimate follows "
+                  "the first finished run", file=sys.stderr, flush=True)
+            if done == 0:
+                return
+        if left == left and "estimate" not in said:
+            said.append("estimate")
+            print(f"floatmoor: estimated wall time to finish the {total - done} runs left: "
+                  f"{duration_text(left)}", file=sys.stderr, flush=True)
+        eta = "" if left != left else f", ~{duration_text(left)} left"
+        print(f"floatmoor: {done} / {total} runs done{eta}", file=sys.stderr, flush=True)
 
     def compiling() -> None:
-        if not quiet and not said:
-            said.append(True)
+        if not quiet and "compiling" not in said:
+            said.append("compiling")
             print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
 
     return progress, compiling
+
+
+def duration_text(seconds: float) -> str:
+    """A wall time as an engineer reads it: ``42 s``, ``17 min``, ``3 h 05 min``."""
+    if seconds < 120.0:
+        return f"{seconds:.0f} s"
+    minutes = int(round(seconds / 60.0))
+    if minutes < 120:
+        return f"{minutes} min"
+    return f"{minutes // 60} h {minutes % 60:02d} min"
+
+
+def workers_text(workers: int, scheduler: str | None) -> str:
+    """What runs the campaign: the scheduler's workers or the local worker processes."""
+    if scheduler is not None:
+        return f"the workers of the Dask scheduler at {scheduler}"
+    return f"{workers} local worker{'s' if workers != 1 else ''}"
 
 
 def say_moved_aside(path: Path, backup: Path) -> None:

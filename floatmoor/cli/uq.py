@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from floatmoor.cli.campaign import (
-    NAMED_FAILURES, campaign_reporters, report_failures, say_moved_aside,
+    NAMED_FAILURES, campaign_reporters, report_failures, say_moved_aside, workers_text,
 )
 from floatmoor.cli.status import EXIT_FAILED, EXIT_OK
 from floatmoor.errors import CaseError
@@ -50,7 +50,8 @@ def _uq_locked(args: argparse.Namespace, study: "Study", folder: Path) -> int:
     from floatmoor.uq.output import study_summary
     from floatmoor.uq.run import RUNS_NAME, StudyRunsFailed, run_study
 
-    progress, compiling = campaign_reporters(args.quiet)
+    progress, compiling = campaign_reporters(args.quiet, workers_text(args.workers,
+                                                                        args.scheduler))
     runs = folder / RUNS_NAME
     try:  # the runs are kept whatever happens: a re-run resumes them
         with watch_compilation(compiling, lambda seconds: None), \
