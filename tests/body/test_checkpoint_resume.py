@@ -3,7 +3,7 @@ bit with dynamic lines (with implicit internal damping, or the implicit time int
 beside a quasi-static one too (the
 quasi-dynamic and state-space cases are in test_coupled_run.py and test_state_space_run.py;
 the damping's frozen factors, which a coupled run rebuilds often, in
-tests/unit/test_model_state_arrays.py)."""
+tests/mooring/dg/test_model_state_arrays.py)."""
 
 from __future__ import annotations
 

@@ -24,6 +24,9 @@ from floatmoor.simulation.coupled_run import settings_from_case
 from tests.conftest import CASES
 from tests.oracles import dg_numpy as oracle
 
+
+pytestmark = pytest.mark.oracle
+
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 #: The buoy with cheap chains (as tests/body/test_coupling_step.py), each line another way:
 #: explicit, implicit, and "auto" on 5 elements (a second discretisation; its 1.2 s window
