@@ -96,7 +96,7 @@ def test_system_run_resumes_bit_identically(tmp_path, monkeypatch, model):
     """The checkpoint holds the groups' states (the statics' warm start, the DG system's
     nodes, points and damping factors): a resumed run is the uninterrupted one bit for bit."""
     import floatmoor.simulation.coupled_run as cr
-    from tests.body.interrupted import interrupt_run
+    from tests.simulation.interrupted import interrupt_run
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 5)
     case = _clump_case(tmp_path, [f'lines.*.model="{model}"', "simulation.duration=0.2",

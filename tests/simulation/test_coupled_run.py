@@ -11,7 +11,7 @@ from floatmoor.case.load import load_case
 from floatmoor.errors import SolverError
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled, settings_from_case
-from tests.body.interrupted import interrupt_run, stop_mid_step
+from tests.simulation.interrupted import interrupt_run, stop_mid_step
 from tests.conftest import CASES
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"

@@ -6,7 +6,7 @@ the code before them).
 Write the reference (on the code to compare against, e.g. ``git checkout bc646cc --
 floatmoor``, then ``git checkout HEAD -- floatmoor`` after; a few seconds)::
 
-    PYTHONPATH=. python -m tests.body.second_order_reference --write "floatmoor/ of bc646cc"
+    PYTHONPATH=. python -m tests.simulation.second_order_reference --write "floatmoor/ of bc646cc"
 
 The values are compared exactly: rounding depends on numba's and BLAS's builds, so a
 reference made on another machine or with other builds of them must be made again there (from
@@ -54,7 +54,7 @@ def main() -> None:
     args = parser.parse_args()
     data = results()
     if args.write:
-        REFERENCE.write_text(json.dumps({"provenance": f"tests/body/second_order_reference.py "
+        REFERENCE.write_text(json.dumps({"provenance": f"tests/simulation/second_order_reference.py "
                                          f"--write: {args.write}", "runs": data}) + "\n")
     else:
         print({k: {v: np.asarray(a).shape for v, a in d.items()} for k, d in data.items()})

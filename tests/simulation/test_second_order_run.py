@@ -20,7 +20,7 @@ from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled_run import run_coupled, settings_from_case
 from floatmoor.waves.second_order import NewmanForce
 from floatmoor.waves.settings import build
-from tests.body import second_order_reference as reference
+from tests.simulation import second_order_reference as reference
 from tests.conftest import CASES
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
@@ -147,7 +147,7 @@ def test_interrupted_newman_run_resumes_to_identical_results(tmp_path, monkeypat
     does, bit for bit."""
     import floatmoor.simulation.coupled_run as cr
     from floatmoor.io.netcdf import read_dataset
-    from tests.body.interrupted import interrupt_run
+    from tests.simulation.interrupted import interrupt_run
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
     case = load_case(BUOY_CASE, SHORT + [

@@ -12,7 +12,7 @@ import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.simulation.coupled_run import run_coupled
-from tests.body.interrupted import interrupt_run
+from tests.simulation.interrupted import interrupt_run
 from tests.conftest import CASES
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"

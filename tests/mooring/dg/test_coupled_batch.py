@@ -28,7 +28,7 @@ from tests.oracles import dg_numpy as oracle
 pytestmark = pytest.mark.oracle
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
-#: The buoy with cheap chains (as tests/body/test_coupling_step.py), each line another way:
+#: The buoy with cheap chains (as tests/simulation/test_coupling_step.py), each line another way:
 #: explicit, implicit, and "auto" on 5 elements (a second discretisation; its 1.2 s window
 #: ends inside a body step, where the advance falls back to two solve_path calls).
 OVERRIDES = ["simulation.duration=1.5", "waves.ramp_duration=0.5",
@@ -190,11 +190,11 @@ def test_implicit_middle_state_is_interpolated(monkeypatch: pytest.MonkeyPatch) 
 
 @pytest.mark.parametrize("z", [0.08, 2.0])
 def test_one_interval_only_below_the_dashpot_limit(tmp_path, z: float) -> None:
-    """The model problem of tests/body/test_coupling_stability.py, its line implicit: at
+    """The model problem of tests/simulation/test_coupling_stability.py, its line implicit: at
     Z dt / M = 0.08 it steps over the body step as one interval, at 2 (where the interpolated
     middle state would be unstable) over the two samples, and both damp a kick."""
     from floatmoor.body.cummins import CumminsBody
-    from tests.body import test_coupling_stability as stab
+    from tests.simulation import test_coupling_stability as stab
 
     path = tmp_path / "case.toml"
     path.write_text(stab.CASE.replace("order = 4", 'order = 4\ntime_integration = "implicit"'))

@@ -14,7 +14,7 @@ from floatmoor.hydro import state_space as ss
 from floatmoor.hydro.database import read_database, write_database
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled
-from tests.body.interrupted import interrupt_run
+from tests.simulation.interrupted import interrupt_run
 from tests.conftest import CASES, REPO
 
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
@@ -22,7 +22,7 @@ STATE_SPACE = 'floater.radiation="state-space"'
 
 
 def test_state_space_case_runs_and_resumes_bit_identically(tmp_path, monkeypatch) -> None:
-    """As tests/body/test_coupled_run.py::test_interrupted_run_resumes_to_identical_results,
+    """As tests/simulation/test_coupled_run.py::test_interrupted_run_resumes_to_identical_results,
     on the state-space path: a quasi-dynamic line and the radiation states both carry
     memory across the checkpoint."""
     import floatmoor.simulation.coupled_run as cr
