@@ -654,8 +654,8 @@ def test_tests_mirror_the_package() -> None:
     that mirrors no package (a folder by kind, such as the old ``tests/unit/``) is refused."""
     misplaced = _misplaced_tests(TESTS, PACKAGE)
     assert not misplaced, ("test files in folders that mirror no package of floatmoor/ (move "
-                           "them beside the package they test, docs/development.md#where-tests-"
-                           "live):\n" + "\n".join(misplaced))
+                           "them beside the package they test: "
+                           "docs/development.md#where-tests-live):\n" + "\n".join(misplaced))
 
 
 def test_markers_are_strict_and_registered() -> None:
