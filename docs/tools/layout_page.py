@@ -50,7 +50,7 @@ OUTRO = """\
 | `hydrodb/` | BEM databases of the shipped floaters (see `hydrodb/README.md`) |
 | `docs/` | this documentation (Sphinx, MyST Markdown); `docs/tools/` generates the API reference and this page |
 | `examples/` | the gallery's scripts (`plot_*.py`, run by the docs build) |
-| `tests/` | `unit/` (per module, kernels against `oracles/`), `verification/` (analytic), `peer/` (MoorPy, MoorDyn), `validation/` (Lindahl experiment, robustness; slow), `cli/`, `benchmarks/`, and a folder per package |
+| `tests/` | a folder per package of `floatmoor/` (`mooring/dg/` for `floatmoor/mooring/dg/`), `cli/`, the whole package's tests at the top, `oracles/` (NumPy oracles of the kernels), `data/`, `benchmarks/`; kinds are markers ([development](../development.md#where-tests-live)) |
 """
 
 #: A full stop that may end a sentence: followed by a space or the end of the text.

@@ -27,7 +27,7 @@ accumulate. The scheme is explicit. Its stability limit against a line's axial i
 (the hard case: a heavy, stiff line on a light body) is that of RK4 on the dashpot:
 Z dt / M <= 2.79 (M the body's mass and added mass along the line); taking the lines' forces
 at the predicted fairlead velocity instead (the scheme before) made it unstable from
-Z dt / M ~ 1 (tests/body/test_coupling_stability.py).
+Z dt / M ~ 1 (tests/simulation/test_coupling_stability.py).
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ EQUILIBRIUM_RTOL = 1e-9
 _MAX_NEWTON = 50
 #: Largest Z dt / M (:meth:`MooredBody.dashpot_number`) at which implicit dynamic lines step
 #: over the body step as one interval, their middle states interpolated
-#: (floatmoor.mooring.dg.batch): on tests/body/test_coupling_stability.py's model problem that
+#: (floatmoor.mooring.dg.batch): on tests/simulation/test_coupling_stability.py's model problem that
 #: damps a kick as the exact middle state does up to 0.3 (after 20 steps 1.3 % of it left,
 #: against 1.1 %; at 0.1 11.0 % against 11.1 %), at 0.5-0.6 it leaves 28-33 % (5 %), from 0.7
 #: it grows; the buoy on its three chains (implicit), at 0.48, blows up within 0.1 s with one

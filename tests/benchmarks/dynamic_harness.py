@@ -58,7 +58,7 @@ from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.post.statistics import channel_statistics
 from floatmoor.simulation.coupled_run import run_coupled
 from tests.conftest import REPO
-from tests.peer.moordyn_runner import MoorDynError, MoorDynLine, run_moordyn_forced
+from tests.io.moordyn_runner import MoorDynError, MoorDynLine, run_moordyn_forced
 
 #: Quick mode (module docstring).
 QUICK = os.environ.get("FLOATMOOR_BENCH_QUICK", "") == "1"
@@ -300,7 +300,7 @@ def run_floatmoor_lines(problem: LinesProblem) -> dict[str, Any]:
 
 
 def moordyn_line(case: Case, line: Line) -> MoorDynLine:
-    """A case's one-section line as MoorDyn's (tests/peer/moordyn_runner.py), its internal
+    """A case's one-section line as MoorDyn's (tests/io/moordyn_runner.py), its internal
     damping ratio mapped as floatmoor's exporter does."""
     lt, env, bed = line.line_type, case.environment, case.seabed
     c_int = 2.0 * lt.internal_damping_ratio * line.length * math.sqrt(

@@ -3,7 +3,7 @@
 Case A (docs/cases/lindahl.md; ``cases/lindahl/lindahl_r0.20_T1.25.toml``, period and ramp overridden):
 the 33 m chain with its upper end on a vertical circle, r = 0.2 m, T = 1.25 s (slack and snap)
 and T = 3.5 s (smooth), physical seabed (3e9 Pa/m, critical damping, friction 0.3 reached at
-0.01 m/s), driven through ``tests/peer/moordyn_runner.py``. For each period:
+0.01 m/s), driven through ``tests/io/moordyn_runner.py``. For each period:
 
 1. a converged reference: ``REFERENCE`` = 160 segments, dt = 25 us (the RK2 step has to shrink
    with the segment length: the highest axial mode, 2 c / l with c = 350 m/s, is undamped and
@@ -46,7 +46,7 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.motion import fairlead_path
 from tests.conftest import LINDAHL_CASE
-from tests.peer.moordyn_runner import MoorDynError, MoorDynLine, run_moordyn_forced
+from tests.io.moordyn_runner import MoorDynError, MoorDynLine, run_moordyn_forced
 
 #: Converged MoorDyn: segments, dt [s]. (80, 50 us) gives the same mean maximum within 0.1 %
 #: at T = 1.25 s.

@@ -41,7 +41,7 @@ from tests.benchmarks.dynamic_harness import (QUICK, LinesProblem, Timing, accur
                                               pick, run_floatmoor_lines, table,
                                               warm_up_floatmoor)
 from tests.conftest import LINDAHL_CASE
-from tests.peer.moordyn_runner import run_moordyn_forced
+from tests.io.moordyn_runner import run_moordyn_forced
 
 pytestmark = pytest.mark.benchmark
 

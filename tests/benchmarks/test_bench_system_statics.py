@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from floatmoor.mooring.statics_solver import SystemStatics, build_static_system
-from tests.peer.test_statics_moorpy import MOORPY_TOL, _moorpy
-from tests.unit.statics_systems import ENVIRONMENT, SEABED, three_lines
+from tests.mooring.test_statics_moorpy import MOORPY_TOL, _moorpy
+from tests.mooring.statics_systems import ENVIRONMENT, SEABED, three_lines
 
 #: The project's goal for a system: a warm-started sample at least 20 times faster than
 #: MoorPy's at the tolerance that makes MoorPy's answer agree with ours.

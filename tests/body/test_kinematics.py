@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from floatmoor.body.kinematics import generalised_force, points_state, rotation_matrix
+
+
+pytestmark = pytest.mark.oracle
 
 #: Identities that hold to round-off.
 ROUND_OFF = 1e-13

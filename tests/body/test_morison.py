@@ -22,6 +22,9 @@ from floatmoor.waves.kinematics import PointKinematics
 from floatmoor.waves.realisation import WaveField
 from tests.oracles import morison_numpy as oracle
 
+
+pytestmark = pytest.mark.oracle
+
 ROOT = Path(__file__).resolve().parents[2]
 DEEPCWIND = ROOT / "cases" / "deepcwind" / "deepcwind_free_decay.toml"
 RHO = 1025.0

@@ -23,6 +23,9 @@ from floatmoor.hydro.state_space import modal_realisation
 from tests.conftest import CASES, REPO
 from tests.oracles import state_space_numpy as oracle
 
+
+pytestmark = pytest.mark.oracle
+
 BUOY_CASE = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"
 DEEPCWIND_CASE = CASES / "deepcwind" / "deepcwind_free_decay.toml"
 BUOY_DB = REPO / "hydrodb" / "cylinder_buoy.nc"

@@ -78,7 +78,7 @@ def test_interrupted_run_says_how_to_resume_and_the_command_does(tmp_path, capsy
     command that resumes it; that command completes the run to the uninterrupted results."""
     import shlex
 
-    from tests.body.interrupted import interrupt_at_body_step
+    from tests.simulation.interrupted import interrupt_at_body_step
 
     waves = ["--set", 'waves={kind = "regular", height = 0.04, period = 1.2}']
     whole = tmp_path / "whole.nc"

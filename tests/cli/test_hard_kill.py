@@ -176,7 +176,7 @@ def test_a_run_killed_before_its_first_periodic_checkpoint_resumes(tmp_path, mon
 
 def test_periodic_checkpoints_follow_the_interval(tmp_path, monkeypatch) -> None:
     """With ``checkpoint_interval=0`` every chunk's end is checkpointed, each after its
-    samples are flushed to disk (an endless interval: tests/body/test_coupled_run.py); an
+    samples are flushed to disk (an endless interval: tests/simulation/test_coupled_run.py); an
     interval that is not a number >= 0 is refused before the run is set up."""
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
     case = load_case(BUOY_CASE, ['lines.*.model="quasi-static"', "simulation.duration=1.2"])

@@ -28,7 +28,7 @@ RUN = ["--set", "simulation.duration=1.0", "--set", "simulation.output_interval=
 def interrupted(tmp_path_factory) -> tuple[Path, bytes, bytes]:
     """A floater run stopped after 30 body steps: (its output, the partial file's bytes, the
     checkpoint's bytes)."""
-    from tests.body.interrupted import interrupt_at_body_step
+    from tests.simulation.interrupted import interrupt_at_body_step
 
     folder = tmp_path_factory.mktemp("interrupted")
     out = folder / "cut.nc"

@@ -101,7 +101,7 @@ def moordyn_initial_forces(path: Path) -> tuple[int, list[float]]:
     import moordyn
 
     from floatmoor.io.moordyn.deck import POINT_COUPLED
-    from tests.peer.moordyn_runner import _stdout_to
+    from tests.io.moordyn_runner import _stdout_to
 
     x = [c for p in read_deck(path).points if p.attachment == POINT_COUPLED
          for c in p.position]

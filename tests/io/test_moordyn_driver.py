@@ -258,7 +258,7 @@ def test_syrope_case_is_refused_naming_the_feature(tmp_path, capsys):
 
 def _oc4_against_moordyn(tmp_path, capsys, model: str, start: bool = True) -> None:
     pytest.importorskip("moordyn")
-    from tests.peer.moordyn_deck_runner import run_moordyn_deck
+    from tests.io.moordyn_deck_runner import run_moordyn_deck
 
     assert _import(tmp_path, "md_5MW_OC4Semi", capsys)[0] == 0
     case = load_case(tmp_path / "md_5MW_OC4Semi.toml", ["simulation.duration=20.0"] + [
@@ -310,7 +310,7 @@ def test_oc4_dynamic_fairlead_tensions_match_moordyn_c_at_20_s(tmp_path, capsys)
 
 def test_case2_tension_matches_settled_moordyn_c(tmp_path, capsys):
     pytest.importorskip("moordyn")
-    from tests.peer.moordyn_deck_runner import run_moordyn_deck
+    from tests.io.moordyn_deck_runner import run_moordyn_deck
 
     assert _import(tmp_path, "md_case2", capsys)[0] == 0
     ds = run_forced_motion(load_case(tmp_path / "md_case2.toml",

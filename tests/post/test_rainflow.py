@@ -11,6 +11,9 @@ import pytest
 from floatmoor.post.rainflow import aggregate_ranges, rainflow_cycles, turning_points
 from tests.oracles import rainflow_numpy as oracle
 
+
+pytestmark = pytest.mark.oracle
+
 #: ASTM E1049-85 (reapproved 2017), Fig. 6(a): the load history of the rainflow example.
 ASTM_HISTORY = [-2.0, 1.0, -3.0, 5.0, -1.0, 3.0, -4.0, 4.0, -2.0]
 #: Its published result (the standard's Fig. 6 table; the same values are the reference of the

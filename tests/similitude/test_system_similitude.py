@@ -27,7 +27,7 @@ from floatmoor.simulation.run import run_case
 SYSTEM = Path(__file__).parents[1] / "data" / "systems" / "clump_buoy_seabed.toml"
 #: The line dynamic and coarse (6 elements of order 3 a section: the run takes ~1 s), the
 #: anchor moved out so that the clump hangs above the seabed (as in
-#: tests/unit/test_dg_system_start.py; the lower chain still touches down), forced by a
+#: tests/mooring/dg/test_dg_system_start.py; the lower chain still touches down), forced by a
 #: short surge-heave motion.
 EDITS = {
     'model = "quasi-static"': 'model = "dynamic"',

@@ -19,6 +19,9 @@ from floatmoor.waves.second_order import (
 from tests.conftest import REPO
 from tests.oracles import second_order_numpy as oracle
 
+
+pytestmark = pytest.mark.oracle
+
 BUOY_DATABASE = REPO / "hydrodb" / "cylinder_buoy.nc"
 #: Sums evaluated two ways (harmonic sums of phases up to ~1e3 rad, the kernels' phase
 #: recurrence resynchronised every 64 steps) agree to this fraction of the force's scale.

@@ -48,7 +48,7 @@ __all__ = ["DeckNumerics", "ExportResult", "export_case", "SEABED_STEP_FRACTION"
 
 #: dtM is at most this fraction of the RK2 stability limit 2 / |lambda| of MoorDyn's explicit
 #: seabed spring-damper, |lambda| = omega (xi + sqrt(1 + xi^2)), omega^2 = kBot d / m: half the
-#: limit, the margin the peer harness's time steps keep (tests/peer/moordyn_runner.py users).
+#: limit, the margin the peer harness's time steps keep (tests/io/moordyn_runner.py users).
 SEABED_STEP_FRACTION = 0.5
 _KINDS = {"fixed": POINT_FIXED, "body": POINT_COUPLED, "free": POINT_FREE}
 _SAME_VALUE_RTOL = 1e-12

@@ -6,7 +6,7 @@ band (Golub & Van Loan, *Matrix Computations*, 4th ed., algorithm 4.3.1); that i
 matrices factored here, the mass matrix plus dt times a dissipative operator or the iteration
 matrix of an implicit step, whose diagonal dominates or which are positive definite in the
 mass-weighted inner product. A pivot that is zero or not finite is reported, not divided by.
-The NumPy reference is ``scipy.linalg.solve_banded`` (tests/unit/test_dg_banded.py).
+The NumPy reference is ``scipy.linalg.solve_banded`` (tests/mooring/dg/test_dg_implicit_kernels.py).
 """
 
 from __future__ import annotations

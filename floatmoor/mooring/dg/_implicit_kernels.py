@@ -485,7 +485,7 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
 
 
 #: Newton iterations above which the factored Jacobian counts as stale and is rebuilt at the
-#: next step (a fresh one converges in 2 to 3 on the cases of tests/verification).
+#: next step (a fresh one converges in 2 to 3 on the cases of the verification tests).
 SLOW_ITERATIONS = 4
 #: Consecutive steps well inside the tolerance before the step doubles (implicit.GROW_RATIO).
 GOOD_STEPS = 4

@@ -24,7 +24,7 @@ operations, ``_batch_kernels.dg_end_forces_batch``).
   middle: the state the stages see does not then jump with the step level. The
   interpolated state narrows the coupling's stability range on the line's axial impedance
   Z (docs/theory/floater.md#coupling-scheme): the model problem of
-  tests/body/test_coupling_stability.py damps a kick as the exact middle state does up to
+  tests/simulation/test_coupling_stability.py damps a kick as the exact middle state does up to
   Z dt / M = 0.3, poorly at 0.6 and grows from 0.7, where the exact state is stable to
   2.785, and the moored buoy blows up at 0.48; the coupled run keeps its lines on the two
   samples beyond 0.1 (``simulation.coupled.ONE_INTERVAL_LIMIT``).

@@ -27,7 +27,7 @@ __all__ = ["ReferenceElement", "lgl_nodes", "legendre_vandermonde", "reference_e
 #: From the eigenvalues of the semi-discrete operator of a taut line's longitudinal waves
 #: (alternating traces with the Lax-Friedrichs penalty, fixed ends, 8 elements): the largest dt
 #: keeping every lambda dt inside the RK3 stability region |1 + z + z^2/2 + z^3/6| <= 1.
-#: ``tests/unit/test_mooring_dg_stability.py`` recomputes them (5 significant digits). They fall like ~0.6 / (2p + 1).
+#: ``tests/mooring/dg/test_mooring_dg_stability.py`` recomputes them (5 significant digits). They fall like ~0.6 / (2p + 1).
 STABLE_STEP_FACTOR = {1: 0.42547, 2: 0.21063, 3: 0.12383, 4: 0.080103,
                       5: 0.056071, 6: 0.041434, 7: 0.031859, 8: 0.025255}
 

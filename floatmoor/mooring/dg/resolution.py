@@ -40,7 +40,7 @@ Lines of several sections (line systems) keep the discretisation they had
 sections ask for (a system of "auto" sections chooses window by window as one:
 ``DynamicSystem``): the rule's 6 x p3 sections put the clump line 6.05 % of its
 tension range from converged MoorDyn (10 x p5: 2.16 %) and the lazy wave's joint 0.21 m off
-(tests/peer/test_system_moordyn.py); the rule is not calibrated for joints, clumps and buoys.
+(tests/simulation/test_system_moordyn.py); the rule is not calibrated for joints, clumps and buoys.
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ follow (cubic Hermite between samples). Each line alone:
 - floatmoor (``--floatmoor``): DynamicLine with the case's settings, settled with its fairlead
   at the path's first point, then ``solve_path``; ``loop`` is solve_path, ``whole``
   construction + settling + loop.
-- MoorDyn through tests/peer/moordyn_runner.py (``run_moordyn_forced``: its mapping of the
+- MoorDyn through tests/io/moordyn_runner.py (``run_moordyn_forced``: its mapping of the
   line, seabed, friction per segment count and internal damping; coupling every 1 ms on the
   Hermite path), N segments, dtM = F l / c (l = L / N, c = sqrt(EA / m)), time scheme SCHEME;
   ``loop`` is moordyn.Step, ``whole`` the whole call (input, creation, initial-condition solve,
