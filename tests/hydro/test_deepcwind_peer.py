@@ -29,6 +29,9 @@ from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.geometry import geometry_properties
 from floatmoor.hydro.radiation import added_mass_at
 
+#: Against WAMIT's results for the same hull, another code (docs/development.md#where-tests-live).
+pytestmark = pytest.mark.peer
+
 RHO, G = 1025.0, 9.80665
 #: docs/cases/deepcwind.md, notes: WAMIT added mass at omega = 0.5 rad/s and at infinity.
 WAMIT_ADDED_MASS = {

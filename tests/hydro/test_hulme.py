@@ -20,6 +20,9 @@ import pytest
 
 from floatmoor.hydro.geometry import hemisphere_mesh
 
+#: Against Hulme's (1982) potential-flow solution for the hemisphere (docs/development.md#where-tests-live).
+pytestmark = pytest.mark.verification
+
 #: Hulme (1982), heave: K a -> (added mass, damping), non-dimensional as above.
 HULME_HEAVE = {0.2: (0.7938, 0.2793), 0.5: (0.5861, 0.3391), 1.0: (0.4284, 0.2484),
                1.6: (0.3871, 0.1469)}

@@ -280,6 +280,7 @@ def _oc4_against_moordyn(tmp_path, capsys, model: str, start: bool = True) -> No
         assert spike <= START_RTOL or not start
 
 
+@pytest.mark.peer
 @pytest.mark.parametrize("model", ["quasi-static", "quasi-dynamic"])
 def test_oc4_fairlead_tensions_match_moordyn_c_at_20_s(tmp_path, capsys, model):
     _oc4_against_moordyn(tmp_path, capsys, model, start=model != "quasi-dynamic")
@@ -303,11 +304,13 @@ def test_oc4_quasi_dynamic_starts_without_a_step(tmp_path, capsys):
     assert step <= START_RTOL
 
 
+@pytest.mark.peer
 @pytest.mark.slow  # the dynamic lines (a few seconds once compiled, a minute to compile)
 def test_oc4_dynamic_fairlead_tensions_match_moordyn_c_at_20_s(tmp_path, capsys):
     _oc4_against_moordyn(tmp_path, capsys, "dynamic")
 
 
+@pytest.mark.peer
 def test_case2_tension_matches_settled_moordyn_c(tmp_path, capsys):
     pytest.importorskip("moordyn")
     from tests.io.moordyn_deck_runner import run_moordyn_deck
