@@ -124,13 +124,15 @@ def drift_is_current(ds: xr.Dataset, case: Case) -> bool:
         return False
     if not isinstance(mesh, dict):
         return False
-    base = mesh.get("panel_size")
-    if base is not None and drift_panel_size(case) is not None and not (
-            isinstance(base, (int, float))
-            and math.isclose(float(base), drift_panel_size(case), rel_tol=1e-9)):
+    base, wanted_base = mesh.get("panel_size"), drift_panel_size(case)
+    if base is not None and wanted_base is not None and not _same_size(base, wanted_base):
         return False
-    recorded = mesh.get("waterline_panel_size")
-    wanted = drift_waterline_panel_size(case)
+    return _same_size(mesh.get("waterline_panel_size"), drift_waterline_panel_size(case))
+
+
+def _same_size(recorded: Any, wanted: float | None) -> bool:
+    """Whether a panel size recorded in ``drift_json`` is the one wanted (None: none, e.g. a
+    uniform mesh without graded water line)."""
     if recorded is None or wanted is None:
         return recorded is None and wanted is None
     return isinstance(recorded, (int, float)) and math.isclose(float(recorded), wanted,
