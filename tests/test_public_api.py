@@ -139,17 +139,6 @@ _NAMES_SECTION = re.compile(r"^(Parameters|Other Parameters|Attributes)\n-{3,}\n
 _OTHER_STYLES = re.compile(r"^(Args|Arguments|Returns|Raises|Yields):\s*$|^:(param|returns?|"
                            r"raises?|type|rtype)\b", re.M)
 
-#: Public names whose docstrings do not yet describe every parameter: the list may only
-#: shrink (the test fails when one of them passes, so that it is taken off).
-KNOWN_GAPS = frozenset({
-    "floatmoor.Case", "floatmoor.RunResult", "floatmoor.body.BodyState",
-    "floatmoor.case.apply_overrides", "floatmoor.case.parse_case", "floatmoor.hydro.rao_dataset",
-    "floatmoor.io.moordyn.export_case", "floatmoor.mooring.body_point_stiffness",
-    "floatmoor.mooring.dg.CableProperties", "floatmoor.mooring.solve_statics",
-    "floatmoor.mooring.static_line_loads", "floatmoor.rao_for_case", "floatmoor.run_coupled",
-})
-
-
 def _parameters(obj: object) -> list[str]:
     """The names a docstring must describe: a callable's parameters (a class's ``__init__``'s,
     a NamedTuple's or dataclass's fields); none for exceptions, modules and data."""
@@ -246,11 +235,8 @@ def test_docstring_rule_on_made_up_functions() -> None:
 
 
 def test_every_public_name_has_a_numpy_docstring() -> None:
-    objects = _public_objects()
-    problems = {name: docstring_problem(obj) for name, obj in objects.items()}
-    failing = {name: problem for name, problem in problems.items()
-               if problem and name not in KNOWN_GAPS}
+    """No exceptions: every public name describes each of its parameters (or fields)."""
+    problems = {name: docstring_problem(obj) for name, obj in _public_objects().items()}
+    failing = {name: problem for name, problem in problems.items() if problem}
     assert not failing, "public names without numpy-style docstrings:\n" + "\n".join(
         f"{name}: {problem}" for name, problem in sorted(failing.items()))
-    fixed = sorted(name for name in KNOWN_GAPS if not problems.get(name))
-    assert not fixed, f"take these off KNOWN_GAPS (they pass now, or are gone): {fixed}"

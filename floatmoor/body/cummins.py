@@ -44,7 +44,35 @@ ForceFunction = Callable[[float, NDArray[np.float64], NDArray[np.float64]], NDAr
 
 @dataclass
 class BodyState:
-    """A saved state of :class:`CumminsBody`."""
+    """A saved state of :class:`CumminsBody`: everything its next steps depend on.
+
+    Made by :meth:`CumminsBody.get_state` and given back to :meth:`CumminsBody.set_state`
+    (a checkpoint stores it as :meth:`CumminsBody.state_arrays`), so that a body set to it
+    continues to bit-identical results. The arrays are copies, not views of the body's.
+
+    Attributes
+    ----------
+    time
+        Time of the state [s].
+    position
+        (6,) displacement from the reference position: surge, sway, heave [m], roll,
+        pitch, yaw [rad].
+    velocity
+        (6,) its time derivative [m/s, rad/s].
+    history
+        (m, 6) ring buffer of the velocities at the past m steps, for the radiation memory
+        (convolution path; zero on the state-space path).
+    newest
+        Index in ``history`` of the latest velocity.
+    filled
+        How many slots of ``history`` hold real velocities (the older ones are the rest
+        state, zero).
+    memory, memory_before
+        (6,) radiation memory force mu at the state's step and at the step before [N, N m]
+        (the force within a step is extrapolated from both; zero on the state-space path).
+    radiation
+        The state-space path's radiation states z, or None on the convolution path.
+    """
 
     time: float
     position: NDArray[np.float64]

@@ -74,7 +74,45 @@ def load_case(path: str | FilePath, overrides: Sequence[str] = ()) -> Case:
 
 def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                overrides: tuple[str, ...] = (), base_dir: FilePath | None = None) -> Case:
-    """Validate a parsed case table (``raw`` is not modified)."""
+    """Validate a parsed case table (``raw`` is not modified).
+
+    What :func:`load_case` does once it has read and parsed the file, for a caller that
+    holds the table already (a campaign bundle, a scaled or an imported case): apply the overrides to a
+    copy, read every key strictly, check the system as a whole, and warn about valid but
+    implausible values.
+
+    Parameters
+    ----------
+    raw
+        The case's table as parsed from TOML.
+    source
+        The case file's path (or a name standing for it), named in errors and recorded as
+        :attr:`Case.source`.
+    text
+        The case file's text, recorded as :attr:`Case.text` (a run's output keeps it).
+    overrides
+        ``path.to.key=VALUE`` assignments applied before validation
+        (:func:`floatmoor.case.overrides.apply_overrides`).
+    base_dir
+        Folder that relative file paths of the case (a motion table, a hull mesh) are read
+        from: the case file's folder; None for the current folder.
+
+    Returns
+    -------
+    Case
+        The validated case, SI units and radians.
+
+    Raises
+    ------
+    CaseError
+        For the first problem found, naming the source (and the ``--set`` that gave the
+        value), the key path, what was expected and what was found.
+
+    Warns
+    -----
+    ImplausibleInputWarning
+        Once for each valid but implausible value (:mod:`floatmoor.case.plausibility`).
+    """
     original, raw = raw, copy.deepcopy(raw)
     applied = apply_overrides(raw, overrides, source)
     if nesting_depth(raw) > MAX_NESTING_DEPTH:

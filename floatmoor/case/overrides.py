@@ -55,12 +55,34 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str] | tuple[str, ...],
                     source: str) -> list[tuple[str, list[Path]]]:
     """Apply overrides to the raw case table, in place.
 
+    The values are set as given, not checked: the case reader validates them afterwards as
+    it does the file's (:func:`floatmoor.case.parse_case` calls this first).
+
+    Parameters
+    ----------
+    raw
+        The case file's table as parsed from TOML; modified in place.
+    overrides
+        ``path.to.key=VALUE`` assignments, VALUE a TOML value, applied in order (a later
+        one wins); an array of named tables is addressed by name or by ``*``
+        (:mod:`floatmoor.case.overrides`).
+    source
+        The case file, named in errors.
+
     Returns
     -------
-    list
+    list of (str, list of tuple)
         Per override, in order: its text and the canonical key paths it set (list entries by
         index; a wildcard override sets one path per entry), so that validation errors can
         say a value came from the command line and titles which overrides they show.
+
+    Raises
+    ------
+    CaseError
+        For an override that is not ``path.to.key=VALUE`` with a TOML value, or whose key
+        path cannot be set (through a value that is not a table, to an entry that is not
+        there, ``*`` outside an array of tables); the message names the source, the
+        ``--set`` and the key. Overrides before the failing one are already applied.
     """
     return [(text, _assign(raw, *parse_override(text, source), f"{source} (--set {text})"))
             for text in overrides]

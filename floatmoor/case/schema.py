@@ -762,26 +762,58 @@ class HydroSettings:
 
 @dataclass(frozen=True)
 class Case:
-    """A validated case.
+    """A validated case: everything a run, a check or an export reads of a case file.
+
+    Made by :func:`floatmoor.case.load_case` (or :func:`floatmoor.case.parse_case` from a
+    parsed table) after every check has passed, so that the models trust its values; SI
+    units and radians throughout (docs/conventions.md).
 
     Attributes
     ----------
     title
         The title with its placeholders filled and the overrides it does not show appended
         (:mod:`floatmoor.case.title`).
-    title_template
-        The title as the case file gives it.
     source
-        Path of the case file.
+        Path of the case file, named in errors and recorded in results.
     text
-        The case file's text, as read.
+        The case file's text, as read ("" when the case was parsed from a table).
     overrides
         The ``--set`` assignments applied, in order.
+    environment
+        Water density, gravity, depth and current (``[environment]``).
+    seabed
+        The seabed's contact stiffness, damping and friction (``[seabed]``).
+    line_types
+        Line materials by name (``[line_types.NAME]``); empty for a floater case that
+        gives none.
+    lines
+        The mooring lines, in file order, each with its sections and numerics.
     motion
         The prescribed fairlead motion, or None for fixed fairleads.
+    simulation
+        Duration, output interval and time steps (``[simulation]``).
+    description
+        Free text of the case file ("" when it gives none).
+    campaign
+        ``{"grid": {key: [values]}, "zip": {key: [values]}}`` from ``[campaign]``, or None.
     floater
         The floating body; its lines' fairleads are body-fixed points given at rest. A case
         has a floater or a motion, not both.
+    hydro
+        The BEM database settings of the floater (``[hydro]``), or None.
+    waves
+        The sea of a coupled run (``[waves]``), or None.
+    initial_offset
+        The floater's offset from its static equilibrium at t = 0 (``[initial]``):
+        surge, sway, heave [m], roll, pitch, yaw [rad].
+    wind
+        The rotor's wind (``[wind]``), or None.
+    title_template
+        The title as the case file gives it, placeholders unfilled ("" = same as
+        ``title``).
+    points
+        Every point of the mooring system: the ``[[points]]``, then the lines' implicit
+        ones (a short-form line's anchor and fairlead, an unnamed joint between sections).
     """
 
     title: str

@@ -105,7 +105,43 @@ def rao_for_case(case: Case, ds: xr.Dataset, *, mooring: bool = True,
                  linear_damping: NDArray[np.float64] | None = None
                  ) -> tuple[xr.DataArray, dict[str, Any]]:
     """RAOs of the case's floater with its lines' linearised stiffness (``mooring``), and the
-    conditions they were computed with (mass matrix, stiffness, damping: JSON-ready)."""
+    conditions they were computed with (mass matrix, stiffness, damping: JSON-ready).
+
+    What ``floatmoor rao`` computes (docs/guide/rao_and_drift.md#raos-floatmoor-rao): the
+    linear, frequency-domain motions, with the mooring as its stiffness about the rest
+    position (central differences of the lines' static forces,
+    :func:`floatmoor.hydro.natural_periods.mooring_stiffness`), without line dynamics or
+    drag.
+
+    Parameters
+    ----------
+    case
+        A case with a ``[floater]``.
+    ds
+        The floater's database, with ``excitation_force``
+        (:func:`floatmoor.hydro.database.load_for_case`).
+    mooring
+        Whether the lines' linearised stiffness is added (False: the floater free).
+    linear_damping
+        Extra linear damping B_ext (6, 6) about the rotation centre [N s/m, N s, N m s/rad],
+        or None.
+
+    Returns
+    -------
+    rao : xarray.DataArray
+        Complex, dims (omega, wave_direction, radiating_dof) [m/m, rad/m]
+        (:func:`rao`).
+    conditions : dict
+        ``case_file``, ``mass_matrix``, ``hydrostatic_and_gravity_stiffness``,
+        ``mooring_stiffness``, ``mooring_lines``, ``linear_damping`` and
+        ``matrix_layout``: the matrices as nested lists in SI units, for
+        :func:`rao_dataset`'s attributes.
+
+    Raises
+    ------
+    SolverError
+        When a line has no static solution near its rest position (with ``mooring``).
+    """
     from floatmoor.hydro.natural_periods import mooring_stiffness
 
     assert case.floater is not None
@@ -133,7 +169,31 @@ def floater_matrix(m: NDArray[np.float64]) -> list[list[float]]:
 
 def rao_dataset(x: xr.DataArray, conditions: dict[str, Any], ds: xr.Dataset) -> xr.Dataset:
     """A RAO as a netCDF-ready dataset: real and imaginary parts along ``complex``, amplitude
-    and phase, with units and long names, and the conditions in the attributes."""
+    and phase, with units and long names, and the conditions in the attributes.
+
+    netCDF has no complex type, hence the ``complex`` dimension; the file's ``title``
+    (:data:`RAO_TITLE`) is what lets ``floatmoor rao`` replace a RAO file of its own and no
+    other file.
+
+    Parameters
+    ----------
+    x
+        The complex RAOs, dims (omega, wave_direction, radiating_dof) (:func:`rao`,
+        :func:`rao_for_case`) [m/m, rad/m].
+    conditions
+        What they were computed with (:func:`rao_for_case`'s second answer), stored as
+        the JSON attribute ``rao_conditions_json``.
+    ds
+        The database they come from: its ``database`` and ``inputs_hash`` attributes are
+        recorded.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``rao`` (complex, omega, wave_direction, radiating_dof), ``rao_amplitude``,
+        ``rao_phase`` [rad] and ``rao_units``, with the period as a coordinate along
+        omega [s].
+    """
     from floatmoor._version import __version__
 
     values = x.values

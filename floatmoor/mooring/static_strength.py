@@ -90,7 +90,25 @@ class StaticLineLoad:
 def static_line_loads(case: Case) -> list[StaticLineLoad]:
     """The static catenary of every independent line of ``case`` at its mean (or rest)
     fairlead, then every section of the other lines from the system's static equilibrium
-    (:func:`system_statics_at_rest`)."""
+    (:func:`system_statics_at_rest`).
+
+    What ``floatmoor check`` prints and ``run`` checks against the MBL before anything moves
+    (docs/guide/running.md#line-strength): a static tension at or above it is bad input. A
+    line or section without a static solution is listed with the failure, not raised, so
+    that the others are still reported.
+
+    Parameters
+    ----------
+    case
+        A validated case.
+
+    Returns
+    -------
+    list of StaticLineLoad
+        The independent lines in file order, then the other lines' sections (named by
+        their labels): tensions [N] and laid length [m], or ``failure`` saying why there
+        is no static solution.
+    """
     out = []
     for line in case.lines:
         if not case.is_independent(line):

@@ -393,7 +393,35 @@ def solve_statics(system: StaticSystem,
                   body_positions: ArrayLike | Mapping[str, ArrayLike] | None = None,
                   force_rtol: float = FORCE_RTOL) -> StaticSolution:
     """Static equilibrium of ``system`` from its initial guesses (see
-    :meth:`SystemStatics.solve`)."""
+    :meth:`SystemStatics.solve`).
+
+    The free points' positions at which each balances its sections' end forces, its weight
+    and its buoyancy (Newton's method, as MoorPy's ``System.solveEquilibrium``); a one-off
+    solve: a solver kept for a path of states is :class:`SystemStatics`, whose warm start
+    this drops.
+
+    Parameters
+    ----------
+    system
+        The points and sections (:func:`build_static_system`).
+    body_positions
+        (n_body, 3) in the order of :attr:`StaticSystem.body_point_names`, or a mapping
+        from body-point name to position [m]; None: at rest.
+    force_rtol
+        Convergence: every free-point force component within this fraction of its point's
+        force scale [-] (default :data:`FORCE_RTOL`).
+
+    Returns
+    -------
+    StaticSolution
+        Point positions, the sections' end forces, tensions, laid lengths and end
+        stiffnesses, and the seabed's reaction on resting points, SI units.
+
+    Raises
+    ------
+    SolverError
+        Naming the point (or section) and the residual when there is no equilibrium.
+    """
     return SystemStatics(system, force_rtol=force_rtol).solve(body_positions)
 
 
@@ -420,12 +448,26 @@ def body_point_stiffness(system: StaticSystem, solution: StaticSolution) -> NDAr
     seabed is held there (the seabed takes up its vertical force change), so it is not among
     the condensed coordinates f: the stiffness of small motions that keep it on the seabed.
 
+    Parameters
+    ----------
+    system
+        The points and sections (:func:`build_static_system`).
+    solution
+        An equilibrium of ``system`` (:func:`solve_statics`, :meth:`SystemStatics.solve`),
+        whose section end stiffnesses are used.
+
     Returns
     -------
     ndarray, shape (3 n_body, 3 n_body)
         Rows and columns (x, y, z) of each body point in the order of
         :attr:`StaticSystem.body_point_names` [N/m]; the 3x3 diagonal blocks are each
         point's own stiffness.
+
+    Raises
+    ------
+    SolverError
+        When the free points' stiffness matrix is singular (a free point held only by
+        slack sections).
     """
     K = _global_stiffness(system, solution)
     b = (3 * system.body_index[:, None] + np.arange(3)).ravel()

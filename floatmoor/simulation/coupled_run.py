@@ -204,6 +204,32 @@ def run_coupled(case: Case, settings: CoupledSettings | None = None, *,
     ``settings`` (default :func:`settings_from_case`) gives the options the case does not:
     another database file, additional linear or quadratic damping.
 
+    Parameters
+    ----------
+    case
+        A validated case with a ``[floater]`` (and its ``[hydro]``), without ``[motion]``.
+    settings
+        Options beyond the case (:class:`~floatmoor.simulation.assembly.CoupledSettings`),
+        or None for a plain run of the case.
+    output
+        netCDF file written as the run goes (partial on failure or interruption), or None
+        (then no checkpoint either).
+    progress
+        Called with the simulated time [s] after each chunk of steps.
+    flush_interval
+        Wall time between partial writes of ``output`` [s].
+    checkpoint_interval
+        Wall time between checkpoints [s]; None for :data:`CHECKPOINT_INTERVAL_S`, 0 for
+        every chunk.
+    resume
+        Continue from ``OUTPUT.checkpoint`` instead of starting at t = 0.
+
+    Returns
+    -------
+    RunResult
+        The dataset (body motion and line forces, SI units), the wall and simulated times
+        [s] and the check of the lines whose numerics the accuracy chose.
+
     Raises
     ------
     CaseError

@@ -37,7 +37,31 @@ CHUNK_SAMPLES = 2000
 
 @dataclass(frozen=True)
 class RunResult:
-    """What a run produced."""
+    """What a run produced: its results and how it went.
+
+    Returned by :func:`run_forced_motion` and :func:`floatmoor.run_coupled` when a run
+    completes; a run that fails or is interrupted raises instead, after writing its partial
+    results to its output file if it has one.
+
+    Attributes
+    ----------
+    dataset
+        The results: the lines' (and the floater's) time series in SI units, with the case
+        text, overrides, version and run status in the attributes
+        (docs/guide/running.md#what-a-run-writes-and-prints).
+    status
+        ``"complete"`` (a run that stops early raises instead; its output file's ``status``
+        attribute says why it stopped).
+    wall_time_s
+        Wall time of the run [s]: a forced run's from its set-up on, a coupled run's of its
+        time loops (those of passes its lines' check restarted included).
+    simulated_time_s
+        Time of the last recorded sample [s].
+    line_accuracy
+        The a-posteriori check of each dynamic line whose numerics the accuracy chose
+        (:class:`~floatmoor.simulation.line_accuracy.LineAccuracy`); empty when no line was
+        checked.
+    """
 
     dataset: xr.Dataset  #: the results (partial when the run stopped early)
     status: str  #: "complete", or why it stopped

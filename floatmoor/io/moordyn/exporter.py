@@ -105,7 +105,28 @@ def _free_positions(case: Any, numerics: DeckNumerics, notes: list[str]
 def export_case(case: Any, numerics: DeckNumerics) -> ExportResult:
     """The MoorDyn deck of ``case`` (a :class:`floatmoor.case.schema.Case`) and the notes on
     what MoorDyn cannot represent (also to be written into the deck's comments), with the
-    solvers' ``numerics`` of the case (:func:`floatmoor.mooring.deck_numerics.deck_numerics`)."""
+    solvers' ``numerics`` of the case (:func:`floatmoor.mooring.deck_numerics.deck_numerics`).
+
+    What ``floatmoor export moordyn`` writes (docs/guide/mooring_systems.md#moordyn-decks):
+    the same lines, points, seabed and water in MoorDyn v2's terms, so that MoorDyn can be
+    run on the case as a peer (the mapping: :mod:`floatmoor.io.moordyn.exporter`). Nothing
+    is written here: the caller writes the result's deck.
+
+    Parameters
+    ----------
+    case
+        A validated case (:class:`floatmoor.case.schema.Case`).
+    numerics
+        The sections' DG discretisations and time step and the free points' static
+        equilibrium for ``case`` (:class:`DeckNumerics`).
+
+    Returns
+    -------
+    ExportResult
+        The deck (its dtM [s] the smaller of the sections' DG step and
+        :data:`SEABED_STEP_FRACTION` of MoorDyn's seabed limit; dtOut the case's output
+        interval [s]) and the notes, the source case first.
+    """
     notes: list[str] = []
     env, bed = case.environment, case.seabed
     line_of = {line.name: line for line in case.lines}

@@ -33,8 +33,50 @@ IMPLICIT_MAX_STEP = 0.5
 class CableProperties:
     """Physical properties of a line and its surroundings, SI units.
 
-    Built from a case with :meth:`from_case`; tests may build one directly (e.g. with
-    ``water_density = 0`` for a line in vacuum, or ``seabed_z = -inf`` for no seabed).
+    Built from a case with :meth:`from_case` (or :meth:`from_section`); tests may build one
+    directly (e.g. with ``water_density = 0`` for a line in vacuum, or ``seabed_z = -inf``
+    for no seabed). The cable laws they enter are those of docs/theory/cable.md.
+
+    Attributes
+    ----------
+    length
+        Unstretched length [m].
+    mass_per_length
+        Dry mass per unstretched length m [kg/m].
+    axial_stiffness
+        EA [N].
+    diameter
+        Diameter the drag coefficients refer to, also the seabed contact width [m].
+    material_density
+        Density of the line's material rho_c [kg/m^3] (with the mass, the displaced
+        volume).
+    normal_drag_coefficient, tangential_drag_coefficient
+        Morison drag coefficients normal to the line and along it, on the diameter [-].
+    added_mass_coefficient, tangential_added_mass_coefficient
+        Added-mass coefficients normal to the line and along it, on the material area
+        m / rho_c [-].
+    internal_damping
+        c_int in T = EA eps + c_int d(eps)/dt [N s] (:meth:`from_section` gives it from
+        the line type's damping ratio).
+    water_density
+        [kg/m^3]; 0 for a line in vacuum.
+    gravity
+        [m/s^2].
+    current_velocity
+        Steady, uniform current (x, y, z) [m/s].
+    seabed_z
+        Elevation of the seabed [m]; -inf for none.
+    seabed_stiffness
+        Normal stiffness of the seabed per unit contact area [Pa/m].
+    seabed_damping_ratio
+        Damping ratio of the normal contact spring-damper [-].
+    friction_coefficient
+        Coulomb friction coefficient along the seabed [-].
+    slip_speed
+        Sliding speed at which the smoothed Coulomb friction reaches its full value [m/s].
+    friction_model
+        ``"coulomb"`` (regularised by the slip speed) or ``"stick_spring"``
+        (docs/theory/cable.md#seabed-friction).
     """
 
     length: float  #: unstretched [m]
