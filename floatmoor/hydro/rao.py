@@ -75,8 +75,9 @@ def rao(ds: xr.Dataset, floater: Floater, k_moor: NDArray[np.float64] | None = N
     Returns
     -------
     xarray.DataArray
-        Complex, dims (omega, wave_direction, radiating_dof), attributes ``units`` per DOF in
-        ``units_by_dof`` and ``long_name``.
+        Complex, dims (omega, wave_direction, radiating_dof); attribute ``units`` states the
+        units of the translations and of the rotations (m/m, rad/m), ``long_name`` the
+        phase convention.
     """
     from floatmoor.hydro.database import merge_complex
 
