@@ -47,7 +47,8 @@ _OPTIONS = {
 class Setting:
     """What a case file may give for one key, and what it means.
 
-    ``kind`` names the :class:`~floatmoor.case.reader.TableReader` accessor that reads it;
+    ``kind`` names the :class:`~floatmoor.case.reader.TableReader` accessor that reads it (a
+    :class:`SettingTable` also reads :data:`TABLE_KINDS` and :data:`CLAIMED_KINDS`);
     ``default`` is what a file that leaves the key out gets (:data:`MISSING`: required);
     ``default_text`` words a default the reader computes from other values (``"{default}"``
     in it stands for the recorded one); ``doc`` is the reference page's description;
