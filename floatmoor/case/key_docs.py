@@ -1,4 +1,7 @@
-"""What each key of a case file and of a study file means, for the case-file reference.
+"""What each case-file key not yet declared as a setting means, for the case-file reference.
+
+Declared keys (:mod:`floatmoor.case.setting`: the migrated case tables, ``[campaign]`` and
+every key of a study file) carry their own descriptions.
 
 The type, unit, range and default of a key come from its reader (the accessors of
 :class:`~floatmoor.case.reader.TableReader`, recorded while files load); only what a reader
@@ -19,7 +22,7 @@ from typing import Mapping
 from floatmoor.case.schema import DynamicSettings
 from floatmoor.case.setting import settings_of
 
-__all__ = ["KeyDocs", "CASE", "STUDY"]
+__all__ = ["KeyDocs", "CASE"]
 
 
 @dataclass(frozen=True)
@@ -150,17 +153,6 @@ _CASE = {
     "motion.ramp_duration": "Duration of the cosine ramp that brings the motion in from "
                             "rest; shorter than the run.",
     **_body_dofs(),
-    # campaign
-    "campaign": "A sweep of the case over several values of its keys, run by `floatmoor "
-                "sweep`: every combination of `[campaign.grid]`, element-wise with "
-                "`[campaign.zip]`.",
-    "campaign.grid": "Keys whose value arrays are combined, every value with every other "
-                     "(a full grid).",
-    "campaign.grid.<key>": "A quoted key path of the case (`\"motion.period\"`) and the "
-                           "array of values to sweep; checked when the runs are.",
-    "campaign.zip": "Keys whose value arrays, of one length, are taken element by element.",
-    "campaign.zip.<key>": "A quoted key path of the case and the array of values to sweep, "
-                          "as long as the other `[campaign.zip]` arrays.",
     # floater
     "floater": "A floating body coupled to its lines (theory/floater.md); a case with a "
                "floater has no `[motion]`.",
@@ -288,83 +280,3 @@ _CASE_TYPES = {
 
 #: The keys of a case file.
 CASE = KeyDocs(_CASE, _CASE_DEFAULTS, _CASE_ALLOWED, _CASE_TYPES)
-
-# -- study files ------------------------------------------------------------------------------
-
-_STUDY = {
-    "": "A study file (`floatmoor uq STUDY.toml -o DIR`) names what is run, which inputs are "
-        "uncertain, how the polynomial-chaos surrogate is built and for which quantities "
-        "(theory/uncertainty.md). It is checked whole before anything runs.",
-    "title": "Title of the study, in its report and output.",
-    "case": "Case file the runs are made of, relative to the study file; instead of "
-            "`model`.",
-    "model": "A built-in model instead of a case: `taut_string`, the released taut string of "
-             "cases/taut_string.md (a verification of the method).",
-    "base_overrides": "`--set` texts (`path.to.key=VALUE`) applied to every run of the case.",
-    "surrogate_samples": "Samples of the surrogate from which the output statistics and "
-                         "densities are estimated.",
-    "inputs": "The uncertain inputs, one table each; a distribution's parameters are in the "
-              "unit of its key.",
-    "inputs[].key": "What is uncertain: a `--set` key path of the case (e.g. "
-                    "`line_types.chain.normal_drag_coefficient`), or a parameter of the "
-                    "built-in model.",
-    "inputs[].distribution": "Probability distribution of the input; its parameters are the "
-                             "keys below that it needs.",
-    "inputs[].lower": "Lower bound (`uniform`, `truncated_normal`, `beta`, `triangular`).",
-    "inputs[].upper": "Upper bound (`uniform`, `truncated_normal`, `beta`, `triangular`).",
-    "inputs[].mean": "Mean (`normal`, `lognormal`: of the variable itself; "
-                     "`truncated_normal`: of the normal before truncation).",
-    "inputs[].std": "Standard deviation (`normal`, `lognormal`, `truncated_normal`, as for "
-                    "`mean`).",
-    "inputs[].alpha": "First shape parameter (`beta`).",
-    "inputs[].beta": "Second shape parameter (`beta`): density proportional to "
-                     "(x - lower)^(alpha - 1) (upper - x)^(beta - 1).",
-    "inputs[].mode": "Most likely value (`triangular`).",
-    "inputs[].shape": "Shape parameter k (`gamma`): density proportional to "
-                      "(x - location)^(k - 1) exp(-rate (x - location)).",
-    "inputs[].rate": "Rate parameter, in 1 / the unit of the key (`gamma`).",
-    "inputs[].location": "Lower bound of the support (`gamma`).",
-    "method": "How the surrogate's coefficients are computed.",
-    "method.kind": "`quadrature` (Gauss rule, (order + 1)^inputs runs) or `regression` "
-                   "(least squares on a sampled design).",
-    "method.order": "Total polynomial order of the surrogate.",
-    "method.q_norm": "Hyperbolic truncation of the polynomial basis, 1 for the full total "
-                     "order (`regression`).",
-    "method.samples": "Number of runs of the design (`regression`).",
-    "method.seed": "Seed of the sampled design (`regression`).",
-    "parameters": "The built-in model's parameters that are not uncertain (`model`); the "
-                  "model's own value where not given.",
-    "parameters.T": "String tension [N].",
-    "parameters.m": "Mass per unit length [kg/m].",
-    "parameters.x": "Position along the string [m].",
-    "parameters.t": "Time since release [s].",
-    "parameters.A": "Amplitude of the initial half sine [m].",
-    "parameters.L": "String length [m].",
-    "quantities": "The quantities of interest the surrogate is built for (with `case`).",
-    "quantities[].name": "Name of the quantity: letters, digits and _, starting with a "
-                         "letter.",
-    "quantities[].line": "A line of the case, whose fairlead tension is the quantity; "
-                         "instead of `dof`.",
-    "quantities[].dof": "A DOF of the case's floater, whose motion is the quantity; instead "
-                        "of `line`.",
-    "quantities[].statistic": "Statistic of the time series after the ramp (`max`, "
-                              "`mean_cycle_max` for a periodic motion, `std`, `mean`, `min`) "
-                              "or `history`, its samples over `window`.",
-    "quantities[].window": "Time window [start, end] of a `history`.",
-}
-
-_STUDY_DEFAULTS = {
-    "case": "one of `case`, `model`",
-    "model": "one of `case`, `model`",
-    "quantities": "required with `case`",
-    **{f"parameters.{name}": "the model's value" for name in "TmxtAL"},
-}
-
-_STUDY_ALLOWED = {
-    "quantities[].line": "the name of a line of the case",
-    "quantities[].dof": '"Surge", "Sway", "Heave", "Roll", "Pitch" or "Yaw" (with a floater)',
-    "quantities[].window": "0 <= start < end <= simulation.duration, two samples or more",
-}
-
-#: The keys of a study file.
-STUDY = KeyDocs(_STUDY, _STUDY_DEFAULTS, _STUDY_ALLOWED)

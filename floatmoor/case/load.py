@@ -17,6 +17,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from floatmoor.case.campaign import read_campaign
 from floatmoor.case.coupling import read_initial, read_waves, read_wind
 from floatmoor.case.floater import BEM_BUILD_KEYS, check_panel_size, read_floater, read_hydro
 from floatmoor.case.limits import (
@@ -28,7 +29,7 @@ from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.plausibility import warn_implausible
-from floatmoor.case.reader import MISSING, ReadContext, TableReader
+from floatmoor.case.reader import ReadContext, TableReader
 from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, MAX_QD_INTEGRATION_POINTS, POINT_KINDS,
@@ -144,7 +145,7 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                          "floater's motion follows from its dynamics)", {})
     motion = _motion(root.table("motion"), base_dir or FilePath("."), simulation) \
         if root.has("motion") else None
-    campaign = _campaign(root.table("campaign")) if root.has("campaign") else None
+    campaign = read_campaign(root) if root.has("campaign") else None
     hydro_raw = raw.get("hydro")
     imported = isinstance(hydro_raw, dict) and hydro_raw.get("source") == "imported"
     if has_floater and isinstance(hydro_raw, dict) and "source" not in hydro_raw \
@@ -410,25 +411,6 @@ def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motio
                       f"({simulation.duration:g} s) [s]", motion.ramp_duration)
     t.finish()
     return motion
-
-
-def _campaign(t: TableReader) -> dict[str, dict[str, list[Any]]]:
-    """``[campaign.grid]`` / ``[campaign.zip]``: quoted dotted keys -> arrays of values, e.g.
-    ``"motion.period" = [1.25, 3.5]``. The keys are checked when the campaign's runs are."""
-    out: dict[str, dict[str, list[Any]]] = {}
-    for kind in ("grid", "zip"):
-        table = t.table(kind, required=False)
-        for key in list(table.data):
-            values = table.claim(key, "array", name="<key>")
-            if not isinstance(values, list) or not values:
-                raise table.error(key, "a non-empty array of values to sweep", values)
-        out[kind] = dict(table.data)
-        table.finish()
-    if not out["grid"] and not out["zip"]:
-        raise t.error("grid", "at least one swept key in [campaign.grid] or [campaign.zip]",
-                      MISSING)
-    t.finish()
-    return out
 
 
 def _resolve_points(parsed: list[tuple[Line, dict[str, Any]]], user_points: list[Point],

@@ -196,8 +196,9 @@ def render_section(table: str, entries: Mapping[str, KeyEntry], docs: KeyDocs,
     rows = [entry for path, entry in entries.items() if table_of(path) == table]
     lines = [f"### {title or toml_header(table, entries)}", ""]
     key = table.removesuffix("[]").removesuffix(".<name>")
-    if key in descriptions:
-        lines += [descriptions[key], ""]
+    intro = descriptions.get(key) or (entries[key].doc if key in entries else "")
+    if intro:  # the table's own description: key_docs', or its declaration's
+        lines += [intro, ""]
     lines += ["| key | type | unit | required / default | allowed | description |",
               "| --- | --- | --- | --- | --- | --- |"]
     for entry in rows:

@@ -45,6 +45,7 @@ from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import load_case
 from floatmoor.case.overrides import parse_override
 from floatmoor.case.reader import ReadContext, TableReader
+from floatmoor.case.setting import Setting, SettingTable
 from floatmoor.case.schema import Case
 from floatmoor.errors import CaseError
 from floatmoor.io.dataset import DOFS
@@ -52,11 +53,11 @@ from floatmoor.simulation.forced import output_times
 from floatmoor.uq.basis import probe_input
 from floatmoor.uq.inputs import DISTRIBUTIONS, UncertainInput, check_input
 from floatmoor.uq.propagate import QuadratureMethod, RegressionMethod, design
-from floatmoor.uq.taut_string import BUILTIN_MODELS, BuiltinModel
+from floatmoor.uq.taut_string import BUILTIN_MODELS, ModelParameter
 
 __all__ = ["Study", "Quantity", "load_study", "LINE_STATISTICS", "DOF_STATISTICS", "HISTORY",
            "MAX_RUNS", "MAX_ORDER", "DEFAULT_SURROGATE_SAMPLES", "nominal_values", "MIN_Q_NORM",
-           "MAX_BASIS_SIZE", "MAX_SEED", "hyperbolic_basis_size"]
+           "MAX_BASIS_SIZE", "MAX_SEED", "hyperbolic_basis_size", "STUDY_TABLES"]
 
 #: The history statistic: the quantity's samples over a time window (a vector output).
 HISTORY = "history"
@@ -88,6 +89,101 @@ MAX_SEED = 2**32 - 1
 DEFAULT_SURROGATE_SAMPLES = 3000
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 _METHODS = ("quadrature", "regression")
+
+# -- the keys of a study file, declared once (docs/reference/case_file.md#study-files) --------
+
+_ONE_OF = "one of `case`, `model`"
+_TOP = SettingTable("", {
+    "title": Setting("string", doc="Title of the study, in its report and output."),
+    "case": Setting("string", default_text=_ONE_OF, doc="Case file the runs are made of, "
+                    "relative to the study file; instead of `model`."),
+    "model": Setting("string", choices=tuple(BUILTIN_MODELS), default_text=_ONE_OF,
+                     doc="A built-in model instead of a case: `taut_string`, the released taut "
+                     "string of cases/taut_string.md (a verification of the method)."),
+    "base_overrides": Setting("array of strings", default=[], doc="`--set` texts "
+                              "(`path.to.key=VALUE`) applied to every run of the case."),
+    "surrogate_samples": Setting("integer", ge=100, le=1_000_000,
+                                 default=DEFAULT_SURROGATE_SAMPLES,
+                                 doc="Samples of the surrogate from which the output statistics "
+                                 "and densities are estimated."),
+    "inputs": Setting("tables", doc="The uncertain inputs, one table each; a distribution's "
+                      "parameters are in the unit of its key."),
+    "method": Setting("table", doc="How the surrogate's coefficients are computed."),
+    "parameters": Setting("table", default={}, doc="The built-in model's parameters that are "
+                          "not uncertain (`model`); the model's own value where not given."),
+    "quantities": Setting("tables", default_text="required with `case`", doc="The quantities "
+                          "of interest the surrogate is built for (with `case`)."),
+})
+#: ``[[inputs]]``: a distribution's parameters (floatmoor.uq.inputs.DISTRIBUTIONS) are in the
+#: unit of its key, whatever that is.
+_INPUT = SettingTable("inputs[]", {
+    "key": Setting("string", doc="What is uncertain: a `--set` key path of the case (e.g. "
+                   "`line_types.chain.normal_drag_coefficient`), or a parameter of the built-in "
+                   "model."),
+    "distribution": Setting("string", choices=tuple(DISTRIBUTIONS), doc="Probability "
+                            "distribution of the input; its parameters are the keys below that "
+                            "it needs."),
+    "lower": Setting("number", unit="", doc="Lower bound (`uniform`, `truncated_normal`, "
+                     "`beta`, `triangular`)."),
+    "upper": Setting("number", unit="", doc="Upper bound (`uniform`, `truncated_normal`, "
+                     "`beta`, `triangular`)."),
+    "mean": Setting("number", unit="", doc="Mean (`normal`, `lognormal`: of the variable "
+                    "itself; `truncated_normal`: of the normal before truncation)."),
+    "std": Setting("number", unit="", doc="Standard deviation (`normal`, `lognormal`, "
+                   "`truncated_normal`, as for `mean`)."),
+    "alpha": Setting("number", unit="", doc="First shape parameter (`beta`)."),
+    "beta": Setting("number", unit="", doc="Second shape parameter (`beta`): density "
+                    "proportional to (x - lower)^(alpha - 1) (upper - x)^(beta - 1)."),
+    "mode": Setting("number", unit="", doc="Most likely value (`triangular`)."),
+    "shape": Setting("number", unit="", doc="Shape parameter k (`gamma`): density proportional "
+                     "to (x - location)^(k - 1) exp(-rate (x - location))."),
+    "rate": Setting("number", unit="", doc="Rate parameter, in 1 / the unit of the key "
+                    "(`gamma`)."),
+    "location": Setting("number", unit="", doc="Lower bound of the support (`gamma`)."),
+})
+_METHOD = SettingTable("method", {
+    "kind": Setting("string", choices=_METHODS, doc="`quadrature` (Gauss rule, (order + "
+                    "1)^inputs runs) or `regression` (least squares on a sampled design)."),
+    "order": Setting("integer", ge=1, le=MAX_ORDER, doc="Total polynomial order of the "
+                     "surrogate."),
+    "q_norm": Setting("number", unit="", ge=MIN_Q_NORM, le=1.0, doc="Hyperbolic truncation of "
+                      "the polynomial basis, 1 for the full total order (`regression`)."),
+    "samples": Setting("integer", ge=2, le=MAX_RUNS, doc="Number of runs of the design "
+                       "(`regression`)."),
+    "seed": Setting("integer", ge=0, le=MAX_SEED, doc="Seed of the sampled design "
+                    "(`regression`)."),
+})
+
+
+def _parameter(parameter: ModelParameter) -> Setting:
+    """``[parameters]`` key of a built-in model's parameter, as the model declares it."""
+    what = parameter.long_name
+    return Setting("number", unit=parameter.units, default_text="the model's value",
+                   doc=f"{what[:1].upper()}{what[1:]} [{parameter.units}].")
+
+
+#: ``[parameters]`` of each built-in model, from the model's own parameters.
+_PARAMETERS = {name: SettingTable("parameters", {key: _parameter(parameter) for key, parameter
+                                                 in model.parameters.items()})
+               for name, model in BUILTIN_MODELS.items()}
+_QUANTITY = SettingTable("quantities[]", {
+    "name": Setting("string", doc="Name of the quantity: letters, digits and _, starting with "
+                    "a letter."),
+    "line": Setting("string", allowed_text="the name of a line of the case", doc="A line of the "
+                    "case, whose fairlead tension is the quantity; instead of `dof`."),
+    "dof": Setting("string", allowed_text='"Surge", "Sway", "Heave", "Roll", "Pitch" or "Yaw" '
+                   "(with a floater)", doc="A DOF of the case's floater, whose motion is the "
+                   "quantity; instead of `line`."),
+    "statistic": Setting("string", choices=LINE_STATISTICS, doc="Statistic of the time series "
+                         "after the ramp (`max`, `mean_cycle_max` for a periodic motion, `std`, "
+                         "`mean`, `min`) or `history`, its samples over `window`."),
+    "window": Setting("vector", size=2, unit="s", ge=0.0,
+                      allowed_text="0 <= start < end <= simulation.duration, two samples or "
+                      "more", doc="Time window [start, end] of a `history`."),
+})
+#: Every declared table of a study file, for the reference page (floatmoor.uq.input_reference).
+STUDY_TABLES: tuple[SettingTable, ...] = (_TOP, _INPUT, _METHOD, *_PARAMETERS.values(),
+                                          _QUANTITY)
 
 
 @dataclass(frozen=True)
@@ -164,16 +260,15 @@ def load_study(path: str | FilePath) -> Study:
     source = str(path)
     text = read_input_text(path, "study")
     root = TableReader(parse_toml(text, source), (), ReadContext(source))
-    title = root.string("title")
+    title = _TOP.read(root, "title")
     has_case, has_model = root.has("case"), root.has("model")
     if has_case == has_model:
         raise _error(root, "case", 'either case = "FILE.toml" or model = "NAME" (one of '
                      'them)', "both case and model" if has_case else "neither")
     inputs = _inputs(root)
-    method = _method(root.table("method"), len(inputs))
+    method = _method(_TOP.table(root, "method"), len(inputs))
     _probe_inputs(root, inputs, method.order)
-    samples = root.integer("surrogate_samples", ge=100, le=1_000_000,
-                           default=DEFAULT_SURROGATE_SAMPLES)
+    samples = _TOP.read(root, "surrogate_samples")
     if has_model:
         model_name, parameters = _model(root, inputs)
         if root.has("quantities"):
@@ -211,12 +306,12 @@ def _error(t: TableReader, key: str | tuple[str | int, ...], expected: str,
 
 def _inputs(root: TableReader) -> tuple[UncertainInput, ...]:
     inputs: list[UncertainInput] = []
-    for t in root.tables("inputs"):
-        key = t.string("key")
+    for t in _TOP.tables(root, "inputs"):
+        key = _INPUT.read(t, "key")
         if any(inp.key == key for inp in inputs):
             raise t.error("key", "a key given once among the inputs", key)
-        name = t.string("distribution", choices=tuple(DISTRIBUTIONS))
-        parameters = {p: t.number(p, unit="") for p in DISTRIBUTIONS[name]}
+        name = _INPUT.read(t, "distribution")
+        parameters = {p: _INPUT.read(t, p) for p in DISTRIBUTIONS[name]}
         t.finish()
         inp = UncertainInput(key, name, parameters)
         try:
@@ -229,8 +324,8 @@ def _inputs(root: TableReader) -> tuple[UncertainInput, ...]:
 
 
 def _method(t: TableReader, dimension: int) -> QuadratureMethod | RegressionMethod:
-    kind = t.string("kind", choices=_METHODS)
-    order = t.integer("order", ge=1, le=MAX_ORDER)
+    kind = _METHOD.read(t, "kind")
+    order = _METHOD.read(t, "order")
     if kind == "quadrature":
         runs = (order + 1) ** dimension
         if runs > MAX_RUNS:
@@ -238,7 +333,7 @@ def _method(t: TableReader, dimension: int) -> QuadratureMethod | RegressionMeth
                           f"{dimension} with {dimension} inputs)", f"{order} ({runs} runs)")
         t.finish()
         return QuadratureMethod(order)
-    q_norm = t.number("q_norm", unit="", ge=MIN_Q_NORM, le=1.0)
+    q_norm = _METHOD.read(t, "q_norm")
     size = hyperbolic_basis_size(dimension, order, q_norm, MAX_BASIS_SIZE)
     if size <= MAX_BASIS_SIZE:  # small enough to enumerate: OpenTURNS' own count (its strata
         # may add a few indices at the boundary)
@@ -248,8 +343,8 @@ def _method(t: TableReader, dimension: int) -> QuadratureMethod | RegressionMeth
         raise _error(t, "order", f"an order and q_norm giving at most {MAX_BASIS_SIZE} basis "
                      f"polynomials with {dimension} inputs (floatmoor.uq.study.MAX_BASIS_SIZE)",
                      f"order {order} with q_norm {q_norm:g} (more than {MAX_BASIS_SIZE})")
-    samples = t.integer("samples", ge=2, le=MAX_RUNS)
-    seed = t.integer("seed", ge=0, le=MAX_SEED)
+    samples = _METHOD.read(t, "samples")
+    seed = _METHOD.read(t, "seed")
     t.finish()
     return RegressionMethod(order, q_norm, samples, seed)
 
@@ -289,14 +384,14 @@ def hyperbolic_basis_size(dimension: int, order: int, q_norm: float, limit: int)
 
 
 def _model(root: TableReader, inputs: Sequence[UncertainInput]) -> tuple[str, dict[str, float]]:
-    name = root.string("model", choices=tuple(BUILTIN_MODELS))
+    name = _TOP.read(root, "model")
     model = BUILTIN_MODELS[name]
     known = tuple(model.parameters)
     for i, inp in enumerate(inputs):
         if inp.key not in known:
             raise root.error(("inputs", i, "key"), f"a parameter of model {name} ("
                              + ", ".join(known) + ")", inp.key)
-    t = root.table("parameters", required=False)
+    t = _TOP.table(root, "parameters")
     fixed = {}
     for key in t.data:
         if key not in known:
@@ -304,17 +399,13 @@ def _model(root: TableReader, inputs: Sequence[UncertainInput]) -> tuple[str, di
         if key in {inp.key for inp in inputs}:
             raise t.error(key, "a parameter that is not also an uncertain input",
                           t.data[key])
-        fixed[key] = t.number(key, unit=_parameter_units(model, key))
+        fixed[key] = _PARAMETERS[name].read(t, key)
     t.finish()
     return name, fixed
 
 
-def _parameter_units(model: BuiltinModel, key: str) -> str:
-    return model.parameters[key].units
-
-
 def _case(root: TableReader, folder: FilePath) -> tuple[str, Case, tuple[str, ...]]:
-    raw = root.string("case")
+    raw = _TOP.read(root, "case")
     case_path = FilePath(raw) if FilePath(raw).is_absolute() else folder / raw
     if not case_path.is_file():
         raise _error(root, "case", "a case file (path relative to the study file)",
@@ -336,7 +427,7 @@ def _case(root: TableReader, folder: FilePath) -> tuple[str, Case, tuple[str, ..
 
 
 def _string_list(root: TableReader, key: str) -> list[str]:
-    value = root.claim(key, "array of strings", default=[])
+    value = _TOP.read(root, key)
     expected = "an array of strings"
     if not isinstance(value, list):
         raise root.error(key, expected, value)
@@ -369,8 +460,8 @@ def _quantities(root: TableReader, case: Case) -> tuple[Quantity, ...]:
     dofs = list(DOFS) if case.floater is not None else []
     times = output_times(case.simulation)
     out: list[Quantity] = []
-    for t in root.tables("quantities"):
-        name = t.string("name")
+    for t in _TOP.tables(root, "quantities"):
+        name = _QUANTITY.read(t, "name")
         if not _NAME.match(name):
             raise t.error("name", "a name of letters, digits and _ starting with a letter",
                           name)
@@ -380,8 +471,8 @@ def _quantities(root: TableReader, case: Case) -> tuple[Quantity, ...]:
             raise _error(t, "line", 'either line = "NAME" or dof = "NAME" (one of them)',
                          "both line and dof" if t.has("line") else "neither")
         if t.has("line"):
-            kind, target = "line", t.string("line", choices=tuple(lines))
-            statistic = t.string("statistic", choices=LINE_STATISTICS)
+            kind, target = "line", _QUANTITY.read(t, "line", choices=tuple(lines))
+            statistic = _QUANTITY.read(t, "statistic")
             units = "N"
             if statistic == "mean_cycle_max" and (case.motion is None
                                                   or case.motion.cycle_period is None):
@@ -391,8 +482,8 @@ def _quantities(root: TableReader, case: Case) -> tuple[Quantity, ...]:
             if not dofs:
                 raise t.error("dof", "a line quantity (the case has no [floater])",
                               t.data["dof"])
-            kind, target = "dof", t.string("dof", choices=tuple(dofs))
-            statistic = t.string("statistic", choices=DOF_STATISTICS)
+            kind, target = "dof", _QUANTITY.read(t, "dof", choices=tuple(dofs))
+            statistic = _QUANTITY.read(t, "statistic", choices=DOF_STATISTICS)
             units = "m" if DOFS.index(target) < 3 else "rad"
         window = None
         if statistic == HISTORY:
@@ -407,7 +498,7 @@ def _quantities(root: TableReader, case: Case) -> tuple[Quantity, ...]:
 
 def _window(t: TableReader, times: np.ndarray) -> tuple[float, float]:
     duration = float(times[-1])
-    start, end = t.vector("window", size=2, unit="s", ge=0.0)
+    start, end = _QUANTITY.read(t, "window")
     if not start < end <= duration * (1.0 + 1e-12):
         raise t.error("window", f"[start, end] with 0 <= start < end <= {duration:g} s (the "
                       "simulated duration)", [start, end])

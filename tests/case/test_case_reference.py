@@ -2,9 +2,10 @@
 
 Every key the loaders ask for, over every shipped case and study file and the reference
 fixtures (tests/data/case_reference), has a description; every description is of a key that
-is asked for; every key a loader can read at all (found by reading the loaders' source) is
-asked for in one of those files; the committed page is the generator's output; and recording
-changes nothing about what is loaded.
+is asked for; every key a loader can read at all (found by reading the loaders' source, and
+every key a :class:`~floatmoor.case.setting.SettingTable` declares) is asked for in one of those
+files; the committed page is the generator's output; and recording changes nothing about
+what is loaded.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import dataclasses
 import re
 import typing
 from functools import lru_cache
+from importlib import import_module
 from pathlib import Path
 
 import numpy as np
@@ -25,10 +27,12 @@ from floatmoor.case.load import load_case
 from floatmoor.case.reader import recording
 from floatmoor.case.reference import leaf_of, merge_records, table_of
 from floatmoor.case.schema import BODY_DOFS
-from floatmoor.case.setting import settings_of
+from floatmoor.case.campaign import CAMPAIGN_TABLES
+from floatmoor.case.setting import SettingTable, settings_of
+from floatmoor.uq import input_reference
 from floatmoor.uq.input_reference import PAGE, ROOT, input_files, record_inputs, reference_page
 from floatmoor.uq.inputs import DISTRIBUTIONS
-from floatmoor.uq.study import load_study
+from floatmoor.uq.study import STUDY_TABLES, load_study
 from floatmoor.uq.taut_string import BUILTIN_MODELS
 
 #: The modules whose accessor calls make the schema of each kind of file.
@@ -37,6 +41,8 @@ STUDY_MODULES = [ROOT / "floatmoor" / "uq" / "study.py"]
 #: The accessors of TableReader that read a key (``claim``: a key checked by its caller).
 ACCESSORS = {"number", "integer", "string", "boolean", "vector", "number_or_vector", "table",
              "tables", "named_tables", "claim"}
+#: The methods of a SettingTable that read a key (``TABLE.read(t, "key", ...)``).
+TABLE_ACCESSORS = {"read", "table", "tables"}
 #: Keyword arguments of an accessor whose value, when computed from other values, the
 #: reference cannot print as recorded: the KeyDocs mapping that must word it instead.
 COMPUTED = {"default": "defaults", "gt": "allowed", "ge": "allowed", "lt": "allowed",
@@ -53,8 +59,13 @@ DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
     # a line type named by a line or a section
     ("load.py", "_line_type_named"): ("lines[].type", "lines[].sections[].type"),
     # the swept keys of a campaign: any key path of the case
-    ("load.py", "_campaign"): ("campaign.grid", "campaign.zip", "campaign.grid.<key>",
-                               "campaign.zip.<key>"),
+    ("campaign.py", "read_campaign"): ("campaign.grid", "campaign.zip", "campaign.grid.<key>",
+                                       "campaign.zip.<key>"),
+    # a SettingTable reads the key its reader names (the keys it declares are checked by
+    # test_every_declared_table_key_is_read)
+    ("setting.py", "read"): (),
+    ("setting.py", "table"): (),
+    ("setting.py", "tables"): (),
     # the six harmonic DOF tables of a body motion
     ("motion_body.py", "_harmonic"): tuple(f"motion.{dof}" for dof in BODY_DOFS),
     # resolve_case_file(t, key, ...) only raises errors naming the key
@@ -79,19 +90,39 @@ def _entries():
     return merge_records(cases), merge_records(studies)
 
 
+def _setting_tables(path: Path) -> set[str]:
+    """The names of the module's SettingTable constants (and of its dicts of them)."""
+    module = import_module(".".join(path.relative_to(ROOT).with_suffix("").parts))
+    return {name for name, value in vars(module).items()
+            if isinstance(value, SettingTable) or (isinstance(value, dict) and value and all(
+                isinstance(v, SettingTable) for v in value.values()))}
+
+
+def _receiver(node: ast.expr) -> str | None:
+    """The name a call's receiver starts from (``_PARAMETERS`` of ``_PARAMETERS[name]``)."""
+    while isinstance(node, (ast.Subscript, ast.Attribute)):
+        node = node.value
+    return node.id if isinstance(node, ast.Name) else None
+
+
 def _calls(path: Path):
-    """(function name, accessor call) of every accessor call in ``path``."""
+    """(function name, accessor call, key argument) of every accessor call in ``path``: a
+    TableReader's (the key first) or a declared SettingTable's (the reader, then the key)."""
+    tables = _setting_tables(path)
     tree = ast.parse(path.read_text(encoding="utf-8"))
     for function in ast.walk(tree):
         if isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
             for node in ast.walk(function):
-                if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
-                        and node.func.attr in ACCESSORS and node.args):
-                    yield function.name, node
+                if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+                    continue
+                if (node.func.attr in TABLE_ACCESSORS and _receiver(node.func.value) in tables
+                        and len(node.args) >= 2):
+                    yield function.name, node, node.args[1]
+                elif node.func.attr in ACCESSORS and node.args:
+                    yield function.name, node, node.args[0]
 
 
-def _literal_key(call: ast.Call) -> str | None:
-    key = call.args[0]
+def _literal_key(key: ast.expr) -> str | None:
     return key.value if isinstance(key, ast.Constant) and isinstance(key.value, str) else None
 
 
@@ -114,7 +145,8 @@ def _static(node: ast.expr) -> bool:
 
 def _docs_and_modules():
     cases, studies = _entries()
-    return ((key_docs.CASE, cases, CASE_MODULES), (key_docs.STUDY, studies, STUDY_MODULES))
+    return ((key_docs.CASE, cases, CASE_MODULES),
+            (input_reference.STUDY, studies, STUDY_MODULES))
 
 
 # -- (a), (b): descriptions ------------------------------------------------------------------
@@ -151,8 +183,8 @@ def test_every_key_a_loader_can_read_is_read(kind):
     leaves = {leaf_of(path) for path in entries}
     unread, unlisted = [], []
     for module in modules:
-        for function, call in _calls(module):
-            key = _literal_key(call)
+        for function, call, key_arg in _calls(module):
+            key = _literal_key(key_arg)
             if key is None:
                 if (module.name, function) not in DYNAMIC_KEYS:
                     unlisted.append(f"{module.name}:{call.lineno} in {function}")
@@ -176,6 +208,18 @@ def test_every_declared_setting_is_read():
               for key in settings_of(cls) if key not in described]
     assert _declaring_classes() and not unread, (
         f"declared settings no case file reads: add them to tests/data/case_reference: {unread}")
+
+
+def test_every_declared_table_key_is_read():
+    """Every key a SettingTable declares (a study file's, ``[campaign]``'s) is read, with its
+    declared description, in a shipped or fixture file."""
+    cases, studies = _entries()
+    unread = [path for tables, entries in ((CAMPAIGN_TABLES, cases), (STUDY_TABLES, studies))
+              for table in tables for path, spec in table.paths().items()
+              if path not in entries or entries[path].doc != spec.doc]
+    assert STUDY_TABLES and not unread, (
+        f"declared keys no case or study file reads: add them to tests/data/case_reference: "
+        f"{unread}")
 
 
 def _declaring_classes() -> list[type]:
@@ -219,12 +263,13 @@ def test_drag_keys_are_the_drag_settings():
 @pytest.mark.parametrize("kind", [0, 1], ids=["case", "study"])
 def test_computed_defaults_and_ranges_are_worded(kind):
     """A default, bound, choice or size computed from other values is not printed as the one
-    value a file happened to give: key_docs words it."""
+    value a file happened to give: key_docs, or the declaration's ``allowed_text``, words
+    it."""
     docs, entries, modules = _docs_and_modules()[kind]
     unworded = []
     for module in modules:
-        for _, call in _calls(module):
-            key = _literal_key(call)
+        for _, call, key_arg in _calls(module):
+            key = _literal_key(key_arg)
             for keyword in call.keywords:
                 if keyword.arg in COMPUTED and not _static(keyword.value):
                     mapping = getattr(docs, COMPUTED[keyword.arg])
@@ -310,6 +355,60 @@ def test_a_declared_setting_is_read_and_described():
     with pytest.raises(CaseError) as error:
         read_settings(Made, TableReader({"a": -1.0}, ("made",), ReadContext("made-up.toml")))
     assert error.value.key == "made.a" and "a finite number > 0 [m]" in str(error.value)
+
+
+def test_a_setting_table_reads_and_describes_its_keys():
+    """A SettingTable's keys: read with the accessor's checks and messages, computed options
+    replacing the declared ones, sub-tables and arrays of tables, each recorded with its
+    description; the allowed column words computed choices from the declaration."""
+    from floatmoor.case.reader import MISSING, ReadContext, TableReader
+    from floatmoor.case.reference import render_section
+    from floatmoor.case.setting import Setting
+    from floatmoor.errors import CaseError
+
+    top = SettingTable("", {
+        "a": Setting("integer", ge=1, default=2, doc="The count a of the thing."),
+        "b": Setting("string", allowed_text="a name of the case", doc="The name b here."),
+        "items": Setting("tables", doc="The items of the thing."),
+        "opt": Setting("table", default={}, doc="Optional settings of it."),
+        "<key>": Setting("array", doc="Any key and its values."),
+    })
+    item = SettingTable("items[]", {"x": Setting("vector", size=2, unit="s", ge=0.0,
+                                                 doc="The window x of an item.")})
+    data = {"b": "n", "items": [{"x": [0.0, 1.0]}], "k.1": [1, 2]}
+    with recording() as records:
+        t = TableReader(data, (), ReadContext("made-up.toml"))
+        assert top.read(t, "a") == 2
+        assert top.read(t, "b", choices=("n", "m")) == "n"
+        assert [item.read(e, "x") for e in top.tables(t, "items")] == [(0.0, 1.0)]
+        assert top.table(t, "opt").data == {}
+        assert top.read(t, "k.1", declared="<key>") == [1, 2]
+        t.finish()
+    entries = merge_records(records)
+    assert {p: e.doc for p, e in entries.items()} == {
+        "a": "The count a of the thing.", "b": "The name b here.",
+        "items": "The items of the thing.", "items[].x": "The window x of an item.",
+        "opt": "Optional settings of it.", "<key>": "Any key and its values."}
+    docs = key_docs.KeyDocs({}, allowed={p: s.allowed_text for p, s in top.paths().items()
+                                         if s.allowed_text})
+    text = render_section("", entries, docs, title="T")
+    assert "| `b` | string |  | required | a name of the case | The name b here. |" in text
+    assert render_section("items[]", entries, docs).startswith(
+        "### `[[items]]`\n\nThe items of the thing.\n")
+    for bad, key, expected in (({"a": 0}, "a", "an integer >= 1"),
+                               ({"b": "z"}, "b", 'one of "n", "m"'),
+                               ({"b": "n", "items": [{"x": [-1.0, 1.0]}]}, "items[0].x[0]",
+                                "a finite number >= 0")):
+        with pytest.raises(CaseError) as error:
+            t = TableReader(bad, (), ReadContext("made-up.toml"))
+            top.read(t, "a")
+            top.read(t, "b", choices=("n", "m"))
+            for e in top.tables(t, "items"):
+                item.read(e, "x")
+        assert error.value.key == key and expected in str(error.value), str(error.value)
+    with pytest.raises(TypeError):
+        top.table(TableReader({}, (), ReadContext("made-up.toml")), "items")
+    assert MISSING is top.settings["b"].default
 
 
 # -- (e): recording changes nothing ---------------------------------------------------------------
