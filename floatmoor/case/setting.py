@@ -13,11 +13,18 @@ case-file reference (the description travels in the reader's
 :class:`~floatmoor.case.reader.KeyRecord`; :mod:`floatmoor.case.reference`). Checks between
 keys and defaults computed from other values stay as code beside the table's reader, which
 passes the computed default to :func:`read_settings`. See docs/development.md#adding-a-line-type-key.
+
+A field whose case-file key differs from its name gives ``key``: an angle stored in radians
+is given in degrees by the file (``phase: float = setting("number", key="phase_deg",
+unit="deg", radians=True, ...)``, docs/conventions.md). A description may say ``{table}``
+for the name of the table the key is read in (one declaration for the six ``[motion.DOF]``
+tables).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -35,6 +42,8 @@ _OPTIONS = {
     "boolean": (),
     "vector": ("size", "unit", "gt", "ge"),
     "number_or_vector": ("size", "unit", "gt", "ge"),
+    "strings": ("choices",),
+    "name": (),
 }
 
 
@@ -46,7 +55,10 @@ class Setting:
     ``default`` is what a file that leaves the key out gets (:data:`MISSING`: required);
     ``default_text`` words a default the reader computes from other values (``"{default}"``
     in it stands for the recorded one); ``doc`` is the reference page's description;
-    ``scale`` how ``floatmoor scale`` rewrites the value.
+    ``scale`` how ``floatmoor scale`` rewrites the value; ``key`` the case-file key of a
+    field named otherwise, ``radians`` that the file gives degrees and the field holds radians.
+    Kind ``strings`` is an array the caller checks (:meth:`TableReader.claim`), kind ``name``
+    the ``name`` of a line, point or floater (:meth:`TableReader.name`).
     """
 
     kind: str
@@ -64,18 +76,33 @@ class Setting:
     #: quantity kind under a change of scale (floatmoor.similitude.laws.QUANTITY_KINDS:
     #: "length", "force", "same", ...); "" for a table ``floatmoor scale`` maps by hand
     scale: str = ""
+    key: str | None = None  #: the case-file key, when not the field's name
+    radians: bool = False  #: a ``*_deg`` key read into radians
 
-    def read(self, t: TableReader, key: str, default: Any = MISSING) -> Any:
+    def read(self, t: TableReader, key: str, default: Any = MISSING, **computed: Any) -> Any:
         """Read ``key`` of ``t`` as declared (``default``: a computed one, else the
-        declared one)."""
+        declared one; ``computed``: bounds or a size computed from other values)."""
         options = {name: getattr(self, name) for name in _OPTIONS[self.kind]
                    if getattr(self, name) is not None}
+        options.update(computed)
         default = self.default if default is MISSING else default
-        accessor = getattr(t, self.kind)
         if t.context.recorder is None:
-            return accessor(key, default=default, **options)
-        with t.describing(self.doc, self.default_text):
-            return accessor(key, default=default, **options)
+            value = self._access(t, key, default, options)
+        else:
+            doc = self.doc.replace("{table}", str(t.path[-1])) if t.path else self.doc
+            with t.describing(doc, self.default_text):
+                value = self._access(t, key, default, options)
+        if self.radians and value is not None:
+            return tuple(math.radians(v) for v in value) if isinstance(value, tuple) \
+                else math.radians(value)
+        return value
+
+    def _access(self, t: TableReader, key: str, default: Any, options: dict[str, Any]) -> Any:
+        if self.kind == "strings":
+            return t.claim(key, "array of strings", default=default, **options)
+        if self.kind == "name":
+            return t.name()
+        return getattr(t, self.kind)(key, default=default, **options)
 
 
 def setting(kind: str, *, doc: str, field_default: Any = MISSING, **options: Any) -> Any:
@@ -90,20 +117,26 @@ def setting(kind: str, *, doc: str, field_default: Any = MISSING, **options: Any
     return dataclasses.field(default=field_default, metadata={_METADATA_KEY: spec})
 
 
+def _declared(cls: type) -> list[tuple[str, str, Setting]]:
+    """(field name, case-file key, setting) of each declared field, in field order."""
+    return [(f.name, f.metadata[_METADATA_KEY].key or f.name, f.metadata[_METADATA_KEY])
+            for f in dataclasses.fields(cls) if _METADATA_KEY in f.metadata]
+
+
 def settings_of(cls: type) -> dict[str, Setting]:
-    """The declared settings of a dataclass, by key, in field order."""
-    return {f.name: f.metadata[_METADATA_KEY] for f in dataclasses.fields(cls)
-            if _METADATA_KEY in f.metadata}
+    """The declared settings of a dataclass, by case-file key, in field order."""
+    return {key: spec for _, key, spec in _declared(cls)}
 
 
 def read_settings(cls: type, t: TableReader, defaults: Mapping[str, Any] | None = None,
                   skip: tuple[str, ...] = ()) -> dict[str, Any]:
-    """The values of ``cls``'s declared settings read from ``t``, in field order.
+    """The values of ``cls``'s declared settings read from ``t``, in field order, by field
+    name (the keyword arguments of ``cls``).
 
     ``defaults`` replaces the declared default of some keys (computed ones, or a parent
     table's values); keys in ``skip`` are left to the caller. ``t.finish()`` is the caller's,
     after its checks between keys.
     """
     defaults = defaults or {}
-    return {key: spec.read(t, key, defaults.get(key, MISSING))
-            for key, spec in settings_of(cls).items() if key not in skip}
+    return {name: spec.read(t, key, defaults.get(key, MISSING))
+            for name, key, spec in _declared(cls) if key not in skip}

@@ -45,13 +45,9 @@ COMPUTED = {"default": "defaults", "gt": "allowed", "ge": "allowed", "lt": "allo
 #: Accessor calls whose key is not a literal, by (module, function), with the generic paths
 #: they read (each must be read in a shipped or fixture file) and why the key is computed.
 DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
-    # the optional loads of a point, read in a loop over (key, unit)
-    ("load.py", "_points"): ("points[].mass", "points[].volume", "points[].drag_area",
-                             "points[].added_mass_coefficient"),
-    # the two forms of a line end, (start | anchor) and (end | fairlead)
-    ("load.py", "_end"): ("lines[].start", "lines[].anchor", "lines[].end", "lines[].fairlead"),
-    # a line type named by a line or a section
-    ("load.py", "_line_type_named"): ("lines[].type", "lines[].sections[].type"),
+    # a declared setting of kind "strings" (floatmoor.case.setting): every declared key is
+    # checked by test_every_declared_setting_is_read
+    ("setting.py", "_access"): ("floater.geometry.symmetry",),
     # the swept keys of a campaign: any key path of the case
     ("load.py", "_campaign"): ("campaign.grid", "campaign.zip", "campaign.grid.<key>",
                                "campaign.zip.<key>"),
