@@ -225,10 +225,10 @@ def _column(t: TableReader, environment: Environment) -> Column:
     x, y, diameter, z_top = (declared[key].read(t, key) for key in ("x", "y", "diameter",
                                                                      "z_top"))
     # bounds from the other values: above the seabed, a plate wider than the column and
-    # lower than its top (the reference page words them, floatmoor.case.key_docs)
+    # lower than its top (the declarations word them for the reference page)
     z_bottom = declared["z_bottom"].read(t, "z_bottom", gt=-environment.water_depth, lt=z_top)
     plate = declared["heave_plate_diameter"].read(t, "heave_plate_diameter", gt=diameter)
-    plate_height = declared["heave_plate_height"].read(t, "heave_plate_height", gt=0.0,
+    plate_height = declared["heave_plate_height"].read(t, "heave_plate_height",
                                                        lt=z_top - z_bottom)
     if (plate is None) != (plate_height is None):
         key = "heave_plate_height" if plate is not None else "heave_plate_diameter"

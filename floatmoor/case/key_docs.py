@@ -1,14 +1,20 @@
-"""What each key of a case file and of a study file means, for the case-file reference.
+"""What the tables of a case file and of a study file, and their undeclared keys, mean, for the
+case-file reference.
 
-The type, unit, range and default of a key come from its reader (the accessors of
+A key declared with :func:`floatmoor.case.setting.setting` carries its own description and
+the wording of anything its reader computes (default, bounds, an array's size); it is not
+here. What is here: each table's own description (a table is read by
+:meth:`~floatmoor.case.reader.TableReader.table` / ``tables``, not declared, e.g. ``lines``,
+``floater.geometry.columns``) and wording of when it is required, and the keys no
+declaration covers yet (``title``, ``[hydro]``'s arrays, ``[campaign]``, study files). The
+type, unit, range and default of those come from their reader (the accessors of
 :class:`~floatmoor.case.reader.TableReader`, recorded while files load); only what a reader
-cannot state is written here: what the key is, when it matters and where the model is
-explained. Keys are generic paths (``lines[].dynamic.cfl``, ``line_types.<name>.diameter``; a
-table's own entry, e.g. ``lines``, describes the table). ``defaults`` words a default that
-is computed from other values, ``allowed`` a range or a choice that depends on other values,
-``types`` an array whose length does.
-The tests fail on a key the readers ask for that has no description here, and on a
-description of a key no reader asks for.
+cannot state is written here. Keys are generic paths (``lines[].dynamic``,
+``line_types.<name>``). ``defaults`` words a default that is computed from other values,
+``allowed`` a range or a choice that depends on other values, ``types`` an array whose
+length does.
+The tests fail on a key the readers ask for that has no description (here or in its
+declaration), on one described in both, and on a description of a key no reader asks for.
 """
 
 from __future__ import annotations
@@ -132,6 +138,8 @@ _CASE = {
             "(theory/environment.md).",
 }
 
+#: Defaults computed from other values: a section's dynamic numerics (its line's), and when
+#: the tables (not declared as settings) are required.
 _CASE_DEFAULTS = {
     **{f"lines[].sections[].dynamic.{key}": f"the line's `dynamic.{key}`"
        for key in settings_of(DynamicSettings)},
@@ -150,9 +158,6 @@ _CASE_DEFAULTS = {
 }
 
 _CASE_ALLOWED = {
-    "floater.geometry.columns[].z_bottom": "> -water_depth and < z_top",
-    "floater.geometry.columns[].heave_plate_diameter": "> the column's diameter",
-    "floater.geometry.columns[].heave_plate_height": "> 0 and < z_top - z_bottom",
     "hydro.frequencies": "> 0; with the ranges, 2 to 2000 distinct",
     "hydro.frequency_ranges": "0 < first < last, count >= 2",
     "hydro.directions_deg": "within [-360, 360], distinct, increasing",
@@ -160,7 +165,6 @@ _CASE_ALLOWED = {
 }
 
 _CASE_TYPES = {
-    "floater.inertia": "array of 3 or 6 numbers",
     "hydro.frequencies": "array of numbers",
     "hydro.directions_deg": "array of numbers",
 }

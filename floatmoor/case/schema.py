@@ -759,12 +759,15 @@ class Column:
         "number", scale="length", unit="m", doc="Elevation of the column's top.")
     # the bounds of the keys below depend on other values (floatmoor.case.floater)
     z_bottom: float = setting(  #: [m], above the seabed and below z_top
-        "number", scale="length", unit="m", doc="Elevation of the column's bottom.")
+        "number", scale="length", unit="m", allowed_text="> -water_depth and < z_top",
+        doc="Elevation of the column's bottom.")
     heave_plate_diameter: float | None = setting(  #: [m], wider than the column
         "number", scale="length", unit="m", default=None, field_default=None,
+        allowed_text="> the column's diameter",
         doc="Diameter of a heave plate at the column's bottom; with `heave_plate_height`.")
     heave_plate_height: float = setting(  #: [m] (a file without a plate: 0)
-        "number", scale="length", unit="m", default=None, field_default=0.0,
+        "number", scale="length", unit="m", gt=0.0, default=None, field_default=0.0,
+        allowed_text="> 0 and < z_top - z_bottom",
         doc="Height of the heave plate above `z_bottom`; with `heave_plate_diameter`.")
 
 
@@ -874,7 +877,7 @@ class Floater:
     #: inertia tensor about the centre of mass, (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) [kg m^2]; a
     #: file gives 3 or 6 numbers (its size is the reader's, floatmoor.case.floater)
     inertia: tuple[float, float, float, float, float, float] = setting(
-        "vector", scale="inertia", unit="kg m^2",
+        "vector", scale="inertia", unit="kg m^2", type_text="array of 3 or 6 numbers",
         doc="Inertia about the centre of mass: [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, "
             "Iyz]; positive definite.")
     reference_point: tuple[float, float, float] = setting(  #: rotation centre of the DOFs [m]

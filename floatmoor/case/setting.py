@@ -54,7 +54,8 @@ class Setting:
     ``kind`` names the :class:`~floatmoor.case.reader.TableReader` accessor that reads it;
     ``default`` is what a file that leaves the key out gets (:data:`MISSING`: required);
     ``default_text`` words a default the reader computes from other values (``"{default}"``
-    in it stands for the recorded one); ``doc`` is the reference page's description;
+    in it stands for the recorded one), ``allowed_text`` and ``type_text`` bounds and an
+    array's size it computes; ``doc`` is the reference page's description;
     ``scale`` how ``floatmoor scale`` rewrites the value; ``key`` the case-file key of a
     field named otherwise, ``radians`` that the file gives degrees and the field holds radians.
     Kind ``strings`` is an array the caller checks (:meth:`TableReader.claim`), kind ``name``
@@ -73,6 +74,10 @@ class Setting:
     auto: str | None = None  #: what "auto" means, for a number that may be "auto"
     default: Any = MISSING
     default_text: str | None = None
+    #: the reference page's wording of bounds the reader computes from other values
+    allowed_text: str | None = None
+    #: the reference page's wording of an array whose size the reader computes
+    type_text: str | None = None
     #: quantity kind under a change of scale (floatmoor.similitude.laws.QUANTITY_KINDS:
     #: "length", "force", "same", ...); "" for a table ``floatmoor scale`` maps by hand
     scale: str = ""
@@ -84,13 +89,17 @@ class Setting:
         declared one; ``computed``: bounds or a size computed from other values)."""
         options = {name: getattr(self, name) for name in _OPTIONS[self.kind]
                    if getattr(self, name) is not None}
+        wording = self.type_text if "size" in computed else self.allowed_text
+        if computed and wording is None:  # the page would print one file's value as the rule
+            raise TypeError(f"setting {key!r}: computed {', '.join(computed)} without the "
+                            "declaration's wording of them (allowed_text, type_text)")
         options.update(computed)
         default = self.default if default is MISSING else default
         if t.context.recorder is None:
             value = self._access(t, key, default, options)
         else:
             doc = self.doc.replace("{table}", str(t.path[-1])) if t.path else self.doc
-            with t.describing(doc, self.default_text):
+            with t.describing(doc, self.default_text, self.allowed_text, self.type_text):
                 value = self._access(t, key, default, options)
         if self.radians and value is not None:
             return tuple(math.radians(v) for v in value) if isinstance(value, tuple) \
