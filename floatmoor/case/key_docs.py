@@ -1,5 +1,4 @@
-"""What the tables of a case file and of a study file, and their undeclared keys, mean, for the
-case-file reference.
+"""What the tables and undeclared keys of case and study files mean, for the case-file reference.
 
 A key declared with :func:`floatmoor.case.setting.setting` carries its own description and
 the wording of anything its reader computes (default, bounds, an array's size); it is not
