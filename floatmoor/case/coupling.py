@@ -30,7 +30,8 @@ from floatmoor.case.sea import (GAMMA_RANGE, JonswapSettings, RegularWaveSetting
 from floatmoor.case.setting import Setting, read_settings, setting, settings_of
 from floatmoor.case.wind import WindSettings
 
-__all__ = ["CoupledCase", "InitialOffset", "STILL_WATER", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
+__all__ = ["CoupledCase", "InitialOffset", "STILL_WATER", "read_waves", "read_initial",
+           "read_wind", "WAVE_KINDS"]
 
 WAVE_KINDS = ("still", "regular", "jonswap")
 #: Default excitation ramp in (peak) wave periods.

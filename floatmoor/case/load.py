@@ -176,11 +176,11 @@ _POINT_LOADS = ("mass", "volume", "drag_area", "added_mass_coefficient")
 def _points(root: TableReader, environment: Environment) -> list[Point]:
     """``[[points]]``: named fixed, free and body points."""
     points: list[Point] = []
+    declared = settings_of(Point)
     for t in root.tables("points"):
-        name = settings_of(Point)["name"].read(t, "name")
+        name = declared["name"].read(t, "name")
         if "." in name:  # implicit points are "LINE.anchor", ...; --set addresses by name
             raise t.error("name", "a name without '.'", name)
-        declared = settings_of(Point)
         kind = declared["kind"].read(t, "kind")
         position = declared["position"].read(t, "position")
         for key in _POINT_LOADS:

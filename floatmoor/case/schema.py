@@ -3,8 +3,10 @@
 A :class:`Case` is built only by :func:`floatmoor.case.load.load_case`, which checks every
 value; the objects here can therefore be trusted by the models.
 
-Size: one frozen dataclass per case-file table (two dozen of them, most a few fields
-with their docstrings); together they are the one schema :mod:`floatmoor.case.load` fills.
+Size: one frozen dataclass per case-file table (three dozen of them), each key declared
+once on its field with its type, unit, bounds, default and description
+(:mod:`floatmoor.case.setting`); together they are the one schema :mod:`floatmoor.case.load`
+fills and the case-file reference describes.
 """
 
 from __future__ import annotations
@@ -31,7 +33,8 @@ __all__ = [
     "MeshGeometry", "MESH_FORMATS", "MESH_LENGTH_UNITS", "MESH_SYMMETRY_PLANES",
     "RADIATION_METHODS", "HYDRO_CHECKS", "HYDRO_SOURCES", "POINT_KINDS", "Point", "Section",
     "BODY_DOFS", "BodyHarmonicMotion", "SectionKeys", "OneSectionKeys",
-    "MOTION_KINDS", "MOTION_KIND", "GEOMETRY_KIND", "HarmonicTranslation", "HarmonicRotation", "BodyTableMotion", "BodyMotion",
+    "MOTION_KINDS", "MOTION_KIND", "GEOMETRY_KIND", "HarmonicTranslation", "HarmonicRotation",
+    "BodyTableMotion", "BodyMotion",
 ]
 
 #: Range of ``environment.gravity`` [m/s^2]. On Earth g is 9.78 to 9.83 m/s^2 (equator to
@@ -627,7 +630,8 @@ class BodyHarmonicMotion:
     reference_point: tuple[float, float, float] = setting(  #: rotation centre at rest [m]
         "vector", scale="length", size=3, unit="m", default=(0.0, 0.0, 0.0),
         doc=_REFERENCE_POINT_DOC)
-    #: (6,) [m, m, m, rad, rad, rad], from the ``[motion.DOF]`` tables (:class:`HarmonicTranslation`, :class:`HarmonicRotation`)
+    #: (6,) [m, m, m, rad, rad, rad], from the ``[motion.DOF]`` tables
+    #: (:class:`HarmonicTranslation`, :class:`HarmonicRotation`)
     amplitude: tuple[float, ...]
     period: tuple[float, ...]  #: (6,) [s]
     phase: tuple[float, ...]  #: (6,) [rad]

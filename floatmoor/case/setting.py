@@ -24,6 +24,7 @@ tables).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any, Mapping
@@ -126,10 +127,12 @@ def setting(kind: str, *, doc: str, field_default: Any = MISSING, **options: Any
     return dataclasses.field(default=field_default, metadata={_METADATA_KEY: spec})
 
 
-def _declared(cls: type) -> list[tuple[str, str, Setting]]:
-    """(field name, case-file key, setting) of each declared field, in field order."""
-    return [(f.name, f.metadata[_METADATA_KEY].key or f.name, f.metadata[_METADATA_KEY])
-            for f in dataclasses.fields(cls) if _METADATA_KEY in f.metadata]
+@functools.cache
+def _declared(cls: type) -> tuple[tuple[str, str, Setting], ...]:
+    """(field name, case-file key, setting) of each declared field, in field order (once per
+    class: the readers ask for every entry of a case of thousands of lines)."""
+    return tuple((f.name, f.metadata[_METADATA_KEY].key or f.name, f.metadata[_METADATA_KEY])
+                 for f in dataclasses.fields(cls) if _METADATA_KEY in f.metadata)
 
 
 def settings_of(cls: type) -> dict[str, Setting]:
