@@ -19,7 +19,6 @@ static equilibrium at t = 0 (free decay): ``surge``, ``sway``, ``heave`` [m], ``
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,10 +27,11 @@ from floatmoor.case.reader import TableReader
 from floatmoor.case.schema import Case, Environment
 from floatmoor.case.sea import (GAMMA_RANGE, JonswapSettings, RegularWaveSettings,
                                 StillWaterSettings, WaveCase, WaveSettings)
-from floatmoor.case.setting import Setting, read_settings, settings_of
+from floatmoor.case.setting import Setting, read_settings, setting, settings_of
 from floatmoor.case.wind import WindSettings
 
-__all__ = ["CoupledCase", "STILL_WATER", "read_waves", "read_initial", "read_wind", "WAVE_KINDS"]
+__all__ = ["CoupledCase", "InitialOffset", "STILL_WATER", "read_waves", "read_initial",
+           "read_wind", "WAVE_KINDS"]
 
 WAVE_KINDS = ("still", "regular", "jonswap")
 #: Default excitation ramp in (peak) wave periods.
@@ -41,6 +41,27 @@ RAMP_PERIODS = 2.0
 #: ``[waves] kind``: which sea, hence which settings class the table's other keys fill.
 WAVE_KIND = Setting("string", choices=WAVE_KINDS, doc="`still` water, `regular` (Airy) waves "
                     "or a `jonswap` irregular sea.")
+
+
+def _offset(dof: str, unit: str, doc: str) -> float:
+    """One DOF of :class:`InitialOffset` (an angle: given in degrees, ``*_deg``)."""
+    angle = unit == "deg"
+    return setting("number", key=f"{dof}_deg" if angle else None, radians=angle,
+                   scale="same" if angle else "length", unit=unit, default=0.0,
+                   field_default=0.0, doc=doc)
+
+
+@dataclass(frozen=True)
+class InitialOffset:
+    """``[initial]``: the floater's displacement from its static equilibrium at t = 0 (a free
+    decay) [m, rad]; :attr:`floatmoor.case.schema.Case.initial_offset` holds it as a tuple."""
+
+    surge: float = _offset("surge", "m", "Initial surge offset.")
+    sway: float = _offset("sway", "m", "Initial sway offset.")
+    heave: float = _offset("heave", "m", "Initial heave offset.")
+    roll: float = _offset("roll", "deg", "Initial roll angle.")
+    pitch: float = _offset("pitch", "deg", "Initial pitch angle.")
+    yaw: float = _offset("yaw", "deg", "Initial yaw angle.")
 
 
 #: The sea of a case without ``[waves]``: still water, no ramp, no second-order loads.
@@ -115,13 +136,9 @@ def read_waves(t: TableReader, environment: Environment, duration: float) -> Wav
 
 def read_initial(t: TableReader) -> tuple[float, float, float, float, float, float]:
     """``[initial]``: the body's offset from its equilibrium (radians inside)."""
-    out = (t.number("surge", unit="m", default=0.0), t.number("sway", unit="m", default=0.0),
-           t.number("heave", unit="m", default=0.0),
-           math.radians(t.number("roll_deg", unit="deg", default=0.0)),
-           math.radians(t.number("pitch_deg", unit="deg", default=0.0)),
-           math.radians(t.number("yaw_deg", unit="deg", default=0.0)))
+    out = tuple(read_settings(InitialOffset, t).values())
     t.finish()
-    return out
+    return out  # type: ignore[return-value]
 
 
 def read_wind(t: TableReader, duration: float) -> WindSettings:

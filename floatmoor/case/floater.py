@@ -58,9 +58,9 @@ from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import MISSING, TableReader, _Found
 from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    GEOMETRY_KINDS, HYDRO_CHECKS, MESH_FORMATS, MESH_LENGTH_UNITS, MESH_SYMMETRY_PLANES,
-    RADIATION_METHODS, Column, CylinderGeometry, Environment, Floater, FloaterGeometry,
-    HydroSettings, Member, MeshGeometry, SemisubmersibleGeometry,
+    GEOMETRY_KIND, HYDRO_CHECKS, MESH_FORMATS, MESH_SYMMETRY_PLANES, Column, CylinderGeometry,
+    Environment, Floater, FloaterGeometry, HydroSettings, Member, MeshGeometry,
+    SemisubmersibleGeometry,
 )
 from floatmoor.file_hash import file_sha256
 
@@ -78,12 +78,13 @@ def read_floater(t: TableReader, environment: Environment,
     file's folder (default the current folder). ``imported``: the case's database is
     imported (``[hydro] source = "imported"``), so ``[floater.geometry]`` is optional (a
     drag model still needs its members)."""
-    name = t.name()
-    mass = t.number("mass", unit="kg", gt=0.0)
-    com = t.vector("centre_of_mass", size=3, unit="m")
+    declared = settings_of(Floater)
+    name = declared["name"].read(t, "name")
+    mass = declared["mass"].read(t, "mass")
+    com = declared["centre_of_mass"].read(t, "centre_of_mass")
     raw = t.data.get("inertia")
     size = 6 if isinstance(raw, list) and len(raw) == 6 else 3
-    inertia = t.vector("inertia", size=size, unit="kg m^2")
+    inertia = declared["inertia"].read(t, "inertia", size=size)
     if any(v <= 0.0 for v in inertia[:3]):
         raise t.error("inertia", "moments of inertia Ixx, Iyy, Izz > 0 [kg m^2]", list(inertia))
     full = tuple(inertia) + (0.0, 0.0, 0.0) if size == 3 else tuple(inertia)
@@ -91,7 +92,7 @@ def read_floater(t: TableReader, environment: Environment,
                        [full[4], full[5], full[2]]])
     if np.linalg.eigvalsh(tensor).min() <= 0.0:
         raise t.error("inertia", "a positive definite inertia tensor [kg m^2]", list(inertia))
-    ref = t.vector("reference_point", size=3, unit="m")
+    ref = declared["reference_point"].read(t, "reference_point")
     # the weight m g and its moments about the reference point enter the equilibrium and the
     # hydrostatic stiffness: beyond double precision they are inf (and the solve a traceback)
     arm = max(1.0, *(abs(c - r) for c, r in zip(com, ref)))
@@ -100,7 +101,7 @@ def read_floater(t: TableReader, environment: Environment,
         raise t.error(key, "a mass and centre of mass whose weight m g and its moments "
                       "about the reference point are finite in double precision",
                       mass if key == "mass" else list(com))
-    radiation = t.string("radiation", choices=RADIATION_METHODS, default="convolution")
+    radiation = declared["radiation"].read(t, "radiation")
     geometry = _geometry(t.table("geometry"), mass, environment, base_dir or Path(".")) \
         if t.has("geometry") or not imported else None
     drag = _drag(t.table("drag")) if t.has("drag") else None
@@ -138,14 +139,15 @@ def _drag(t: TableReader) -> DragSettings:
 
 def _geometry(t: TableReader, mass: float, environment: Environment,
               base_dir: Path) -> FloaterGeometry:
-    kind = t.string("kind", choices=GEOMETRY_KINDS)
+    kind = GEOMETRY_KIND.read(t, "kind")
     geometry: FloaterGeometry
     if kind == "mesh":
         geometry = _mesh_geometry(t, environment, base_dir)
     elif kind == "cylinder":
-        diameter = t.number("diameter", unit="m", gt=0.0)
-        height = t.number("height", unit="m", gt=0.0)
-        draft = t.number("draft", unit="m", gt=0.0, default=None)
+        declared = settings_of(CylinderGeometry)
+        diameter = declared["diameter"].read(t, "diameter")
+        height = declared["height"].read(t, "height")
+        draft = declared["draft"].read(t, "draft")
         from_mass = draft is None
         if draft is None:
             draft = mass / (environment.water_density * math.pi * (0.5 * diameter) ** 2)
@@ -175,22 +177,22 @@ def _geometry(t: TableReader, mass: float, environment: Environment,
 
 def _mesh_geometry(t: TableReader, environment: Environment, base_dir: Path) -> MeshGeometry:
     """``kind = "mesh"`` (module docstring); the caller finishes the table."""
-    name = t.string("file")
+    declared = settings_of(MeshGeometry)
+    name = declared["file"].read(t, "file")
     path = resolve_case_file(t, "file", base_dir, name)
     if t.has("format"):
-        fmt = t.string("format", choices=MESH_FORMATS)
+        fmt = declared["format"].read(t, "format")
     else:
         fmt = path.suffix.lower().lstrip(".")
         if fmt not in MESH_FORMATS:
             raise t.error("file", "a mesh file whose extension names its format (one of "
                           + ", ".join(f'"{f}"' for f in MESH_FORMATS)
                           + "), or floater.geometry.format", _Found(f'"{name}"'))
-    unit = t.string("length_unit", choices=tuple(MESH_LENGTH_UNITS), default="m")
-    position = t.vector("position", size=3, unit="m", default=(0.0, 0.0, 0.0))
+    unit = declared["length_unit"].read(t, "length_unit")
+    position = declared["position"].read(t, "position")
     symmetry: tuple[str, ...] = ()
     if t.has("symmetry"):
-        raw = t.claim("symmetry", "array of strings", choices=tuple(MESH_SYMMETRY_PLANES),
-                      default=[])
+        raw = declared["symmetry"].read(t, "symmetry")
         if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
                 not all(isinstance(p, str) and p in MESH_SYMMETRY_PLANES for p in raw):
             raise t.error("symmetry", "an array of distinct symmetry planes among "
@@ -219,14 +221,15 @@ def _mesh_geometry(t: TableReader, environment: Environment, base_dir: Path) -> 
 
 
 def _column(t: TableReader, environment: Environment) -> Column:
-    x = t.number("x", unit="m")
-    y = t.number("y", unit="m")
-    diameter = t.number("diameter", unit="m", gt=0.0)
-    z_top = t.number("z_top", unit="m")
-    z_bottom = t.number("z_bottom", unit="m", gt=-environment.water_depth, lt=z_top)
-    plate = t.number("heave_plate_diameter", unit="m", gt=diameter, default=None)
-    plate_height = t.number("heave_plate_height", unit="m", gt=0.0, lt=z_top - z_bottom,
-                            default=None)
+    declared = settings_of(Column)
+    x, y, diameter, z_top = (declared[key].read(t, key) for key in ("x", "y", "diameter",
+                                                                     "z_top"))
+    # bounds from the other values: above the seabed, a plate wider than the column and
+    # lower than its top (the declarations word them for the reference page)
+    z_bottom = declared["z_bottom"].read(t, "z_bottom", gt=-environment.water_depth, lt=z_top)
+    plate = declared["heave_plate_diameter"].read(t, "heave_plate_diameter", gt=diameter)
+    plate_height = declared["heave_plate_height"].read(t, "heave_plate_height",
+                                                       lt=z_top - z_bottom)
     if (plate is None) != (plate_height is None):
         key = "heave_plate_height" if plate is not None else "heave_plate_diameter"
         raise t.error(key, "heave_plate_diameter and heave_plate_height given together",
@@ -237,9 +240,7 @@ def _column(t: TableReader, environment: Environment) -> Column:
 
 
 def _member(t: TableReader, environment: Environment) -> Member:
-    start = t.vector("start", size=3, unit="m")
-    end = t.vector("end", size=3, unit="m")
-    diameter = t.number("diameter", unit="m", gt=0.0)
+    start, end, diameter = read_settings(Member, t).values()
     length = float(np.linalg.norm(np.subtract(end, start)))
     if length <= diameter:
         raise t.error("end", f"an end point more than one diameter ({diameter:g} m) from "

@@ -32,9 +32,10 @@ from floatmoor.case.plausibility import warn_implausible
 from floatmoor.case.reader import ReadContext, TableReader
 from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    AVAILABLE_LINE_MODELS, CIRCULAR_SENSES, LINE_MODELS, MAX_QD_INTEGRATION_POINTS, POINT_KINDS,
+    AVAILABLE_LINE_MODELS, MAX_QD_INTEGRATION_POINTS, MOTION_KIND,
     Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
-    Point, QuasiDynamicSettings, QuasiStaticSettings, Seabed, Section, Simulation, TableMotion,
+    OneSectionKeys, Point, QuasiDynamicSettings, QuasiStaticSettings, Seabed, Section,
+    SectionKeys, Simulation, TableMotion,
 )
 from floatmoor.case.system_checks import (
     MAX_STATIC_STRAIN, SEABED_TOLERANCE, check_lines, check_motion, check_system,
@@ -207,24 +208,27 @@ def _line_type(name: str, t: TableReader) -> LineType:
     return line_type
 
 
+#: The keys of a free point's loads (clump weight, buoy), which the other kinds refuse.
+_POINT_LOADS = ("mass", "volume", "drag_area", "added_mass_coefficient")
+
+
 def _points(root: TableReader, environment: Environment) -> list[Point]:
     """``[[points]]``: named fixed, free and body points."""
     points: list[Point] = []
+    declared = settings_of(Point)
     for t in root.tables("points"):
-        name = t.name()
+        name = declared["name"].read(t, "name")
         if "." in name:  # implicit points are "LINE.anchor", ...; --set addresses by name
             raise t.error("name", "a name without '.'", name)
-        kind = t.string("kind", choices=POINT_KINDS)
-        position = t.vector("position", size=3, unit="m")
-        loads = {}
-        for key, unit in (("mass", "kg"), ("volume", "m^3"), ("drag_area", "m^2"),
-                          ("added_mass_coefficient", "-")):
+        kind = declared["kind"].read(t, "kind")
+        position = declared["position"].read(t, "position")
+        for key in _POINT_LOADS:
             if t.has(key) and kind != "free":
                 raise t.error(key, f"no {key} on a {kind} point (only free points carry "
                               "clump weights and buoys"
                               + ("; a body's mass is the [floater]'s)" if kind == "body"
                                  else ")"), t.data[key])
-            loads[key] = t.number(key, unit=unit, ge=0.0, default=0.0)
+        loads = read_settings(Point, t, skip=("name", "kind", "position"))
         t.finish()
         if position[2] < environment.seabed_z - SEABED_TOLERANCE:
             raise t.error("position", f"a point on or above the seabed (z >= "
@@ -253,8 +257,10 @@ def _with_motion_frequency(lines: list[Line], omega: float) -> list[Line]:
         replace(s, dynamic=tag(s.dynamic)) for s in ln.sections)) for ln in lines]
 
 
-def _line_type_named(t: TableReader, key: str, line_types: dict[str, LineType]) -> LineType:
-    type_name = t.string(key)
+def _line_type_named(t: TableReader, keys: type, line_types: dict[str, LineType]) -> LineType:
+    """The line type the ``type`` key of ``t`` names (declared on ``keys``)."""
+    key = "type"
+    type_name = settings_of(keys)[key].read(t, key)
     if type_name not in line_types:
         raise t.error(key, "the name of a [line_types.NAME] table ("
                       + ", ".join(f'"{n}"' for n in line_types) + ")", type_name)
@@ -268,9 +274,10 @@ def _end(t: TableReader, point_key: str, short_key: str, kind: str, name: str,
     if t.has(point_key) and t.has(short_key):
         raise t.error(short_key, f"either {point_key} (a point's name) or {short_key} "
                       "(a position), not both", t.data[short_key])
+    declared = settings_of(Line)
     if t.has(point_key):
-        return t.string(point_key)
-    position = t.vector(short_key, size=3, unit="m")
+        return declared[point_key].read(t, point_key)
+    position = declared[short_key].read(t, short_key)
     implicit.append(Point(name=f"{name}.{short_key}", kind=kind, position=position))
     return implicit[-1].name
 
@@ -279,9 +286,9 @@ def _line(t: TableReader, line_types: dict[str, LineType],
           implicit: list[Point]) -> tuple[Line, dict[str, Any]]:
     """A ``[[lines]]`` entry; also the key paths of its point names (``ends``, start to end)
     and of its last section's ``length`` (for errors)."""
-    name = t.name()
+    name = settings_of(Line)["name"].read(t, "name")
     start = _end(t, "start", "anchor", "fixed", name, implicit)
-    model = t.string("model", choices=LINE_MODELS)
+    model = settings_of(Line)["model"].read(t, "model")
     if model not in AVAILABLE_LINE_MODELS:
         raise t.error("model", "one of " + ", ".join(f'"{m}"' for m in AVAILABLE_LINE_MODELS)
                       + f' (the "{model}" model is not available in this version)', model)
@@ -304,21 +311,23 @@ def _line(t: TableReader, line_types: dict[str, LineType],
                               t.data[key])
         raw_sections = []
         entries = list(t.tables("sections"))
+        declared = settings_of(SectionKeys)
         for i, st in enumerate(entries):
-            line_type = _line_type_named(st, "type", line_types)
-            length = st.number("length", unit="m", gt=0.0)
+            line_type = _line_type_named(st, SectionKeys, line_types)
+            length = declared["length"].read(st, "length")
             joint = None
             if st.has("end"):
                 if i == len(entries) - 1:
                     raise st.error("end", "no end on the last section (the line's end point "
                                    "is its end)", st.data["end"])
-                joint = st.string("end")
+                joint = declared["end"].read(st, "end")
             section_dynamic = _dynamic_settings(st.table("dynamic", required=False), dynamic)
             st.finish()
             raw_sections.append((line_type, length, joint, section_dynamic, st.path))
     else:
-        raw_sections = [(_line_type_named(t, "type", line_types),
-                         t.number("length", unit="m", gt=0.0), None, dynamic, t.path)]
+        raw_sections = [(_line_type_named(t, OneSectionKeys, line_types),
+                         settings_of(OneSectionKeys)["length"].read(t, "length"), None,
+                         dynamic, t.path)]
     end = _end(t, "end", "fairlead", "body", name, implicit)
     t.finish()
     # unnamed joints between sections: implicit massless free points (placed by
@@ -372,36 +381,32 @@ def _simulation(t: TableReader) -> Simulation:
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:
-    kind = t.string("kind", choices=("circular", "harmonic", "table", "body"))
+    kind = MOTION_KIND.read(t, "kind")
     motion: Motion
     if kind == "body":
         motion = read_body_motion(t, base_dir, simulation)
     elif kind == "circular":
-        period = t.number("period", unit="s", gt=0.0)
-        motion = CircularMotion(
-            radius=t.number("radius", unit="m", gt=0.0),
-            period=period,
-            sense=t.string("sense", choices=CIRCULAR_SENSES),
-            phase=math.radians(t.number("phase_deg", unit="deg", default=0.0)),
-            ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=period),
-        )
+        declared = settings_of(CircularMotion)
+        period = declared["period"].read(t, "period")
+        motion = CircularMotion(period=period, **read_settings(
+            CircularMotion, t, {"ramp_duration": period}, skip=("period",)))
     elif kind == "harmonic":
-        amplitude = t.vector("amplitude", size=3, unit="m", ge=0.0)
+        declared = settings_of(HarmonicMotion)
+        amplitude = declared["amplitude"].read(t, "amplitude")
         if not any(amplitude):
             raise t.error("amplitude", "at least one non-zero amplitude [m]", list(amplitude))
-        period = t.number_or_vector("period", size=3, unit="s", gt=0.0)
-        phase_deg = t.number_or_vector("phase_deg", size=3, unit="deg", default=(0.0, 0.0, 0.0))
+        period = declared["period"].read(t, "period")
+        phase = declared["phase_deg"].read(t, "phase_deg")
         longest = max(p for a, p in zip(amplitude, period) if a > 0.0)
-        motion = HarmonicMotion(
-            amplitude=amplitude, period=period,
-            phase=tuple(math.radians(p) for p in phase_deg),  # type: ignore[arg-type]
-            ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=longest),
-        )
+        motion = HarmonicMotion(amplitude=amplitude, period=period, phase=phase,
+                                ramp_duration=declared["ramp_duration"].read(
+                                    t, "ramp_duration", longest))
     else:
-        file_name = t.string("file")
+        declared = settings_of(TableMotion)
+        file_name = declared["file"].read(t, "file")
         path, time, disp = read_motion_table(t, base_dir, file_name)
         motion = TableMotion(file=str(path), time=time, displacement=disp,
-                             ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=0.0))
+                             ramp_duration=declared["ramp_duration"].read(t, "ramp_duration"))
         if time[-1] < simulation.duration:
             raise t.context.error(("simulation", "duration"),
                                   f"a duration <= the end of the motion table {file_name} "

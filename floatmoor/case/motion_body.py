@@ -33,8 +33,10 @@ from pathlib import Path
 from floatmoor.case.motion_table import read_csv_table
 from floatmoor.case.reader import MISSING, TableReader, _Found
 from floatmoor.case.schema import (
-    BODY_DOFS, BodyHarmonicMotion, BodyMotion, BodyTableMotion, Simulation,
+    BODY_DOFS, BodyHarmonicMotion, BodyMotion, BodyTableMotion, HarmonicRotation,
+    HarmonicTranslation, Simulation,
 )
+from floatmoor.case.setting import read_settings, settings_of
 
 __all__ = ["read_body_motion", "BODY_TABLE_HEADERS", "DEFAULT_REFERENCE_POINT"]
 
@@ -63,7 +65,8 @@ def read_body_motion(t: TableReader, base_dir: Path, simulation: Simulation) -> 
         if key not in known:
             raise t.error(key, f"one of the known keys ({', '.join(sorted(known))})",
                           _Found(f"the unknown key '{key}'"))
-    reference = t.vector("reference_point", size=3, unit="m", default=DEFAULT_REFERENCE_POINT)
+    reference = settings_of(BodyHarmonicMotion)["reference_point"].read(
+        t, "reference_point", DEFAULT_REFERENCE_POINT)
     harmonic = [dof for dof in BODY_DOFS if t.has(dof)]
     if t.has("file") and harmonic:
         raise t.error(harmonic[0], "either a table (file) or harmonic DOF tables "
@@ -89,14 +92,13 @@ def _harmonic(t: TableReader, reference: tuple[float, float, float]) -> BodyHarm
             if d.has("amplitude_deg"):
                 raise d.error("amplitude_deg", f"amplitude: the {dof} amplitude in metres (a "
                               "translation)", d.data["amplitude_deg"])
-            amplitude[i] = d.number("amplitude", unit="m", ge=0.0)
+            keys: type = HarmonicTranslation
         else:
             if d.has("amplitude"):
                 raise d.error("amplitude", f"amplitude_deg: the {dof} amplitude in degrees, as "
                               "every angle of a case file", d.data["amplitude"])
-            amplitude[i] = math.radians(d.number("amplitude_deg", unit="deg", ge=0.0))
-        period[i] = d.number("period", unit="s", gt=0.0)
-        phase[i] = math.radians(d.number("phase_deg", unit="deg", default=0.0))
+            keys = HarmonicRotation
+        amplitude[i], period[i], phase[i] = read_settings(keys, d).values()
         d.finish()
     if not any(amplitude):
         raise t.error(next(dof for dof in BODY_DOFS if t.has(dof)),
@@ -106,12 +108,14 @@ def _harmonic(t: TableReader, reference: tuple[float, float, float]) -> BodyHarm
     return BodyHarmonicMotion(
         reference_point=reference, amplitude=tuple(amplitude), period=tuple(period),
         phase=tuple(phase),
-        ramp_duration=t.number("ramp_duration", unit="s", ge=0.0, default=longest))
+        ramp_duration=settings_of(BodyHarmonicMotion)["ramp_duration"].read(
+            t, "ramp_duration", longest))
 
 
 def _table(t: TableReader, base_dir: Path, simulation: Simulation,
            reference: tuple[float, float, float]) -> BodyTableMotion:
-    file_name = t.string("file")
+    declared = settings_of(BodyTableMotion)
+    file_name = declared["file"].read(t, "file")
     path, header, time, values = read_csv_table(t, base_dir, file_name, BODY_TABLE_HEADERS)
     if header == BODY_TABLE_HEADERS[0]:
         values[:, 3:] = values[:, 3:] * (math.pi / 180.0)
@@ -121,5 +125,4 @@ def _table(t: TableReader, base_dir: Path, simulation: Simulation,
                               f"({time[-1]:g} s) [s]", f"{simulation.duration!r}")
     return BodyTableMotion(reference_point=reference, file=str(path), time=time,
                            displacement=values,
-                           ramp_duration=t.number("ramp_duration", unit="s", ge=0.0,
-                                                  default=0.0))
+                           ramp_duration=declared["ramp_duration"].read(t, "ramp_duration"))

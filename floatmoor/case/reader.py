@@ -107,6 +107,10 @@ class KeyRecord:
     doc: str = ""
     #: the wording of a default computed from other values (``"{default}"``: the recorded one)
     default_text: str | None = None
+    #: the wording of bounds or choices computed from other values
+    allowed_text: str | None = None
+    #: the wording of the type of an array whose length depends on its value
+    type_text: str | None = None
 
 
 #: The recorder of the current :func:`recording` block (None: not recording).
@@ -207,17 +211,19 @@ class TableReader:
         self.context = context
         self.generic = generic
         self._read: set[str] = set()
-        self._note: tuple[str, str | None] = ("", None)
+        self._note: tuple[str, str | None, str | None, str | None] = ("", None, None, None)
 
     @contextmanager
-    def describing(self, doc: str, default_text: str | None) -> Iterator[None]:
-        """Record the keys read inside the block with this description (and wording of a
-        computed default): a declared setting's (floatmoor.case.setting)."""
-        self._note = (doc, default_text)
+    def describing(self, doc: str, default_text: str | None, allowed_text: str | None = None,
+                   type_text: str | None = None) -> Iterator[None]:
+        """Record the keys read inside the block with this description (and wordings of a
+        computed default, of computed bounds and of an array's type): a declared setting's
+        (floatmoor.case.setting)."""
+        self._note = (doc, default_text, allowed_text, type_text)
         try:
             yield
         finally:
-            self._note = ("", None)
+            self._note = ("", None, None, None)
 
     def _record(self, key: str, kind: str, *, unit: str = "", bounds: str = "",
                 choices: tuple[str, ...] | None = None, default: Any = MISSING,

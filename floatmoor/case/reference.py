@@ -49,6 +49,9 @@ class KeyEntry:
     doc: str = ""
     #: the declared wording of a computed default, or None
     default_text: str | None = None
+    #: the declared wordings of computed bounds and of an array's type, or None
+    allowed_text: str | None = None
+    type_text: str | None = None
 
     @property
     def is_table(self) -> bool:
@@ -113,7 +116,10 @@ def merge_records(records: Sequence[KeyRecord]) -> dict[str, KeyEntry]:
             always=seen_in >= instances[table_of(path)],
             doc=next((r.doc for r in group if r.doc), ""),
             default_text=next((r.default_text for r in group if r.default_text is not None),
-                              None))
+                              None),
+            allowed_text=next((r.allowed_text for r in group if r.allowed_text is not None),
+                              None),
+            type_text=next((r.type_text for r in group if r.type_text is not None), None))
     return entries
 
 
@@ -203,9 +209,10 @@ def render_section(table: str, entries: Mapping[str, KeyEntry], docs: KeyDocs,
               "| --- | --- | --- | --- | --- | --- |"]
     for entry in rows:
         lines.append("| " + " | ".join(_cell(text) for text in (
-            f"`{leaf_of(entry.path)}`", docs.types.get(entry.path, _type_text(entry)),
+            f"`{leaf_of(entry.path)}`",
+            docs.types.get(entry.path, entry.type_text or _type_text(entry)),
             ", ".join(entry.units),
             _need_text(entry, docs.defaults.get(entry.path, entry.default_text)),
-            docs.allowed.get(entry.path, _allowed_text(entry)),
+            docs.allowed.get(entry.path, entry.allowed_text or _allowed_text(entry)),
             entry.doc or descriptions.get(entry.path, ""))) + " |")
     return "\n".join(lines) + "\n"

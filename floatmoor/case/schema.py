@@ -3,8 +3,10 @@
 A :class:`Case` is built only by :func:`floatmoor.case.load.load_case`, which checks every
 value; the objects here can therefore be trusted by the models.
 
-Size: one frozen dataclass per case-file table (two dozen of them, most a few fields
-with their docstrings); together they are the one schema :mod:`floatmoor.case.load` fills.
+Size: one frozen dataclass per case-file table (three dozen of them), each key declared
+once on its field with its type, unit, bounds, default and description
+(:mod:`floatmoor.case.setting`); together they are the one schema :mod:`floatmoor.case.load`
+fills and the case-file reference describes.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from numpy.typing import NDArray
 
 from floatmoor.case.drag import DragSettings
 from floatmoor.case.sea import WaveCase
-from floatmoor.case.setting import setting
+from floatmoor.case.setting import Setting, setting
 from floatmoor.case.wind import WindSettings
 
 __all__ = [
@@ -30,7 +32,9 @@ __all__ = [
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
     "MeshGeometry", "MESH_FORMATS", "MESH_LENGTH_UNITS", "MESH_SYMMETRY_PLANES",
     "RADIATION_METHODS", "HYDRO_CHECKS", "HYDRO_SOURCES", "POINT_KINDS", "Point", "Section",
-    "BODY_DOFS", "BodyHarmonicMotion", "BodyTableMotion", "BodyMotion",
+    "BODY_DOFS", "BodyHarmonicMotion", "SectionKeys", "OneSectionKeys",
+    "MOTION_KINDS", "MOTION_KIND", "GEOMETRY_KIND", "HarmonicTranslation", "HarmonicRotation",
+    "BodyTableMotion", "BodyMotion",
 ]
 
 #: Range of ``environment.gravity`` [m/s^2]. On Earth g is 9.78 to 9.83 m/s^2 (equator to
@@ -321,6 +325,10 @@ class QuasiDynamicSettings:
 DEFAULT_QUASI_DYNAMIC = QuasiDynamicSettings()
 
 
+#: How the two forms of a line's ends are worded on the reference page.
+_ONE_OF_START, _ONE_OF_END = "one of `start`, `anchor`", "one of `end`, `fairlead`"
+
+
 @dataclass(frozen=True)
 class Point:
     """A point of the mooring system (``[[points]]``, or implicit: a line's short-form anchor
@@ -331,14 +339,64 @@ class Point:
     0.5 rho_w (C_d A) |u| u, as MoorDyn's points (Hall, MoorDyn v2 theory).
     """
 
-    name: str
-    kind: str  #: one of :data:`POINT_KINDS`
+    name: str = setting(
+        "name", scale="same",
+        doc="Name of the point, used by `lines[].start`, `end` and `sections[].end`; no `.` "
+            "(implicit points are named `LINE.anchor`, ...).")
+    kind: str = setting(  #: one of :data:`POINT_KINDS`
+        "string", scale="same", choices=POINT_KINDS,
+        doc="`fixed` (held in space), `body` (carried by the prescribed motion or the "
+            "floater) or `free` (in equilibrium of its lines and loads).")
     #: [m]: fixed points' position, body points' position at rest, free points' initial guess
-    position: tuple[float, float, float]
-    mass: float = 0.0  #: [kg]
-    volume: float = 0.0  #: displaced volume [m^3]
-    drag_area: float = 0.0  #: C_d A [m^2]
-    added_mass_coefficient: float = 0.0  #: C_a, on the displaced volume [-]
+    position: tuple[float, float, float] = setting(
+        "vector", scale="length", size=3, unit="m",
+        doc="Position: a fixed point's, a body point's at rest, a free point's initial guess "
+            "for the statics.")
+    # the loads of a free point (floatmoor.case.load refuses them on the other kinds)
+    mass: float = setting(  #: [kg]
+        "number", scale="point_mass", unit="kg", ge=0.0, default=0.0, field_default=0.0,
+        doc="Mass of a free point (a clump weight); free points only.")
+    volume: float = setting(  #: displaced volume [m^3]
+        "number", scale="point_volume", unit="m^3", ge=0.0, default=0.0, field_default=0.0,
+        doc="Displaced volume of a free point (a buoy); free points only.")
+    drag_area: float = setting(  #: C_d A [m^2]
+        "number", scale="point_drag_area", unit="m^2", ge=0.0, default=0.0, field_default=0.0,
+        doc="Drag coefficient times area C_d A of a free point; free points only.")
+    added_mass_coefficient: float = setting(  #: C_a, on the displaced volume [-]
+        "number", scale="same", unit="-", ge=0.0, default=0.0, field_default=0.0,
+        doc="Added-mass coefficient of a free point, on its displaced volume; free points "
+            "only.")
+
+
+@dataclass(frozen=True)
+class SectionKeys:
+    """The keys of a ``[[lines.sections]]`` entry as a file gives them (its :class:`Section`
+    holds the line type they name and its end points, resolved; its ``dynamic`` table is a
+    :class:`DynamicSettings`)."""
+
+    type: str = setting(
+        "string", scale="same", doc="Line type of the section (a `[line_types.NAME]` name).")
+    length: float = setting(  #: unstretched [m]
+        "number", scale="length", unit="m", gt=0.0, doc="Unstretched length of the section.")
+    #: the free point joining it to the next section (None: an implicit joint)
+    end: str | None = setting(
+        "string", scale="same", default_text="an implicit joint",
+        doc="Name of the free point joining this section to the next; not on the last "
+            "section. Without it the joint is an implicit massless point `LINE.jointN`.")
+
+
+@dataclass(frozen=True)
+class OneSectionKeys:
+    """The short form of a one-section ``[[lines]]`` entry: its line type and length instead
+    of ``[[lines.sections]]``."""
+
+    type: str = setting(
+        "string", scale="same", default_text="with `length`, or `sections`",
+        doc="Line type of a one-section line (a `[line_types.NAME]` name); instead of "
+            "`sections`.")
+    length: float = setting(  #: unstretched [m]
+        "number", scale="length", unit="m", gt=0.0, default_text="with `type`, or `sections`",
+        doc="Unstretched length of a one-section line; instead of `sections`.")
 
 
 @dataclass(frozen=True)
@@ -366,16 +424,36 @@ class Line:
     at rest, a free point's initial guess); ``fairlead`` is the mean position in a
     forced-motion run."""
 
-    name: str
+    name: str = setting(
+        "name", scale="same", doc="Name of the line, in outputs and in `--set "
+        "lines.NAME.KEY=...`.")
     sections: tuple[Section, ...]
-    anchor: tuple[float, float, float]  #: [m]
-    fairlead: tuple[float, float, float]  #: [m]
-    model: str
+    #: [m]; a file gives it for an implicit fixed start point (floatmoor.case.load)
+    anchor: tuple[float, float, float] = setting(
+        "vector", scale="length", size=3, unit="m", default_text=_ONE_OF_START,
+        doc="Position of the line's start, an implicit fixed point `NAME.anchor`; instead of "
+            "`start`.")
+    #: [m]; a file gives it for an implicit body end point
+    fairlead: tuple[float, float, float] = setting(
+        "vector", scale="length", size=3, unit="m", default_text=_ONE_OF_END,
+        doc="Position of the line's end, an implicit body point `NAME.fairlead` (its position "
+            "at rest); instead of `end`.")
+    model: str = setting(  #: one of :data:`AVAILABLE_LINE_MODELS`
+        "string", scale="same", choices=LINE_MODELS,
+        doc="Line model: `quasi-static` (elastic catenary, theory/quasi_static.md), "
+            "`quasi-dynamic` (catenary plus drag and inertia, one section between a fixed and "
+            "a body point, theory/quasi_dynamic.md) or `dynamic` (discontinuous Galerkin "
+            "cable, theory/dynamic_line.md).")
     quasi_static: QuasiStaticSettings
     dynamic: DynamicSettings  #: the line-level numerics (each section has its merged copy)
     quasi_dynamic: QuasiDynamicSettings = DEFAULT_QUASI_DYNAMIC
-    start: str = ""  #: name of the start point
-    end: str = ""  #: name of the end point
+    start: str = setting(  #: name of the start point
+        "string", scale="same", field_default="", default_text=_ONE_OF_START,
+        doc="Name of the `[[points]]` entry the line starts at (arc length 0); instead of "
+            "`anchor`.")
+    end: str = setting(  #: name of the end point
+        "string", scale="same", field_default="", default_text=_ONE_OF_END,
+        doc="Name of the `[[points]]` entry the line ends at; instead of `fairlead`.")
 
     @property
     def line_type(self) -> LineType:
@@ -409,6 +487,30 @@ class Line:
         return float(np.linalg.norm(np.subtract(self.fairlead, self.anchor)))
 
 
+#: Kinds of prescribed motion (``motion.kind``).
+MOTION_KINDS = ("circular", "harmonic", "table", "body")
+#: ``[motion] kind``: which motion, hence which dataclass the table's other keys fill.
+MOTION_KIND = Setting(
+    "string", scale="same", choices=MOTION_KINDS,
+    doc="`circular` (on a circle in each line's vertical plane), `harmonic` (per global "
+        "axis), `table` (displacements from a CSV file) or `body` (a six-DOF rigid-body "
+        "motion, harmonic or from a CSV file).")
+#: The descriptions of the ``[motion]`` keys several kinds of motion share.
+_PERIOD_DOC = ("Period of the motion: one number (`circular`), or one number or one per axis "
+               "(`harmonic`).")
+_PHASE_DOC = ("Phase of the motion: 0 puts a circular motion at the top of its circle at t = "
+              "0; for `harmonic`, one or per axis, x = a sin(2 pi t / T + phase).")
+_RAMP_DOC = ("Duration of the cosine ramp that brings the motion in from rest; shorter than "
+             "the run.")
+_RAMP_DEFAULT = "one period (the longest moving one); 0 for a table"
+_FILE_DOC = ("CSV file, relative to the case file's folder and inside it: columns `time,x,y,z` "
+             "of displacements (`table`) or `time,surge,sway,heave,roll_deg,pitch_deg,yaw_deg` "
+             "(or `_rad` for all three rotations; `body`).")
+_FILE_DEFAULT = "required (`table`); or the DOF tables (`body`)"
+_REFERENCE_POINT_DOC = ("Rotation centre of a body motion at rest (`body`); the origin by "
+                        "default, the point MoorDyn, OpenFAST and WEC-Sim motions refer to.")
+
+
 @dataclass(frozen=True)
 class CircularMotion:
     """Fairlead moved on a circle in the vertical plane of each line.
@@ -419,11 +521,19 @@ class CircularMotion:
     top), -1 for ``toward-anchor-at-top``.
     """
 
-    radius: float  #: [m]
-    period: float  #: [s]
-    sense: str
-    phase: float  #: [rad], 0 = top of the circle at t = 0
-    ramp_duration: float  #: [s]
+    radius: float = setting(  #: [m]
+        "number", scale="length", unit="m", gt=0.0, doc="Radius of the circle (`circular`).")
+    period: float = setting(  #: [s]
+        "number", scale="time", unit="s", gt=0.0, doc=_PERIOD_DOC)
+    sense: str = setting(  #: one of :data:`CIRCULAR_SENSES`
+        "string", scale="same", choices=CIRCULAR_SENSES,
+        doc="Rotation sense of a circular motion, named by where the fairlead moves at the top "
+            "of the circle (`circular`).")
+    phase: float = setting(  #: [rad], 0 = top of the circle at t = 0
+        "number", key="phase_deg", radians=True, scale="same", unit="deg", default=0.0,
+        default_text="default 0 (every axis)", doc=_PHASE_DOC)
+    ramp_duration: float = setting(  #: [s]; a file's default is one period
+        "number", scale="time", unit="s", ge=0.0, default_text=_RAMP_DEFAULT, doc=_RAMP_DOC)
     kind: str = "circular"
 
     @property
@@ -436,10 +546,16 @@ class CircularMotion:
 class HarmonicMotion:
     """Independent harmonic motion per global axis: a_i sin(2 pi t / T_i + phase_i)."""
 
-    amplitude: tuple[float, float, float]  #: [m]
-    period: tuple[float, float, float]  #: [s]
-    phase: tuple[float, float, float]  #: [rad]
-    ramp_duration: float  #: [s]
+    amplitude: tuple[float, float, float] = setting(  #: [m], at least one non-zero
+        "vector", scale="length", size=3, unit="m", ge=0.0,
+        doc="Amplitudes [x, y, z] of a harmonic motion (`harmonic`); at least one non-zero.")
+    period: tuple[float, float, float] = setting(  #: [s]
+        "number_or_vector", scale="time", size=3, unit="s", gt=0.0, doc=_PERIOD_DOC)
+    phase: tuple[float, float, float] = setting(  #: [rad]
+        "number_or_vector", key="phase_deg", radians=True, scale="same", size=3, unit="deg",
+        default=(0.0, 0.0, 0.0), default_text="default 0 (every axis)", doc=_PHASE_DOC)
+    ramp_duration: float = setting(  #: [s]; a file's default is the longest moving period
+        "number", scale="time", unit="s", ge=0.0, default_text=_RAMP_DEFAULT, doc=_RAMP_DOC)
     kind: str = "harmonic"
 
     @property
@@ -456,10 +572,13 @@ class TableMotion:
     """Displacement time history from a CSV file (columns ``time, x, y, z``), interpolated
     by a cubic spline (:func:`floatmoor.motion.table_state`)."""
 
-    file: str  #: resolved path of the CSV file
+    file: str = setting(  #: resolved path of the CSV file (the file's key: as written)
+        "string", scale="motion_table", default_text=_FILE_DEFAULT, doc=_FILE_DOC)
     time: NDArray[np.float64] = field(repr=False)  #: [s]
     displacement: NDArray[np.float64] = field(repr=False)  #: (n, 3) [m]
-    ramp_duration: float = 0.0  #: [s]
+    ramp_duration: float = setting(  #: [s]
+        "number", scale="time", unit="s", ge=0.0, default=0.0, field_default=0.0,
+        default_text=_RAMP_DEFAULT, doc=_RAMP_DOC)
     kind: str = "table"
 
     @property
@@ -473,16 +592,51 @@ BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
 @dataclass(frozen=True)
+class HarmonicTranslation:
+    """A ``[motion.surge]``, ``[motion.sway]`` or ``[motion.heave]`` table: x = a sin(2 pi t /
+    T + phase)."""
+
+    amplitude: float = setting(  #: [m]
+        "number", scale="length", unit="m", ge=0.0, doc="Amplitude of the {table} [m].")
+    period: float = setting(  #: [s]
+        "number", scale="time", unit="s", gt=0.0, doc="Period of the {table} [s].")
+    phase: float = setting(  #: [rad]
+        "number", key="phase_deg", radians=True, scale="same", unit="deg", default=0.0,
+        doc="Phase of the {table}, x = a sin(2 pi t / T + phase) [deg].")
+
+
+@dataclass(frozen=True)
+class HarmonicRotation:
+    """A ``[motion.roll]``, ``[motion.pitch]`` or ``[motion.yaw]`` table, angles in degrees
+    as every angle of a case file."""
+
+    amplitude: float = setting(  #: [rad]
+        "number", key="amplitude_deg", radians=True, scale="same", unit="deg", ge=0.0,
+        doc="Amplitude of the {table} [deg]; rotations are given in degrees as every angle "
+            "of a case file.")
+    period: float = setting(  #: [s]
+        "number", scale="time", unit="s", gt=0.0, doc="Period of the {table} [s].")
+    phase: float = setting(  #: [rad]
+        "number", key="phase_deg", radians=True, scale="same", unit="deg", default=0.0,
+        doc="Phase of the {table}, x = a sin(2 pi t / T + phase) [deg].")
+
+
+@dataclass(frozen=True)
 class BodyHarmonicMotion:
     """Rigid-body motion of the body points, harmonic per DOF: x_i = a_i sin(2 pi t / T_i +
     phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.body_motion` for the
     rotation convention). DOFs that do not move have amplitude 0 (and period 1 s)."""
 
-    reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
-    amplitude: tuple[float, ...]  #: (6,) [m, m, m, rad, rad, rad]
+    reference_point: tuple[float, float, float] = setting(  #: rotation centre at rest [m]
+        "vector", scale="length", size=3, unit="m", default=(0.0, 0.0, 0.0),
+        doc=_REFERENCE_POINT_DOC)
+    #: (6,) [m, m, m, rad, rad, rad], from the ``[motion.DOF]`` tables
+    #: (:class:`HarmonicTranslation`, :class:`HarmonicRotation`)
+    amplitude: tuple[float, ...]
     period: tuple[float, ...]  #: (6,) [s]
     phase: tuple[float, ...]  #: (6,) [rad]
-    ramp_duration: float  #: [s]
+    ramp_duration: float = setting(  #: [s]; a file's default is the longest moving period
+        "number", scale="time", unit="s", ge=0.0, default_text=_RAMP_DEFAULT, doc=_RAMP_DOC)
     kind: str = "body"
 
     @property
@@ -498,11 +652,16 @@ class BodyTableMotion:
     :data:`BODY_DOFS`), interpolated in each DOF by a cubic spline (rotations in the Euler
     angles; :func:`floatmoor.motion.table_state`)."""
 
-    reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
-    file: str  #: resolved path of the CSV file
+    reference_point: tuple[float, float, float] = setting(  #: rotation centre at rest [m]
+        "vector", scale="length", size=3, unit="m", default=(0.0, 0.0, 0.0),
+        doc=_REFERENCE_POINT_DOC)
+    file: str = setting(  #: resolved path of the CSV file (the file's key: as written)
+        "string", scale="motion_table", default_text=_FILE_DEFAULT, doc=_FILE_DOC)
     time: NDArray[np.float64] = field(repr=False)  #: [s]
     displacement: NDArray[np.float64] = field(repr=False)  #: (n, 6) [m, m, m, rad, rad, rad]
-    ramp_duration: float = 0.0  #: [s]
+    ramp_duration: float = setting(  #: [s]
+        "number", scale="time", unit="s", ge=0.0, default=0.0, field_default=0.0,
+        default_text=_RAMP_DEFAULT, doc=_RAMP_DOC)
     kind: str = "body"
 
     @property
@@ -560,13 +719,26 @@ HYDRO_CHECKS = ("symmetry", "damping_psd", "kramers_kronig", "kernel_decay", "ha
                 "hydrostatics")
 
 
+#: ``[floater.geometry] kind``: which hull, hence which dataclass the table's other keys fill.
+GEOMETRY_KIND = Setting(
+    "string", scale="same", choices=GEOMETRY_KINDS,
+    doc="`cylinder`, `semisubmersible` (columns and members) or `mesh` (a hull mesh file).")
+
+
 @dataclass(frozen=True)
 class CylinderGeometry:
     """A vertical circular cylinder, axis through the floater's reference point (x, y)."""
 
-    diameter: float  #: [m]
-    draft: float  #: depth of the flat bottom below the still water line [m]
-    height: float  #: bottom to top [m]; the freeboard is height - draft
+    diameter: float = setting(  #: [m]
+        "number", scale="length", unit="m", gt=0.0, doc="Diameter of a cylinder (`cylinder`).")
+    #: depth of the flat bottom below the still water line [m] (< height, floatmoor.case.floater)
+    draft: float = setting(
+        "number", scale="length", unit="m", gt=0.0, default=None, default_text="from the mass",
+        doc="Draft of a cylinder (`cylinder`); default the draft at which it floats freely, "
+            "mass / (water_density pi R^2).")
+    height: float = setting(  #: bottom to top [m]; the freeboard is height - draft
+        "number", scale="length", unit="m", gt=0.0,
+        doc="Height of a cylinder, bottom to top (`cylinder`).")
     draft_from_mass: bool  #: the draft was derived from the mass (``draft`` omitted)
     kind: str = "cylinder"
 
@@ -581,13 +753,26 @@ class Column:
     """A vertical column of a semisubmersible, optionally with a wider base (heave plate)
     of ``heave_plate_diameter`` from ``z_bottom`` up to ``z_bottom + heave_plate_height``."""
 
-    x: float  #: [m]
-    y: float  #: [m]
-    diameter: float  #: of the upper part [m]
-    z_top: float  #: [m]
-    z_bottom: float  #: [m]
-    heave_plate_diameter: float | None = None  #: [m]
-    heave_plate_height: float = 0.0  #: [m]
+    x: float = setting(  #: [m]
+        "number", scale="length", unit="m", doc="x of the column's axis.")
+    y: float = setting(  #: [m]
+        "number", scale="length", unit="m", doc="y of the column's axis.")
+    diameter: float = setting(  #: of the upper part [m]
+        "number", scale="length", unit="m", gt=0.0, doc="Diameter of the column.")
+    z_top: float = setting(  #: [m]
+        "number", scale="length", unit="m", doc="Elevation of the column's top.")
+    # the bounds of the keys below depend on other values (floatmoor.case.floater)
+    z_bottom: float = setting(  #: [m], above the seabed and below z_top
+        "number", scale="length", unit="m", allowed_text="> -water_depth and < z_top",
+        doc="Elevation of the column's bottom.")
+    heave_plate_diameter: float | None = setting(  #: [m], wider than the column
+        "number", scale="length", unit="m", default=None, field_default=None,
+        allowed_text="> the column's diameter",
+        doc="Diameter of a heave plate at the column's bottom; with `heave_plate_height`.")
+    heave_plate_height: float = setting(  #: [m] (a file without a plate: 0)
+        "number", scale="length", unit="m", gt=0.0, default=None, field_default=0.0,
+        allowed_text="> 0 and < z_top - z_bottom",
+        doc="Height of the heave plate above `z_bottom`; with `heave_plate_diameter`.")
 
 
 @dataclass(frozen=True)
@@ -595,9 +780,13 @@ class Member:
     """A pontoon or brace: a circular tube between two points (each on a column or another
     member) [m]."""
 
-    start: tuple[float, float, float]
-    end: tuple[float, float, float]
-    diameter: float
+    start: tuple[float, float, float] = setting(
+        "vector", scale="length", size=3, unit="m", doc="Start of the member's axis.")
+    end: tuple[float, float, float] = setting(
+        "vector", scale="length", size=3, unit="m",
+        doc="End of the member's axis, more than one diameter from its start.")
+    diameter: float = setting(
+        "number", scale="length", unit="m", gt=0.0, doc="Diameter of the member.")
 
 
 @dataclass(frozen=True)
@@ -622,13 +811,28 @@ class MeshGeometry:
     database up to date. (``dataclasses.replace`` drops them unless passed again.)
     """
 
-    file: str  #: the path as written in the case file, relative to its folder
+    # the mesh keys declare no scale: floatmoor scale refuses a mesh hull
+    file: str = setting(  #: the path as written in the case file, relative to its folder
+        "string",
+        doc="Hull mesh file, relative to the case file's folder and inside it (`mesh`); "
+            "checked and hashed on loading, read when the database is built.")
     sha256: str  #: SHA-256 of the file's bytes
-    format: str  #: one of :data:`MESH_FORMATS`
-    length_unit: str  #: a key of :data:`MESH_LENGTH_UNITS`
-    position: tuple[float, float, float]  #: added to the scaled file coordinates [m]
+    format: str = setting(  #: one of :data:`MESH_FORMATS`
+        "string", choices=MESH_FORMATS,
+        default_text="from the file's extension",
+        doc="Format of the mesh file (`mesh`); default from its extension.")
+    length_unit: str = setting(  #: a key of :data:`MESH_LENGTH_UNITS`
+        "string", choices=tuple(MESH_LENGTH_UNITS), default="m",
+        doc="Length unit of the mesh file's coordinates (`mesh`).")
+    position: tuple[float, float, float] = setting(  #: added to the scaled file coordinates [m]
+        "vector", size=3, unit="m", default=(0.0, 0.0, 0.0),
+        doc="Offset added to the scaled mesh coordinates (`mesh`).")
     #: planes (of :data:`MESH_SYMMETRY_PLANES`, sorted) the file is the positive half of
-    symmetry: tuple[str, ...] = ()
+    symmetry: tuple[str, ...] = setting(
+        "strings", choices=MESH_SYMMETRY_PLANES, default=(),
+        field_default=(), default_text="none",
+        doc="Symmetry planes the mesh file is the positive half of: `xz` (the file holds "
+            "y >= 0), `yz` (x >= 0), or both (`mesh`).")
     kind: str = "mesh"
     resolved_path: InitVar[str | None] = None
     morison_columns: InitVar[tuple[Column, ...]] = ()
@@ -668,19 +872,33 @@ FloaterGeometry = CylinderGeometry | SemisubmersibleGeometry | MeshGeometry
 class Floater:
     """A rigid floating body (``[floater]``); positions are global, at rest."""
 
-    name: str
-    mass: float  #: [kg]
-    centre_of_mass: tuple[float, float, float]  #: [m]
-    #: inertia tensor about the centre of mass, (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) [kg m^2]
-    inertia: tuple[float, float, float, float, float, float]
-    reference_point: tuple[float, float, float]  #: rotation centre of the DOFs [m]
+    name: str = setting("name", scale="same", doc="Name of the body, in outputs.")
+    mass: float = setting(  #: [kg]
+        "number", scale="mass", unit="kg", gt=0.0, doc="Mass of the body.")
+    centre_of_mass: tuple[float, float, float] = setting(  #: [m]
+        "vector", scale="length", size=3, unit="m",
+        doc="Centre of mass, global coordinates at rest.")
+    #: inertia tensor about the centre of mass, (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) [kg m^2]; a
+    #: file gives 3 or 6 numbers (its size is the reader's, floatmoor.case.floater)
+    inertia: tuple[float, float, float, float, float, float] = setting(
+        "vector", scale="inertia", unit="kg m^2", type_text="array of 3 or 6 numbers",
+        doc="Inertia about the centre of mass: [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, "
+            "Iyz]; positive definite.")
+    reference_point: tuple[float, float, float] = setting(  #: rotation centre of the DOFs [m]
+        "vector", scale="length", size=3, unit="m",
+        doc="Rotation centre of the six DOFs, global coordinates at rest.")
     #: the hull (``[floater.geometry]``); None for a floater whose database is imported and
     #: that gives none (its hydrostatics come from the database; no drag members)
     geometry: FloaterGeometry | None
     #: Morison drag on the members (``[floater.drag]``), or None
     drag: DragSettings | None = None
     #: radiation memory path (one of :data:`RADIATION_METHODS`)
-    radiation: str = "convolution"
+    radiation: str = setting(
+        "string", scale="same", choices=RADIATION_METHODS, default="convolution",
+        field_default="convolution",
+        doc="Radiation memory: `convolution` of the retardation kernel K(t) with the velocity "
+            "history, or `state-space` (the realisation stored in the database by `floatmoor "
+            "hydro fit-state-space`).")
 
     def mass_matrix(self) -> NDArray[np.float64]:
         """6x6 rigid-body mass matrix about :attr:`reference_point` (Surge .. Yaw)."""

@@ -17,11 +17,19 @@ passes the computed default to :func:`read_settings`. See docs/development.md#ad
 A table whose reader reads its keys one at a time, between checks that decide what comes next
 (a study file's tables, a case's ``[campaign]``), declares them in a :class:`SettingTable`
 instead of on a dataclass's fields; its reader asks the table for each key.
+
+A field whose case-file key differs from its name gives ``key``: an angle stored in radians
+is given in degrees by the file (``phase: float = setting("number", key="phase_deg",
+unit="deg", radians=True, ...)``, docs/conventions.md). A description may say ``{table}``
+for the name of the table the key is read in (one declaration for the six ``[motion.DOF]``
+tables).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
+import math
 from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass
 from typing import Any, Iterator, Mapping
@@ -40,6 +48,8 @@ _OPTIONS = {
     "boolean": (),
     "vector": ("size", "unit", "gt", "ge"),
     "number_or_vector": ("size", "unit", "gt", "ge"),
+    "strings": ("choices",),
+    "name": (),
 }
 
 
@@ -51,8 +61,12 @@ class Setting:
     :class:`SettingTable` also reads :data:`TABLE_KINDS` and :data:`CLAIMED_KINDS`);
     ``default`` is what a file that leaves the key out gets (:data:`MISSING`: required);
     ``default_text`` words a default the reader computes from other values (``"{default}"``
-    in it stands for the recorded one); ``doc`` is the reference page's description;
-    ``scale`` how ``floatmoor scale`` rewrites the value.
+    in it stands for the recorded one), ``allowed_text`` and ``type_text`` bounds and an
+    array's size it computes; ``doc`` is the reference page's description;
+    ``scale`` how ``floatmoor scale`` rewrites the value; ``key`` the case-file key of a
+    field named otherwise, ``radians`` that the file gives degrees and the field holds radians.
+    Kind ``strings`` is an array the caller checks (:meth:`TableReader.claim`), kind ``name``
+    the ``name`` of a line, point or floater (:meth:`TableReader.name`).
     """
 
     kind: str
@@ -67,24 +81,44 @@ class Setting:
     auto: str | None = None  #: what "auto" means, for a number that may be "auto"
     default: Any = MISSING
     default_text: str | None = None
-    #: the wording of a range or of choices the reader computes from other values, for the
-    #: reference page (a :class:`SettingTable` key read with computed options)
+    #: the reference page's wording of bounds the reader computes from other values
     allowed_text: str | None = None
+    #: the reference page's wording of an array whose size the reader computes
+    type_text: str | None = None
     #: quantity kind under a change of scale (floatmoor.similitude.laws.QUANTITY_KINDS:
     #: "length", "force", "same", ...); "" for a table ``floatmoor scale`` maps by hand
     scale: str = ""
+    key: str | None = None  #: the case-file key, when not the field's name
+    radians: bool = False  #: a ``*_deg`` key read into radians
 
-    def read(self, t: TableReader, key: str, default: Any = MISSING) -> Any:
+    def read(self, t: TableReader, key: str, default: Any = MISSING, **computed: Any) -> Any:
         """Read ``key`` of ``t`` as declared (``default``: a computed one, else the
-        declared one)."""
+        declared one; ``computed``: bounds or a size computed from other values)."""
         options = {name: getattr(self, name) for name in _OPTIONS[self.kind]
                    if getattr(self, name) is not None}
+        wording = self.type_text if "size" in computed else self.allowed_text
+        if computed and wording is None:  # the page would print one file's value as the rule
+            raise TypeError(f"setting {key!r}: computed {', '.join(computed)} without the "
+                            "declaration's wording of them (allowed_text, type_text)")
+        options.update(computed)
         default = self.default if default is MISSING else default
-        accessor = getattr(t, self.kind)
         if t.context.recorder is None:
-            return accessor(key, default=default, **options)
-        with t.describing(self.doc, self.default_text):
-            return accessor(key, default=default, **options)
+            value = self._access(t, key, default, options)
+        else:
+            doc = self.doc.replace("{table}", str(t.path[-1])) if t.path else self.doc
+            with t.describing(doc, self.default_text, self.allowed_text, self.type_text):
+                value = self._access(t, key, default, options)
+        if self.radians and value is not None:
+            return tuple(math.radians(v) for v in value) if isinstance(value, tuple) \
+                else math.radians(value)
+        return value
+
+    def _access(self, t: TableReader, key: str, default: Any, options: dict[str, Any]) -> Any:
+        if self.kind == "strings":
+            return t.claim(key, "array of strings", default=default, **options)
+        if self.kind == "name":
+            return t.name()
+        return getattr(t, self.kind)(key, default=default, **options)
 
 
 def setting(kind: str, *, doc: str, field_default: Any = MISSING, **options: Any) -> Any:
@@ -99,23 +133,31 @@ def setting(kind: str, *, doc: str, field_default: Any = MISSING, **options: Any
     return dataclasses.field(default=field_default, metadata={_METADATA_KEY: spec})
 
 
+@functools.cache
+def _declared(cls: type) -> tuple[tuple[str, str, Setting], ...]:
+    """(field name, case-file key, setting) of each declared field, in field order (once per
+    class: the readers ask for every entry of a case of thousands of lines)."""
+    return tuple((f.name, f.metadata[_METADATA_KEY].key or f.name, f.metadata[_METADATA_KEY])
+                 for f in dataclasses.fields(cls) if _METADATA_KEY in f.metadata)
+
+
 def settings_of(cls: type) -> dict[str, Setting]:
-    """The declared settings of a dataclass, by key, in field order."""
-    return {f.name: f.metadata[_METADATA_KEY] for f in dataclasses.fields(cls)
-            if _METADATA_KEY in f.metadata}
+    """The declared settings of a dataclass, by case-file key, in field order."""
+    return {key: spec for _, key, spec in _declared(cls)}
 
 
 def read_settings(cls: type, t: TableReader, defaults: Mapping[str, Any] | None = None,
                   skip: tuple[str, ...] = ()) -> dict[str, Any]:
-    """The values of ``cls``'s declared settings read from ``t``, in field order.
+    """The values of ``cls``'s declared settings read from ``t``, in field order, by field
+    name (the keyword arguments of ``cls``).
 
     ``defaults`` replaces the declared default of some keys (computed ones, or a parent
     table's values); keys in ``skip`` are left to the caller. ``t.finish()`` is the caller's,
     after its checks between keys.
     """
     defaults = defaults or {}
-    return {key: spec.read(t, key, defaults.get(key, MISSING))
-            for key, spec in settings_of(cls).items() if key not in skip}
+    return {name: spec.read(t, key, defaults.get(key, MISSING))
+            for name, key, spec in _declared(cls) if key not in skip}
 
 
 # -- tables read one key at a time -----------------------------------------------------------

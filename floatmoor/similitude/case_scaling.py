@@ -29,8 +29,12 @@ from floatmoor.case.files import read_input_text
 from floatmoor.case.limits import parse_toml
 from floatmoor.case.load import parse_case
 from floatmoor.case.reader import format_path
+from floatmoor.case.coupling import InitialOffset
 from floatmoor.case.schema import (
-    Case, DynamicSettings, Environment, LineType, QuasiDynamicSettings, Seabed, Simulation,
+    BODY_DOFS, GEOMETRY_KIND, MOTION_KIND, BodyHarmonicMotion, BodyTableMotion, Case,
+    CircularMotion, Column, CylinderGeometry, DynamicSettings, Environment, Floater,
+    HarmonicMotion, HarmonicRotation, HarmonicTranslation, Line, LineType, Member,
+    OneSectionKeys, Point, QuasiDynamicSettings, Seabed, SectionKeys, Simulation, TableMotion,
 )
 from floatmoor.case.setting import settings_of
 from floatmoor.errors import CaseError
@@ -61,35 +65,25 @@ KEY_KINDS: dict[str, str] = {
     "title": "same", "description": "same",
     **_declared("environment", Environment), **_declared("seabed", Seabed),
     **_declared("line_types.*", LineType),
-    "points.*.name": "same", "points.*.kind": "same", "points.*.position": "length",
-    "points.*.mass": "point_mass", "points.*.volume": "point_volume",
-    "points.*.drag_area": "point_drag_area", "points.*.added_mass_coefficient": "same",
-    **{f"lines.*.{k}": "same" for k in ("name", "type", "model", "start", "end")},
-    "lines.*.length": "length", "lines.*.anchor": "length", "lines.*.fairlead": "length",
+    **_declared("points.*", Point),
+    **_declared("lines.*", Line), **_declared("lines.*", OneSectionKeys),
     "lines.*.quasi_static.*": "same", **_declared("lines.*.quasi_dynamic", QuasiDynamicSettings),
     **_declared("lines.*.dynamic", DynamicSettings),
-    "lines.*.sections.*.type": "same", "lines.*.sections.*.length": "length",
-    "lines.*.sections.*.end": "same",
+    **_declared("lines.*.sections.*", SectionKeys),
     **_declared("lines.*.sections.*.dynamic", DynamicSettings),
-    "motion.kind": "same", "motion.sense": "same", "motion.phase_deg": "same",
-    "motion.radius": "length", "motion.period": "time", "motion.ramp_duration": "time",
-    "motion.amplitude": "length", "motion.reference_point": "length",
-    **{f"motion.{d}.{k}": v for d in ("surge", "sway", "heave") for k, v in
-       (("amplitude", "length"), ("period", "time"), ("phase_deg", "same"))},
-    **{f"motion.{d}.{k}": v for d in ("roll", "pitch", "yaw") for k, v in
-       (("amplitude_deg", "same"), ("period", "time"), ("phase_deg", "same"))},
-    "motion.file": "motion_table",
+    "motion.kind": MOTION_KIND.scale,
+    **{key: kind for cls in (CircularMotion, HarmonicMotion, TableMotion, BodyHarmonicMotion,
+                             BodyTableMotion) for key, kind in _declared("motion", cls).items()},
+    **{key: kind for dof in BODY_DOFS for key, kind in _declared(
+        f"motion.{dof}", HarmonicTranslation if dof in BODY_DOFS[:3] else HarmonicRotation
+    ).items()},
     **_declared("simulation", Simulation),
     "campaign.*": _REFUSE + ": the swept values are not rewritten; scale the case without "
     "its [campaign] and sweep the scaled values",
-    "floater.name": "same", "floater.mass": "mass", "floater.centre_of_mass": "length",
-    "floater.inertia": "inertia", "floater.reference_point": "length",
-    "floater.radiation": "same", "floater.geometry.kind": "same",
-    **{f"floater.geometry.{k}": "length" for k in ("diameter", "height", "draft")},
-    **{f"floater.geometry.columns.*.{k}": "length" for k in (
-        "x", "y", "diameter", "z_top", "z_bottom", "heave_plate_diameter",
-        "heave_plate_height")},
-    **{f"floater.geometry.members.*.{k}": "length" for k in ("start", "end", "diameter")},
+    **_declared("floater", Floater), "floater.geometry.kind": GEOMETRY_KIND.scale,
+    **_declared("floater.geometry", CylinderGeometry),
+    **_declared("floater.geometry.columns.*", Column),
+    **_declared("floater.geometry.members.*", Member),
     **{f"floater.geometry.{k}": _REFUSE + ": a mesh hull is not rescaled; write the mesh at "
        "the new scale and name it in the scaled case" for k in (
            "file", "format", "length_unit", "position", "symmetry")},
@@ -115,8 +109,7 @@ KEY_KINDS: dict[str, str] = {
     "waves.height": "length", "waves.hs": "length", "waves.period": "time", "waves.tp": "time",
     "waves.ramp_duration": "time", "waves.frequency_step": "frequency",
     "waves.omega_min": "frequency", "waves.omega_max": "frequency",
-    "initial.surge": "length", "initial.sway": "length", "initial.heave": "length",
-    "initial.roll_deg": "same", "initial.pitch_deg": "same", "initial.yaw_deg": "same",
+    **_declared("initial", InitialOffset),
     "wind": _REFUSE + ": the rotor thrust (the NREL 5 MW turbine's curves) has no scaled "
     "version; scale the case without [wind]",
 }

@@ -51,13 +51,9 @@ COMPUTED = {"default": "defaults", "gt": "allowed", "ge": "allowed", "lt": "allo
 #: Accessor calls whose key is not a literal, by (module, function), with the generic paths
 #: they read (each must be read in a shipped or fixture file) and why the key is computed.
 DYNAMIC_KEYS: dict[tuple[str, str], tuple[str, ...]] = {
-    # the optional loads of a point, read in a loop over (key, unit)
-    ("load.py", "_points"): ("points[].mass", "points[].volume", "points[].drag_area",
-                             "points[].added_mass_coefficient"),
-    # the two forms of a line end, (start | anchor) and (end | fairlead)
-    ("load.py", "_end"): ("lines[].start", "lines[].anchor", "lines[].end", "lines[].fairlead"),
-    # a line type named by a line or a section
-    ("load.py", "_line_type_named"): ("lines[].type", "lines[].sections[].type"),
+    # a declared setting of kind "strings" (floatmoor.case.setting): every declared key is
+    # checked by test_every_declared_setting_is_read
+    ("setting.py", "_access"): ("floater.geometry.symmetry",),
     # the swept keys of a campaign: any key path of the case
     ("campaign.py", "read_campaign"): ("campaign.grid", "campaign.zip", "campaign.grid.<key>",
                                        "campaign.zip.<key>"),
@@ -409,6 +405,68 @@ def test_a_setting_table_reads_and_describes_its_keys():
     with pytest.raises(TypeError):
         top.table(TableReader({}, (), ReadContext("made-up.toml")), "items")
     assert MISSING is top.settings["b"].default
+
+
+def test_a_declared_angle_is_read_in_degrees_into_radians():
+    """A field holding radians declares the file's ``*_deg`` key; its row, value and
+    errors are the key's; ``{table}`` in a description names the table it is read in."""
+    import math
+
+    from floatmoor.case.reader import ReadContext, TableReader
+    from floatmoor.case.reference import render_section
+    from floatmoor.case.setting import read_settings, setting, settings_of
+    from floatmoor.errors import CaseError
+
+    @dataclasses.dataclass(frozen=True)
+    class Made:
+        phase: float = setting("number", key="phase_deg", radians=True, unit="deg",
+                               default=0.0, doc="Phase of the {table} motion.")
+        period: tuple[float, ...] = setting("number_or_vector", size=3, unit="s", gt=0.0,
+                                            doc="Periods of the {table} motion.")
+
+    assert list(settings_of(Made)) == ["phase_deg", "period"]
+    with recording() as records:
+        t = TableReader({"phase_deg": 90.0, "period": 2.0}, ("motion", "roll"),
+                        ReadContext("made-up.toml"), generic="motion.roll")
+        made = Made(**read_settings(Made, t))
+    assert made == Made(phase=math.radians(90.0), period=(2.0, 2.0, 2.0))
+    text = render_section("motion.roll", merge_records(records), key_docs.KeyDocs({}), title="T")
+    assert "| `phase_deg` | number | deg | default 0 |  | Phase of the roll motion. |" in text
+    assert read_settings(Made, TableReader({"period": 1.0}, ("m",), ReadContext("x")))[
+        "phase"] == 0.0
+    with pytest.raises(CaseError) as error:
+        read_settings(Made, TableReader({"phase_deg": "x", "period": 1.0}, ("m",),
+                                        ReadContext("made-up.toml")))
+    assert error.value.key == "m.phase_deg"
+
+
+def test_a_bound_computed_from_other_values_is_worded_on_its_declaration():
+    """A bound passed when reading is the declaration's wording on the page, not the one
+    file's value; without a wording the read is refused (the page would be wrong)."""
+    from floatmoor.case.reader import ReadContext, TableReader
+    from floatmoor.case.reference import render_section
+    from floatmoor.case.setting import setting, settings_of
+    from floatmoor.errors import CaseError
+
+    @dataclasses.dataclass(frozen=True)
+    class Made:
+        low: float = setting("number", unit="m", doc="The low end of it.")
+        high: float = setting("number", unit="m", allowed_text="> low",
+                              doc="The high end of it.")
+
+    declared = settings_of(Made)
+    with recording() as records:
+        t = TableReader({"low": 1.0, "high": 2.0}, ("made",), ReadContext("made-up.toml"))
+        low = declared["low"].read(t, "low")
+        assert declared["high"].read(t, "high", gt=low) == 2.0
+    text = render_section("", merge_records(records), key_docs.KeyDocs({}), title="T")
+    assert "| `high` | number | m | required | > low | The high end of it. |" in text
+    with pytest.raises(CaseError) as error:
+        declared["high"].read(TableReader({"high": 0.5}, ("made",), ReadContext("made-up.toml")),
+                              "high", gt=1.0)
+    assert "a finite number > 1 [m]" in str(error.value)
+    with pytest.raises(TypeError, match="allowed_text"):
+        declared["low"].read(TableReader({"low": 1.0}, (), ReadContext("x")), "low", lt=2.0)
 
 
 # -- (e): recording changes nothing ---------------------------------------------------------------
