@@ -150,7 +150,13 @@ def _geometry(t: TableReader, mass: float, environment: Environment,
         draft = declared["draft"].read(t, "draft")
         from_mass = draft is None
         if draft is None:
-            draft = mass / (environment.water_density * math.pi * (0.5 * diameter) ** 2)
+            try:
+                draft = mass / (environment.water_density * math.pi * (0.5 * diameter) ** 2)
+            except (OverflowError, ZeroDivisionError):  # R^2 beyond or below a float
+                draft = math.nan
+            if not (math.isfinite(draft) and draft > 0.0):
+                raise t.error("diameter", "a diameter at which the floater's mass gives a "
+                              "finite draft > 0 (mass / (water_density pi R^2)) [m]", diameter)
             if draft >= height:
                 raise t.context.error(("floater", "mass"), "a mass the cylinder can float "
                                       f"(draft from the mass below its height {height:g} m)",

@@ -181,3 +181,15 @@ def test_drag_preset_and_overrides_are_the_settings():
     drag = case.floater.drag
     assert drag.coefficients.column_transverse == 0.6 and drag.coefficients.member_axial == 0.2
     assert drag.kinematics_interval is None and drag.strip_length == 2.0
+
+
+@pytest.mark.parametrize("diameter", ["1e300", "1e-300"])
+def test_a_cylinder_draft_from_the_mass_beyond_a_float_names_the_diameter(diameter):
+    """The draft a cylinder floats at, mass / (rho pi R^2), overflows (R^2 beyond a float) or
+    divides by zero (R^2 below one): the reader refuses the diameter instead of raising a
+    Python OverflowError / ZeroDivisionError with a traceback."""
+    with pytest.raises(CaseError) as error:
+        load_case(CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml",
+                  [f"floater.geometry.diameter={diameter}"])
+    assert error.value.key == "floater.geometry.diameter"
+    assert "finite draft > 0" in str(error.value)
