@@ -15,6 +15,9 @@ The workers need floatmoor (the same version) and nothing of the client's disk o
   full output file (``--runs-dir``) itself from the bytes the worker returns: the runs
   folder is the client's, not a shared file system.
 
+Several campaigns run together (:func:`floatmoor.campaign.runner.run_campaigns`) have a
+bundle each; their files are scattered together, each distinct content once.
+
 A run lost with a worker is run again by Dask on another one; one that cannot be (it killed
 every worker it ran on, or the scheduler went away) is recorded as failed, with Dask's
 reason, and a re-run of the same campaign (same output) runs it again.

@@ -12,6 +12,9 @@ its swept values); a completed run is then skipped only if its file is there and
 Cases with a ``[floater]`` run coupled, the others in forced motion. On a Dask cluster the
 workers are sent the case and the files it names, and send every result (and run file) back
 to this process, which writes them (:mod:`floatmoor.campaign.cluster`).
+Several campaigns can run as one pool of jobs on the same workers
+(:func:`prepare_campaign`, then :func:`run_campaigns`): their runs are taken in turn, each
+result recorded into its own campaign's store.
 """
 
 from __future__ import annotations

@@ -194,6 +194,41 @@ def test_a_failed_run_fails_its_study_only(studies, capsys, monkeypatch) -> None
     assert calls == [failing[0]] and (b / "uq.nc").is_file()
 
 
+class _Killed(BaseException):
+    """Stops the command as SIGKILL does: nothing catches it."""
+
+
+def test_a_killed_submission_keeps_its_runs_and_resumes(studies, monkeypatch) -> None:
+    """Killed after 5 of its 12 runs (no clean-up: the folders are left as a SIGKILL leaves
+    them), the studies' folders hold those runs and are still the command's: the same
+    command resumes them, running the 7 others only."""
+    from floatmoor.io.output_folders import OwnedFolder
+
+    original = runner.run_one
+    calls: list[list[str]] = []
+
+    def run_one(case_path, overrides, timeseries=False, run_file=None):
+        if len(calls) == 5:
+            raise _Killed
+        calls.append(overrides)
+        return original(case_path, overrides, timeseries, run_file)
+
+    with monkeypatch.context() as killed:
+        killed.setattr(runner, "run_one", run_one)
+        killed.setattr(OwnedFolder, "__exit__", lambda self, *exc: None)  # no clean-up
+        with pytest.raises(_Killed):
+            main(_together(studies, "--quiet"))
+    held = sum(int(read_dataset(Path(f"together_{name}") / "runs.nc").attrs["runs_complete"])
+               for name in studies)
+    assert held == 5
+    monkeypatch.setattr(runner, "run_one", lambda *a, **k: calls.append(a[1]) or original(
+        *a, **k))
+    assert main(_together(studies, "--quiet")) == 0
+    assert len(calls) == 12 and len({tuple(c) for c in calls}) == 12  # none run twice
+    for name in studies:
+        assert (Path(f"together_{name}") / "uq.nc").is_file()
+
+
 @pytest.mark.parametrize("outputs, expected", [
     (["-o", "x"], "one output folder per study (3, in the order of the study files), found 1"),
     (["-o", "x", "-o", "y", "-o", "x"], "a folder of its own for each study"),
