@@ -185,17 +185,20 @@ def run_studies(studies: Sequence[PreparedStudy], *, workers: int = 1,
     saved
         Called with a study's number after each write of its ``runs.nc``.
     """
-    cases = [k for k, s in enumerate(studies) if s.campaign is not None]
+    cases: list[int] = []
+    campaigns: list[PreparedCampaign] = []
     for k, prepared in enumerate(studies):
-        if prepared.campaign is None:
-            prepared.runs = _run_model(prepared.study, prepared.nodes, prepared.weights,
-                                       progress if len(studies) == 1 else None)
-            if finished is not None:
-                finished(k)
-    if not cases:
+        if prepared.campaign is not None:
+            cases.append(k)
+            campaigns.append(prepared.campaign)
+            continue
+        prepared.runs = _run_model(prepared.study, prepared.nodes, prepared.weights,
+                                   progress if len(studies) == 1 else None)
+        if finished is not None:
+            finished(k)
+    if not campaigns:
         return
-    run_campaigns([studies[k].campaign for k in cases],  # type: ignore[misc]
-                  workers=workers, scheduler=scheduler, progress=progress,
+    run_campaigns(campaigns, workers=workers, scheduler=scheduler, progress=progress,
                   finished=None if finished is None else lambda n: finished(cases[n]),
                   saved=None if saved is None else lambda n: saved(cases[n]))
 
