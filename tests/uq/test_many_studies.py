@@ -4,7 +4,8 @@ jobs taken in turn from each study, so no worker waits for a study to end while 
 runs left; each study keeps its own folder (runs.nc, uq.nc, surrogates, report) with the
 numbers it gives alone, bit for bit; one count and one estimate for all, and a line per study
 when its runs are done; a failed run fails its study only (exit 1 naming the study and the
-run) and the other studies' results are written.
+run) and the other studies' results are written; Ctrl-C keeps every study's finished runs
+and a killed submission leaves folders the same command resumes.
 
 The studies are quick: the Lindahl chain on quasi-static lines, 4 runs of 5 s each
 (milliseconds); the report's figures (a second of CPU per study, tested with single
@@ -227,6 +228,28 @@ def test_a_killed_submission_keeps_its_runs_and_resumes(studies, monkeypatch) ->
     assert len(calls) == 12 and len({tuple(c) for c in calls}) == 12  # none run twice
     for name in studies:
         assert (Path(f"together_{name}") / "uq.nc").is_file()
+
+
+def test_ctrl_c_says_where_every_studys_finished_runs_are(studies, capsys,
+                                                          monkeypatch) -> None:
+    original = runner.run_one
+    calls: list[list[str]] = []
+
+    def run_one(case_path, overrides, timeseries=False, run_file=None):
+        if len(calls) == 4:  # a, b, c and a's second run done
+            raise KeyboardInterrupt
+        calls.append(overrides)
+        return original(case_path, overrides, timeseries, run_file)
+
+    monkeypatch.setattr(runner, "run_one", run_one)
+    assert main(_together(studies, "--quiet")) == 130
+    err = capsys.readouterr().err
+    assert err == ("floatmoor: interrupted; the finished runs are in together_a/runs.nc, "
+                   "together_b/runs.nc, together_c/runs.nc (re-run the same command to "
+                   "resume)\n")
+    held = [int(read_dataset(Path(f"together_{n}") / "runs.nc").attrs["runs_complete"])
+            for n in studies]
+    assert held == [2, 1, 1]
 
 
 @pytest.mark.parametrize("outputs, expected", [
