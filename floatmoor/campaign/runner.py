@@ -265,7 +265,7 @@ def run_campaigns(campaigns: Sequence[PreparedCampaign], *, workers: int = 1,
     # kernels, whose time says nothing about the runs left
     count = {"executed": 0, "reported": start}
     origin = [_time.perf_counter(), 0]
-    told = set()
+    told: set[int] = set()
 
     def tell_finished() -> None:
         for k, campaign in enumerate(campaigns):
