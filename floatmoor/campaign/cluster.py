@@ -15,6 +15,9 @@ The workers need floatmoor (the same version) and nothing of the client's disk o
   full output file (``--runs-dir``) itself from the bytes the worker returns: the runs
   folder is the client's, not a shared file system.
 
+Several campaigns run together (:func:`floatmoor.campaign.runner.run_campaigns`) have a
+bundle each; their files are scattered together, each distinct content once.
+
 A run lost with a worker is run again by Dask on another one; one that cannot be (it killed
 every worker it ran on, or the scheduler went away) is recorded as failed, with Dask's
 reason, and a re-run of the same campaign (same output) runs it again.
@@ -175,7 +178,7 @@ def _outcome(future: "Future") -> dict[str, Any]:
                          "re-run the campaign to run it")
 
 
-def _keep(record: Record, index: tuple[int, ...], run_file: str | None,
+def _keep(record: Record, k: int, index: tuple[int, ...], run_file: str | None,
           result: dict[str, Any]) -> None:
     """Write the run file a worker sent (the client's runs folder), then record the run; a
     run file that cannot be written fails the run."""
@@ -188,19 +191,24 @@ def _keep(record: Record, index: tuple[int, ...], run_file: str | None,
             result = {**failed_result(f"failed: run file not written: {err}"),
                       "compute_time_s": result["compute_time_s"],
                       "wall_time_s": result["wall_time_s"]}
-    record(index, run_file, result)
+    record(k, index, run_file, result)
 
 
-def execute_on_cluster(address: str, cases: Sequence["Case"], todo: Sequence[Job],
-                       timeseries: bool, record: Record, save: Callable[[], None]) -> None:
-    """Run ``todo`` on the cluster at ``address``, recording each result as it arrives and
+def execute_on_cluster(address: str, campaigns: Sequence[tuple[Sequence["Case"], bool]],
+                       jobs: Sequence[Job], record: Record, save: Callable[[], None]) -> None:
+    """Run ``jobs`` on the cluster at ``address``, recording each result as it arrives and
     saving after each batch; when interrupted, the finished runs are recorded and saved and
     the others cancelled, then the interrupt goes on.
 
     Parameters
     ----------
-    cases
-        Every run's case (loaded on the client), whose files make the bundle.
+    campaigns
+        Of every campaign the jobs belong to (by number): the case of each of its runs
+        left (loaded on the client), whose files make the campaign's bundle, and whether its
+        histories are kept. The files of all the campaigns are scattered together, each
+        distinct content once.
+    jobs
+        The runs, submitted in this order (the scheduler's priority).
 
     Raises
     ------
@@ -213,7 +221,9 @@ def execute_on_cluster(address: str, cases: Sequence["Case"], todo: Sequence[Job
     """
     from distributed import as_completed
 
-    bundle, blobs = make_bundle(cases)
+    bundles: dict[int, tuple[RunBundle, dict[str, bytes]]] = {
+        k: make_bundle(cases) for k, (cases, _) in enumerate(campaigns) if cases}
+    blobs = {digest: data for _, files in bundles.values() for digest, data in files.items()}
     with connect(address) as client:
         check_workers(client, address)
         scattered = client.scatter({f"floatmoor-file-{digest}": data
@@ -222,9 +232,12 @@ def execute_on_cluster(address: str, cases: Sequence["Case"], todo: Sequence[Job
         shipped = {key.removeprefix("floatmoor-file-"): future
                    for key, future in scattered.items()}
         expected = worker_identity()
-        futures = {client.submit(run_bundled, bundle, shipped, overrides, timeseries,
-                                 run_file is not None, expected, pure=False): (index, run_file)
-                   for index, overrides, run_file in todo}
+        futures = {}
+        for k, index, overrides, run_file in jobs:
+            bundle, files = bundles[k]
+            futures[client.submit(run_bundled, bundle, {d: shipped[d] for d in files},
+                                  overrides, campaigns[k][1], run_file is not None, expected,
+                                  pure=False)] = (k, index, run_file)
         pending = dict(futures)
         try:
             for batch in as_completed(futures).batches():
@@ -233,9 +246,9 @@ def execute_on_cluster(address: str, cases: Sequence["Case"], todo: Sequence[Job
                     pending.pop(future)
                 save()
         except BaseException:
-            for future, (index, run_file) in list(pending.items()):
+            for future, (k, index, run_file) in list(pending.items()):
                 if future.status == "finished":
-                    _keep(record, index, run_file, future.result())
+                    _keep(record, k, index, run_file, future.result())
             save()
             client.cancel([f for f in pending if f.status != "finished"])
             raise

@@ -12,6 +12,9 @@ its swept values); a completed run is then skipped only if its file is there and
 Cases with a ``[floater]`` run coupled, the others in forced motion. On a Dask cluster the
 workers are sent the case and the files it names, and send every result (and run file) back
 to this process, which writes them (:mod:`floatmoor.campaign.cluster`).
+Several campaigns can run as one pool of jobs on the same workers
+(:func:`prepare_campaign`, then :func:`run_campaigns`): their runs are taken in turn, each
+result recorded into its own campaign's store.
 """
 
 from __future__ import annotations
@@ -38,7 +41,8 @@ from floatmoor.errors import CaseError, ModelValidityWarning
 from floatmoor.io.dataset import DOFS
 from floatmoor.signals import die_with_parent
 
-__all__ = ["run_campaign", "validate_campaign"]
+__all__ = ["run_campaign", "validate_campaign", "prepare_campaign", "run_campaigns",
+           "PreparedCampaign"]
 
 Progress = Callable[[int, int, float], None]
 
@@ -113,9 +117,89 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
         ``runs_failed`` (or :func:`floatmoor.campaign.store.failed_runs`) before using the
         results; ``floatmoor sweep`` exits with 1 when it is not 0.
     """
-    case_path = str(case_path)
     if scheduler is not None:
         check_address(scheduler)
+    campaign = prepare_campaign(case_path, design, base_overrides=base_overrides,
+                                output=output, timeseries=timeseries, runs_dir=runs_dir,
+                                run_names=run_names, replace_other=replace_other,
+                                restart=restart, moved_aside=moved_aside)
+    run_campaigns([campaign], workers=workers, scheduler=scheduler, progress=progress)
+    return campaign.dataset()
+
+
+class PreparedCampaign:
+    """A checked campaign ready to run (:func:`prepare_campaign`): its store (resumed from
+    its output file), the runs left and their cases; :func:`run_campaigns` runs it, alone or
+    with others on one pool of workers.
+
+    Attributes
+    ----------
+    case_path, timeseries
+        The base case file, and whether histories are kept.
+    path
+        The output file, or None.
+    todo
+        (index, overrides, run file) of every run left, in :meth:`CampaignDesign.runs` order.
+    cases
+        The case of each run of ``todo`` (what a cluster's workers are sent).
+    total
+        Runs in the design.
+    """
+
+    def __init__(self, case_path: str, timeseries: bool, store: CampaignStore,
+                 path: Path | None, todo: list[tuple[tuple[int, ...], list[str], str | None]],
+                 cases: list[Case], total: int) -> None:
+        self.case_path, self.timeseries, self.store, self.path = case_path, timeseries, store, \
+            path
+        self.todo, self.cases, self.total = todo, cases, total
+        self.recorded: set[tuple[int, ...]] = set()
+        self.existed = path is not None and path.exists()
+        self.unsaved = False
+
+    @property
+    def done(self) -> int:
+        """Runs complete or recorded (failed ones too)."""
+        return self.total - len(self.todo) + len(self.recorded)
+
+    def record(self, index: tuple[int, ...], run_file: str | None,
+               result: dict[str, Any]) -> bool:
+        """Record a run's result; False when it was recorded already (after an interrupt)."""
+        self.store.record(index, result, run_file)
+        self.unsaved = True
+        if index in self.recorded:
+            return False
+        self.recorded.add(index)
+        return True
+
+    def save(self, *, final: bool = False) -> bool:
+        """Write what is recorded to the output file (if any) when something is new; at the
+        ``final`` save also a resumed campaign's or one that had nothing to run (no file for
+        a campaign that ran nothing). True when the file was written."""
+        if final:
+            self.unsaved = self.unsaved or self.existed or not self.todo
+        if not self.unsaved:
+            return False
+        self.unsaved = False
+        if self.path is None:
+            return False
+        self.store.write(self.path)
+        return True
+
+    def dataset(self) -> xr.Dataset:
+        """The campaign (:meth:`CampaignStore.dataset`)."""
+        return self.store.dataset()
+
+
+def prepare_campaign(case_path: str | Path, design: CampaignDesign, *,
+                     base_overrides: Sequence[str] = (), output: str | Path | None = None,
+                     timeseries: bool = False, runs_dir: str | Path | None = None,
+                     run_names: Sequence[str] | None = None, replace_other: bool = False,
+                     restart: bool = False,
+                     moved_aside: Callable[[Path, Path], None] | None = None
+                     ) -> PreparedCampaign:
+    """Check a campaign and resume its output file, running nothing; the arguments and
+    errors are :func:`run_campaign`'s."""
+    case_path = str(case_path)
     cases = _load_campaign(case_path, design, base_overrides, timeseries)
     base = cases[0]
     runs = design.runs()
@@ -131,7 +215,7 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
             _check_resumed_series(store, path, timeseries)
     if files:
         Path(files[0]).parent.mkdir(exist_ok=True)
-    todo: list[Job] = []
+    todo: list[tuple[tuple[int, ...], list[str], str | None]] = []
     todo_cases: list[Case] = []  # what a cluster's workers are sent: the runs to run
     for k, (index, overrides) in enumerate(runs):
         run_overrides = [*base_overrides, *overrides]
@@ -144,48 +228,91 @@ def run_campaign(case_path: str | Path, design: CampaignDesign, *,
                 continue
         todo.append((index, run_overrides, run_file))
         todo_cases.append(cases[1 + k])
-    total = len(runs)
+    return PreparedCampaign(case_path, timeseries, store, path, todo, todo_cases, len(runs))
+
+
+def run_campaigns(campaigns: Sequence[PreparedCampaign], *, workers: int = 1,
+                  scheduler: str | None = None, progress: Progress | None = None,
+                  finished: Callable[[int], None] | None = None,
+                  saved: Callable[[int], None] | None = None) -> None:
+    """Run the runs left of every campaign as one pool of jobs on the same workers, taken in
+    turn from each campaign (its first run, the next one's first run, ...), so that no
+    worker idles while any campaign has runs left; each result goes to its campaign's store,
+    written after each batch of finished runs, so an interrupted or killed submission loses
+    no finished run of any campaign.
+
+    Parameters
+    ----------
+    campaigns
+        From :func:`prepare_campaign`.
+    workers, scheduler
+        As :func:`run_campaign`'s.
+    progress
+        Called with (runs done, runs in total, estimated seconds left) of all the campaigns
+        together, as :func:`run_campaign` calls it.
+    finished
+        Called with a campaign's number once all its runs are done (recorded and saved), or
+        at the start for a campaign with nothing left to run.
+    saved
+        Called with a campaign's number after each write of its output file.
+    """
+    total = sum(c.total for c in campaigns)
+    jobs = _in_turn(campaigns)
+    start = sum(c.done for c in campaigns)
     if progress is not None:
-        progress(total - len(todo), total, float("nan"))
+        progress(start, total, float("nan"))
     # the estimate's origin (wall time, runs executed): moved to each run that compiled
     # kernels, whose time says nothing about the runs left
-    count = {"done": total - len(todo), "executed": 0, "reported": total - len(todo)}
+    count = {"executed": 0, "reported": start}
     origin = [_time.perf_counter(), 0]
-    recorded: set[tuple[int, ...]] = set()
+    told: set[int] = set()
 
-    def record(index: tuple[int, ...], run_file: str | None, result: dict[str, Any]) -> None:
-        store.record(index, result, run_file)
-        if index in recorded:  # recorded again after an interrupt: counted once
-            return
+    def tell_finished() -> None:
+        for k, campaign in enumerate(campaigns):
+            if k not in told and campaign.done == campaign.total and not campaign.unsaved:
+                told.add(k)
+                if finished is not None:
+                    finished(k)
+
+    def record(k: int, index: tuple[int, ...], run_file: str | None,
+               result: dict[str, Any]) -> None:
+        if not campaigns[k].record(index, run_file, result):
+            return  # recorded again after an interrupt: counted once
         for message in result.get("validity_warnings", ()):  # the worker's, warned here
             where = f"run {Path(run_file).stem}" if run_file else \
                 "run " + ", ".join(map(str, index))
             warnings.warn(ModelValidityWarning(f"{where}: {message}"))
-        recorded.add(index)
-        count["done"] += 1
         count["executed"] += 1
         if result.get("compile_time_s", 0.0) > 0.0:
             origin[:] = [_time.perf_counter(), count["executed"]]
 
-    def save() -> None:
+    def save(final: bool = False) -> None:
         """Write what is recorded, then report it (a run reported done is in the file)."""
-        if path is not None:
-            store.write(path)
-        if progress is not None and count["done"] > count["reported"]:
-            count["reported"] = count["done"]
+        for k, campaign in enumerate(campaigns):
+            if campaign.save(final=final) and saved is not None:
+                saved(k)
+        done = sum(c.done for c in campaigns)
+        if progress is not None and done > count["reported"]:
+            count["reported"] = done
             since = count["executed"] - origin[1]
-            left = ((_time.perf_counter() - origin[0]) / since * (total - count["done"])
+            left = ((_time.perf_counter() - origin[0]) / since * (total - done)
                     if since > 0 else float("nan"))
-            progress(count["done"], total, left)
+            progress(done, total, left)
+        tell_finished()
 
-    existed = path is not None and path.exists()
+    tell_finished()
     try:
-        _execute(case_path, todo, workers, scheduler, timeseries, record, save,
-                 cases=todo_cases)
+        _execute(campaigns, jobs, workers, scheduler, record, save)
     finally:
-        if recorded or existed or not todo:  # no file for a campaign that ran nothing
-            save()
-    return store.dataset()
+        save(final=True)
+
+
+def _in_turn(campaigns: Sequence[PreparedCampaign]) -> list[Job]:
+    """The runs left of every campaign, one of each in turn."""
+    jobs: list[Job] = []
+    for n in range(max((len(c.todo) for c in campaigns), default=0)):
+        jobs.extend((k, *c.todo[n]) for k, c in enumerate(campaigns) if n < len(c.todo))
+    return jobs
 
 
 def _reopen(path: Path, store: CampaignStore, afresh: bool,
@@ -312,38 +439,39 @@ def _absolute(run_file: str | None) -> str | None:
     return None if run_file is None else str(Path(run_file).resolve())
 
 
-def _execute(case_path: str, todo: list[Job], workers: int, scheduler: str | None,
-             timeseries: bool, record: Record, save: Callable[[], None], *,
-             cases: Sequence[Case]) -> None:
-    """Run ``todo``, passing each result to ``record`` as it completes and calling ``save``
+def _execute(campaigns: Sequence[PreparedCampaign], jobs: list[Job], workers: int,
+             scheduler: str | None, record: Record, save: Callable[[], None]) -> None:
+    """Run ``jobs``, passing each result to ``record`` as it completes and calling ``save``
     after each batch; when interrupted, the runs finished meanwhile are recorded and saved
-    before the workers are stopped, then the interrupt goes on. ``cases`` (those of
-    ``todo``, loaded here) say what a cluster's workers are sent."""
-    if not todo:
+    before the workers are stopped, then the interrupt goes on."""
+    if not jobs:
         return
     if scheduler is not None:
         from floatmoor.campaign.cluster import execute_on_cluster
 
-        execute_on_cluster(scheduler, cases, todo, timeseries, record, save)
+        execute_on_cluster(scheduler, [(c.cases, c.timeseries) for c in campaigns], jobs,
+                           record, save)
     elif workers <= 1:
-        for index, overrides, run_file in todo:
-            record(index, run_file, run_one(case_path, overrides, timeseries,
-                                            _absolute(run_file)))
+        for k, index, overrides, run_file in jobs:
+            campaign = campaigns[k]
+            record(k, index, run_file, run_one(campaign.case_path, overrides,
+                                               campaign.timeseries, _absolute(run_file)))
             save()
     else:
-        _execute_local(case_path, todo, workers, timeseries, record, save)
+        _execute_local(campaigns, jobs, workers, record, save)
 
 
-def _execute_local(case_path: str, todo: list[Job], workers: int, timeseries: bool,
+def _execute_local(campaigns: Sequence[PreparedCampaign], jobs: list[Job], workers: int,
                    record: Record, save: Callable[[], None]) -> None:
     """On local worker processes that die with this one."""
     pool = ProcessPoolExecutor(max_workers=workers, initializer=die_with_parent,
                                initargs=(os.getpid(),))
-    pending: dict[Future[dict[str, Any]], tuple[tuple[int, ...], str | None]] = {}
+    pending: dict[Future[dict[str, Any]], tuple[int, tuple[int, ...], str | None]] = {}
     try:
-        for index, overrides, run_file in todo:
-            pending[pool.submit(run_one, case_path, overrides, timeseries,
-                                _absolute(run_file))] = (index, run_file)
+        for k, index, overrides, run_file in jobs:
+            campaign = campaigns[k]
+            pending[pool.submit(run_one, campaign.case_path, overrides, campaign.timeseries,
+                                _absolute(run_file))] = (k, index, run_file)
         while pending:
             finished, _ = wait(pending, return_when=FIRST_COMPLETED)
             for future in finished:
@@ -358,12 +486,12 @@ def _execute_local(case_path: str, todo: list[Job], workers: int, timeseries: bo
         _stop_workers(pool)
 
 
-def _record_finished(pending: dict[Any, tuple[tuple[int, ...], str | None]],
+def _record_finished(pending: dict[Any, tuple[int, tuple[int, ...], str | None]],
                      record: Record) -> None:
     """Record the runs of ``pending`` that have finished (their results are there)."""
-    for future, (index, run_file) in list(pending.items()):
+    for future, (k, index, run_file) in list(pending.items()):
         if future.done() and not future.cancelled() and future.exception() is None:
-            record(index, run_file, future.result())
+            record(k, index, run_file, future.result())
 
 
 def _stop_workers(pool: ProcessPoolExecutor) -> None:

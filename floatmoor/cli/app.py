@@ -125,11 +125,13 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("--quiet", action="store_true", help="no progress reports")
     uq = sub.add_parser("uq", help="run an uncertainty-quantification study (gPC surrogates "
                         "of quantities of interest)")
-    uq.add_argument("study", help="TOML study file (cases/uq/*.toml)")
-    uq.add_argument("-o", "--output", metavar="DIR", required=True,
+    uq.add_argument("study", nargs="+", metavar="STUDY",
+                    help="TOML study file (cases/uq/*.toml); several run together on the same "
+                    "workers, each into its own -o folder")
+    uq.add_argument("-o", "--output", metavar="DIR", required=True, action="append",
                     help="output folder, new (created if its parent exists), empty or one uq "
                     "wrote: runs.nc, uq.nc, surrogates/, report/; re-running into it resumes "
-                    "the runs")
+                    "the runs; one -o per study, in the order of the studies")
     uq.add_argument("--workers", type=int, default=1, help="local worker processes")
     uq.add_argument("--scheduler", metavar="ADDRESS",
                     help="run on this Dask distributed scheduler (tcp://host:8786)")

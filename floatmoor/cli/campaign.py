@@ -19,7 +19,7 @@ if TYPE_CHECKING:
     from floatmoor.campaign.design import CampaignDesign
 
 __all__ = ["sweep_command", "campaign_reporters", "report_failures", "say_moved_aside",
-           "NAMED_FAILURES"]
+           "say_part_done", "NAMED_FAILURES"]
 
 
 def sweep_command(args: argparse.Namespace) -> int:
@@ -93,14 +93,16 @@ def _sweep_locked(args: argparse.Namespace, design: CampaignDesign, output: Path
     return EXIT_OK
 
 
-def campaign_reporters(quiet: bool, workers: str = "") -> tuple[
+def campaign_reporters(quiet: bool, workers: str = "", parts: str = "") -> tuple[
         Callable[[int, int, float], None], Callable[[], None]]:
     """The progress callback of a campaign's runs (runs done, runs in total, seconds left)
     and the compiling notice (said once: kernels compile in this process with one worker).
 
     Before the runs it says how many there are (and how many a resumed campaign already
-    holds) and on what (``workers``, e.g. ``"2 local workers"``); once the first runs give an
-    estimate it says the wall time to finish, once, then each finished run says what is left.
+    holds), of what (``parts``, e.g. ``"3 studies"`` submitted together: one count and one
+    estimate for all) and on what (``workers``, e.g. ``"2 local workers"``); once the first
+    runs give an estimate it says the wall time to finish, once, then each finished run says
+    what is left.
     """
     from floatmoor.cli.progress import COMPILING_MESSAGE
 
@@ -113,7 +115,8 @@ def campaign_reporters(quiet: bool, workers: str = "") -> tuple[
             said.append("count")
             before = f" ({done} already done)" if done else ""
             where = f" on {workers}" if workers else ""
-            print(f"floatmoor: {total} runs{before}{where}; the wall-time estimate follows "
+            of = f" of {parts}" if parts else ""
+            print(f"floatmoor: {total} runs{of}{before}{where}; the wall-time estimate follows "
                   "the first finished run", file=sys.stderr, flush=True)
             if done == 0:
                 return
@@ -130,6 +133,14 @@ def campaign_reporters(quiet: bool, workers: str = "") -> tuple[
             print(COMPILING_MESSAGE, file=sys.stderr, flush=True)
 
     return progress, compiling
+
+
+def say_part_done(quiet: bool, what: str, runs: int, failed: int) -> None:
+    """Say on standard error that one campaign of several run together (``what``, e.g.
+    ``"study cases/uq/a.toml"``) has all its runs done, and how many failed."""
+    if not quiet:
+        print(f"floatmoor: {what}: all {runs} runs done, {failed} failed", file=sys.stderr,
+              flush=True)
 
 
 def duration_text(seconds: float) -> str:

@@ -11,6 +11,11 @@ the results go to ``DIR/uq.nc`` (:mod:`floatmoor.uq.output`) and the figures and
 A quadrature rule needs every node: a failed run (or a run whose quantity is not finite)
 fails the study (:class:`StudyRunsFailed`, nothing but ``runs.nc`` written). A regression
 drops such runs, says so in the results and fits on the others.
+
+Several studies submitted together (:func:`run_studies`, ``floatmoor uq A.toml B.toml -o A
+-o B``) run their case runs as one pool of jobs on the same workers, taken in turn from each
+study, each into its own ``runs.nc``; each study is then finished on its own
+(:func:`finish_study`), so a failed run fails only its study.
 """
 
 from __future__ import annotations
@@ -20,10 +25,13 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 import numpy as np
+import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.campaign.design import Axis, CampaignDesign
-from floatmoor.campaign.runner import run_campaign, validate_campaign
+from floatmoor.campaign.runner import (
+    PreparedCampaign, prepare_campaign, run_campaigns, validate_campaign,
+)
 from floatmoor.case.naming import toml_text
 from floatmoor.errors import FloatmoorError
 from floatmoor.io.netcdf import write_dataset
@@ -35,7 +43,8 @@ from floatmoor.uq.results import StudyResult, StudyRuns
 from floatmoor.uq.study import Study
 from floatmoor.uq.taut_string import BUILTIN_MODELS
 
-__all__ = ["StudyRunsFailed", "run_study", "study_design",
+__all__ = ["StudyRunsFailed", "run_study", "study_design", "PreparedStudy", "prepare_study",
+           "run_studies", "finish_study",
            "RUNS_NAME", "RESULTS_NAME", "SURROGATES_NAME", "REPORT_NAME"]
 
 RUNS_NAME, RESULTS_NAME, SURROGATES_NAME, REPORT_NAME = "runs.nc", "uq.nc", "surrogates", \
@@ -106,16 +115,110 @@ def run_study(study: Study, folder: str | Path, *, workers: int = 1,
     StudyRunsFailed
         When runs of a quadrature design failed (``runs.nc`` holds them).
     """
+    prepared = prepare_study(study, folder, restart=restart, moved_aside=moved_aside)
+    run_studies([prepared], workers=workers, scheduler=scheduler, progress=progress)
+    return finish_study(prepared)
+
+
+class PreparedStudy:
+    """A checked study with its folder made and its runs resumed (:func:`prepare_study`),
+    ready for :func:`run_studies` and then :func:`finish_study`.
+
+    Attributes
+    ----------
+    study, folder
+        The study and its output folder.
+    nodes, weights
+        The design's nodes and weights (None for a regression).
+    campaign
+        The campaign of a case study's runs (None for a built-in model).
+    runs
+        The model study's evaluations once :func:`run_studies` ran them.
+    """
+
+    def __init__(self, study: Study, folder: Path, nodes: NDArray[np.float64],
+                 weights: NDArray[np.float64] | None,
+                 campaign: PreparedCampaign | None) -> None:
+        self.study, self.folder, self.nodes, self.weights = study, folder, nodes, weights
+        self.campaign = campaign
+        self.runs: StudyRuns | None = None
+
+
+def prepare_study(study: Study, folder: str | Path, *, restart: bool = False,
+                  moved_aside: Callable[[Path, Path], None] | None = None) -> PreparedStudy:
+    """Check every run of ``study``, make ``folder`` and resume ``folder/runs.nc``; nothing
+    runs. The arguments and errors are :func:`run_study`'s."""
     folder = Path(folder)
     nodes, weights, campaign_design = study_design(study)
+    campaign = None
     if study.case is not None:
         validate_campaign(study.case, campaign_design, study.base_overrides, timeseries=True)
         folder.mkdir(exist_ok=True)
-        runs = _run_case(study, folder, nodes, weights, campaign_design, workers, scheduler,
-                         progress, restart, moved_aside)
+        campaign = prepare_campaign(study.case, campaign_design,
+                                    base_overrides=study.base_overrides,
+                                    output=folder / RUNS_NAME, timeseries=True,
+                                    restart=restart, moved_aside=moved_aside)
     else:
         folder.mkdir(exist_ok=True)
-        runs = _run_model(study, nodes, weights, progress)
+    return PreparedStudy(study, folder, nodes, weights, campaign)
+
+
+def run_studies(studies: Sequence[PreparedStudy], *, workers: int = 1,
+                scheduler: str | None = None, progress: Progress | None = None,
+                finished: Callable[[int], None] | None = None,
+                saved: Callable[[int], None] | None = None) -> None:
+    """Run the runs of several studies as one pool of jobs on the same workers
+    (:func:`floatmoor.campaign.runner.run_campaigns`: their runs taken in turn, each into
+    its study's ``runs.nc``); a built-in model study is evaluated here first.
+
+    Parameters
+    ----------
+    studies
+        From :func:`prepare_study`, each into its own folder.
+    workers, scheduler
+        Local worker processes, or a Dask scheduler address.
+    progress
+        Called with (runs done, runs in total, estimated seconds left) of the case studies'
+        runs together (of the model study's evaluations when it is alone).
+    finished
+        Called with a study's number once all its runs are done.
+    saved
+        Called with a study's number after each write of its ``runs.nc``.
+    """
+    cases: list[int] = []
+    campaigns: list[PreparedCampaign] = []
+    for k, prepared in enumerate(studies):
+        if prepared.campaign is not None:
+            cases.append(k)
+            campaigns.append(prepared.campaign)
+            continue
+        prepared.runs = _run_model(prepared.study, prepared.nodes, prepared.weights,
+                                   progress if len(studies) == 1 else None)
+        if finished is not None:
+            finished(k)
+    if not campaigns:
+        return
+    run_campaigns(campaigns, workers=workers, scheduler=scheduler, progress=progress,
+                  finished=None if finished is None else lambda n: finished(cases[n]),
+                  saved=None if saved is None else lambda n: saved(cases[n]))
+
+
+def finish_study(prepared: PreparedStudy) -> StudyResult:
+    """Fit the surrogates of a study whose runs :func:`run_studies` ran, and write its
+    ``surrogates/``, ``uq.nc`` and ``report/``.
+
+    Raises
+    ------
+    StudyRunsFailed
+        When runs of a quadrature design failed (``runs.nc`` holds them).
+    """
+    study, folder = prepared.study, prepared.folder
+    if prepared.campaign is not None:
+        runs = _case_runs(study, prepared.nodes, prepared.weights,
+                          prepared.campaign.dataset())
+    else:
+        assert prepared.runs is not None, "the model study was not run (run_studies)"
+        runs = prepared.runs
     if isinstance(study.method, QuadratureMethod):
         _refuse_missing(study, runs)
     surrogates = {q.name: fit(list(study.inputs), study.method, runs.nodes, runs.weights,
@@ -134,14 +237,9 @@ def run_study(study: Study, folder: str | Path, *, workers: int = 1,
     return result
 
 
-def _run_case(study: Study, folder: Path, nodes: NDArray[np.float64],
-              weights: NDArray[np.float64] | None, campaign_design: CampaignDesign,
-              workers: int, scheduler: str | None, progress: Progress | None, restart: bool,
-              moved_aside: Callable[[Path, Path], None] | None) -> StudyRuns:
-    campaign = run_campaign(study.case, campaign_design, base_overrides=study.base_overrides,
-                            output=folder / RUNS_NAME, workers=workers, scheduler=scheduler,
-                            timeseries=True, progress=progress, restart=restart,
-                            moved_aside=moved_aside)
+def _case_runs(study: Study, nodes: NDArray[np.float64], weights: NDArray[np.float64] | None,
+               campaign: xr.Dataset) -> StudyRuns:
+    """The study's view of its campaign: each run's status and quantities."""
     status = [str(s) for s in campaign["status"].values]
     outputs, times = {}, {}
     for q in study.quantities:

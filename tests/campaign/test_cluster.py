@@ -3,7 +3,10 @@ processes of their own in a folder of their own (``dask scheduler``, ``dask work
 client's relative case path and case folder mean nothing to them: forced-motion and coupled
 sweeps give numbers identical to a local run, workers of another floatmoor are refused, and a
 worker killed mid-campaign loses no finished run (a resume completes the rest); a gPC study
-runs on the cluster with the local numbers."""
+runs on the cluster with the local numbers, several studies submitted together share the
+workers with the numbers each gives alone, and a study survives a killed worker (every run,
+the uninterrupted numbers) and a killed client (no finished run lost, the same command
+resumes to the uninterrupted numbers)."""
 
 from __future__ import annotations
 
@@ -378,3 +381,169 @@ def test_uq_study_on_the_cluster_gives_the_local_numbers(dask_cluster, tmp_path,
     assert sorted(local.data_vars) == sorted(remote.data_vars)
     for name in local.data_vars:
         np.testing.assert_array_equal(remote[name].values, local[name].values, err_msg=name)
+
+
+def _summary_only(result, folder: Path) -> Path:
+    """A study's report without its figures (a second of CPU each, drawn by the test above):
+    ``summary.md`` naming its title."""
+    folder.mkdir(exist_ok=True)
+    (folder / "summary.md").write_text(result.study.title, encoding="utf-8")
+    return folder / "summary.md"
+
+
+def _assert_same_study(alone: Path, other: Path) -> None:
+    """uq.nc bit for bit, and every run's results in runs.nc (not its measured times)."""
+    a, b = read_dataset(alone / "uq.nc"), read_dataset(other / "uq.nc")
+    assert sorted(a.data_vars) == sorted(b.data_vars)
+    for name in a.data_vars:
+        np.testing.assert_array_equal(b[name].values, a[name].values, err_msg=name)
+    _assert_same_results(read_dataset(alone / "runs.nc"), read_dataset(other / "runs.nc"))
+
+
+def test_uq_studies_together_share_the_cluster(dask_cluster, tmp_path, monkeypatch) -> None:
+    """Two studies submitted together run their runs on the same workers, each into its
+    own folder, with the numbers each gives alone on this machine."""
+    import floatmoor.uq.run as uq_run
+
+    monkeypatch.setattr(uq_run, "write_study_report", _summary_only)
+    (tmp_path / "study").mkdir()
+    shutil.copy(LINDAHL_CASE, tmp_path / "study" / "L.toml")
+    (tmp_path / "study" / "s.toml").write_text(UQ_STUDY, encoding="utf-8")
+    (tmp_path / "study" / "t.toml").write_text(UQ_STUDY.replace("32.9", "33.3").replace(
+        "33.1", "33.5"), encoding="utf-8")
+    monkeypatch.chdir(tmp_path)
+    assert main(["uq", "study/s.toml", "study/t.toml", "-o", "rs", "-o", "rt", "--quiet",
+                 "--scheduler", dask_cluster.address]) == 0
+    for name in "st":
+        assert main(["uq", f"study/{name}.toml", "-o", f"local_{name}", "--quiet"]) == 0
+        _assert_same_study(tmp_path / f"local_{name}", tmp_path / f"r{name}")
+    assert float(read_dataset(tmp_path / "rs" / "uq.nc")["tension_max_mean"]) != float(
+        read_dataset(tmp_path / "rt" / "uq.nc")["tension_max_mean"])
+
+
+#: A gPC study of dynamic runs long enough to kill a worker or the client while runs are
+#: left (6 runs of ~1 s each once compiled, as KILL_BASE's), one input at order 5.
+KILL_STUDY = """
+title = "Lindahl chain, dynamic: uncertain length {lower} to {upper} m"
+case = "L.toml"
+base_overrides = ["simulation.duration=12.0"]
+
+[[inputs]]
+key = "lines.chain.length"
+distribution = "uniform"
+lower = {lower}
+upper = {upper}
+
+[method]
+kind = "quadrature"
+order = 5
+
+[[quantities]]
+name = "tension_max"
+line = "chain"
+statistic = "max"
+
+[[quantities]]
+name = "tension"
+line = "chain"
+statistic = "history"
+window = [10.0, 12.0]
+"""
+
+
+def _kill_studies(client: Path, names: str) -> list[str]:
+    """Study files ``client/study/N.toml`` of KILL_STUDY (apart in length), by name."""
+    (client / "study").mkdir(parents=True)
+    shutil.copy(LINDAHL_CASE, client / "study" / "L.toml")
+    for k, name in enumerate(names):
+        lower = 33.0 + 0.3 * k
+        (client / "study" / f"{name}.toml").write_text(
+            KILL_STUDY.format(lower=lower, upper=round(lower + 0.25, 2)), encoding="utf-8")
+    return [f"study/{name}.toml" for name in names]
+
+
+def _complete_runs(folders: list[Path]) -> int:
+    """Complete runs in the runs.nc of ``folders`` (as their attributes say)."""
+    found = 0
+    for folder in folders:
+        attrs = read_attributes(folder / "runs.nc")
+        found += int(attrs["runs_complete"]) if attrs is not None else 0
+    return found
+
+
+def _wait_for_a_run(process: subprocess.Popen, folders: list[Path]) -> None:
+    end = time.monotonic() + CAMPAIGN_TIMEOUT
+    while time.monotonic() < end and process.poll() is None:
+        if _complete_runs(folders) >= 1:
+            break
+        time.sleep(0.05)
+    assert _complete_runs(folders) >= 1 and process.poll() is None, \
+        "no run finished before the end"
+
+
+@pytest.mark.slow  # ~25 s of CPU (85 s of wall time on the shared machine): its own
+# cluster, a study of dynamic runs there and one here
+def test_uq_study_survives_a_killed_worker(tmp_path, monkeypatch) -> None:
+    """A worker killed mid-study: Dask runs its run again on the other worker, the study
+    ends with every run and the numbers of a study run here uninterrupted."""
+    client = tmp_path / "client"
+    (study,) = _kill_studies(client, "k")
+    env = {**os.environ, "PYTHONPATH": str(REPO), "MPLBACKEND": "Agg"}
+    with _cluster(tmp_path / "cluster") as started:
+        command = [sys.executable, "-m", "floatmoor", "uq", study, "-o", "remote", "--quiet",
+                   "--scheduler", started.address]
+        process = subprocess.Popen(command, cwd=client, env=env, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True)
+        _wait_for_a_run(process, [client / "remote"])
+        before = read_dataset(client / "remote" / "runs.nc")
+        started.workers[0].send_signal(signal.SIGKILL)
+        out, err = process.communicate(timeout=CAMPAIGN_TIMEOUT)
+    assert process.returncode == 0, (out, err)
+    after = read_dataset(client / "remote" / "runs.nc")
+    assert (after["status"].values == "complete").all()
+    done = before["status"].values == "complete"
+    assert not done.all(), "the worker was killed after the last run"
+    np.testing.assert_array_equal(after["compute_time_s"].values[done],
+                                  before["compute_time_s"].values[done])  # kept, not rerun
+    monkeypatch.chdir(client)
+    assert main(["uq", study, "-o", "local", "--quiet"]) == 0
+    _assert_same_study(client / "local", client / "remote")
+
+
+@pytest.mark.slow  # ~40 s of CPU (165 s of wall time on the shared machine): its own
+# cluster, two studies of dynamic runs there and here
+def test_killed_uq_client_loses_no_finished_run_and_a_rerun_resumes(tmp_path,
+                                                                   monkeypatch) -> None:
+    """``floatmoor uq`` of two studies killed (SIGKILL) while their runs go on the cluster:
+    the runs that finished are in the studies' runs.nc, their folders stay the command's,
+    and the same command resumes them (running only the others) to the numbers of studies
+    run here uninterrupted."""
+    client = tmp_path / "client"
+    studies = _kill_studies(client, "pq")
+    outputs = [client / "rp", client / "rq"]
+    env = {**os.environ, "PYTHONPATH": str(REPO), "MPLBACKEND": "Agg"}
+    with _cluster(tmp_path / "cluster") as started:
+        command = [sys.executable, "-m", "floatmoor", "uq", *studies, "-o", "rp", "-o", "rq",
+                   "--quiet", "--scheduler", started.address]
+        process = subprocess.Popen(command, cwd=client, env=env, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True)
+        _wait_for_a_run(process, outputs)
+        process.kill()
+        process.communicate(timeout=CAMPAIGN_TIMEOUT)
+        before = {o.name: read_dataset(o / "runs.nc") for o in outputs
+                  if (o / "runs.nc").is_file()}
+        held = sum(int((ds["status"].values == "complete").sum()) for ds in before.values())
+        assert 1 <= held < 12, held  # some finished runs kept, some left to run
+        resumed = subprocess.run(command, cwd=client, env=env, capture_output=True,
+                                 text=True, timeout=CAMPAIGN_TIMEOUT)
+    assert resumed.returncode == 0, resumed.stderr
+    for name, ds in before.items():
+        done = ds["status"].values == "complete"
+        after = read_dataset(client / name / "runs.nc")
+        np.testing.assert_array_equal(after["compute_time_s"].values[done],
+                                      ds["compute_time_s"].values[done])  # not run again
+    monkeypatch.chdir(client)
+    for study, output in zip(studies, outputs):
+        local = client / f"local_{output.name}"
+        assert main(["uq", study, "-o", local.name, "--quiet"]) == 0
+        _assert_same_study(local, output)

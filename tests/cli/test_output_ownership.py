@@ -217,14 +217,21 @@ def test_uq_and_vtk_on_a_full_disk_remove_what_they_wrote(tmp_path, capsys, monk
 
     folder = tmp_path / "uq"
 
-    def full_study(study, folder, **kwargs):
+    def prepared(study, folder, **kwargs):  # no case checked, no runs.nc resumed
         folder.mkdir(exist_ok=True)
-        (folder / "runs.nc").write_bytes(b"CDF\x02 runs")
-        (folder / "report").mkdir()
-        (folder / "report" / "summary.md").write_text("half")
+        return uq_run.PreparedStudy(study, folder, None, None, None)
+
+    def runs_done(studies, **kwargs):
+        (studies[0].folder / "runs.nc").write_bytes(b"CDF\x02 runs")
+
+    def full_study(prepared):
+        (prepared.folder / "report").mkdir()
+        (prepared.folder / "report" / "summary.md").write_text("half")
         raise OutputWriteError(f"cannot write {folder / 'uq.nc'}: No space left on device")
 
-    monkeypatch.setattr(uq_run, "run_study", full_study)
+    monkeypatch.setattr(uq_run, "prepare_study", prepared)
+    monkeypatch.setattr(uq_run, "run_studies", runs_done)
+    monkeypatch.setattr(uq_run, "finish_study", full_study)
     study = REPO / "cases" / "uq" / "lindahl_T1.25_cdn.toml"
     assert main(["uq", str(study), "-o", str(folder), "--quiet"]) == 1
     err = capsys.readouterr().err
