@@ -454,7 +454,7 @@ class HarmonicMotion:
 @dataclass(frozen=True)
 class TableMotion:
     """Displacement time history from a CSV file (columns ``time, x, y, z``), interpolated
-    by a cubic spline (:func:`floatmoor.motion.table_state`)."""
+    by a cubic spline (:func:`floatmoor.motion.fairlead.table_state`)."""
 
     file: str  #: resolved path of the CSV file
     time: NDArray[np.float64] = field(repr=False)  #: [s]
@@ -475,7 +475,7 @@ BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 @dataclass(frozen=True)
 class BodyHarmonicMotion:
     """Rigid-body motion of the body points, harmonic per DOF: x_i = a_i sin(2 pi t / T_i +
-    phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.body_motion` for the
+    phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.motion.rigid_body` for the
     rotation convention). DOFs that do not move have amplitude 0 (and period 1 s)."""
 
     reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
@@ -496,7 +496,7 @@ class BodyHarmonicMotion:
 class BodyTableMotion:
     """Rigid-body motion of the body points from a CSV file (columns time, the six DOFs of
     :data:`BODY_DOFS`), interpolated in each DOF by a cubic spline (rotations in the Euler
-    angles; :func:`floatmoor.motion.table_state`)."""
+    angles; :func:`floatmoor.motion.fairlead.table_state`)."""
 
     reference_point: tuple[float, float, float]  #: rotation centre at rest [m]
     file: str  #: resolved path of the CSV file
