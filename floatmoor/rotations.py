@@ -1,14 +1,16 @@
-"""The rotation convention of floatmoor's poses, for arrays of them: the matrix of the Euler
-angles (roll, pitch, yaw) and the angular velocity of changing angles
-(docs/conventions.md#rotation-convention-of-body-motion).
+"""The rotation convention of floatmoor's poses: the matrix of the Euler angles (roll, pitch,
+yaw) and the angular velocity of changing angles
+(docs/conventions.md#rotation-convention-of-body-motion), the one NumPy version of them.
 
     R = Rz(yaw) Ry(pitch) Rx(roll)   (body axes to global axes),
 
 right-handed rotations: yaw first about z, pitch about the yawed y, roll about the body's own
 x, the convention of the floater (:mod:`floatmoor.body.kinematics`), of prescribed body
-motions (:mod:`floatmoor.body_motion`) and of the poses fitted to MoorDyn's coupled points
-(:mod:`floatmoor.io.moordyn.motion_fit`, whose ``euler_angles`` inverts
-:func:`rotation_matrices`).
+motions (:mod:`floatmoor.motion.rigid_body`) and of the poses fitted to MoorDyn's coupled
+points (:mod:`floatmoor.io.moordyn.motion_fit`, whose ``euler_angles`` inverts
+:func:`rotation_matrices`). Compiled kernels, which cannot call NumPy code, use the numba
+version of the same expressions, :mod:`floatmoor._rotations_kernels` (tests/test_rotations.py
+checks the two agree).
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["rotation_matrices", "angular_velocity"]
+__all__ = ["rotation_matrix", "rotation_matrices", "angular_velocity"]
 
 
 def rotation_matrices(angles: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -37,6 +39,22 @@ def rotation_matrices(angles: NDArray[np.float64]) -> NDArray[np.float64]:
     R[:, 2, 1] = cp * sr
     R[:, 2, 2] = cp * cr
     return R
+
+
+def rotation_matrix(roll: float, pitch: float, yaw: float) -> NDArray[np.float64]:
+    """R = Rz(yaw) Ry(pitch) Rx(roll): body axes to global axes.
+
+    Parameters
+    ----------
+    roll, pitch, yaw
+        Rotations about x, y, z [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        R (3, 3), the one pose's :func:`rotation_matrices`.
+    """
+    return rotation_matrices(np.array([roll, pitch, yaw], dtype=float))[0]
 
 
 def angular_velocity(angles: NDArray[np.float64], rates: NDArray[np.float64]

@@ -9,6 +9,6 @@ _API = {
     "BodyState": "floatmoor.body.cummins",
     "build_body": "floatmoor.body.model",
     "MorisonDrag": "floatmoor.body.morison",
-    "rotation_matrix": "floatmoor.body.kinematics",
+    "rotation_matrix": "floatmoor.rotations",
 }
 __all__, __getattr__, __dir__ = lazy_exports(__name__, _API)

@@ -1,7 +1,8 @@
 """Numba kernels of the rigid-body point kinematics (floatmoor.body.kinematics): positions and
 velocities of body-fixed points, and the generalised force of point loads. They run several
 times per RK4 stage of a coupled run, where NumPy's per-call overhead on (n, 3) arrays
-dominated the step (tests/oracles/kinematics_numpy.py is their NumPy reference)."""
+dominated the step (tests/oracles/kinematics_numpy.py is their NumPy reference). The rotation
+and the angular velocity are the kernels of :mod:`floatmoor._rotations_kernels`."""
 
 from __future__ import annotations
 
@@ -10,36 +11,9 @@ import math
 import numpy as np
 
 from floatmoor._numba import jit
+from floatmoor._rotations_kernels import angular_velocity, rotation
 
-__all__ = ["rotation_into", "angular_velocity", "points_state_into",
-           "generalised_force_into"]
-
-
-@jit(inline="always")
-def rotation_into(roll: float, pitch: float, yaw: float, R: np.ndarray) -> None:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (body axes to global axes) into ``R`` (3, 3)."""
-    cr, sr = math.cos(roll), math.sin(roll)
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    R[0, 0] = cy * cp
-    R[0, 1] = cy * sp * sr - sy * cr
-    R[0, 2] = cy * sp * cr + sy * sr
-    R[1, 0] = sy * cp
-    R[1, 1] = sy * sp * sr + cy * cr
-    R[1, 2] = sy * sp * cr - cy * sr
-    R[2, 0] = -sp
-    R[2, 1] = cp * sr
-    R[2, 2] = cp * cr
-
-
-@jit(inline="always")
-def angular_velocity(pitch: float, yaw: float, droll: float, dpitch: float,
-                     dyaw: float) -> tuple[float, float, float]:
-    """Angular velocity omega = T (roll', pitch', yaw') in global axes of R = Rz Ry Rx
-    (omega x = R' R^T; the rows of T: (cy cp, -sy, 0), (sy cp, cy, 0), (-sp, 0, 1))."""
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    return (droll * cy * cp - dpitch * sy, droll * sy * cp + dpitch * cy, dyaw - droll * sp)
+__all__ = ["points_state_into", "generalised_force_into"]
 
 
 @jit
@@ -47,15 +21,14 @@ def points_state_into(x: np.ndarray, v: np.ndarray, arms: np.ndarray, centre: np
                       positions: np.ndarray, velocities: np.ndarray) -> None:
     """Global positions and velocities (n, 3) of the body-fixed points with rest arms
     ``arms`` (n, 3): p = c0 + x[:3] + R a, v = x'[:3] + omega x (R a), omega the angular
-    velocity of the Euler-angle rates v[3:] (:func:`angular_velocity`): v = dp/dt exactly."""
-    R = np.empty((3, 3))
-    rotation_into(x[3], x[4], x[5], R)
+    velocity of the Euler-angle rates v[3:]: v = dp/dt exactly."""
+    R00, R01, R02, R10, R11, R12, R20, R21, R22 = rotation(x[3], x[4], x[5])
     wx, wy, wz = angular_velocity(x[4], x[5], v[3], v[4], v[5])
     for i in range(arms.shape[0]):
         a0, a1, a2 = arms[i, 0], arms[i, 1], arms[i, 2]
-        r0 = R[0, 0] * a0 + R[0, 1] * a1 + R[0, 2] * a2
-        r1 = R[1, 0] * a0 + R[1, 1] * a1 + R[1, 2] * a2
-        r2 = R[2, 0] * a0 + R[2, 1] * a1 + R[2, 2] * a2
+        r0 = R00 * a0 + R01 * a1 + R02 * a2
+        r1 = R10 * a0 + R11 * a1 + R12 * a2
+        r2 = R20 * a0 + R21 * a1 + R22 * a2
         positions[i, 0] = centre[0] + x[0] + r0
         positions[i, 1] = centre[1] + x[1] + r1
         positions[i, 2] = centre[2] + x[2] + r2
@@ -70,17 +43,16 @@ def generalised_force_into(x: np.ndarray, forces: np.ndarray, arms: np.ndarray,
     """The 6-DOF generalised force of point forces ``forces`` (n, 3) at the body-fixed points
     with rest arms ``arms``, into ``out`` (6,): the forces, and the moment M about the
     displaced reference point turned onto the Euler angles, T^T M (T of
-    :func:`angular_velocity`), so that out . x' = sum f . v exactly (v of
-    :func:`points_state_into`)."""
-    R = np.empty((3, 3))
-    rotation_into(x[3], x[4], x[5], R)
+    :func:`~floatmoor._rotations_kernels.angular_velocity`), so that out . x' = sum f . v
+    exactly (v of :func:`points_state_into`)."""
+    R00, R01, R02, R10, R11, R12, R20, R21, R22 = rotation(x[3], x[4], x[5])
     for c in range(6):
         out[c] = 0.0
     for i in range(arms.shape[0]):
         a0, a1, a2 = arms[i, 0], arms[i, 1], arms[i, 2]
-        r0 = R[0, 0] * a0 + R[0, 1] * a1 + R[0, 2] * a2
-        r1 = R[1, 0] * a0 + R[1, 1] * a1 + R[1, 2] * a2
-        r2 = R[2, 0] * a0 + R[2, 1] * a1 + R[2, 2] * a2
+        r0 = R00 * a0 + R01 * a1 + R02 * a2
+        r1 = R10 * a0 + R11 * a1 + R12 * a2
+        r2 = R20 * a0 + R21 * a1 + R22 * a2
         f0, f1, f2 = forces[i, 0], forces[i, 1], forces[i, 2]
         out[0] += f0
         out[1] += f1

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor._numba import jit
+from floatmoor._rotations_kernels import rotation
 
 __all__ = ["drag_force", "lagrange_fill", "lagrange_weights"]
 
@@ -51,18 +52,7 @@ def drag_force(x: NDArray[np.float64], v: NDArray[np.float64], arms: NDArray[np.
     out : (6,)
         Output.
     """
-    cr, sr = math.cos(x[3]), math.sin(x[3])
-    cp, sp = math.cos(x[4]), math.sin(x[4])
-    cy, sy = math.cos(x[5]), math.sin(x[5])
-    r00 = cy * cp
-    r01 = cy * sp * sr - sy * cr
-    r02 = cy * sp * cr + sy * sr
-    r10 = sy * cp
-    r11 = sy * sp * sr + cy * cr
-    r12 = sy * sp * cr - cy * sr
-    r20 = -sp
-    r21 = cp * sr
-    r22 = cp * cr
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = rotation(x[3], x[4], x[5])
     vx, vy, vz = v[0], v[1], v[2]
     wx, wy, wz = v[3], v[4], v[5]
     fx = fy = fz = 0.0

@@ -16,11 +16,12 @@ The memory mu has two paths:
   taken piecewise linear (``_memory_kernels``: weights from a finely sampled K); inside a
   step it is extrapolated linearly from its last two values (second order, so that it adds
   no phase lag of dt / 2 to the radiation damping);
-* state space (``radiation_states``, :class:`~floatmoor.body.radiation_states.
+* state space (``radiation_states``, :class:`~floatmoor.body.state_space_radiation.
   RadiationStates`): mu = C z + D v with z' = A z + B v, the realisations of K_ij of
   :mod:`floatmoor.hydro.state_space`; the states are integrated in the same RK4 step as
-  (x, x'), each stage's z from that stage's velocity (``_radiation_kernels``), so the whole
-  system is fourth-order consistent.
+  (x, x'), each stage's z from that stage's velocity
+  (:mod:`~floatmoor.body._state_space_radiation_kernels`), so the whole system is
+  fourth-order consistent.
 """
 
 from __future__ import annotations
@@ -32,8 +33,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body._memory_kernels import hat_weights, memory_force
-from floatmoor.body._radiation_kernels import radiation_combine, radiation_stage
-from floatmoor.body.radiation_states import RadiationStates
+from floatmoor.body._state_space_radiation_kernels import radiation_combine, radiation_stage
+from floatmoor.body.state_space_radiation import RadiationStates
 from floatmoor.hydro.radiation import KERNEL_NEGLIGIBLE
 
 __all__ = ["CumminsBody", "BodyState", "ForceFunction"]

@@ -10,7 +10,7 @@ position; the points where lines attach follow the body with the full rotation
 c0 the reference point at rest and p0 the point at rest. Their velocity is the time
 derivative of that position, v = x'[:3] + omega x R (p0 - c0), with the angular velocity
 omega = T(pitch, yaw) (roll', pitch', yaw') of the Euler-angle rates (as
-:func:`floatmoor.body_motion.angular_velocity`); a point force f there acts on the body with
+:func:`floatmoor.rotations.angular_velocity`); a point force f there acts on the body with
 the generalised force (f, T^T M), M = R (p0 - c0) x f its moment about the displaced reference
 point, so that the power the body's equations see, (f, T^T M) . x', is the power f . v the
 force does at the point. The small-angle identification omega = (roll', pitch', yaw') with
@@ -21,36 +21,12 @@ force does at the point. The small-angle identification omega = (roll', pitch', 
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.body._kinematics_kernels import generalised_force_into, points_state_into
 
-__all__ = ["rotation_matrix", "points_state", "generalised_force"]
-
-
-def rotation_matrix(roll: float, pitch: float, yaw: float) -> NDArray[np.float64]:
-    """R = Rz(yaw) Ry(pitch) Rx(roll): body axes to global axes.
-
-    Parameters
-    ----------
-    roll, pitch, yaw
-        Rotations about x, y, z [rad].
-
-    Returns
-    -------
-    numpy.ndarray
-        R (3, 3)."""
-    cr, sr = math.cos(roll), math.sin(roll)
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    return np.array([
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ])
+__all__ = ["points_state", "generalised_force"]
 
 
 def points_state(x: NDArray[np.float64], v: NDArray[np.float64], arms: NDArray[np.float64],

@@ -8,14 +8,14 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.body.cummins import CumminsBody
-from floatmoor.body.radiation_states import RadiationStates
+from floatmoor.body.state_space_radiation import RadiationStates
 from floatmoor.case.schema import RADIATION_METHODS, Environment, Floater
 from floatmoor.errors import CaseError
 from floatmoor.hydro.radiation import (
     consistent_infinite_added_mass, hydrostatic_stiffness_total, kernel_samples,
     radiation_kernel, truncation_time,
 )
-from floatmoor.hydro.state_space_model import StateSpaceRadiation
+from floatmoor.hydro.state_space.realisation import StateSpaceRadiation
 
 __all__ = ["static_force", "build_body", "consistent_infinite_added_mass", "KERNEL_SUBSTEPS",
            "KERNEL_START_SUBSTEPS", "MAX_KERNEL_SAMPLES",
@@ -86,10 +86,11 @@ def checked_state_space(ds: xr.Dataset) -> StateSpaceRadiation:
     ------
     HydroDatabaseError
         No realisation in the database, a damaged one, or one fitted from another K(t)
-        (:func:`floatmoor.hydro.state_space.stale_reasons`).
+        (:func:`floatmoor.hydro.state_space.fit.stale_reasons`).
     """
     from floatmoor.hydro.database import HydroDatabaseError
-    from floatmoor.hydro.state_space import read_state_space, stale_reasons
+    from floatmoor.hydro.state_space.fit import stale_reasons
+    from floatmoor.hydro.state_space.storage import read_state_space
 
     where = ds.attrs.get("path", ds.attrs.get("database", "the database"))
     realisation = read_state_space(ds)

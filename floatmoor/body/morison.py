@@ -85,7 +85,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from floatmoor.body._morison_kernels import drag_force, lagrange_fill, lagrange_weights
-from floatmoor.body.kinematics import rotation_matrix
 from floatmoor.case.drag import (
     DEEPCWIND_OC4, DEFAULT_STRIP_LENGTH, HEAVE_PLATE_AREAS, MIN_STRIPS, NO_DRAG, PRESETS,
     DragSettings, MorisonCoefficients,
@@ -93,6 +92,7 @@ from floatmoor.case.drag import (
 from floatmoor.case.schema import (
     Column, CylinderGeometry, Floater, Member, MeshGeometry, SemisubmersibleGeometry,
 )
+from floatmoor.rotations import rotation_matrix
 from floatmoor.waves.kinematics import _profiles
 from floatmoor.waves.realisation import WaveField
 from floatmoor.waves.synthesis import harmonic_sum

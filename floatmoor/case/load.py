@@ -25,7 +25,6 @@ from floatmoor.case.limits import (
 )
 from floatmoor.case.files import read_input_text
 from floatmoor.case.motion_body import read_body_motion
-from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.motion_table import read_motion_table
 from floatmoor.case.overrides import apply_overrides
 from floatmoor.case.plausibility import warn_implausible
@@ -42,6 +41,7 @@ from floatmoor.case.system_checks import (
 )
 from floatmoor.case.title import render_title
 from floatmoor.errors import CaseError
+from floatmoor.motion.frequency import fairlead_motion_frequency
 
 __all__ = ["load_case", "parse_case", "MAX_STATIC_STRAIN", "SEABED_TOLERANCE"]
 

@@ -570,7 +570,7 @@ class HarmonicMotion:
 @dataclass(frozen=True)
 class TableMotion:
     """Displacement time history from a CSV file (columns ``time, x, y, z``), interpolated
-    by a cubic spline (:func:`floatmoor.motion.table_state`)."""
+    by a cubic spline (:func:`floatmoor.motion.fairlead.table_state`)."""
 
     file: str = setting(  #: resolved path of the CSV file (the file's key: as written)
         "string", scale="motion_table", default_text=_FILE_DEFAULT, doc=_FILE_DOC)
@@ -624,7 +624,7 @@ class HarmonicRotation:
 @dataclass(frozen=True)
 class BodyHarmonicMotion:
     """Rigid-body motion of the body points, harmonic per DOF: x_i = a_i sin(2 pi t / T_i +
-    phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.body_motion` for the
+    phase_i) for the DOFs of :data:`BODY_DOFS` (see :mod:`floatmoor.motion.rigid_body` for the
     rotation convention). DOFs that do not move have amplitude 0 (and period 1 s)."""
 
     reference_point: tuple[float, float, float] = setting(  #: rotation centre at rest [m]
@@ -650,7 +650,7 @@ class BodyHarmonicMotion:
 class BodyTableMotion:
     """Rigid-body motion of the body points from a CSV file (columns time, the six DOFs of
     :data:`BODY_DOFS`), interpolated in each DOF by a cubic spline (rotations in the Euler
-    angles; :func:`floatmoor.motion.table_state`)."""
+    angles; :func:`floatmoor.motion.fairlead.table_state`)."""
 
     reference_point: tuple[float, float, float] = setting(  #: rotation centre at rest [m]
         "vector", scale="length", size=3, unit="m", default=(0.0, 0.0, 0.0),

@@ -3,7 +3,7 @@ checks, and the choices the wave models implement; the case's side of the sea, s
 case imports no model (docs/theory/environment.md, docs/theory/hydrodynamics.md).
 
 Each wave kind has a frozen dataclass whose field names are the case-file keys (angles as
-``*_deg``; the sea built from them, :func:`floatmoor.waves.settings.build`, takes radians).
+``*_deg``; the sea built from them, :func:`floatmoor.waves.realisation.realise_sea`, takes radians).
 ``validate`` raises ValueError with a message that names the offending key; the case reader
 turns it into the case error of ``[waves]``. The steepness check needs the wavelength, from the
 dispersion relation of the base layer (:mod:`floatmoor.dispersion`).

@@ -14,11 +14,12 @@ from typing import Any
 
 import numpy as np
 
-from floatmoor.body_motion import body_points_state, is_body_motion, prescribed_fairlead_state
 from floatmoor.case.reader import ReadContext
 from floatmoor.case.schema import Case, CircularMotion, HarmonicMotion, Point, Section
 from floatmoor.disjoint_sets import DisjointSets
-from floatmoor.motion import horizontal_direction
+from floatmoor.motion.fairlead import horizontal_direction
+from floatmoor.motion.rigid_body import (body_points_state, is_body_motion,
+                                         prescribed_fairlead_state)
 
 __all__ = ["check_system", "check_lines", "check_motion", "MAX_STATIC_STRAIN",
            "SEABED_TOLERANCE", "COINCIDENT_ENDS"]

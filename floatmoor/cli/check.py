@@ -99,7 +99,7 @@ def _describe_system(case: Case) -> list[str]:
 def _describe(case: Case, loads: list[StaticLineLoad]) -> str:
     """Derived quantities: weights, wave speeds, static tensions at the mean position against
     the minimum breaking loads, and the discretisation and time step of dynamic lines."""
-    from floatmoor.body_motion import start_line
+    from floatmoor.motion.rigid_body import start_line
     from floatmoor.mooring.dg.line import DynamicLine
     from floatmoor.mooring.static_strength import strain_warnings
 
@@ -223,7 +223,7 @@ def _start_pose_rows(case: Case) -> list[str]:
     is not the rest pose): the lines start in that pose, and the statistics include it."""
     import numpy as np
 
-    from floatmoor.body_motion import prescribed_fairlead_state
+    from floatmoor.motion.rigid_body import prescribed_fairlead_state
 
     offsets = [float(np.linalg.norm(prescribed_fairlead_state(case.motion, line, np.zeros(1))[0][0]
                                     - np.asarray(line.fairlead, dtype=float)))

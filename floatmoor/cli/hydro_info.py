@@ -98,16 +98,19 @@ def fit_state_space_command(args: argparse.Namespace) -> int:
     stays up to date). A realisation already in the file, or an existing ``-o`` file, is
     replaced only with ``--force``: a committed database is never rewritten unasked (a refit
     on other library versions can choose other orders)."""
-    from floatmoor.hydro import state_space as ss
     from floatmoor.hydro.database import database_path, load_for_case, write_database
+    from floatmoor.hydro.state_space.fit import fit_state_space
+    from floatmoor.hydro.state_space.kernel_fit import HANKEL_ROWS, KERNEL_RTOL, MAX_ORDER
+    from floatmoor.hydro.state_space.realisation import DOFS
+    from floatmoor.hydro.state_space.storage import add_to_dataset
     from floatmoor.io.output_files import output_lock
 
-    rtol = ss.KERNEL_RTOL if args.tolerance is None else args.tolerance
-    max_order = ss.MAX_ORDER if args.max_order is None else args.max_order
+    rtol = KERNEL_RTOL if args.tolerance is None else args.tolerance
+    max_order = MAX_ORDER if args.max_order is None else args.max_order
     if not (math.isfinite(rtol) and 0.0 < rtol < 1.0):
         raise CaseError("--tolerance", "", "a number between 0 and 1", str(args.tolerance))
-    if not 1 <= max_order <= ss.HANKEL_ROWS:
-        raise CaseError("--max-order", "", f"a whole number from 1 to {ss.HANKEL_ROWS}",
+    if not 1 <= max_order <= HANKEL_ROWS:
+        raise CaseError("--max-order", "", f"a whole number from 1 to {HANKEL_ROWS}",
                         str(args.max_order))
     if args.database.endswith(".toml"):
         case = load_case(args.database)
@@ -119,7 +122,7 @@ def fit_state_space_command(args: argparse.Namespace) -> int:
     else:
         path, ds, _ = open_database(args.database)
     target = _fit_target(args, path, ds)
-    realisation = ss.fit_state_space(ds, rtol=rtol, max_order=max_order)
+    realisation = fit_state_space(ds, rtol=rtol, max_order=max_order)
     summary = realisation.summary()
     missed = [p for p in realisation.pairs if not p.within_tolerance]
     if args.json:
@@ -129,12 +132,12 @@ def fit_state_space_command(args: argparse.Namespace) -> int:
               f"{realisation.n_states} states, fitted in {realisation.fit_seconds:.1f} s")
         print(_pairs_table(realisation, rtol))
     if missed:
-        names = ", ".join(f"{ss.DOFS[p.radiating]}-{ss.DOFS[p.influenced]}" for p in missed)
+        names = ", ".join(f"{DOFS[p.radiating]}-{DOFS[p.influenced]}" for p in missed)
         print(f"floatmoor: no realisation within {rtol:g} up to order {max_order} for {names}; "
               f"nothing written (raise --max-order or --tolerance)", file=sys.stderr)
         return EXIT_FAILED
     with output_lock(target):
-        write_database(ss.add_to_dataset(ds, realisation), target)
+        write_database(add_to_dataset(ds, realisation), target)
     if not args.json:
         print(f"written to {target}")
     return EXIT_OK
@@ -145,10 +148,10 @@ def _fit_target(args: argparse.Namespace, source: Path, ds) -> Path:
     it holds no realisation (variables are added, nothing is replaced), else only with
     ``--force``; an ``-o`` file in an existing folder, not over an existing file unless
     ``--force``."""
-    from floatmoor.hydro import state_space as ss
+    from floatmoor.hydro.state_space.storage import has_state_space, read_state_space
 
     if args.output is None:
-        held = ss.read_state_space(ds) if ss.has_state_space(ds) else None
+        held = read_state_space(ds) if has_state_space(ds) else None
         if held is not None and not args.force:
             raise CaseError(str(source), "state_space_*", "a database without a state-space "
                             "realisation (--force replaces it, -o PATH.nc writes a copy)",
@@ -168,7 +171,7 @@ def _fit_target(args: argparse.Namespace, source: Path, ds) -> Path:
 
 
 def _pairs_table(realisation, rtol: float | None = None) -> str:
-    from floatmoor.hydro.state_space import DOFS
+    from floatmoor.hydro.state_space.realisation import DOFS
 
     rows = [f"    {'pair':<14}{'order':>6}{'K error':>10}{'B error':>10}{'A error':>10}"
             f"{'min B':>11}  passivity"]
@@ -326,14 +329,15 @@ def _import_info(ds) -> str:
 
 
 def _state_space_info(ds) -> str:
-    from floatmoor.hydro import state_space as ss
+    from floatmoor.hydro.state_space.fit import stale_reasons
+    from floatmoor.hydro.state_space.storage import read_state_space
 
-    realisation = ss.read_state_space(ds)
+    realisation = read_state_space(ds)
     if realisation is None:
         return ("  state-space radiation: none (add it with 'floatmoor hydro fit-state-space "
                 f"{shown(ds.attrs.get('database', 'NAME'), 80)}')")
     try:
-        stale = ss.stale_reasons(ds, realisation)
+        stale = stale_reasons(ds, realisation)
     except (TypeError, ValueError, AttributeError):  # recorded settings of another shape
         stale = ["its recorded K(t) settings are not readable"]
     status = "up to date with the database's K(t)" if not stale else \

@@ -9,6 +9,8 @@
 * :mod:`~floatmoor.hydro.excitation_transfer`: X(omega, beta) interpolation;
 * :mod:`~floatmoor.hydro.checks`: the checks every database passes;
 * :mod:`~floatmoor.hydro.natural_periods`: mooring stiffness and natural periods.
+* :mod:`~floatmoor.hydro.state_space`: state-space realisations of K(t), fitted and stored
+  (integrated with the body by :mod:`floatmoor.body.state_space_radiation`).
 
 Modules import capytaine only when they mesh or solve, so reading a database needs no BEM.
 """

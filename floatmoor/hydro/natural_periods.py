@@ -4,7 +4,8 @@ mooring stiffness.
 The mooring stiffness K_moor (6 x 6 about the rotation centre) is the central finite
 difference of the total force and moment of the quasi-static catenaries
 (:class:`floatmoor.mooring.quasistatic.QuasiStaticLine`) on the body over small rigid-body
-displacements: fairlead p = c + x + R(theta) (p0 - c), R = Rz(yaw) Ry(pitch) Rx(roll).
+displacements: fairlead p = c + x + R(theta) (p0 - c), R = Rz(yaw) Ry(pitch) Rx(roll)
+(:func:`floatmoor.rotations.rotation_matrix`).
 
 :func:`natural_periods` (docs/theory/floater.md#natural-periods): per DOF i, the fixed point of
 omega = sqrt(C_ii / (M_ii + A_ii(omega))) with C the hydrostatic and gravity stiffness plus
@@ -27,10 +28,11 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Floater
+from floatmoor.rotations import rotation_matrix
 from floatmoor.hydro.radiation import added_mass_at, hydrostatic_stiffness_total
 
 __all__ = ["mooring_stiffness", "mooring_force", "natural_periods", "coupled_natural_periods",
-           "rotation_matrix", "DOFS"]
+           "DOFS"]
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 #: Finite-difference step: translations this fraction of the mean line length [-]; the
@@ -39,17 +41,6 @@ DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 FD_RELATIVE_STEP = 1e-4
 _MAX_ITERATIONS = 100
 _FREQUENCY_TOLERANCE = 1e-10
-
-
-def rotation_matrix(roll: float, pitch: float, yaw: float) -> NDArray[np.float64]:
-    """R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr = math.cos(roll), math.sin(roll)
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return rz @ ry @ rx
 
 
 def mooring_force(case: Case, q: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -49,7 +49,7 @@ __all__ = [
 
 #: Kernel entries below this fraction of the largest are not summed: the memory convolution
 #: (:mod:`floatmoor.body.cummins`) and the state-space realisation
-#: (:func:`floatmoor.hydro.state_space.significant_pairs`) drop the same pairs.
+#: (:func:`floatmoor.hydro.state_space.fit.significant_pairs`) drop the same pairs.
 KERNEL_NEGLIGIBLE = 1e-12
 
 #: Exponent p of the damping tail B(omega_N) (omega_N / omega)^p above the top BEM frequency

@@ -19,9 +19,9 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from floatmoor.body.kinematics import rotation_matrix
 from floatmoor.case.schema import Case
 from floatmoor.plots.body_surface import BodySurface, body_surface
+from floatmoor.rotations import rotation_matrix
 
 __all__ = ["BodyModel", "PlacedBody", "body_model", "placed_body", "equilibrium_offset",
            "polygon_through", "OFFSET_TOLERANCE"]

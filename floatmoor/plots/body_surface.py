@@ -6,7 +6,7 @@ heave plates and its pontoons and braces (each tube whole, overlapping where the
 picture, not a BEM mesh); a mesh hull the panels of its file, mirrored over its declared
 symmetry planes, scaled and moved as the case says (the whole hull, above and below the
 water line). Placement uses the rotation of the floater's kinematics
-(:func:`floatmoor.body.kinematics.rotation_matrix`, R = Rz(yaw) Ry(pitch) Rx(roll)):
+(:func:`floatmoor.rotations.rotation_matrix`, R = Rz(yaw) Ry(pitch) Rx(roll)):
 p = c0 + x[:3] + R (p0 - c0).
 """
 
@@ -17,10 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from floatmoor.body.kinematics import rotation_matrix
 from floatmoor.case.schema import (
     CylinderGeometry, Floater, MeshGeometry, SemisubmersibleGeometry,
 )
+from floatmoor.rotations import rotation_matrix
 
 __all__ = ["BodySurface", "body_surface", "tube_surface", "N_AROUND"]
 

@@ -23,7 +23,6 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.body.kinematics import generalised_force, points_state
-from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.body.model import build_body
 from floatmoor.body.morison import MorisonDrag
 from floatmoor.case.coupling import CoupledCase
@@ -35,20 +34,20 @@ from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
 from floatmoor.hydro.second_order import (
     DirectionError, DriftLookup, QTFLookup, drift_source, missing_coefficients, route_text,
 )
-from floatmoor.hydro.state_space_file import has_state_space
+from floatmoor.hydro.state_space.storage import has_state_space
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.statics_solver import case_statics
 from floatmoor.mooring.stepping import PathStepper
+from floatmoor.motion.rigid_body import prescribed_fairlead_state, start_line
 from floatmoor.simulation.coupled import MooredBody, equilibrium
 from floatmoor.simulation.groups import SystemGroup, body_point_line, system_groups
 from floatmoor.waves.excitation_series import WaveExcitation
-from floatmoor.waves.realisation import WaveField
+from floatmoor.waves.realisation import WaveField, realise_sea
 from floatmoor.waves.second_order import (
     MeanDriftForce, NewmanForce, QTFForce, SecondOrderForce, newman_on_grid,
 )
-from floatmoor.waves.settings import build
 from floatmoor.wind.force import RotorThrust
 
 __all__ = ["MooredSystem", "BodyLoads", "assemble", "build_line_models", "CoupledSettings",
@@ -78,7 +77,7 @@ def settings_from_case(case: Case) -> CoupledSettings:
 def build_line_models(case: Case) -> list[PathStepper | None]:
     """One model object per independent line (one section from a fixed to a body point), as
     the case chooses; None for the lines of a system group (:mod:`.groups`). Each starts with
-    its fairlead where the case's motion puts it at t = 0 (:func:`~floatmoor.body_motion.
+    its fairlead where the case's motion puts it at t = 0 (:func:`~floatmoor.motion.rigid_body.
     start_line`); a quasi-dynamic line whose fairlead moves then starts in that motion
     (:meth:`QuasiDynamicLine.start_moving`, docs/theory/quasi_dynamic.md#the-start-of-a-run)."""
     models: list[PathStepper | None] = []
@@ -420,7 +419,7 @@ def assemble(case: Case, settings: CoupledSettings | None = None) -> MooredSyste
                         f"{case.hydro.database if case.hydro else 'NAME'}')",
                         f'"state-space" with {ds.attrs.get("path", "the database")}, which '
                         "holds none")
-    sea = build(view.waves.settings, env.water_depth, env.gravity, case.simulation.duration)
+    sea = realise_sea(view.waves.settings, env.water_depth, env.gravity, case.simulation.duration)
     # before the body: a sea on a database without excitation forces (or without the
     # second-order coefficients the case asks for) is refused at once
     excitation = _excitation(sea, ds, case)

@@ -18,9 +18,9 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import Case, Line, Simulation
 from floatmoor.errors import CaseError, SolverError
-from floatmoor.body_motion import (body_motion_state, is_body_motion, prescribed_fairlead_state,
-                                   start_line)
 from floatmoor.mooring.stepping import PathStepper
+from floatmoor.motion.rigid_body import (body_motion_state, is_body_motion,
+                                         prescribed_fairlead_state, start_line)
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.line_accuracy import (LineAccuracy, checked_line, describe,
                                                 probe_frequency)

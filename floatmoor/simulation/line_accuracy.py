@@ -55,7 +55,7 @@ from floatmoor.case.schema import Environment, Line, Seabed
 from floatmoor.errors import SolverError
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.dg.resolution import MAX_AUTO_ELEMENTS
-from floatmoor.motion import ramp, ramp_rate, table_state
+from floatmoor.motion.fairlead import ramp, ramp_rate, table_state
 
 __all__ = ["LineAccuracy", "LineAccuracyError", "estimate_error", "checked_line", "describe",
            "estimate_error_along", "accuracy_error", "RunProbe", "NOT_YET_ESTIMATED",

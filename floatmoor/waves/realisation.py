@@ -68,12 +68,14 @@ import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
-from floatmoor.case.sea import SPACINGS  # frequency discretisations (module docstring)
+from floatmoor.case.sea import (SPACINGS,  # frequency discretisations (module docstring)
+                                JonswapSettings, RegularWaveSettings, StillWaterSettings,
+                                WaveSettings)
 from floatmoor.dispersion import STANDARD_GRAVITY, wavenumber
 from floatmoor.waves.spectra import DEFAULT_GAMMA, jonswap, jonswap_moment
 from floatmoor.waves.synthesis import harmonic_sum
 
-__all__ = ["WaveField", "SPACINGS", "wave_elevation"]
+__all__ = ["WaveField", "SPACINGS", "wave_elevation", "realise_sea"]
 
 log = logging.getLogger(__name__)
 
@@ -308,3 +310,45 @@ def wave_elevation(field: WaveField, times: ArrayLike,
     return xr.DataArray(eta, dims=("time",),
                         coords={"time": ("time", t, {"units": "s"})},
                         name="wave_elevation", attrs=attrs)
+
+
+def realise_sea(settings: WaveSettings, depth: float, gravity: float,
+                duration: float) -> WaveField:
+    """Validate a case's ``[waves]`` settings and realise the sea they describe.
+
+    The settings, their keys and physical limits are :mod:`floatmoor.case.sea` (angles in
+    degrees there, radians here).
+
+    Parameters
+    ----------
+    settings
+        One of the settings dataclasses.
+    depth
+        Water depth [m] (``math.inf`` for deep water).
+    gravity
+        g [m/s^2].
+    duration
+        Run length [s] (irregular seas must not repeat within it).
+
+    Returns
+    -------
+    WaveField
+    """
+    if isinstance(settings, StillWaterSettings):
+        return WaveField.still(depth, gravity)
+    if isinstance(settings, RegularWaveSettings):
+        settings.validate(depth, gravity)
+        return WaveField.regular(settings.height, settings.period,
+                                 math.radians(settings.direction_deg),
+                                 math.radians(settings.phase_deg), depth, gravity)
+    if isinstance(settings, JonswapSettings):
+        settings.validate(depth, gravity, duration)
+        lo, hi = settings.band()
+        return WaveField.jonswap(settings.hs, settings.tp, gamma=float(settings.gamma),
+                                 direction=math.radians(settings.direction_deg),
+                                 seed=settings.seed, duration=duration, omega_min=lo,
+                                 omega_max=hi, spacing=settings.spacing,
+                                 n_components=settings.n_components,
+                                 frequency_step=settings.frequency_step, depth=depth,
+                                 gravity=gravity)
+    raise TypeError(f"unknown wave settings {type(settings).__name__}")

@@ -52,9 +52,9 @@ import numpy as np
 import xarray as xr
 
 from floatmoor.case.load import load_case
-from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.schema import Case, Line, TableMotion
 from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.motion.frequency import fairlead_motion_frequency
 from floatmoor.post.statistics import channel_statistics
 from floatmoor.simulation.coupled_run import run_coupled
 from tests.conftest import REPO

@@ -44,7 +44,7 @@ import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
-from floatmoor.motion import fairlead_path
+from floatmoor.motion.fairlead import fairlead_path
 from tests.conftest import LINDAHL_CASE
 from tests.io.moordyn_runner import MoorDynError, MoorDynLine, run_moordyn_forced
 

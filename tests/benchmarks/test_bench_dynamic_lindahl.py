@@ -23,7 +23,7 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import DynamicSettings
 from floatmoor.mooring.dg.line import DynamicLine
-from floatmoor.motion import fairlead_state
+from floatmoor.motion.fairlead import fairlead_state
 from tests.benchmarks import moordyn_lindahl as md
 from tests.conftest import LINDAHL_CASE
 

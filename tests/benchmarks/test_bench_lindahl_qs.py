@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
-from floatmoor.motion import fairlead_path
+from floatmoor.motion.fairlead import fairlead_path
 from floatmoor.simulation.forced import output_times, run_forced_motion
 from tests.conftest import LINDAHL_CASE
 

@@ -34,7 +34,7 @@ from floatmoor.case.load import load_case
 from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
-from floatmoor.motion import fairlead_state
+from floatmoor.motion.fairlead import fairlead_state
 from tests.conftest import CASES
 
 pytestmark = pytest.mark.benchmark

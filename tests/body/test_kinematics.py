@@ -5,28 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from floatmoor.body.kinematics import generalised_force, points_state, rotation_matrix
+from floatmoor.body.kinematics import generalised_force, points_state
+from floatmoor.rotations import rotation_matrix
 
 
 pytestmark = pytest.mark.oracle
 
 #: Identities that hold to round-off.
 ROUND_OFF = 1e-13
-
-
-def test_rotation_is_orthonormal_and_composes_z_y_x() -> None:
-    rng = np.random.default_rng(3)
-    for roll, pitch, yaw in rng.uniform(-1.0, 1.0, size=(20, 3)):
-        R = rotation_matrix(roll, pitch, yaw)
-        assert np.abs(R @ R.T - np.eye(3)).max() <= ROUND_OFF
-        assert abs(np.linalg.det(R) - 1.0) <= ROUND_OFF
-        c, s = np.cos, np.sin
-        Rx = np.array([[1, 0, 0], [0, c(roll), -s(roll)], [0, s(roll), c(roll)]])
-        Ry = np.array([[c(pitch), 0, s(pitch)], [0, 1, 0], [-s(pitch), 0, c(pitch)]])
-        Rz = np.array([[c(yaw), -s(yaw), 0], [s(yaw), c(yaw), 0], [0, 0, 1]])
-        assert np.abs(R - Rz @ Ry @ Rx).max() <= ROUND_OFF
-    # a positive pitch turns +x downwards (z up): capytaine's right-handed rotation about +y
-    assert rotation_matrix(0.0, 0.1, 0.0)[2, 0] < 0.0
 
 
 def test_points_follow_the_body_and_forces_give_moments_about_the_reference() -> None:

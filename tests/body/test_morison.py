@@ -11,13 +11,13 @@ import numpy as np
 import pytest
 
 from floatmoor.body._morison_kernels import drag_force, lagrange_fill, lagrange_weights
-from floatmoor.body.kinematics import rotation_matrix
 from floatmoor.body.morison import (
     DEEPCWIND_OC4, KINEMATICS_PHASE_STEP, MIN_STRIPS, DragSettings, MorisonCoefficients,
     MorisonDrag, build_strips,
 )
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import Column, Floater, SemisubmersibleGeometry
+from floatmoor.rotations import rotation_matrix
 from floatmoor.waves.kinematics import PointKinematics
 from floatmoor.waves.realisation import WaveField
 from tests.oracles import morison_numpy as oracle

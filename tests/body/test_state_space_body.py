@@ -1,5 +1,5 @@
-"""The state-space radiation path of the Cummins body (floatmoor/body/radiation_states.py,
-_radiation_kernels.py, CumminsBody._step_state_space): the compiled stage kernels and the body
+"""The state-space radiation path of the Cummins body (floatmoor/body/state_space_radiation.py,
+_state_space_radiation_kernels.py, CumminsBody._step_state_space): the compiled stage kernels and the body
 step against a dense NumPy reference, residualised fast modes, fourth-order convergence, the
 saved state, the required check (decays with the convolution and state-space paths within 1 %)
 and a 3-hour DeepCwind run in the LC34 sea."""
@@ -11,15 +11,15 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.body._radiation_kernels import radiation_combine, radiation_stage
+from floatmoor.body._state_space_radiation_kernels import radiation_combine, radiation_stage
 from floatmoor.body.cummins import CumminsBody
 from floatmoor.body.model import build_body
-from floatmoor.body.radiation_states import RESOLVED_POLE_STEP, RadiationStates
+from floatmoor.body.state_space_radiation import RESOLVED_POLE_STEP, RadiationStates
 from floatmoor.case.load import load_case
 from floatmoor.hydro.database import read_database
 from floatmoor.hydro.natural_periods import mooring_force, mooring_stiffness
 from floatmoor.hydro.radiation import added_mass_at, hydrostatic_stiffness_total
-from floatmoor.hydro.state_space import modal_realisation
+from floatmoor.hydro.state_space.modal_form import modal_realisation
 from tests.conftest import CASES, REPO
 from tests.oracles import state_space_numpy as oracle
 
@@ -106,7 +106,7 @@ def test_fast_modes_become_feedthrough() -> None:
     t = np.linspace(0.0, 20.0, 201)
     slow = np.exp(-0.5 * t) + np.exp(-0.2 * t) * (0.5 * np.cos(t) + 0.25 * np.sin(t))
     lo, hi = states.offsets[0], states.offsets[1]
-    from floatmoor.hydro.state_space import modes
+    from floatmoor.hydro.state_space.modal_form import modes
 
     lam, res = modes(states.a[lo:hi, :hi - lo], states.b[lo:hi], states.c[lo:hi])
     kept = np.real(np.exp(np.outer(t, lam)) @ res)
@@ -290,11 +290,11 @@ def test_three_hour_deepcwind_run_in_the_lc34_sea_is_stable() -> None:
     convolution's (surge and pitch within 1 %; heave, see HEAVE_STD_RTOL)."""
     from floatmoor.hydro.excitation_transfer import ExcitationInterpolator
     from floatmoor.waves.excitation_series import WaveExcitation
-    from floatmoor.waves.settings import build
+    from floatmoor.waves.realisation import realise_sea
 
     case = load_case(CASES / "deepcwind" / "deepcwind_lc34.toml")
     ds = read_database(DEEPCWIND_DB)
-    sea = build(case.waves.settings, case.environment.water_depth, case.environment.gravity,
+    sea = realise_sea(case.waves.settings, case.environment.water_depth, case.environment.gravity,
                 case.simulation.duration)
     excitation = WaveExcitation(sea, ExcitationInterpolator(ds)(sea.omega, 0.0))
     k_moor = mooring_stiffness(case)

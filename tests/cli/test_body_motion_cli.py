@@ -7,11 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from floatmoor.body_motion import body_motion_state, body_points_state
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.io.variables import VARIABLE_ATTRIBUTES
+from floatmoor.motion.rigid_body import body_motion_state, body_points_state
 from tests.conftest import CASES, LINDAHL_CASE
 
 QD_CASE = CASES / "qd_verification" / "s1_d1.toml"

@@ -12,7 +12,7 @@ import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import CaseError, ModelValidityWarning, SolverError
-from floatmoor.motion import fairlead_state
+from floatmoor.motion.fairlead import fairlead_state
 from floatmoor.mooring._quasidynamic_kernels import CHAIN_STEPS
 from floatmoor.mooring.dg._kernels import hermite
 from floatmoor.mooring.quasidynamic import SHAPE_NODES, QuasiDynamicLine

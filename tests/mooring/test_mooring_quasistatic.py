@@ -8,7 +8,7 @@ import pytest
 
 from floatmoor.case.load import load_case
 from floatmoor.errors import SolverError
-from floatmoor.motion import fairlead_path
+from floatmoor.motion.fairlead import fairlead_path
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from tests.conftest import LINDAHL_CASE
 from tests.oracles import catenary_numpy as oracle

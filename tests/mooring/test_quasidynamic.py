@@ -18,7 +18,7 @@ import pytest
 from floatmoor.case.load import load_case, parse_case
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_dataset
-from floatmoor.motion import fairlead_state
+from floatmoor.motion.fairlead import fairlead_state
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.post.statistics import channel_statistics

@@ -1,5 +1,5 @@
 """Plain NumPy reference of the state-space radiation of the Cummins body
-(floatmoor/body/_radiation_kernels.py and CumminsBody._step_state_space).
+(floatmoor/body/_state_space_radiation_kernels.py and CumminsBody._step_state_space).
 
 Written as dense matrices of the whole system: A (S, S) block-diagonal from the pairs' blocks,
 B (S, 6) with b_p in the column of the pair's radiating DOF, C (6, S) with c_p in the row of
@@ -16,7 +16,7 @@ import numpy as np
 
 
 def dense(states) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(A, B, C, D) of a :class:`floatmoor.body.radiation_states.RadiationStates`."""
+    """(A, B, C, D) of a :class:`floatmoor.body.state_space_radiation.RadiationStates`."""
     n = states.n_states
     a = np.zeros((n, n))
     b = np.zeros((n, 6))

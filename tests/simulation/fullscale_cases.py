@@ -14,7 +14,7 @@ folder of the test's: a test helper, not a test file (test_fullscale_accuracy.py
 The statistics judged (:func:`judged_statistics`): each line's fairlead-tension STD and mean
 of per-cycle maxima from the window start on, the cycles being the motion's period or, for a
 table (no period), windows of the period 2 pi / omega the rule and the check use (omega the
-table's mean zero-crossing frequency, :mod:`floatmoor.case.motion_frequency`).
+table's mean zero-crossing frequency, :mod:`floatmoor.motion.frequency`).
 """
 
 from __future__ import annotations

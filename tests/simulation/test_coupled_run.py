@@ -37,9 +37,9 @@ def test_buoy_in_regular_waves_writes_a_labelled_dataset(tmp_path) -> None:
         assert np.all(np.isfinite(ds[name].values))
     assert "case_toml" in ds.attrs and "floatmoor_version" in ds.attrs and "created" in ds.attrs
     # the recorded elevation is the incident one at the reference point (unramped)
-    from floatmoor.waves.settings import build
+    from floatmoor.waves.realisation import realise_sea
 
-    sea = build(view.waves.settings, case.environment.water_depth, case.environment.gravity,
+    sea = realise_sea(view.waves.settings, case.environment.water_depth, case.environment.gravity,
                 case.simulation.duration)
     np.testing.assert_allclose(ds["wave_elevation"].values, sea.elevation(ds["time"].values),
                                rtol=0.0, atol=1e-12)

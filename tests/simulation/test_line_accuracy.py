@@ -142,7 +142,7 @@ def test_the_nudge_tells_a_chaotic_coarse_line_from_a_resolved_one():
 
 
 def la_path(case, line, t):
-    from floatmoor.body_motion import prescribed_fairlead_state
+    from floatmoor.motion.rigid_body import prescribed_fairlead_state
 
     return prescribed_fairlead_state(case.motion, line, t)
 

@@ -19,7 +19,7 @@ from floatmoor.io.variables import VARIABLE_ATTRIBUTES
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled_run import run_coupled, settings_from_case
 from floatmoor.waves.second_order import NewmanForce
-from floatmoor.waves.settings import build
+from floatmoor.waves.realisation import realise_sea
 from tests.simulation import second_order_reference as reference
 from tests.conftest import CASES
 
@@ -95,7 +95,7 @@ def test_newman_run_applies_the_mean_unramped_and_the_rest_ramped_squared() -> N
         f'ramp_duration = {ramp}}}', "simulation.duration=2.5"])
     ds = run_coupled(case).dataset
     settings = settings_from_case(case)
-    sea = build(CoupledCase.of(case).waves.settings, 0.9, 9.81, case.simulation.duration)
+    sea = realise_sea(CoupledCase.of(case).waves.settings, 0.9, 9.81, case.simulation.duration)
     system = assemble(case, settings)
     lookup = DriftLookup(system.database, "far_field")
     inside = lookup.covers(sea.omega)

@@ -10,8 +10,8 @@ import pytest
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.errors import CaseError
-from floatmoor.hydro import state_space as ss
 from floatmoor.hydro.database import read_database, write_database
+from floatmoor.hydro.state_space.storage import remove_from_dataset
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled
 from tests.simulation.interrupted import interrupt_run
@@ -66,7 +66,7 @@ def test_state_space_without_a_realisation_exits_2_and_writes_nothing(tmp_path, 
                                                                       ) -> None:
     (tmp_path / "hydrodb").mkdir()
     (tmp_path / "cases").mkdir()
-    ds = ss.remove_from_dataset(read_database(REPO / "hydrodb" / "cylinder_buoy.nc"))
+    ds = remove_from_dataset(read_database(REPO / "hydrodb" / "cylinder_buoy.nc"))
     ds.attrs.pop("path", None)
     write_database(ds, tmp_path / "hydrodb" / "cylinder_buoy.nc")
     case = tmp_path / "cases" / "buoy.toml"

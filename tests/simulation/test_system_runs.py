@@ -125,7 +125,7 @@ def test_shipped_three_line_system_is_mirror_symmetric_under_its_motion():
     """Surge, heave and pitch keep the xz-plane a plane of symmetry: lines 2 and 3 (at +-120
     degrees) carry the same tensions, their free points move as mirror images, and the body
     points follow the rigid-body motion."""
-    from floatmoor.body_motion import body_points_state
+    from floatmoor.motion.rigid_body import body_points_state
 
     case = load_case(EXAMPLE)
     ds = run_forced_motion(case).dataset

@@ -12,7 +12,7 @@ import xarray as xr
 
 from floatmoor.case.load import load_case
 from floatmoor.mooring.dg.line import DynamicLine
-from floatmoor.motion import fairlead_state
+from floatmoor.motion.fairlead import fairlead_state
 from tests.conftest import LINDAHL_CASE, REPO
 
 

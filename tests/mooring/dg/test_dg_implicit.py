@@ -14,7 +14,7 @@ from floatmoor.case.load import load_case
 from floatmoor.case.schema import DynamicSettings
 from floatmoor.mooring.dg import _implicit_kernels as ik
 from floatmoor.mooring.dg.line import CableProperties, DynamicLine
-from floatmoor.motion import fairlead_state
+from floatmoor.motion.fairlead import fairlead_state
 from tests.conftest import CASES, REPO
 
 

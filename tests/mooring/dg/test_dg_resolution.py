@@ -1,5 +1,5 @@
 """The DG numerics chosen from the accuracy (floatmoor.mooring.dg.resolution) and
-the fairlead motion frequency a case declares (floatmoor.case.motion_frequency)."""
+the fairlead motion frequency a case declares (floatmoor.motion.frequency)."""
 
 from __future__ import annotations
 
@@ -11,10 +11,10 @@ import pytest
 
 from floatmoor.case import limits
 from floatmoor.case.load import load_case
-from floatmoor.case.motion_frequency import fairlead_motion_frequency
 from floatmoor.case.schema import DynamicSettings, TableMotion
 from floatmoor.mooring.dg import resolution as rs
 from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.motion.frequency import fairlead_motion_frequency
 from tests.conftest import CASES, LINDAHL_CASE
 
 BUOY = CASES / "cylinder_buoy" / "buoy_regular_T1.20.toml"

@@ -40,7 +40,7 @@ def test_fairlead_tension_history_matches_moordyn():
     t = ds["time"].values
     ours = ds["fairlead_tension"].values
     position = ds["fairlead_position"].values
-    from floatmoor.motion import fairlead_state
+    from floatmoor.motion.fairlead import fairlead_state
 
     _, velocity = fairlead_state(case.motion, case.lines[0], t)
     line = case.lines[0]

@@ -1,6 +1,7 @@
 """The state-space radiation of a body at its time step: the realisations of the
-database's K_ij(t) (:mod:`floatmoor.hydro.state_space`) packed for the compiled stage kernel
-(:mod:`floatmoor.body._radiation_kernels`).
+database's K_ij(t) (identified and stored by :mod:`floatmoor.hydro.state_space`) packed for
+the compiled stage kernel (:mod:`floatmoor.body._state_space_radiation_kernels`), the
+time-domain side of the state-space radiation.
 
 Modes too fast for the body step are residualised: a mode r e^{lambda t} with
 |lambda| dt > :data:`RESOLVED_POLE_STEP` is replaced by its static contribution, a
@@ -36,7 +37,7 @@ def rk4_amplification(z: NDArray[np.complex128]) -> NDArray[np.complex128]:
 
 @dataclass
 class RadiationStates:
-    """Packed radiation states (see :mod:`floatmoor.body._radiation_kernels`).
+    """Packed radiation states (see :mod:`floatmoor.body._state_space_radiation_kernels`).
 
     Attributes
     ----------
@@ -74,7 +75,7 @@ class RadiationStates:
         """Pack realisations (radiating, influenced, A, b, c), each rebuilt in real modal form
         from its poles and residues, the modes with |lambda| dt > ``resolved_pole_step``
         residualised into the feedthrough."""
-        from floatmoor.hydro.modal_form import modal_realisation, modes
+        from floatmoor.hydro.state_space.modal_form import modal_realisation, modes
 
         blocks = []
         feed = np.zeros((6, 6))

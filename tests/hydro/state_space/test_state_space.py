@@ -1,4 +1,4 @@
-"""State-space realisations of K(t) (floatmoor/hydro/state_space.py): an analytic kernel with an
+"""State-space realisations of K(t) (floatmoor/hydro/state_space/): an analytic kernel with an
 exact low-order realisation, the realisations stored in the shipped databases against their
 K(t) and BEM values, ``floatmoor hydro fit-state-space`` and ``info``, and staleness."""
 
@@ -13,9 +13,15 @@ import pytest
 from floatmoor.body.model import build_body
 from floatmoor.cli import main
 from floatmoor.hydro import radiation
-from floatmoor.hydro import state_space as ss
 from floatmoor.hydro.database import HydroDatabaseError, read_database, stale_keys, \
     write_database
+from floatmoor.hydro.state_space import fit as database_fit
+from floatmoor.hydro.state_space.fit import fit_state_space, significant_pairs, stale_reasons
+from floatmoor.hydro.state_space.kernel_fit import KERNEL_RTOL, MAX_ORDER, fit_kernel
+from floatmoor.hydro.state_space.realisation import DOFS, StateSpaceRadiation
+from floatmoor.hydro.state_space.storage import (
+    add_to_dataset, has_state_space, read_state_space, remove_from_dataset,
+)
 from tests.hydro.conftest import BUOY_CASE, BUOY_DB, DEEPCWIND_CASE, DEEPCWIND_DB
 
 #: ERA of exact samples of a 5-state kernel in double precision: the Hankel matrix has rank 5
@@ -54,7 +60,7 @@ def _analytic_transform(omega: np.ndarray) -> np.ndarray:
 
 def test_analytic_kernel_is_recovered_to_round_off() -> None:
     t = np.linspace(0.0, 30.0, 1501)
-    fit = ss.fit_kernel(t, _analytic(t), rtol=ROUND_OFF, max_order=10)
+    fit = fit_kernel(t, _analytic(t), rtol=ROUND_OFF, max_order=10)
     exact = np.array([-0.4 + 2j, -0.4 - 2j, -1.3 + 0.5j, -1.3 - 0.5j, -3.0])
     poles = np.sort_complex(fit.poles)
     print(f"order {fit.order}, K error {fit.kernel_error:.1e}, poles {np.round(poles, 12)}")
@@ -77,12 +83,12 @@ def test_lower_orders_and_passivity_constraint_on_the_analytic_kernel() -> None:
     passive fit of a kernel with B(omega) < 0 somewhere (K = e^{-t} cos 3t - 0.9 e^{-t}, whose
     transform has Re H(0) < 0) comes back with B_fit >= 0 everywhere."""
     t = np.linspace(0.0, 30.0, 1501)
-    loose = ss.fit_kernel(t, _analytic(t), rtol=0.2, max_order=10)
+    loose = fit_kernel(t, _analytic(t), rtol=0.2, max_order=10)
     assert loose.order < 5 and loose.kernel_error <= 0.2
     y = np.exp(-t) * (np.cos(3.0 * t) - 0.9)
-    free = ss.fit_kernel(t, y, rtol=1e-6, max_order=6)
+    free = fit_kernel(t, y, rtol=1e-6, max_order=6)
     assert free.transfer(np.array([0.0]))[0].real < 0.0  # not passive as given
-    passive = ss.fit_kernel(t, y, rtol=1e-6, max_order=6, passive=True)
+    passive = fit_kernel(t, y, rtol=1e-6, max_order=6, passive=True)
     assert passive.passivity_enforced and not passive.within_tolerance
     grid = np.concatenate([[0.0], np.logspace(-3, 3, 4000)])
     b = passive.transfer(grid).real
@@ -94,12 +100,12 @@ def test_lower_orders_and_passivity_constraint_on_the_analytic_kernel() -> None:
 @pytest.mark.parametrize("db", [BUOY_DB, DEEPCWIND_DB], ids=["buoy", "deepcwind"])
 def test_shipped_realisation_matches_its_kernel_and_the_bem(db) -> None:
     ds = read_database(db)
-    realisation = ss.read_state_space(ds)
+    realisation = read_state_space(ds)
     assert realisation is not None, f"{db.name} has no realisation"
     kernel = radiation.radiation_kernel(ds)
-    assert ss.stale_reasons(ds, realisation, kernel) == []
+    assert stale_reasons(ds, realisation, kernel) == []
     # every pair the convolution sums is realised, and no other
-    assert sorted(realisation.orders) == ss.significant_pairs(kernel.kernel)
+    assert sorted(realisation.orders) == significant_pairs(kernel.kernel)
     t = kernel.time
     weights = np.full(t.size, t[1])
     weights[[0, -1]] *= 0.5
@@ -117,12 +123,12 @@ def test_shipped_realisation_matches_its_kernel_and_the_bem(db) -> None:
         b_err = np.abs(damping[:, i, j] - bem_b[:, i, j]).max() / math.sqrt(peak_b[i] * peak_b[j])
         a_fit = shape[:, i, j] + np.mean(bem_a[:, i, j] - shape[:, i, j])
         a_err = np.abs(a_fit - bem_a[:, i, j]).max() / math.sqrt(peak_a[i] * peak_a[j])
-        print(f"{ss.DOFS[i]}-{ss.DOFS[j]}: order {p.order}, K {err:.2e}, B {b_err:.2e}, "
+        print(f"{DOFS[i]}-{DOFS[j]}: order {p.order}, K {err:.2e}, B {b_err:.2e}, "
               f"A {a_err:.2e}, min B {p.min_damping:.1e}")
-        assert err <= ss.KERNEL_RTOL
+        assert err <= KERNEL_RTOL
         assert abs(err - p.kernel_error) <= 1e-9  # the stored error is the recomputed one
         assert b_err <= DAMPING_FIT_TOL and a_err <= ADDED_MASS_FIT_TOL
-        assert p.order <= ss.MAX_ORDER and np.all(p.poles.real < 0.0)
+        assert p.order <= MAX_ORDER and np.all(p.poles.real < 0.0)
         if i == j:  # passive: B_fit >= 0 at every frequency
             grid = np.concatenate([[0.0], np.logspace(-4, 4, 6400)])
             bw = p.transfer(grid).real
@@ -141,7 +147,7 @@ def test_shipped_realisation_matches_its_kernel_and_the_bem(db) -> None:
 def buoy_refit():
     """One refit of the buoy database, shared: a fit costs 15-35 s, and the command test
     below fits again through the CLI, which is the determinism check."""
-    return ss.fit_state_space(read_database(BUOY_DB))
+    return fit_state_space(read_database(BUOY_DB))
 
 
 def test_refit_from_the_stored_data_meets_what_the_realisation_is_for(buoy_refit) -> None:
@@ -157,21 +163,21 @@ def test_refit_from_the_stored_data_meets_what_the_realisation_is_for(buoy_refit
         _buoy_heave_decay
 
     ds = read_database(BUOY_DB)
-    stored = ss.read_state_space(ds)
+    stored = read_state_space(ds)
     refit = buoy_refit
     assert sorted(refit.orders) == sorted(stored.orders)  # the same significant pairs
     for p in refit.pairs:
-        name = f"{ss.DOFS[p.radiating]}-{ss.DOFS[p.influenced]}"
+        name = f"{DOFS[p.radiating]}-{DOFS[p.influenced]}"
         print(f"{name}: order {p.order}, K {p.kernel_error:.2e}, B {p.damping_error:.2e}, "
               f"A {p.added_mass_error:.2e}")
-        assert p.within_tolerance and p.kernel_error <= ss.KERNEL_RTOL, name
+        assert p.within_tolerance and p.kernel_error <= KERNEL_RTOL, name
         assert p.damping_error <= DAMPING_FIT_TOL and p.added_mass_error <= ADDED_MASS_FIT_TOL
         assert np.all(p.poles.real < 0.0), name
         if p.radiating == p.influenced:
             assert p.min_damping >= -PASSIVITY_SLACK, name
     assert refit.matrix_min_damping >= -MATRIX_PASSIVITY_TOL
     # the decay the realisation exists for, with the refit in place of the stored one
-    refitted = ss.add_to_dataset(ss.remove_from_dataset(ds), refit)
+    refitted = add_to_dataset(remove_from_dataset(ds), refit)
     diff = _agreement(_buoy_heave_decay("convolution", ds),
                       _buoy_heave_decay("state-space", refitted), 2)
     print(f"refit: {refit.n_states} states (stored {stored.n_states}); heave decay against "
@@ -183,7 +189,7 @@ def _without_realisation(src, tmp_path):
     folder = tmp_path / "hydrodb"
     folder.mkdir(exist_ok=True)
     path = folder / src.name
-    ds = ss.remove_from_dataset(read_database(src))
+    ds = remove_from_dataset(read_database(src))
     ds.attrs.pop("path", None)
     write_database(ds, path)
     return path
@@ -217,13 +223,13 @@ def test_fit_state_space_command_adds_variables_without_staling(tmp_path, capsys
         assert after[name].attrs["units"] and after[name].attrs["long_name"], name
     settings = json.loads(after.attrs["state_space_settings_json"])
     errors = json.loads(after.attrs["state_space_errors_json"])
-    assert settings["kernel_rtol"] == ss.KERNEL_RTOL and settings["max_order"] == ss.MAX_ORDER
+    assert settings["kernel_rtol"] == KERNEL_RTOL and settings["max_order"] == MAX_ORDER
     assert len(errors["pairs"]) == after.sizes["state_space_pair"]
-    assert all(p["kernel_error"] <= ss.KERNEL_RTOL for p in errors["pairs"])
+    assert all(p["kernel_error"] <= KERNEL_RTOL for p in errors["pairs"])
     # the fit is deterministic: the command's fit is the fixture's, pair by pair
     assert [p["kernel_error"] for p in errors["pairs"]] == \
         [p.kernel_error for p in buoy_refit.pairs]
-    assert ss.read_state_space(after).orders == buoy_refit.orders
+    assert read_state_space(after).orders == buoy_refit.orders
     assert main(["hydro", "info", "cylinder_buoy"]) == 0
     info = capsys.readouterr().out
     assert "state-space radiation: 9 pairs" in info and "up to date" in info
@@ -243,7 +249,7 @@ def test_fit_state_space_from_a_case_file_and_bad_options(tmp_path, capsys, monk
     assert main(["hydro", "fit-state-space", str(case), "--json", "--max-order", "2"]) == 1
     report = json.loads(capsys.readouterr().out)
     assert report["written"] is False
-    assert not ss.has_state_space(read_database(path))  # nothing written
+    assert not has_state_space(read_database(path))  # nothing written
     assert main(["hydro", "fit-state-space", str(path), "--tolerance", "2"]) == 2
     assert "--tolerance" in capsys.readouterr().err
     assert main(["hydro", "fit-state-space", str(tmp_path / "absent.nc")]) == 2
@@ -255,30 +261,30 @@ def test_a_fit_of_another_kernel_is_stale(tmp_path, monkeypatch) -> None:
     from floatmoor.case.load import load_case
 
     ds = read_database(BUOY_DB)
-    realisation = ss.read_state_space(ds)
-    assert ss.stale_reasons(ds, realisation) == []
+    realisation = read_state_space(ds)
+    assert stale_reasons(ds, realisation) == []
     settings = dict(realisation.kernel_settings)
     settings["truncation_time"] *= 0.5
-    older = ss.StateSpaceRadiation(realisation.pairs, realisation.settings, settings)
-    assert any("truncation_time" in r for r in ss.stale_reasons(ds, older))
+    older = StateSpaceRadiation(realisation.pairs, realisation.settings, settings)
+    assert any("truncation_time" in r for r in stale_reasons(ds, older))
     prints = json.loads(json.dumps(realisation.kernel_settings["fingerprint"]))
     prints["Heave-Heave"][1] *= 1.01
     settings = dict(realisation.kernel_settings, fingerprint=prints)
-    older = ss.StateSpaceRadiation(realisation.pairs, realisation.settings, settings)
-    assert any("Heave-Heave" in r for r in ss.stale_reasons(ds, older))
+    older = StateSpaceRadiation(realisation.pairs, realisation.settings, settings)
+    assert any("Heave-Heave" in r for r in stale_reasons(ds, older))
     # the radiation code's constants changed since the fit
     monkeypatch.setattr(radiation, "TAIL_EXTENT", 2000.0)
-    reasons = ss.stale_reasons(ds, realisation)
+    reasons = stale_reasons(ds, realisation)
     assert any("tail_extent" in r for r in reasons)
     case = load_case(BUOY_CASE)
     with pytest.raises(HydroDatabaseError, match="stale state-space realisation"):
         build_body(case.floater, ds, case.environment, 0.01, radiation="state-space")
     monkeypatch.undo()
     # written to a file, the stale attributes are read back as such
-    stale = ss.add_to_dataset(ds, older)
+    stale = add_to_dataset(ds, older)
     path = tmp_path / "stale.nc"
     write_database(stale, path)
-    assert any("Heave-Heave" in r for r in ss.stale_reasons(read_database(path)))
+    assert any("Heave-Heave" in r for r in stale_reasons(read_database(path)))
 
 
 def test_deepcwind_case_file_selects_the_fitted_database() -> None:
@@ -304,8 +310,8 @@ def test_fit_state_space_never_replaces_a_realisation_unasked(tmp_path, capsys,
     fits = []
     # what is tested here is when the command writes, not the fit (tested above): the fit is
     # replaced by the committed realisation, which spares two 15-35 s fits
-    stored = ss.read_state_space(read_database(BUOY_DB))
-    monkeypatch.setattr(ss, "fit_state_space", lambda *a, **k: fits.append(1) or stored)
+    stored = read_state_space(read_database(BUOY_DB))
+    monkeypatch.setattr(database_fit, "fit_state_space", lambda *a, **k: fits.append(1) or stored)
     assert main(["hydro", "fit-state-space", "cylinder_buoy"]) == 2
     err = capsys.readouterr().err
     assert "--force" in err and "-o" in err and "82 states" in err and "Traceback" not in err
@@ -319,6 +325,6 @@ def test_fit_state_space_never_replaces_a_realisation_unasked(tmp_path, capsys,
     assert main(["hydro", "fit-state-space", "cylinder_buoy", "-o", str(copy)]) == 0
     assert f"written to {copy}" in capsys.readouterr().out
     assert path.read_bytes() == before and fits == [1]
-    assert ss.read_state_space(read_database(copy)) is not None
+    assert read_state_space(read_database(copy)) is not None
     assert main(["hydro", "fit-state-space", "cylinder_buoy", "--force"]) == 0
-    assert ss.read_state_space(read_database(path)) is not None
+    assert read_state_space(read_database(path)) is not None

@@ -1,4 +1,5 @@
-"""Prescribed fairlead motion for forced-motion runs.
+"""Prescribed fairlead motion: the translational motions of one fairlead (circular, harmonic,
+table), with the ramp and the table spline every prescribed motion shares.
 
 The fairlead position is the mean position given in the case plus a displacement
 ``R(t) d(t)``, where ``d`` is the motion (circular, harmonic or tabulated) and ``R`` the ramp

@@ -18,14 +18,14 @@ point p0 keeps its distance to the reference point exactly. The velocity is exac
 
 omega the angular velocity in global axes from the Euler-angle rates (omega x = R' R^T),
 as the coupled floater's points take it (:mod:`floatmoor.body.kinematics`); both, for arrays of
-poses, are in :mod:`floatmoor.rotations`. The
-displacement is ramped DOF by DOF as every prescribed motion is
-(:func:`floatmoor.motion.ramp`); a table is interpolated in each DOF by the not-a-knot cubic
-spline of a translational table (:func:`floatmoor.motion.table_state`), rotations in the Euler
-angles, with the spline's exact derivatives as rates.
+poses, are in :mod:`floatmoor.rotations`. The displacement is ramped DOF by DOF as every
+prescribed motion is (:func:`floatmoor.motion.fairlead.ramp`); a table is interpolated in each
+DOF by the not-a-knot cubic spline of a translational table
+(:func:`floatmoor.motion.fairlead.table_state`), rotations in the Euler angles, with the
+spline's exact derivatives as rates.
 
 A motion without rotations moves every point exactly as the translational motions of
-:mod:`floatmoor.motion` do: the same numbers, bit for bit.
+:mod:`floatmoor.motion.fairlead` do: the same numbers, bit for bit.
 
 A run starts its lines at the motion's pose at t = 0 (:func:`start_line`): a table whose first
 row is not the rest pose, run without a ramp, starts there and not with a jump from rest.
@@ -51,7 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import BodyHarmonicMotion, BodyMotion, BodyTableMotion, Line, Motion
-from floatmoor.motion import fairlead_state, ramp, ramp_rate, table_state
+from floatmoor.motion.fairlead import fairlead_state, ramp, ramp_rate, table_state
 from floatmoor.rotations import angular_velocity, rotation_matrices
 
 __all__ = ["body_motion_state", "body_points_state", "prescribed_fairlead_state",
@@ -77,7 +77,7 @@ def body_motion_state(motion: BodyMotion, t: NDArray[np.float64]
     d = np.zeros((t.size, 6))
     dd = np.zeros((t.size, 6))
     if isinstance(motion, BodyHarmonicMotion):
-        # the same expressions as floatmoor.motion's harmonic motion, so that translations
+        # the same expressions as floatmoor.motion.fairlead's harmonic motion, so that translations
         # are bit-identical to it
         for axis in range(6):
             omega = 2.0 * np.pi / motion.period[axis]
@@ -132,7 +132,7 @@ def prescribed_fairlead_state(motion: Motion | None, line: Line, t: NDArray[np.f
                               ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Fairlead positions [m] and velocities [m/s] of ``line`` at times ``t``, (n, 3) each,
     under any prescribed motion: a body motion moves the fairlead as a body point, the other
-    motions as :func:`floatmoor.motion.fairlead_state` does."""
+    motions as :func:`floatmoor.motion.fairlead.fairlead_state` does."""
     if is_body_motion(motion):
         positions, velocities = body_points_state(motion, np.asarray([line.fairlead]), t)
         return positions[:, 0], velocities[:, 0]

@@ -8,11 +8,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from floatmoor.body_motion import body_motion_state
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import BodyTableMotion, TableMotion
-from floatmoor.motion import fairlead_state, motion_state, ramp, table_state
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
+from floatmoor.motion.fairlead import fairlead_state, motion_state, ramp, table_state
+from floatmoor.motion.rigid_body import body_motion_state
 from tests.conftest import CASES
 
 #: Against scipy's CubicSpline, the oracle: the same coefficients, evaluated by another

@@ -1,4 +1,4 @@
-"""Wave settings dataclasses: validation messages and the build factory."""
+"""Wave settings dataclasses: validation messages and the sea they realise (realise_sea)."""
 
 from __future__ import annotations
 
@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 from floatmoor.case.sea import JonswapSettings, RegularWaveSettings, StillWaterSettings
-from floatmoor.waves.settings import build
+from floatmoor.waves.realisation import realise_sea
 
 G = 9.81
 
 
 def test_build_regular_converts_degrees():
-    field = build(RegularWaveSettings(height=2.0, period=8.0, direction_deg=30.0,
+    field = realise_sea(RegularWaveSettings(height=2.0, period=8.0, direction_deg=30.0,
                                       phase_deg=90.0), 100.0, G, 600.0)
     assert field.n_components == 1
     assert field.direction[0] == pytest.approx(math.radians(30.0))
@@ -27,15 +27,15 @@ def test_build_regular_converts_degrees():
 
 def test_build_jonswap_defaults_and_variants():
     s = JonswapSettings(hs=4.0, tp=10.0, seed=3)
-    field = build(s, 200.0, G, 10800.0)
+    field = realise_sea(s, 200.0, G, 10800.0)
     lo, hi = s.band()
     assert (lo, hi) == pytest.approx((0.5 * 2 * np.pi / 10, 4 * 2 * np.pi / 10))
     assert field.info["spacing"] == "equal" and field.repeat_period >= 10800.0
     assert field.info["variance_fraction"] > 0.99
-    r = build(JonswapSettings(hs=4.0, tp=10.0, seed=3, spacing="random-in-bin",
+    r = realise_sea(JonswapSettings(hs=4.0, tp=10.0, seed=3, spacing="random-in-bin",
                               n_components=200, omega_min=0.3, omega_max=2.0), 200.0, G, 10800)
     assert r.n_components == 200 and math.isinf(r.repeat_period)
-    assert build(StillWaterSettings(), 200.0, G, 10.0).n_components == 0
+    assert realise_sea(StillWaterSettings(), 200.0, G, 10.0).n_components == 0
 
 
 @pytest.mark.parametrize("settings, depth, message", [
@@ -62,7 +62,7 @@ def test_build_jonswap_defaults_and_variants():
 ])
 def test_unphysical_settings_raise_clear_errors(settings, depth, message):
     with pytest.raises(ValueError, match=message):
-        build(settings, depth, G, 3600.0)
+        realise_sea(settings, depth, G, 3600.0)
 
 
 def test_steep_but_admissible_waves_pass():

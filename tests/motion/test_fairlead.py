@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from floatmoor.case.load import load_case
-from floatmoor.motion import displacement, fairlead_path, horizontal_direction, ramp
+from floatmoor.motion.fairlead import displacement, fairlead_path, horizontal_direction, ramp
 from tests.conftest import LINDAHL_CASE
 
 

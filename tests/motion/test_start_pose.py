@@ -9,12 +9,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatmoor.body_motion import prescribed_fairlead_state, start_line
 from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.errors import ModelValidityWarning
 from floatmoor.io.run_case import default_start
 from floatmoor.mooring.quasistatic import QuasiStaticLine
+from floatmoor.motion.rigid_body import prescribed_fairlead_state, start_line
 from floatmoor.post.summary import format_summary, run_summary
 from floatmoor.simulation.assembly import assemble, start_positions
 from floatmoor.simulation.forced import run_forced_motion

@@ -1,11 +1,11 @@
 """State-space realisations of the radiation kernel K(t): one pair's, and a database's.
 
 :class:`PairRealisation` holds one K_ij(t) ~ c exp(A t) b in real modal form
-(:mod:`floatmoor.hydro.modal_form`) with its errors against the kernel and the BEM values;
-:class:`StateSpaceRadiation` the pairs of a database together with what they were fitted from.
-The fit is :mod:`floatmoor.hydro.kernel_fit` (one kernel) and
-:mod:`floatmoor.hydro.state_space` (a database); the file storage
-:mod:`floatmoor.hydro.state_space_file`.
+(:mod:`floatmoor.hydro.state_space.modal_form`) with its errors against the kernel and the
+BEM values; :class:`StateSpaceRadiation` the pairs of a database together with what they were
+fitted from. The fit is :mod:`floatmoor.hydro.state_space.kernel_fit` (one kernel) and
+:mod:`floatmoor.hydro.state_space.fit` (a database); the file storage
+:mod:`floatmoor.hydro.state_space.storage`.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.hydro.modal_form import kernel_of, transfer_of
+from floatmoor.hydro.state_space.modal_form import kernel_of, transfer_of
 from floatmoor.io.dataset import DOFS
 
 __all__ = ["DOFS", "PASSIVITY_POINTS", "passivity_grid", "PairRealisation",
@@ -127,7 +127,7 @@ class StateSpaceRadiation:
     settings
         Fit settings (tolerance, max order, Hankel rows, method).
     kernel_settings
-        :func:`floatmoor.hydro.state_space.kernel_settings` of the K the fit was made from.
+        :func:`floatmoor.hydro.state_space.fit.kernel_settings` of the K the fit was made from.
     """
 
     pairs: tuple[PairRealisation, ...]

@@ -11,13 +11,13 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
-from floatmoor.body.kinematics import rotation_matrix
-from floatmoor.body_motion import body_motion_state, body_points_state, prescribed_fairlead_state
 from floatmoor.case.load import load_case
 from floatmoor.case.schema import BodyHarmonicMotion, BodyTableMotion
 from floatmoor.errors import CaseError
-from floatmoor.motion import fairlead_state
-from floatmoor.rotations import angular_velocity, rotation_matrices
+from floatmoor.motion.fairlead import fairlead_state
+from floatmoor.motion.rigid_body import (body_motion_state, body_points_state,
+                                         prescribed_fairlead_state)
+from floatmoor.rotations import angular_velocity, rotation_matrices, rotation_matrix
 from tests.conftest import LINDAHL_CASE
 
 #: Tolerance of the exactness checks [-]: a few hundred ulps of the arm length (the
@@ -62,22 +62,6 @@ def _harmonic(amplitude, period=(7.0, 9.0, 11.0, 5.0, 6.5, 13.0),
 
 # -- kinematics --------------------------------------------------------------------------------
 
-def test_rotation_matrices_are_the_floaters_convention(rng):
-    angles = rng.uniform(-math.pi, math.pi, (50, 3))
-    R = rotation_matrices(angles)
-    for a, r in zip(angles, R):
-        np.testing.assert_array_equal(r, rotation_matrix(*a))
-    # and the documented one: yaw about z, then pitch about the yawed y, roll about body x
-    roll, pitch, yaw = angles[7]
-    rx = np.array([[1, 0, 0], [0, math.cos(roll), -math.sin(roll)],
-                   [0, math.sin(roll), math.cos(roll)]])
-    ry = np.array([[math.cos(pitch), 0, math.sin(pitch)], [0, 1, 0],
-                   [-math.sin(pitch), 0, math.cos(pitch)]])
-    rz = np.array([[math.cos(yaw), -math.sin(yaw), 0], [math.sin(yaw), math.cos(yaw), 0],
-                   [0, 0, 1]])
-    np.testing.assert_allclose(R[7], rz @ ry @ rx, atol=1e-15)
-
-
 def test_rotation_only_table_keeps_every_point_on_its_sphere():
     motion = _rotation_table()
     t = np.linspace(0.0, 6.0, 2401)
@@ -88,7 +72,7 @@ def test_rotation_only_table_keeps_every_point_on_its_sphere():
     np.testing.assert_allclose(distance, np.broadcast_to(radius, distance.shape), rtol=EXACT,
                                atol=0.0)
     # the positions are R(angles(t)) applied to the rest arms, angles interpolated by the
-    # not-a-knot cubic spline (scipy's, the oracle of floatmoor.motion.table_state)
+    # not-a-knot cubic spline (scipy's, the oracle of floatmoor.motion.fairlead.table_state)
     spline = CubicSpline(motion.time, motion.displacement[:, 3:], bc_type="not-a-knot")
     for n in range(0, t.size, 37):
         angles = spline(t[n])
@@ -326,7 +310,7 @@ def test_bad_body_motions_are_clear_errors(tmp_path, name):
 def test_every_body_point_is_checked_above_the_seabed(tmp_path):
     # a rope from a clump to the body point: no fixed-to-body line ends there, the body
     # point's own path is checked
-    text = (Path(__file__).parents[0] / "data" / "systems" / "clump_buoy.toml").read_text()
+    text = (Path(__file__).parents[1] / "data" / "systems" / "clump_buoy.toml").read_text()
     text = text[:text.index("[[lines]]")] + """[[lines]]
 name = "lower"
 start = "anchor"

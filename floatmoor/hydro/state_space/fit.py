@@ -1,33 +1,17 @@
-"""State-space realisations of the radiation impulse response K(t)
+"""A database's state-space realisation: every significant pair of its radiation kernels
+fitted, and whether a stored realisation still belongs to the database
 (docs/theory/floater.md#radiation-convolution-or-state-space).
 
-The radiation memory of the Cummins equation, mu_i(t) = sum_j int_0^t K_ji(t - tau) v_j(tau)
-dtau, is replaced by linear states driven by the body velocity: for each significant pair
-(j radiating, i influenced) of the database's K(t) (:func:`floatmoor.hydro.radiation.
-radiation_kernel`, indices as the database's damping),
+:func:`fit_state_space` realises each significant pair (j radiating, i influenced) of the
+database's K(t) (:func:`floatmoor.hydro.radiation.radiation_kernel`, indices as the
+database's damping) by :func:`floatmoor.hydro.state_space.kernel_fit.fit_kernel`, with its
+errors against the BEM values; :func:`stale_reasons` says when a stored realisation no longer
+belongs to the database. The other parts of the feature are the package's other modules
+(:mod:`floatmoor.hydro.state_space`).
 
-    z' = A z + b v_j,   mu_i += c . z,   so that   K_ji(t) ~ c exp(A t) b.
-
-This module realises a database's kernels (:func:`fit_state_space`: every significant pair
-by :func:`floatmoor.hydro.kernel_fit.fit_kernel`, with its errors against the BEM values) and
-says when a stored realisation no longer belongs to the database (:func:`stale_reasons`). It
-is also the public entry point of the realisation: the names of :mod:`~floatmoor.hydro.
-kernel_fit` (one kernel's identification), :mod:`~floatmoor.hydro.state_space_model` (the
-realisation objects), :mod:`~floatmoor.hydro.modal_form` (their real modal form) and
-:mod:`~floatmoor.hydro.state_space_file` (storage in the database file) are importable from
-here.
-
-The realisation is kept in real modal form (a 1 x 1 block per real pole, a 2 x 2 block
-[[sigma, omega], [-omega, sigma]] per complex pair, b of ones and zeros), whose frequency
-response H(i omega) = int_0^inf K(t) e^{-i omega t} dt = B(omega) + i omega (A(omega) - A_inf)
-checks it against the database's BEM values (:meth:`StateSpaceRadiation.frequency_response`).
-
-Storage (:func:`add_to_dataset`, ``floatmoor hydro fit-state-space``): variables
-``state_space_*`` and attributes in the database file, without touching the BEM variables or
-the recorded inputs (the database does not become stale). The fit records the K(t) settings it
-was made from (truncation time, step, tail exponents and constants of
-:mod:`floatmoor.hydro.radiation`, the database's inputs hash) and a fingerprint of K;
-:func:`stale_reasons` compares them with what the current code computes from the file.
+The fit records the K(t) settings it was made from (truncation time, step, tail exponents and
+constants of :mod:`floatmoor.hydro.radiation`, the database's inputs hash) and a fingerprint
+of K; :func:`stale_reasons` compares them with what the current code computes from the file.
 """
 
 from __future__ import annotations
@@ -43,27 +27,15 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from floatmoor.hydro import radiation as _rad
-from floatmoor.hydro.kernel_fit import (
+from floatmoor.hydro.state_space.kernel_fit import (
     HANKEL_ROWS, KERNEL_RTOL, LOW_FREQUENCY_BAND, LOW_FREQUENCY_POINTS, LOW_FREQUENCY_WEIGHT,
     MAX_ORDER, METHOD, fit_kernel,
 )
-from floatmoor.hydro.modal_form import modal_realisation, modes
-from floatmoor.hydro.state_space_model import (
-    DOFS, PASSIVITY_POINTS, PairRealisation, StateSpaceRadiation,
-)
-from floatmoor.hydro.state_space_file import (
-    add_to_dataset, has_state_space, read_state_space, remove_from_dataset,
-)
+from floatmoor.hydro.state_space.realisation import DOFS, PASSIVITY_POINTS, StateSpaceRadiation
+from floatmoor.hydro.state_space.storage import read_state_space
 
-__all__ = [
-    "KERNEL_RTOL", "MAX_ORDER", "HANKEL_ROWS", "PASSIVITY_POINTS", "METHOD",
-    "LOW_FREQUENCY_BAND", "LOW_FREQUENCY_POINTS", "LOW_FREQUENCY_WEIGHT",
-    "low_frequency_transform",
-    "PairRealisation", "StateSpaceRadiation", "fit_kernel", "fit_state_space",
-    "significant_pairs", "kernel_settings", "stale_reasons", "has_state_space",
-    "read_state_space", "add_to_dataset", "remove_from_dataset", "modes", "modal_realisation",
-    "DOFS",
-]
+__all__ = ["fit_state_space", "significant_pairs", "kernel_settings", "stale_reasons",
+           "low_frequency_transform"]
 
 #: H(i omega) of the low band is integrated with K refined this many times over the first
 #: _CUSP_STEPS steps of the K grid: a damping tail B ~ omega^-p with p < 2 gives K a cusp

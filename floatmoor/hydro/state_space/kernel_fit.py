@@ -30,9 +30,9 @@ Identification (:func:`fit_kernel`):
 3. Order: the smallest n (up to :data:`MAX_ORDER`) whose relative L2 error of K over the
    truncation time is at most :data:`KERNEL_RTOL`.
 
-The realisation is returned in real modal form (:mod:`floatmoor.hydro.modal_form`). A
-database's kernels, pair by pair, are fitted by :func:`floatmoor.hydro.state_space.
-fit_state_space`.
+The realisation is returned in real modal form
+(:mod:`floatmoor.hydro.state_space.modal_form`). A database's kernels, pair by pair, are
+fitted by :func:`floatmoor.hydro.state_space.fit.fit_state_space`.
 """
 
 from __future__ import annotations
@@ -43,8 +43,10 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
-from floatmoor.hydro.modal_form import modal_realisation
-from floatmoor.hydro.state_space_model import PASSIVITY_POINTS, PairRealisation, passivity_grid
+from floatmoor.hydro.state_space.modal_form import modal_realisation
+from floatmoor.hydro.state_space.realisation import (
+    PASSIVITY_POINTS, PairRealisation, passivity_grid,
+)
 
 __all__ = ["KERNEL_RTOL", "MAX_ORDER", "HANKEL_ROWS", "LOW_FREQUENCY_BAND",
            "LOW_FREQUENCY_POINTS", "LOW_FREQUENCY_WEIGHT", "METHOD", "fit_kernel"]

@@ -4,8 +4,8 @@ A realisation of an impulse response K(t) = sum_k r_k e^{lambda_k t} keeps A wit
 block per real pole and a 2 x 2 block [[sigma, omega], [-omega, sigma]] per complex pair (b of
 ones and zeros), so it is stored as two diagonals and integrated without complex states. These
 are the conversions between that form and poles and residues, shared by the fit
-(:mod:`floatmoor.hydro.kernel_fit`) and the body's radiation states
-(:mod:`floatmoor.body.radiation_states`); nothing here depends on a database.
+(:mod:`floatmoor.hydro.state_space.kernel_fit`) and the body's radiation states
+(:mod:`floatmoor.body.state_space_radiation`); nothing here depends on a database.
 """
 
 from __future__ import annotations

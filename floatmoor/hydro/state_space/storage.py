@@ -17,8 +17,8 @@ from numpy.typing import NDArray
 
 from floatmoor._version import __version__
 from floatmoor.hydro.database import HydroDatabaseError
-from floatmoor.hydro.kernel_fit import METHOD
-from floatmoor.hydro.state_space_model import DOFS, PairRealisation, StateSpaceRadiation
+from floatmoor.hydro.state_space.kernel_fit import METHOD
+from floatmoor.hydro.state_space.realisation import DOFS, PairRealisation, StateSpaceRadiation
 from floatmoor.terminal_text import shown
 
 __all__ = ["has_state_space", "read_state_space", "add_to_dataset", "remove_from_dataset"]
