@@ -150,15 +150,27 @@ def _strong_derivative(u: np.ndarray, faces: np.ndarray, D: np.ndarray, LIFT: np
     """Strong-form DG derivative of nodal field u (K, Np, 3) given its face values (K + 1, 3):
     du/ds = jac (D u + M^-1 [e_p (u*_right - u_p) - e_0 (u*_left - u_0)])."""
     K, Np = u.shape[0], u.shape[1]
+    # The three components' sums run side by side (each in its own order, so the same
+    # numbers): three independent chains of additions instead of one, which is what bounds
+    # this loop at small Np (docs/validation/performance.md#line-models).
     for k in range(K):
-        for c in range(3):
-            jl = faces[k, c] - u[k, 0, c]
-            jr = faces[k + 1, c] - u[k, Np - 1, c]
-            for i in range(Np):
-                acc = 0.0
-                for j in range(Np):
-                    acc += D[i, j] * u[k, j, c]
-                out[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+        jlx = faces[k, 0] - u[k, 0, 0]
+        jly = faces[k, 1] - u[k, 0, 1]
+        jlz = faces[k, 2] - u[k, 0, 2]
+        jrx = faces[k + 1, 0] - u[k, Np - 1, 0]
+        jry = faces[k + 1, 1] - u[k, Np - 1, 1]
+        jrz = faces[k + 1, 2] - u[k, Np - 1, 2]
+        for i in range(Np):
+            ax, ay, az = 0.0, 0.0, 0.0
+            for j in range(Np):
+                d = D[i, j]
+                ax += d * u[k, j, 0]
+                ay += d * u[k, j, 1]
+                az += d * u[k, j, 2]
+            l0, l1 = LIFT[i, 0], LIFT[i, 1]
+            out[k, i, 0] = jac * (ax - l0 * jlx + l1 * jrx)
+            out[k, i, 1] = jac * (ay - l0 * jly + l1 * jry)
+            out[k, i, 2] = jac * (az - l0 * jlz + l1 * jrz)
 
 
 @jit
@@ -318,7 +330,10 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
                     # Coulomb friction, ramped in up to the slip speed (docs/theory/cable.md)
                     speed = math.sqrt(vx * vx + vy * vy)
                 if speed > 0.0:
-                    mag = friction * math.sin(0.5 * math.pi * speed / max(vc, speed))
+                    if speed >= vc:  # sin(pi / 2) is 1.0 in floating point: no sin to call
+                        mag = friction
+                    else:
+                        mag = friction * math.sin(0.5 * math.pi * speed / vc)
                     fx -= mag * vx / speed
                     fy -= mag * vy / speed
                 if explicit_contact:
