@@ -289,6 +289,10 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
     relax = prm[P_RELAX]
     ks = prm[P_KS]
     mu_kb = prm[P_MU] * prm[P_KB]
+    # inverse lumped masses (dry; wet normal and tangential), hoisted out of the node loop
+    imn_dry = 1.0 / m
+    imn_wet = 1.0 / (m + prm[P_MAN])
+    imt_wet = 1.0 / (m + prm[P_MAT])
     _strong_derivative(N, Nstar, D, LIFT, jac, dv)  # dN/ds, the fluxes as face values
     for k in range(K):
         for i in range(Np):
@@ -299,7 +303,8 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
             ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
             tx, ty, tz = 0.0, 0.0, 0.0
             if ql > 0.0:
-                tx, ty, tz = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
+                iql = 1.0 / ql
+                tx, ty, tz = q[k, i, 0] * iql, q[k, i, 1] * iql, q[k, i, 2] * iql
             submerged = z < 0.0
             if submerged:
                 fz += buoyancy
@@ -331,20 +336,20 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
                     speed = math.sqrt(vx * vx + vy * vy)
                 if speed > 0.0:
                     if speed >= vc:  # sin(pi / 2) is 1.0 in floating point: no sin to call
-                        mag = friction
+                        mag = friction / speed
                     else:
-                        mag = friction * math.sin(0.5 * math.pi * speed / vc)
-                    fx -= mag * vx / speed
-                    fy -= mag * vy / speed
+                        mag = friction * math.sin(0.5 * math.pi * speed / vc) / speed
+                    fx -= mag * vx
+                    fy -= mag * vy
                 if explicit_contact:
                     fz += -prm[P_KB] * (z - zb) - prm[P_CB] * min(v[k, i, 2], 0.0)
             # invert the added-mass-augmented mass
-            mn = m + (prm[P_MAN] if submerged else 0.0)
-            mt = m + (prm[P_MAT] if submerged else 0.0)
+            imn = imn_wet if submerged else imn_dry
+            imt = imt_wet if submerged else imn_dry
             ft = fx * tx + fy * ty + fz * tz
-            dv[k, i, 0] = (fx - ft * tx) / mn + ft * tx / mt - relax * v[k, i, 0]
-            dv[k, i, 1] = (fy - ft * ty) / mn + ft * ty / mt - relax * v[k, i, 1]
-            dv[k, i, 2] = (fz - ft * tz) / mn + ft * tz / mt - relax * v[k, i, 2]
+            dv[k, i, 0] = (fx - ft * tx) * imn + ft * tx * imt - relax * v[k, i, 0]
+            dv[k, i, 1] = (fy - ft * ty) * imn + ft * ty * imt - relax * v[k, i, 1]
+            dv[k, i, 2] = (fz - ft * tz) * imn + ft * tz * imt - relax * v[k, i, 2]
 
 
 @jit
