@@ -150,15 +150,27 @@ def _strong_derivative(u: np.ndarray, faces: np.ndarray, D: np.ndarray, LIFT: np
     """Strong-form DG derivative of nodal field u (K, Np, 3) given its face values (K + 1, 3):
     du/ds = jac (D u + M^-1 [e_p (u*_right - u_p) - e_0 (u*_left - u_0)])."""
     K, Np = u.shape[0], u.shape[1]
+    # The three components' sums run side by side (each in its own order, so the same
+    # numbers): three independent chains of additions instead of one, which is what bounds
+    # this loop at small Np (docs/validation/performance.md#line-models).
     for k in range(K):
-        for c in range(3):
-            jl = faces[k, c] - u[k, 0, c]
-            jr = faces[k + 1, c] - u[k, Np - 1, c]
-            for i in range(Np):
-                acc = 0.0
-                for j in range(Np):
-                    acc += D[i, j] * u[k, j, c]
-                out[k, i, c] = jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+        jlx = faces[k, 0] - u[k, 0, 0]
+        jly = faces[k, 1] - u[k, 0, 1]
+        jlz = faces[k, 2] - u[k, 0, 2]
+        jrx = faces[k + 1, 0] - u[k, Np - 1, 0]
+        jry = faces[k + 1, 1] - u[k, Np - 1, 1]
+        jrz = faces[k + 1, 2] - u[k, Np - 1, 2]
+        for i in range(Np):
+            ax, ay, az = 0.0, 0.0, 0.0
+            for j in range(Np):
+                d = D[i, j]
+                ax += d * u[k, j, 0]
+                ay += d * u[k, j, 1]
+                az += d * u[k, j, 2]
+            l0, l1 = LIFT[i, 0], LIFT[i, 1]
+            out[k, i, 0] = jac * (ax - l0 * jlx + l1 * jrx)
+            out[k, i, 1] = jac * (ay - l0 * jly + l1 * jry)
+            out[k, i, 2] = jac * (az - l0 * jlz + l1 * jrz)
 
 
 @jit
@@ -277,6 +289,10 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
     relax = prm[P_RELAX]
     ks = prm[P_KS]
     mu_kb = prm[P_MU] * prm[P_KB]
+    # inverse lumped masses (dry; wet normal and tangential), hoisted out of the node loop
+    imn_dry = 1.0 / m
+    imn_wet = 1.0 / (m + prm[P_MAN])
+    imt_wet = 1.0 / (m + prm[P_MAT])
     _strong_derivative(N, Nstar, D, LIFT, jac, dv)  # dN/ds, the fluxes as face values
     for k in range(K):
         for i in range(Np):
@@ -287,7 +303,8 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
             ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
             tx, ty, tz = 0.0, 0.0, 0.0
             if ql > 0.0:
-                tx, ty, tz = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
+                iql = 1.0 / ql
+                tx, ty, tz = q[k, i, 0] * iql, q[k, i, 1] * iql, q[k, i, 2] * iql
             submerged = z < 0.0
             if submerged:
                 fz += buoyancy
@@ -318,18 +335,21 @@ def _acceleration(r, v, prm, D, LIFT, q, N, Nstar, dv, fa=None):
                     # Coulomb friction, ramped in up to the slip speed (docs/theory/cable.md)
                     speed = math.sqrt(vx * vx + vy * vy)
                 if speed > 0.0:
-                    mag = friction * math.sin(0.5 * math.pi * speed / max(vc, speed))
-                    fx -= mag * vx / speed
-                    fy -= mag * vy / speed
+                    if speed >= vc:  # sin(pi / 2) is 1.0 in floating point: no sin to call
+                        mag = friction / speed
+                    else:
+                        mag = friction * math.sin(0.5 * math.pi * speed / vc) / speed
+                    fx -= mag * vx
+                    fy -= mag * vy
                 if explicit_contact:
                     fz += -prm[P_KB] * (z - zb) - prm[P_CB] * min(v[k, i, 2], 0.0)
             # invert the added-mass-augmented mass
-            mn = m + (prm[P_MAN] if submerged else 0.0)
-            mt = m + (prm[P_MAT] if submerged else 0.0)
+            imn = imn_wet if submerged else imn_dry
+            imt = imt_wet if submerged else imn_dry
             ft = fx * tx + fy * ty + fz * tz
-            dv[k, i, 0] = (fx - ft * tx) / mn + ft * tx / mt - relax * v[k, i, 0]
-            dv[k, i, 1] = (fy - ft * ty) / mn + ft * ty / mt - relax * v[k, i, 1]
-            dv[k, i, 2] = (fz - ft * tz) / mn + ft * tz / mt - relax * v[k, i, 2]
+            dv[k, i, 0] = (fx - ft * tx) * imn + ft * tx * imt - relax * v[k, i, 0]
+            dv[k, i, 1] = (fy - ft * ty) * imn + ft * ty * imt - relax * v[k, i, 1]
+            dv[k, i, 2] = (fz - ft * tz) * imn + ft * tz * imt - relax * v[k, i, 2]
 
 
 @jit

@@ -317,6 +317,37 @@ def test_rhs_settling_damping_matches_oracle(p, rng) -> None:
     assert relerr(damped - plain, -gamma * v) <= ORACLE_RTOL
 
 
+def test_coulomb_friction_around_the_slip_speed_matches_oracle(rng) -> None:
+    """The kernel takes the friction at or above the slip speed v_c without sin() (sin(pi / 2)
+    is 1.0 in floating point): horizontal speeds just below, at and just above v_c, and far
+    on either side, against the oracle's sin(pi/2 |v_h| / max(v_c, |v_h|))."""
+    p, K = 3, 4
+    pr = make_properties(dict(friction_coefficient=0.6, seabed_z=-10.0, seabed_stiffness=1e3,
+                              normal_drag_coefficient=2.0))
+    settings = DynamicSettings(elements=K, order=p, cfl=0.5, max_time_step=None,
+                               slack_filter=True, seabed_contact="implicit")
+    prm = pr.packed(settings, pr.length / K)
+    ref = reference_element(p)
+    r, v, anchor, fpos, fvel = make_state("seabed", K, p, pr.length, rng)
+    r[..., 2] = -10.02  # every node on the seabed
+    vc = prm[k.P_VC]
+    factors = np.array([0.0, 0.3, 1.0 - 1e-12, 1.0, 1.0 + 1e-12, 1.0 + 1e-6, 7.0, 1e3])
+    speeds = vc * np.resize(factors, K * (p + 1)).reshape(K, p + 1)
+    angle = rng.uniform(0.0, 2.0 * np.pi, size=(K, p + 1))
+    v[..., 0], v[..., 1] = speeds * np.cos(angle), speeds * np.sin(angle)
+    dv = kernel_rhs(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift)[0]
+    ao, _ = oracle.rhs(r, v, anchor, fpos, fvel, D=ref.differentiation, LIFT=ref.lift,
+                       **oracle_params(pr, K, "implicit"))
+    assert relerr(dv, ao) <= ORACLE_RTOL
+    # the friction alone (the difference to the line without it) at each node
+    prm0 = prm.copy()
+    prm0[k.P_MU] = 0.0
+    dv0 = kernel_rhs(r, v, anchor, fpos, fvel, prm0, ref.differentiation, ref.lift)[0]
+    ao0, _ = oracle.rhs(r, v, anchor, fpos, fvel, D=ref.differentiation, LIFT=ref.lift,
+                        **dict(oracle_params(pr, K, "implicit"), mu=0.0))
+    assert relerr(dv - dv0, ao - ao0) <= ORACLE_RTOL
+
+
 def test_rhs_cases_exercise_their_branches(rng) -> None:
     """The random states do reach the branches they are meant for."""
     p, K = 3, 4
