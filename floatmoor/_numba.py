@@ -10,13 +10,23 @@ without the CPython and C entry points that only calls from Python need (buildin
 about a sixth of the compile time of a first run, docs/validation/performance.md#first-run).
 A call from Python (a test, a model's occasional direct call) goes to a twin compiled with
 them on first use, cached on disk under its own name; the machine code is the same.
+
+A kernel compiled into the on-disk cache holds the machine code of every kernel it calls, from
+whatever module. numba stamps a cached kernel with its own source file only, so a change to a
+kernel it calls in another file (``_kernels.py`` under ``_implicit_kernels.py``) would leave the
+caller's stale code in use, silently. Every kernel module of the package is therefore cached
+under one stamp over all of them (:func:`kernel_sources_stamp`): a change to any kernel source
+recompiles every kernel (docs/development.md#numerical-kernels).
 """
 
 from __future__ import annotations
 
+import functools
+import hashlib
 import time as _time
 import types as _types
 from collections.abc import Iterator
+from pathlib import Path
 from contextlib import contextmanager
 from typing import Any, Callable
 
@@ -28,8 +38,76 @@ try:  # numba internals (as of 0.68): without them every kernel keeps its Python
     from numba.core.registry import CPUDispatcher as _CPUDispatcher
 except ImportError:  # pragma: no cover - a numba that moved them
     _NullCache = _CPUDispatcher = None
+try:  # numba internals (as of 0.68): where and under which stamp a kernel is cached
+    from numba.core.caching import CacheImpl as _CacheImpl
+    from numba.core.caching import _CacheLocator
+except ImportError:  # pragma: no cover - a numba that moved them
+    _CacheImpl = None
+    _CacheLocator = object  # type: ignore[assignment,misc]
 
-__all__ = ["jit", "numba_info", "watch_compilation"]
+__all__ = ["jit", "numba_info", "watch_compilation", "kernel_sources_stamp",
+           "KERNEL_ROOTS", "KERNEL_MARK"]
+
+#: Folders whose kernels are cached under :func:`kernel_sources_stamp` (floatmoor's own).
+KERNEL_ROOTS: list[Path] = [Path(__file__).resolve().parent]
+#: What marks a source file as one that defines kernels (the decorator of this module).
+KERNEL_MARK = b"@jit"
+
+
+@functools.lru_cache(maxsize=None)
+def kernel_sources_stamp(root: Path) -> str:
+    """SHA-256 over the path and content of every kernel module (a ``.py`` file holding
+    :data:`KERNEL_MARK`) under ``root`` and over this module: the source stamp of every kernel
+    cached from there. Computed once per process (reading the package's sources takes a few
+    milliseconds)."""
+    digest = hashlib.sha256(Path(__file__).read_bytes())
+    for path in sorted(root.rglob("*.py")):
+        source = path.read_bytes()
+        if KERNEL_MARK in source:
+            digest.update(str(path.relative_to(root)).encode() + b"\0" + source + b"\0")
+    return digest.hexdigest()
+
+
+def _stamped_root(py_file: str) -> Path | None:
+    """The entry of :data:`KERNEL_ROOTS` that holds ``py_file``, or None."""
+    path = Path(py_file).resolve()
+    return next((root for root in KERNEL_ROOTS if path.is_relative_to(root)), None)
+
+
+class _KernelSourcesLocator(_CacheLocator):  # type: ignore[misc,valid-type]
+    """numba's own cache locator for a kernel of :data:`KERNEL_ROOTS` (same folder, same file
+    names), with the source stamp of all the kernel modules there besides its own file's."""
+
+    def __init__(self, inner: Any, root: Path) -> None:
+        self._inner, self._root = inner, root
+
+    def ensure_cache_path(self) -> None:
+        self._inner.ensure_cache_path()
+
+    def get_cache_path(self) -> str:
+        return self._inner.get_cache_path()
+
+    def get_disambiguator(self) -> str:
+        return self._inner.get_disambiguator()
+
+    def get_source_stamp(self) -> Any:
+        return self._inner.get_source_stamp(), kernel_sources_stamp(self._root)
+
+    @classmethod
+    def from_function(cls, py_func: Any, py_file: str) -> Any:
+        root = _stamped_root(py_file)
+        if root is None:
+            return None
+        for locator in _CacheImpl._locator_classes:
+            if locator is not cls:
+                inner = locator.from_function(py_func, py_file)
+                if inner is not None:
+                    return cls(inner, root)
+        return None
+
+
+if _CacheImpl is not None and _KernelSourcesLocator not in _CacheImpl._locator_classes:
+    _CacheImpl._locator_classes.insert(0, _KernelSourcesLocator)
 
 
 def jit(func: Callable[..., Any] | None = None, **options: Any) -> Any:
