@@ -16,7 +16,7 @@ whatever module. numba stamps a cached kernel with its own source file only, so 
 kernel it calls in another file (``_kernels.py`` under ``_implicit_kernels.py``) would leave the
 caller's stale code in use, silently. Every kernel module of the package is therefore cached
 under one stamp over all of them (:func:`kernel_sources_stamp`): a change to any kernel source
-recompiles every kernel (docs/development.md#numerical-kernels).
+recompiles every kernel (docs/development.md#2-numerical-kernels-and-their-oracles).
 """
 
 from __future__ import annotations
