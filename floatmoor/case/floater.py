@@ -58,7 +58,8 @@ from floatmoor.case.limits import MAX_MESH_FILE_BYTES
 from floatmoor.case.reader import MISSING, TableReader, _Found
 from floatmoor.case.setting import read_settings, settings_of
 from floatmoor.case.schema import (
-    GEOMETRY_KIND, HYDRO_CHECKS, MESH_FORMATS, MESH_SYMMETRY_PLANES, Column, CylinderGeometry,
+    GEOMETRY_KIND, HYDRO_CHECKS, MESH_FORMATS, MESH_SYMMETRY_PLANES, BemGridKeys, Column,
+    CylinderGeometry,
     Environment, Floater, FloaterGeometry, HydroSettings, Member, MeshGeometry,
     SemisubmersibleGeometry,
 )
@@ -303,10 +304,10 @@ def read_hydro(t: TableReader) -> HydroSettings:
     if not _is_name(database):
         raise t.error("database", "a file name of letters, digits, '-', '_' and '.' (a path "
                       "to a .nc file only with source = \"imported\")", database)
+    grid = settings_of(BemGridKeys)
     omegas: list[float] = []
     if t.has("frequency_ranges"):
-        ranges = t.claim("frequency_ranges", "array of [first, last, count]", unit="rad/s",
-                         default=None)
+        ranges = grid["frequency_ranges"].read(t, "frequency_ranges")
         expected = "an array of [first, last, count] triples with 0 < first < last [rad/s] " \
                    "and count >= 2"
         if not isinstance(ranges, list) or not ranges:
@@ -325,7 +326,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
     if t.has("frequencies"):
         raw = t.data["frequencies"]
         size = len(raw) if isinstance(raw, list) and raw else 1
-        omegas.extend(t.vector("frequencies", size=size, unit="rad/s", gt=0.0))
+        omegas.extend(grid["frequencies"].read(t, "frequencies", size=size))
     if not omegas:
         raise t.error("frequency_ranges", "frequency_ranges or frequencies (at least 2 "
                       "frequencies) [rad/s]", t.data.get("frequency_ranges", None)
@@ -336,7 +337,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
                       "frequencies [rad/s]", f"{len(values)}")
     raw_dir = t.data.get("directions_deg")
     size = len(raw_dir) if isinstance(raw_dir, list) and raw_dir else 1
-    directions_deg = t.vector("directions_deg", size=size, unit="deg")
+    directions_deg = grid["directions_deg"].read(t, "directions_deg", size=size)
     if any(not -360.0 <= d <= 360.0 for d in directions_deg) or \
             len(set(directions_deg)) != len(directions_deg) or \
             list(directions_deg) != sorted(directions_deg):
@@ -346,7 +347,7 @@ def read_hydro(t: TableReader) -> HydroSettings:
         database=database,
         frequencies=tuple(float(v) for v in values),
         directions=tuple(math.radians(d) for d in directions_deg),
-        **read_settings(HydroSettings, t, skip=("database", "source")),
+        **read_settings(HydroSettings, t, skip=("database", "source", "accept_failed_checks")),
         accept_failed_checks=_accepted_checks(t),
     )
     t.finish()
@@ -372,8 +373,7 @@ def _accepted_checks(t: TableReader) -> tuple[str, ...]:
     """``accept_failed_checks``: distinct names of database checks (default none)."""
     if not t.has("accept_failed_checks"):
         return ()
-    raw = t.claim("accept_failed_checks", "array of strings", choices=tuple(HYDRO_CHECKS),
-                  default=[])
+    raw = settings_of(HydroSettings)["accept_failed_checks"].read(t, "accept_failed_checks")
     if not isinstance(raw, list) or len(set(map(str, raw))) != len(raw) or \
             not all(isinstance(name, str) and name in HYDRO_CHECKS for name in raw):
         raise t.error("accept_failed_checks", "an array of distinct database check names "

@@ -1,22 +1,16 @@
-"""What the tables and undeclared keys of case and study files mean, for the case-file reference.
+"""What the tables of case files mean, for the case-file reference.
 
-A key declared with :func:`floatmoor.case.setting.setting` carries its own description and
-the wording of anything its reader computes (default, bounds, an array's size); it is not
-here. What is here: each table's own description (a table is read by
+Every key of a case or study file is declared with :func:`floatmoor.case.setting.setting`
+(``[campaign]`` and study files in a :class:`~floatmoor.case.setting.SettingTable`) and
+carries its own description and the wording of anything its reader computes (default,
+bounds, an array's size). What is here: each table's own description (a table is read by
 :meth:`~floatmoor.case.reader.TableReader.table` / ``tables``, not declared, e.g. ``lines``,
-``floater.geometry.columns``) and wording of when it is required, and the keys no
-declaration covers yet (``title``, ``[hydro]``'s arrays; ``[campaign]`` and study files are
-declared in a :class:`~floatmoor.case.setting.SettingTable`). The
-type, unit, range and default of those come from their reader (the accessors of
-:class:`~floatmoor.case.reader.TableReader`, recorded while files load); only what a reader
-cannot state is written here. Keys are generic paths (``lines[].dynamic``,
-``line_types.<name>``). ``defaults`` words a default that is computed from other values,
-``allowed`` a range or a choice that depends on other values, ``types`` an array whose
-length does.
-The tests fail on a key the readers ask for that has no description (here or in its
+``floater.geometry.columns``) and the wording of when it is required, by generic path
+(``lines[].dynamic``, ``line_types.<name>``): ``defaults`` words a default computed from other
+values, ``allowed`` a range that depends on other values, ``types`` an array whose length
+does. The tests fail on a key the readers ask for that has no description (here or in its
 declaration), on one described in both, and on a description of a key no reader asks for.
 """
-
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -58,11 +52,6 @@ def _body_dofs() -> dict[str, str]:
 
 _CASE = {
     "": "The keys outside any table.",
-    "title": "Title of the run, written into its output. It may name values with "
-             "placeholders such as `T = {motion.period:.2f} s` (a key path and an optional "
-             "format), filled from the final values, so a run with `--set` shows its own.",
-    "description": "Free text about the case for its readers (the output keeps the whole "
-                   "case text in its attributes).",
     # environment
     "environment": "Water and gravity: still water at z = 0, a flat seabed at "
                    "z = -water_depth (theory/environment.md).",
@@ -111,12 +100,6 @@ _CASE = {
     "hydro": "The hydrodynamic database of the floater (`hydrodb/NAME.nc`): how `floatmoor "
              "hydro build` computes it with the BEM, or that it was imported "
              "(theory/hydrodynamics.md).",
-    "hydro.frequency_ranges": "BEM frequencies as [first, last, count] triples, evenly "
-                              "spaced; with or instead of `frequencies`.",
-    "hydro.frequencies": "BEM frequencies, listed; with or instead of `frequency_ranges`.",
-    "hydro.directions_deg": "Wave directions of the excitation, distinct and increasing.",
-    "hydro.accept_failed_checks": "Database checks whose failure a run of this case "
-                                  "accepts; a run refuses a database failing any other.",
     # waves
     "waves": "The sea of a coupled case (theory/environment.md).",
     # initial
@@ -135,10 +118,6 @@ _CASE_DEFAULTS = {
     "floater.geometry": "required unless `hydro.source = \"imported\"`",
     "floater.geometry.columns": "required for `semisubmersible`",
     "floater.geometry.members": "optional",
-    "hydro.frequency_ranges": "one of the two (`bem`)",
-    "hydro.frequencies": "one of the two (`bem`)",
-    "hydro.directions_deg": "required (`bem`)",
-    "hydro.accept_failed_checks": "none",
     "lines[].sections": "or `type` and `length`",
     "points": "optional",
     "lines": "required (optional with a `[floater]`)",
@@ -147,16 +126,8 @@ _CASE_DEFAULTS = {
 }
 
 _CASE_ALLOWED = {
-    "hydro.frequencies": "> 0; with the ranges, 2 to 2000 distinct",
-    "hydro.frequency_ranges": "0 < first < last, count >= 2",
-    "hydro.directions_deg": "within [-360, 360], distinct, increasing",
     "floater.geometry.columns": ">= 1 entries (`semisubmersible`)",
 }
 
-_CASE_TYPES = {
-    "hydro.frequencies": "array of numbers",
-    "hydro.directions_deg": "array of numbers",
-}
-
 #: The keys of a case file.
-CASE = KeyDocs(_CASE, _CASE_DEFAULTS, _CASE_ALLOWED, _CASE_TYPES)
+CASE = KeyDocs(_CASE, _CASE_DEFAULTS, _CASE_ALLOWED)

@@ -34,7 +34,7 @@ from floatmoor.case.schema import (
     AVAILABLE_LINE_MODELS, MAX_QD_INTEGRATION_POINTS, MOTION_KIND,
     Case, CircularMotion, DynamicSettings, Environment, HarmonicMotion, Line, LineType, Motion,
     OneSectionKeys, Point, QuasiDynamicSettings, QuasiStaticSettings, Seabed, Section,
-    SectionKeys, Simulation, TableMotion,
+    SectionKeys, Simulation, TableMotion, TopLevelKeys,
 )
 from floatmoor.case.system_checks import (
     MAX_STATIC_STRAIN, SEABED_TOLERANCE, check_lines, check_motion, check_system,
@@ -122,8 +122,9 @@ def parse_case(raw: dict[str, Any], *, source: str, text: str = "",
                         "deep", "deeper nesting (after the --set overrides)")
     context = ReadContext(source, {path: text for text, paths in applied for path in paths})
     root = TableReader(raw, (), context)
-    title_template = root.string("title")
-    description = root.string("description", default="")
+    top = settings_of(TopLevelKeys)
+    title_template = top["title"].read(root, "title")
+    description = top["description"].read(root, "description")
 
     environment = _environment(root.table("environment"))
     seabed = _seabed(root.table("seabed"))

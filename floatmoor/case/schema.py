@@ -32,7 +32,8 @@ __all__ = [
     "SemisubmersibleGeometry", "FloaterGeometry", "Floater", "HydroSettings", "GEOMETRY_KINDS",
     "MeshGeometry", "MESH_FORMATS", "MESH_LENGTH_UNITS", "MESH_SYMMETRY_PLANES",
     "RADIATION_METHODS", "HYDRO_CHECKS", "HYDRO_SOURCES", "POINT_KINDS", "Point", "Section",
-    "BODY_DOFS", "BodyHarmonicMotion", "SectionKeys", "OneSectionKeys",
+    "BODY_DOFS", "BodyHarmonicMotion", "SectionKeys", "OneSectionKeys", "TopLevelKeys",
+    "BemGridKeys",
     "MOTION_KINDS", "MOTION_KIND", "GEOMETRY_KIND", "HarmonicTranslation", "HarmonicRotation",
     "BodyTableMotion", "BodyMotion",
 ]
@@ -366,6 +367,22 @@ class Point:
         "number", scale="same", unit="-", ge=0.0, default=0.0, field_default=0.0,
         doc="Added-mass coefficient of a free point, on its displaced volume; free points "
             "only.")
+
+
+@dataclass(frozen=True)
+class TopLevelKeys:
+    """The keys of a case file outside any table (its :class:`Case` holds the title with its
+    placeholders filled, and the template)."""
+
+    title: str = setting(
+        "string", scale="same",
+        doc="Title of the run, written into its output. It may name values with placeholders "
+            "such as `T = {motion.period:.2f} s` (a key path and an optional format), filled "
+            "from the final values, so a run with `--set` shows its own.")
+    description: str = setting(
+        "string", scale="same", default="",
+        doc="Free text about the case for its readers (the output keeps the whole case text "
+            "in its attributes).")
 
 
 @dataclass(frozen=True)
@@ -918,6 +935,27 @@ class Floater:
 
 
 @dataclass(frozen=True)
+class BemGridKeys:
+    """The frequency and direction keys of a BEM ``[hydro]`` as a file gives them (its
+    :class:`HydroSettings` holds the distinct frequencies, sorted, and the directions in
+    radians)."""
+
+    frequency_ranges: tuple[tuple[float, float, int], ...] | None = setting(
+        "triples", unit="rad/s", default=None, default_text="one of the two (`bem`)",
+        allowed_text="0 < first < last, count >= 2",
+        doc="BEM frequencies as [first, last, count] triples, evenly spaced; with or instead "
+            "of `frequencies`.")
+    frequencies: tuple[float, ...] | None = setting(
+        "vector", unit="rad/s", gt=0.0, default=None, default_text="one of the two (`bem`)",
+        allowed_text="> 0; with the ranges, 2 to 2000 distinct", type_text="array of numbers",
+        doc="BEM frequencies, listed; with or instead of `frequency_ranges`.")
+    directions_deg: tuple[float, ...] = setting(
+        "vector", unit="deg", default_text="required (`bem`)",
+        allowed_text="within [-360, 360], distinct, increasing", type_text="array of numbers",
+        doc="Wave directions of the excitation, distinct and increasing.")
+
+
+@dataclass(frozen=True)
 class HydroSettings:
     """Settings of the BEM database of the floater (``[hydro]``).
 
@@ -970,7 +1008,10 @@ class HydroSettings:
             "panel_size. Finer panels resolve the near field's body-motion terms at a large "
             "resonant response (guide/hydro_databases.md#mean-drift).")
     #: database checks (of :data:`HYDRO_CHECKS`) whose failure a run accepts (not a BEM input)
-    accept_failed_checks: tuple[str, ...] = ()
+    accept_failed_checks: tuple[str, ...] = setting(
+        "strings", choices=HYDRO_CHECKS, default=(), field_default=(), default_text="none",
+        doc="Database checks whose failure a run of this case accepts; a run refuses a "
+            "database failing any other.")
     #: ``"bem"`` (built by ``floatmoor hydro build``) or ``"imported"`` (``hydro import``)
     source: str = setting(
         "string", choices=HYDRO_SOURCES, default="bem", field_default="bem",

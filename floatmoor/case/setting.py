@@ -49,6 +49,7 @@ _OPTIONS = {
     "vector": ("size", "unit", "gt", "ge"),
     "number_or_vector": ("size", "unit", "gt", "ge"),
     "strings": ("choices",),
+    "triples": ("unit",),
     "name": (),
 }
 
@@ -65,7 +66,8 @@ class Setting:
     array's size it computes; ``doc`` is the reference page's description;
     ``scale`` how ``floatmoor scale`` rewrites the value; ``key`` the case-file key of a
     field named otherwise, ``radians`` that the file gives degrees and the field holds radians.
-    Kind ``strings`` is an array the caller checks (:meth:`TableReader.claim`), kind ``name``
+    Kinds ``strings`` and ``triples`` (of ``[first, last, count]``) are arrays the caller
+    checks (:meth:`TableReader.claim`), kind ``name``
     the ``name`` of a line, point or floater (:meth:`TableReader.name`).
     """
 
@@ -116,6 +118,8 @@ class Setting:
     def _access(self, t: TableReader, key: str, default: Any, options: dict[str, Any]) -> Any:
         if self.kind == "strings":
             return t.claim(key, "array of strings", default=default, **options)
+        if self.kind == "triples":
+            return t.claim(key, "array of [first, last, count]", default=default, **options)
         if self.kind == "name":
             return t.name()
         return getattr(t, self.kind)(key, default=default, **options)
