@@ -20,7 +20,10 @@ spring-damper and friction, the drag. Newton's method uses the banded Jacobian
 (1 - alpha_m) M - (1 - alpha_f) (beta dt^2 dF/dr + gamma dt dF/dv), built from the exact
 derivatives of the DG operators (:func:`_jacobian`), LU-factored without pivoting
 (``_banded_kernels``) and reused over steps and iterations while Newton converges quickly
-(a modified Newton method); it is rebuilt when dt changes or convergence slows.
+(a modified Newton method); it is rebuilt when dt changes or convergence slows. The end
+state's A, which the next step's equation needs, is taken from the step's equation,
+(1 - alpha_f) A1 = (1 - alpha_m) a1 + alpha_m a0 - alpha_f A0, not evaluated again at the
+converged state (one evaluation a step less; the two differ by Newton's residual).
 
 Step size: each interval between two path samples is cut into 2^L equal steps. The local error
 of a step is estimated from the change of the acceleration variable,
@@ -45,7 +48,7 @@ import numpy as np
 
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
-from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
+from floatmoor.mooring.dg._banded_kernels import band_factor
 from floatmoor.mooring.dg._friction_kernels import return_map, stick_tangent
 
 __all__ = ["IP_N", "CS_N", "dg_acceleration", "dg_jacobian", "dg_run_path_implicit",
@@ -338,6 +341,26 @@ def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band, fa=None):
 
 
 @jit
+def _dg_band_solve(band, n, kl, ku, Np, x):
+    """``band_solve`` with the factors of a :func:`dg_jacobian` (Np nodes per element), the
+    products with the band's structural zeros left out (the same bits): row (k, i) of the
+    matrix, and so of its LU factors, spans the columns of nodes (k, 0) - 1 to (k + 2, 0) - 1,
+    up to 3 Np scalars fewer than the band."""
+    for row in range(n):  # forward substitution (unit lower factor)
+        first = 3 * ((row // (3 * Np)) * Np - 1)
+        acc = x[row]
+        for cc in range(max(0, first, row - kl), row):
+            acc -= band[row, kl + cc - row] * x[cc]
+        x[row] = acc
+    for row in range(n - 1, -1, -1):
+        last = 3 * ((row // (3 * Np) + 2) * Np) - 1
+        acc = x[row]
+        for cc in range(row + 1, min(n, last + 1, row + ku + 1)):
+            acc -= band[row, kl + cc - row] * x[cc]
+        x[row] = acc / band[row, kl]
+
+
+@jit
 def _end_force_error(e, q, N, prm, D, LIFT, faces, grad, tmp3):
     """|dN/dq . de/ds| at the fairlead end node [N]: the end tension's error from a position
     error field ``e`` (the end positions exact)."""
@@ -430,11 +453,9 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     fresh = False
     previous = math.inf
     grew = False
-    for it in range(max_iter + 1):
+    for it in range(max_iter):
         dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
                         A1, fa)
-        if converged or it == max_iter:
-            break
         if cs[CS_FACTOR_DT] != dt or grew or (ip[IP_FLAG_REFACTOR] != 0.0
                                                and _flags_changed(r, q, N, prm, flags)):
             _set_flags(r, q, N, prm, flags)
@@ -455,7 +476,7 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
             for i in range(Np):
                 for c in range(3):
                     x[3 * (k * Np + i) + c] = -MR[k, i, c]
-        band_solve(band, n, kl, ku, x)
+        _dg_band_solve(band, n, kl, ku, Np, x)
         iterations += 1
         big = 0.0
         total = 0.0
@@ -473,14 +494,21 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
         if not math.isfinite(total):
             return False, iterations, fresh
         converged = big <= tol
+        if converged:
+            break
         grew = big > 0.5 * previous
         previous = big
     if not converged:
         return False, iterations, fresh
+    # A of the end state from the step's equation, (1 - alpha_f) A1 = (1 - alpha_m) a1 +
+    # alpha_m a0 - alpha_f An: its residual, below Newton's tolerance, left out, the cable's
+    # acceleration is not evaluated again at the converged iterate
+    # (docs/theory/dynamic_line.md#time-integration)
+    ci = 1.0 / (1.0 - af)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
-                An[k, i, c] = A1[k, i, c]
+                An[k, i, c] = ci * (acoef * acc[k, i, c] + am * a0[k, i, c] - af * An[k, i, c])
     return True, iterations, fresh
 
 

@@ -503,11 +503,9 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
     fresh = False
     previous = math.inf
     grew = False
-    for it in range(max_iter + 1):
+    for it in range(max_iter):
         dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N, Nstar,
                    faces, slack, A1, Fp1, H)
-        if converged or it == max_iter:
-            break
         if cs[_ik.CS_FACTOR_DT] != dt or grew:
             dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef, kc,
                          cc, E, Dg, bands, boff, B, C, Spp, H, F3)
@@ -560,12 +558,23 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
         if not math.isfinite(total):
             return False, iterations, fresh
         converged = big <= tol
+        if converged:
+            break
         grew = big > 0.5 * previous
         previous = big
     if not converged:
         return False, iterations, fresh
-    _copy2(A1, An)
-    _copy2(Fp1, Fn)
+    # the end state's A and point forces from the step's equations, not evaluated again (as
+    # ``_implicit_kernels._ga_step``)
+    ci = 1.0 / (1.0 - af)
+    for i in range(n):
+        for c in range(3):
+            An[i, c] = ci * (acoef * acc[i, c] + am * a0[i, c] - af * An[i, c])
+    for p in range(P):
+        if kind[p] == _s.FREE:
+            meff = _effective_mass(x[p], pprm[p], env)
+            for c in range(3):
+                Fn[p, c] = ci * (meff * (acoef * pacc[p, c] + am * pa0[p, c]) - af * Fn0[p, c])
     return True, iterations, fresh
 
 
