@@ -331,3 +331,35 @@ def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator)
     ik.dg_acceleration(r, v, anchor, path[1], fvel, prm, ref.differentiation, ref.lift, *fields,
                        exact)
     assert np.max(np.abs(An - exact)) <= 1e-2 * np.max(np.abs(exact))
+
+
+@pytest.mark.parametrize("p", [1, 3, 5])
+def test_newton_solve_on_the_dg_profile_is_the_band_solve(p, rng) -> None:
+    """The Newton matrix's solve limited to the DG profile (row (k, i) from node (k, 0) - 1 to
+    (k + 2, 0) - 1: the matrix has nothing outside it) gives the whole band's solve bit for
+    bit."""
+    K = 4
+    pr = make_properties({})
+    ref = reference_element(p)
+    D, LIFT = ref.differentiation, ref.lift
+    r, v, anchor, fpos, fvel = make_state("taut", K, p, pr.length, rng)
+    prm = _implicit_prm(pr, K, p)
+    Np = p + 1
+    n, kl, ku = 3 * K * Np, 3 * Np + 2, 6 * Np - 1
+    _, q, qt = _force(r, v, anchor, fpos, fvel, prm, D, LIFT)
+    band = np.zeros((n, 9 * Np + 2))
+    ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 1.0, 1e-4, 1e-2, np.zeros((K, Np, 3, 3)),
+                   np.zeros((K, Np, 3, 3)), band)
+    dense = _dense(band, Np)
+    assert band_factor(band, n, kl, ku) == -1
+    b = rng.normal(size=n)
+    whole, profile = b.copy(), b.copy()
+    band_solve(band, n, kl, ku, whole)
+    ik._dg_band_solve(band, n, kl, ku, Np, profile)
+    assert whole.tobytes() == profile.tobytes()
+    # (a product left out that is not zero would change the bits: the factors outside the
+    # profile are exact zeros, the matrix's are)
+    lower, upper = np.tril(dense, -1), np.triu(dense, 1)
+    for row in range(n):
+        first, last = 3 * ((row // (3 * Np)) * Np - 1), 3 * ((row // (3 * Np) + 2) * Np) - 1
+        assert not lower[row, :max(first, 0)].any() and not upper[row, last + 1:].any()
