@@ -361,21 +361,36 @@ def _dg_band_solve(band, n, kl, ku, Np, x):
 
 
 @jit
-def _end_force_error(e, q, N, prm, D, LIFT, faces, grad, tmp3):
+def _end_gradient(e, D, LIFT, jac, c):
+    """Component c of the DG gradient of the field ``e`` at the fairlead end node, its ends
+    held at zero: ``_kernels._gradient``'s value at that node, the same bits, without the
+    rest of the line."""
+    K, Np = e.shape[0], e.shape[1]
+    k, i = K - 1, Np - 1
+    left = e[k - 1, Np - 1, c] if K > 1 else 0.0  # the trace from the anchor side
+    jl = left - e[k, 0, c]
+    jr = 0.0 - e[k, i, c]
+    acc = 0.0
+    for j in range(Np):
+        acc += D[i, j] * e[k, j, c]
+    return jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+
+
+@jit
+def _end_force_error(e, q, N, prm, D, LIFT):
     """|dN/dq . de/ds| at the fairlead end node [N]: the end tension's error from a position
     error field ``e`` (the end positions exact)."""
     K, Np = e.shape[0], e.shape[1]
-    jac = 2.0 / prm[_k.P_H]
-    for c in range(3):
-        tmp3[c] = 0.0
-    _k._gradient(e, tmp3, tmp3, D, LIFT, jac, faces, grad)
     k, i = K - 1, Np - 1
     ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
     if ql <= 1.0:
         return 0.0
+    jac = 2.0 / prm[_k.P_H]
     T = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2 + N[k, i, 2] ** 2)
     t0, t1, t2 = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
-    g0, g1, g2 = grad[k, i, 0], grad[k, i, 1], grad[k, i, 2]
+    g0 = _end_gradient(e, D, LIFT, jac, 0)
+    g1 = _end_gradient(e, D, LIFT, jac, 1)
+    g2 = _end_gradient(e, D, LIFT, jac, 2)
     gt = g0 * t0 + g1 * t1 + g2 * t2
     p0, p1, p2 = g0 - gt * t0, g1 - gt * t1, g2 - gt * t2
     axial = prm[_k.P_EA] * gt
@@ -597,7 +612,7 @@ def _copy(src, dst):
 def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LIFT, F, weights,
                          ip, cs, fair_force, anch_force, laid, steps, shape_every, shape_r,
                          shape_t, q, qt, N, Nstar, faces, slack, fpos, fvel, tmp, where, r0, v0,
-                         a0, An0, A1, R, MR, E, Dg, band, x, tmp3, flags, fa=None):
+                         a0, An0, A1, R, MR, E, Dg, band, x, flags, fa=None):
     """Advance the line along a fairlead path with the generalised-alpha method, recording its
     end forces at every sample (the implicit counterpart of ``_kernels.dg_run_path``, same
     outputs; ``steps`` gets the number of steps taken in each interval).
@@ -682,7 +697,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                     for i in range(Np):
                         for c in range(3):
                             R[k, i, c] = c2 * (acc[k, i, c] - a0[k, i, c])
-                err = _end_force_error(R, q, N, prm, D, LIFT, faces, MR, tmp3) / ip[IP_FORCE_TOL]
+                err = _end_force_error(R, q, N, prm, D, LIFT) / ip[IP_FORCE_TOL]
             jumped = False
             if (ok and err <= 1.0 and ip[IP_FLAG_EVENTS] != 0.0
                     and L < min(level_max, level_min + EVENT_LEVELS)):
