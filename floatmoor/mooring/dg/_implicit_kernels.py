@@ -516,9 +516,8 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     if not converged:
         return False, iterations, fresh
     # A of the end state from the step's equation, (1 - alpha_f) A1 = (1 - alpha_m) a1 +
-    # alpha_m a0 - alpha_f An: its residual, below Newton's tolerance, left out, the cable's
-    # acceleration is not evaluated again at the converged iterate
-    # (docs/theory/dynamic_line.md#time-integration)
+    # alpha_m a0 - alpha_f An, instead of one more evaluation at the converged iterate (the
+    # two differ by the residual Newton leaves; docs/theory/dynamic_line.md#time-integration)
     ci = 1.0 / (1.0 - af)
     for k in range(K):
         for i in range(Np):
