@@ -16,10 +16,10 @@ reference (every line's STD and maximum) whose next finer mesh is too. MoorDyn's
 on the coupling (it steps at min(dtM, coupling)); the baseline found 20 ms cheapest of 1 and
 20 ms, so coarser ones are tried too.
 
-Targets: "floatmoor at the defaults at least as fast, whole run against whole run and
-time loop against time loop", each against MoorDyn's cheapest accepted setting by that measure
-(floatmoor whole: construction, settling, loop; MoorDyn whole: input, creation,
-initial-condition solve, loop; summed over the three lines).
+Targets: floatmoor at the defaults at most half MoorDyn's time loop and at most its whole run,
+each against MoorDyn's cheapest accepted setting by that measure (floatmoor whole:
+construction, settling, loop; MoorDyn whole: input, creation, initial-condition solve, loop;
+summed over the three lines; docs/validation/performance.md).
 
 Quick mode (``FLOATMOOR_BENCH_QUICK=1``): 180 s, a coarse reference, two schemes at 20 ms.
 
@@ -47,8 +47,10 @@ FRACTIONS = pick((1.0, 0.5), (1.0,))
 SCHEMES = pick(MOORDYN_SCHEMES, ("RK2", "Midpoint3"))
 #: MoorDyn coupling intervals tried [s].
 COUPLINGS = pick((0.1, 0.05, 0.02, 0.01), (0.02,))
-#: "floatmoor at the defaults at least as fast" (the target): floatmoor / MoorDyn at most 1.
-SPEED_RATIO_MAX = 1.0
+#: The targets, floatmoor / MoorDyn at most: half MoorDyn's time loop (the implicit line's
+#: steps at half the cost of MoorDyn's cheapest 1 % setting), and its whole run (floatmoor's
+#: construction and settling included).
+SPEED_RATIO_MAX = {"loop": 0.5, "whole": 1.0}
 
 
 def test_deepcwind_lines_forced_against_moordyn():
@@ -58,7 +60,9 @@ def test_deepcwind_lines_forced_against_moordyn():
                                       segments=SEGMENTS, fractions=FRACTIONS, schemes=SCHEMES,
                                       couplings=COUPLINGS)
     assert ratios, "MoorDyn: no setting within 1 % of its converged reference"
+    assert set(ratios) == set(SPEED_RATIO_MAX), ratios.keys()
     failures = [f"floatmoor's {measure} is {ratio:.3f} of MoorDyn's at its cheapest within 1 % "
-                f"by that measure (target <= {SPEED_RATIO_MAX:g})"
-                for measure, (_, ratio) in ratios.items() if not ratio <= SPEED_RATIO_MAX]
+                f"by that measure (target <= {SPEED_RATIO_MAX[measure]:g})"
+                for measure, (_, ratio) in ratios.items()
+                if not ratio <= SPEED_RATIO_MAX[measure]]
     assert not failures, "\n".join(failures)

@@ -33,13 +33,18 @@ def band_factor(band: np.ndarray, n: int, kl: int, ku: int) -> int:
         piv = band[col, kl]
         if piv == 0.0 or not math.isfinite(piv):
             return col
+        # the pivot row's last nonzero: the updates beyond it would subtract exact zeros (the
+        # same bits without them; a DG Jacobian's row ends up to 3 Np before the band's edge)
+        last = min(n - 1, col + ku)
+        while last > col and band[col, kl + last - col] == 0.0:
+            last -= 1
         for rr in range(col + 1, min(n, col + kl + 1)):
             lf = band[rr, kl + col - rr]
             if lf == 0.0:
                 continue
             lf /= piv
             band[rr, kl + col - rr] = lf
-            for cc in range(col + 1, min(n, col + ku + 1)):
+            for cc in range(col + 1, last + 1):
                 band[rr, kl + cc - rr] -= lf * band[col, kl + cc - col]
     return -1
 

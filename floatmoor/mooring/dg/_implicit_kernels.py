@@ -20,7 +20,10 @@ spring-damper and friction, the drag. Newton's method uses the banded Jacobian
 (1 - alpha_m) M - (1 - alpha_f) (beta dt^2 dF/dr + gamma dt dF/dv), built from the exact
 derivatives of the DG operators (:func:`_jacobian`), LU-factored without pivoting
 (``_banded_kernels``) and reused over steps and iterations while Newton converges quickly
-(a modified Newton method); it is rebuilt when dt changes or convergence slows.
+(a modified Newton method); it is rebuilt when dt changes or convergence slows. The end
+state's A, which the next step's equation needs, is taken from the step's equation,
+(1 - alpha_f) A1 = (1 - alpha_m) a1 + alpha_m a0 - alpha_f A0, not evaluated again at the
+converged state (one evaluation a step less; the two differ by Newton's residual).
 
 Step size: each interval between two path samples is cut into 2^L equal steps. The local error
 of a step is estimated from the change of the acceleration variable,
@@ -45,7 +48,7 @@ import numpy as np
 
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
-from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
+from floatmoor.mooring.dg._banded_kernels import band_factor
 from floatmoor.mooring.dg._friction_kernels import return_map, stick_tangent
 
 __all__ = ["IP_N", "CS_N", "dg_acceleration", "dg_jacobian", "dg_run_path_implicit",
@@ -338,21 +341,56 @@ def dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band, fa=None):
 
 
 @jit
-def _end_force_error(e, q, N, prm, D, LIFT, faces, grad, tmp3):
+def _dg_band_solve(band, n, kl, ku, Np, x):
+    """``band_solve`` with the factors of a :func:`dg_jacobian` (Np nodes per element), the
+    products with the band's structural zeros left out (the same bits): row (k, i) of the
+    matrix, and so of its LU factors, spans the columns of nodes (k, 0) - 1 to (k + 2, 0) - 1,
+    up to 3 Np scalars fewer than the band."""
+    for row in range(n):  # forward substitution (unit lower factor)
+        first = 3 * ((row // (3 * Np)) * Np - 1)
+        acc = x[row]
+        for cc in range(max(0, first, row - kl), row):
+            acc -= band[row, kl + cc - row] * x[cc]
+        x[row] = acc
+    for row in range(n - 1, -1, -1):
+        last = 3 * ((row // (3 * Np) + 2) * Np) - 1
+        acc = x[row]
+        for cc in range(row + 1, min(n, last + 1, row + ku + 1)):
+            acc -= band[row, kl + cc - row] * x[cc]
+        x[row] = acc / band[row, kl]
+
+
+@jit
+def _end_gradient(e, D, LIFT, jac, c):
+    """Component c of the DG gradient of the field ``e`` at the fairlead end node, its ends
+    held at zero: ``_kernels._gradient``'s value at that node, the same bits, without the
+    rest of the line."""
+    K, Np = e.shape[0], e.shape[1]
+    k, i = K - 1, Np - 1
+    left = e[k - 1, Np - 1, c] if K > 1 else 0.0  # the trace from the anchor side
+    jl = left - e[k, 0, c]
+    jr = 0.0 - e[k, i, c]
+    acc = 0.0
+    for j in range(Np):
+        acc += D[i, j] * e[k, j, c]
+    return jac * (acc - LIFT[i, 0] * jl + LIFT[i, 1] * jr)
+
+
+@jit
+def _end_force_error(e, q, N, prm, D, LIFT):
     """|dN/dq . de/ds| at the fairlead end node [N]: the end tension's error from a position
     error field ``e`` (the end positions exact)."""
     K, Np = e.shape[0], e.shape[1]
-    jac = 2.0 / prm[_k.P_H]
-    for c in range(3):
-        tmp3[c] = 0.0
-    _k._gradient(e, tmp3, tmp3, D, LIFT, jac, faces, grad)
     k, i = K - 1, Np - 1
     ql = math.sqrt(q[k, i, 0] ** 2 + q[k, i, 1] ** 2 + q[k, i, 2] ** 2)
     if ql <= 1.0:
         return 0.0
+    jac = 2.0 / prm[_k.P_H]
     T = math.sqrt(N[k, i, 0] ** 2 + N[k, i, 1] ** 2 + N[k, i, 2] ** 2)
     t0, t1, t2 = q[k, i, 0] / ql, q[k, i, 1] / ql, q[k, i, 2] / ql
-    g0, g1, g2 = grad[k, i, 0], grad[k, i, 1], grad[k, i, 2]
+    g0 = _end_gradient(e, D, LIFT, jac, 0)
+    g1 = _end_gradient(e, D, LIFT, jac, 1)
+    g2 = _end_gradient(e, D, LIFT, jac, 2)
     gt = g0 * t0 + g1 * t1 + g2 * t2
     p0, p1, p2 = g0 - gt * t0, g1 - gt * t1, g2 - gt * t2
     axial = prm[_k.P_EA] * gt
@@ -430,11 +468,9 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     fresh = False
     previous = math.inf
     grew = False
-    for it in range(max_iter + 1):
+    for it in range(max_iter):
         dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
                         A1, fa)
-        if converged or it == max_iter:
-            break
         if cs[CS_FACTOR_DT] != dt or grew or (ip[IP_FLAG_REFACTOR] != 0.0
                                                and _flags_changed(r, q, N, prm, flags)):
             _set_flags(r, q, N, prm, flags)
@@ -455,7 +491,7 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
             for i in range(Np):
                 for c in range(3):
                     x[3 * (k * Np + i) + c] = -MR[k, i, c]
-        band_solve(band, n, kl, ku, x)
+        _dg_band_solve(band, n, kl, ku, Np, x)
         iterations += 1
         big = 0.0
         total = 0.0
@@ -473,14 +509,20 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
         if not math.isfinite(total):
             return False, iterations, fresh
         converged = big <= tol
+        if converged:
+            break
         grew = big > 0.5 * previous
         previous = big
     if not converged:
         return False, iterations, fresh
+    # A of the end state from the step's equation, (1 - alpha_f) A1 = (1 - alpha_m) a1 +
+    # alpha_m a0 - alpha_f An, instead of one more evaluation at the converged iterate (the
+    # two differ by the residual Newton leaves; docs/theory/dynamic_line.md#time-integration)
+    ci = 1.0 / (1.0 - af)
     for k in range(K):
         for i in range(Np):
             for c in range(3):
-                An[k, i, c] = A1[k, i, c]
+                An[k, i, c] = ci * (acoef * acc[k, i, c] + am * a0[k, i, c] - af * An[k, i, c])
     return True, iterations, fresh
 
 
@@ -569,7 +611,7 @@ def _copy(src, dst):
 def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LIFT, F, weights,
                          ip, cs, fair_force, anch_force, laid, steps, shape_every, shape_r,
                          shape_t, q, qt, N, Nstar, faces, slack, fpos, fvel, tmp, where, r0, v0,
-                         a0, An0, A1, R, MR, E, Dg, band, x, tmp3, flags, fa=None):
+                         a0, An0, A1, R, MR, E, Dg, band, x, flags, fa=None):
     """Advance the line along a fairlead path with the generalised-alpha method, recording its
     end forces at every sample (the implicit counterpart of ``_kernels.dg_run_path``, same
     outputs; ``steps`` gets the number of steps taken in each interval).
@@ -654,7 +696,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                     for i in range(Np):
                         for c in range(3):
                             R[k, i, c] = c2 * (acc[k, i, c] - a0[k, i, c])
-                err = _end_force_error(R, q, N, prm, D, LIFT, faces, MR, tmp3) / ip[IP_FORCE_TOL]
+                err = _end_force_error(R, q, N, prm, D, LIFT) / ip[IP_FORCE_TOL]
             jumped = False
             if (ok and err <= 1.0 and ip[IP_FLAG_EVENTS] != 0.0
                     and L < min(level_max, level_min + EVENT_LEVELS)):

@@ -503,11 +503,9 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
     fresh = False
     previous = math.inf
     grew = False
-    for it in range(max_iter + 1):
+    for it in range(max_iter):
         dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N, Nstar,
                    faces, slack, A1, Fp1, H)
-        if converged or it == max_iter:
-            break
         if cs[_ik.CS_FACTOR_DT] != dt or grew:
             dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef, kc,
                          cc, E, Dg, bands, boff, B, C, Spp, H, F3)
@@ -560,12 +558,23 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
         if not math.isfinite(total):
             return False, iterations, fresh
         converged = big <= tol
+        if converged:
+            break
         grew = big > 0.5 * previous
         previous = big
     if not converged:
         return False, iterations, fresh
-    _copy2(A1, An)
-    _copy2(Fp1, Fn)
+    # the end state's A and point forces from the step's equations, not evaluated again (as
+    # ``_implicit_kernels._ga_step``)
+    ci = 1.0 / (1.0 - af)
+    for i in range(n):
+        for c in range(3):
+            An[i, c] = ci * (acoef * acc[i, c] + am * a0[i, c] - af * An[i, c])
+    for p in range(P):
+        if kind[p] == _s.FREE:
+            meff = _effective_mass(x[p], pprm[p], env)
+            for c in range(3):
+                Fn[p, c] = ci * (meff * (acoef * pacc[p, c] + am * pa0[p, c]) - af * Fn0[p, c])
     return True, iterations, fresh
 
 
@@ -596,23 +605,20 @@ def _restore(r, v, x, u, st, nw, pw):
 
 
 @jit
-def _step_error(sec, prm, ops, st, nw, fields, dt, err_coef, tmp3):
+def _step_error(sec, prm, ops, st, nw, fields, dt, err_coef):
     """Largest end-force error [N] over the sections' end nodes from the change of the
     acceleration variable (``_implicit_kernels._end_force_error``)."""
-    acc, a0, R, MR = st[0], nw[2], nw[6], nw[5]
-    q, N, faces = fields[0], fields[2], fields[4]
+    acc, a0, R = st[0], nw[2], nw[6]
+    q, N = fields[0], fields[2]
     c2 = err_coef * dt * dt
     for i in range(acc.shape[0]):
         for c in range(3):
             R[i, c] = c2 * (acc[i, c] - a0[i, c])
     worst = 0.0
     for s in range(sec.shape[0]):
-        K = sec[s, _s.S_K]
         D, LIFT, F, w = _s._ops(ops, sec, s)
-        fo = sec[s, _s.S_FACE]
         e = _ik._end_force_error(_s._nodes(R, sec, s), _s._nodes(q, sec, s),
-                                 _s._nodes(N, sec, s), prm[s], D, LIFT, faces[fo:fo + K + 1],
-                                 _s._nodes(MR, sec, s), tmp3)
+                                 _s._nodes(N, sec, s), prm[s], D, LIFT)
         worst = max(worst, e)
     return worst
 
@@ -675,7 +681,7 @@ def dgi_start(r, v, x, u, bpos, bvel, sec, prm, ops, kind, body, pprm, env, st, 
 @jit
 def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, pprm, env,
                  fslot, ip, cs, st, nw, pw, fields, jw, bands, boff, flat, Spp, piv, H, F3,
-                 tmp, tmp3, G, Zs, start_force, end_force, laid, point_pos, steps, shape_every,
+                 tmp, G, Zs, start_force, end_force, laid, point_pos, steps, shape_every,
                  shape_r, shape_t, where):
     """Advance the system along its body points' paths with the generalised-alpha method,
     recording at every sample (the implicit counterpart of ``_system_kernels.dgs_run_path``,
@@ -752,8 +758,8 @@ def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, 
             cs[_ik.CS_ITERATIONS] += its
             err = 0.0
             if ok:
-                err = _step_error(sec, prm, ops, st, nw, fields, dt, err_coef,
-                                  tmp3) / ip[_ik.IP_FORCE_TOL]
+                err = _step_error(sec, prm, ops, st, nw, fields, dt,
+                                  err_coef) / ip[_ik.IP_FORCE_TOL]
             jumped = False
             if (ok and err <= 1.0 and events
                     and L < min(level_max, level_min + _ik.EVENT_LEVELS)):

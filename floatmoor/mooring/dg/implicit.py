@@ -102,7 +102,6 @@ class ImplicitIntegrator:
         self._x = np.zeros(n)
         self._blocks = (np.zeros((K, Np, 3, 3)), np.zeros((K, Np, 3, 3)))
         self._fields = tuple(np.zeros((K, Np, 3)) for _ in range(7))
-        self._tmp3 = np.zeros(3)
         #: node states (taut, seabed, submerged) the factored Jacobian was built with
         self.flags = np.zeros((K, Np))
 
@@ -125,7 +124,7 @@ class ImplicitIntegrator:
             element.differentiation, element.lift, element.filter, element.weights, self.ip,
             self.cs, fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, w.q,
             w.qt, w.N, w.Nstar, w.faces, w.slack, w.fpos, w.fvel, w.tmp, w.where, r0, v0, a0,
-            An0, A1, R, MR, E, Dg, self.band, self._x, self._tmp3, self.flags, fa)
+            An0, A1, R, MR, E, Dg, self.band, self._x, self.flags, fa)
 
     def state_arrays(self) -> dict[str, NDArray]:
         """The integrator's state for a checkpoint: its acceleration variable, the state's

@@ -107,7 +107,7 @@ class SystemImplicit:
                       np.zeros(3 * nodes), np.zeros(nf), np.zeros(nmax), w.slack)
         self.Spp = np.zeros((nf, nf))
         self.piv = np.zeros(nf, dtype=np.int64)
-        self._scratch = (np.zeros((3, 3)), np.zeros(3), np.zeros(3))
+        self._scratch = (np.zeros((3, 3)), np.zeros(3))
 
     def invalidate(self) -> None:
         """Forget the accelerations and the factors (the state was replaced)."""
@@ -119,13 +119,13 @@ class SystemImplicit:
             shape_r: NDArray, shape_t: NDArray) -> tuple[int, int]:
         """``_system_implicit_kernels.dgi_run_path`` on the system's state and workspace."""
         w = system._w
-        H, F3, tmp3 = self._scratch
+        H, F3 = self._scratch
         return _si.dgi_run_path(
             system.r, system.v, system.x, system.u, time, bpos, bvel, system.sec, self.prm,
             system.prm, system.ops, system.kind, system.body, system.pprm, system.env,
             self.fslot, self.ip, self.cs, self.st, self._nw, self._pw,
             (w.q, w.qt, w.N, w.Nstar, w.faces), self._jw, self.bands, self.boff, self._flat,
-            self.Spp, self.piv, H, F3, w.tmp, tmp3, w.G, w.Zs, sf, ef, laid, pp, steps,
+            self.Spp, self.piv, H, F3, w.tmp, w.G, w.Zs, sf, ef, laid, pp, steps,
             shape_every, shape_r, shape_t, w.where)
 
     def state_arrays(self) -> dict[str, NDArray]:

@@ -241,8 +241,7 @@ def test_step_matches_oracle(label, kind, overrides, contact, rng) -> None:
         np.zeros((1, 1, 3)), np.zeros((1, 1)), q, qt, N, np.zeros((K + 1, 3)),
         np.zeros((K + 1, 3)), np.zeros(K), np.zeros(3), np.zeros(3), np.zeros(Np + 6),
         np.zeros(2, dtype=np.int64), r0, v0, a0, An0, A1, R, MR, np.zeros((K, Np, 3, 3)),
-        np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)), np.zeros(n), np.zeros(3),
-        np.zeros((K, Np)))
+        np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)), np.zeros(n), np.zeros((K, Np)))
     assert status == k.DG_OK
     for name, a, b, scale in (("r", rk, ro, np.max(np.abs(ro - r))),
                               ("v", vk, vo, np.max(np.abs(vo))), ("acc", acck, ao,
@@ -250,3 +249,116 @@ def test_step_matches_oracle(label, kind, overrides, contact, rng) -> None:
         err = np.max(np.abs(a - b)) / scale
         print(f"{label} {name}: {err:.1e}")
         assert err <= STEP_RTOL, (name, err)
+
+
+def test_band_factor_with_rows_ending_short_of_the_band(rng: np.random.Generator) -> None:
+    """Rows that end before the band's edge (a DG Jacobian's profile: :func:`band_factor`
+    stops each pivot row's update at its last nonzero) solve as LAPACK's banded solver."""
+    n, kl, ku = 36, 5, 11
+    dense = np.zeros((n, n))
+    for i in range(n):
+        last = min(n - 1, i + ku - (i % 6))  # every sixth row reaches the edge, the rest short
+        for j in range(max(0, i - kl), last + 1):
+            dense[i, j] = rng.normal()
+        dense[i, i] = 3.0 * (kl + ku) + rng.uniform()
+    band = np.zeros((n, kl + ku + 1))
+    ab = np.zeros((kl + ku + 1, n))
+    for i in range(n):
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            band[i, kl + j - i] = dense[i, j]
+            ab[ku + i - j, j] = dense[i, j]
+    b = rng.normal(size=n)
+    assert band_factor(band, n, kl, ku) == -1
+    x = b.copy()
+    band_solve(band, n, kl, ku, x)
+    ref = scipy.linalg.solve_banded((kl, ku), ab, b)
+    assert np.max(np.abs(x - ref)) <= BAND_RTOL * np.max(np.abs(ref))
+
+
+#: The end state's acceleration A carried to the next step is taken from the step's equation:
+#: it satisfies it to roundoff (1e-16 of the largest term here; a bound 1e4 above that). The
+#: cable's own A(r1, v1), which the kernel no longer evaluates once more a step, is off it by
+#: what Newton left: after one correction of this step (``NEWTON_TOL`` lets it stop there)
+#: 8e-9 of the largest term.
+EQUATION_RTOL = 1e-12
+#: Newton's tolerance of that step [m]: its first correction is below it.
+NEWTON_TOL = 1e-4
+
+
+def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator) -> None:
+    K, p, dt = 3, 3, 2e-3
+    pr = make_properties({})
+    prm = _implicit_prm(pr, K, p)
+    ref = reference_element(p)
+    r, v, anchor, fpos, fvel = make_state("taut", K, p, pr.length, rng)
+    v *= 0.1
+    time = np.array([0.0, dt])
+    path, velocity = np.array([fpos, fpos + dt * fvel]), np.array([fvel, fvel])
+    Np = p + 1
+    n = 3 * K * Np
+    am, af, beta, gamma = ik.generalised_alpha(0.5)
+    ip = np.zeros(ik.IP_N)
+    ip[ik.IP_ALPHA_M], ip[ik.IP_ALPHA_F], ip[ik.IP_BETA], ip[ik.IP_GAMMA] = am, af, beta, gamma
+    ip[ik.IP_NEWTON_TOL] = NEWTON_TOL
+    ip[ik.IP_FORCE_TOL] = np.inf
+    ip[ik.IP_MAX_ITER] = 30
+    ip[ik.IP_DT_MAX] = dt
+    ip[ik.IP_LEVEL_MAX] = 0
+    cs = np.zeros(ik.CS_N)
+    w = [np.zeros((K, Np, 3)) for _ in range(11)]
+    q, qt, N, r0, v0, a0, An0, A1, R, MR, acc = w
+    An = np.zeros((K, Np, 3))
+    cs[ik.CS_ACC_VALID] = 1.0  # the step starts from a zero acceleration variable
+    fields = (q, qt, N, np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K))
+    ik.dg_acceleration(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, *fields,
+                       An)
+    start = An.copy()
+    status, _ = ik.dg_run_path_implicit(
+        r, v, acc, An, time, path, velocity, anchor, prm, ref.differentiation, ref.lift,
+        ref.filter, ref.weights, ip, cs, np.zeros((2, 3)), np.zeros((2, 3)), np.zeros(2),
+        np.zeros(2), 0, np.zeros((1, 1, 3)), np.zeros((1, 1)), *fields, np.zeros(3),
+        path[1].copy(), np.zeros(Np + 6), np.zeros(2, dtype=np.int64), r0, v0, a0, An0, A1, R,
+        MR, np.zeros((K, Np, 3, 3)), np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)),
+        np.zeros(n), np.zeros((K, Np)))
+    assert status == k.DG_OK and cs[ik.CS_STEPS] == 1.0 and cs[ik.CS_ITERATIONS] == 1.0
+    terms = ((1.0 - am) * acc, (1.0 - af) * An, af * start)
+    residual = terms[0] - terms[1] - terms[2]
+    scale = max(np.max(np.abs(t)) for t in terms)
+    assert np.max(np.abs(residual)) <= EQUATION_RTOL * scale
+    # and it is the end state's own acceleration to within Newton's last correction
+    exact = np.zeros_like(An)
+    ik.dg_acceleration(r, v, anchor, path[1], fvel, prm, ref.differentiation, ref.lift, *fields,
+                       exact)
+    assert np.max(np.abs(An - exact)) <= 1e-2 * np.max(np.abs(exact))
+
+
+@pytest.mark.parametrize("p", [1, 3, 5])
+def test_newton_solve_on_the_dg_profile_is_the_band_solve(p, rng) -> None:
+    """The Newton matrix's solve limited to the DG profile (row (k, i) from node (k, 0) - 1 to
+    (k + 2, 0) - 1: the matrix has nothing outside it) gives the whole band's solve bit for
+    bit."""
+    K = 4
+    pr = make_properties({})
+    ref = reference_element(p)
+    D, LIFT = ref.differentiation, ref.lift
+    r, v, anchor, fpos, fvel = make_state("taut", K, p, pr.length, rng)
+    prm = _implicit_prm(pr, K, p)
+    Np = p + 1
+    n, kl, ku = 3 * K * Np, 3 * Np + 2, 6 * Np - 1
+    _, q, qt = _force(r, v, anchor, fpos, fvel, prm, D, LIFT)
+    band = np.zeros((n, 9 * Np + 2))
+    ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 1.0, 1e-4, 1e-2, np.zeros((K, Np, 3, 3)),
+                   np.zeros((K, Np, 3, 3)), band)
+    dense = _dense(band, Np)
+    assert band_factor(band, n, kl, ku) == -1
+    b = rng.normal(size=n)
+    whole, profile = b.copy(), b.copy()
+    band_solve(band, n, kl, ku, whole)
+    ik._dg_band_solve(band, n, kl, ku, Np, profile)
+    assert whole.tobytes() == profile.tobytes()
+    # (a product left out that is not zero would change the bits: the factors outside the
+    # profile are exact zeros, the matrix's are)
+    lower, upper = np.tril(dense, -1), np.triu(dense, 1)
+    for row in range(n):
+        first, last = 3 * ((row // (3 * Np)) * Np - 1), 3 * ((row // (3 * Np) + 2) * Np) - 1
+        assert not lower[row, :max(first, 0)].any() and not upper[row, last + 1:].any()
