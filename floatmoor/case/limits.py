@@ -231,17 +231,29 @@ def _check_panels(case: "Case", context: "ReadContext") -> None:
                             f"{size!r} (~{count_text(panels)} panels)")
 
 
+def _check_wave_count(context: "ReadContext", key: str, count: float) -> None:
+    """Refuse more than :data:`MAX_WAVE_COMPONENTS` wave components (or an infinite count)."""
+    if not count <= MAX_WAVE_COMPONENTS:
+        raise context.error(("waves", key), f"at most {MAX_WAVE_COMPONENTS:.3g} wave "
+                            "components ((omega_max - omega_min) / frequency_step, the step "
+                            "2 pi / simulation.duration by default, or n_components; "
+                            "floatmoor.case.limits.MAX_WAVE_COMPONENTS)",
+                            f"{count_text(count)} components")
+
+
 def _check_components(case: "Case", context: "ReadContext") -> None:
     duration = case.simulation.duration
     waves = case.waves.settings if case.waves is not None else None
     if isinstance(waves, JonswapSettings):
         if waves.spacing == "random-in-bin":
             count, key = float(waves.n_components or 0), "n_components"
+            _check_wave_count(context, key, count)
         else:
             lo, hi = waves.band()
             step = waves.frequency_step or 2.0 * math.pi / duration
             count = (hi - lo) / step
             key = "frequency_step" if waves.frequency_step else "omega_max"
+            _check_wave_count(context, key, count)  # first: an infinite count has no floor
             # the components sit at multiples j step of the step inside [lo, hi]
             # (waves.realisation): none there is a sea with no waves
             inside = math.floor(hi / step + 1e-9) - max(math.ceil(lo / step - 1e-9), 1) + 1
@@ -254,12 +266,6 @@ def _check_components(case: "Case", context: "ReadContext") -> None:
                                     f"component in the band [{lo:.4g}, {hi:.4g}] rad/s "
                                     "(components at multiples of the step; by default "
                                     "2 pi / simulation.duration)", found)
-        if not count <= MAX_WAVE_COMPONENTS:
-            raise context.error(("waves", key), f"at most {MAX_WAVE_COMPONENTS:.3g} wave "
-                                "components ((omega_max - omega_min) / frequency_step, the step "
-                                "2 pi / simulation.duration by default, or n_components; "
-                                "floatmoor.case.limits.MAX_WAVE_COMPONENTS)",
-                                f"{count_text(count)} components")
     wind = case.wind
     if wind is not None and wind.spectrum != "steady":
         count = wind.cutoff_hz * duration

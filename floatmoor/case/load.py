@@ -367,18 +367,23 @@ def _simulation(t: TableReader) -> Simulation:
         raise t.error("output_interval", f"a number <= simulation.duration ({duration:g} s) [s]",
                       interval)
     time_step = simulation.time_step
-    if time_step is not None and (time_step > interval or abs(
-            interval / time_step - round(interval / time_step))
-            > INTERVAL_RATIO_TOLERANCE * interval / time_step):
+    if time_step is not None and not _divides(time_step, interval):
         raise t.error("time_step", "a number dividing simulation.output_interval "
                       f"({interval:g} s) [s]", time_step)
     shape = simulation.shape_output_interval
-    if shape is not None and (shape < interval or abs(shape / interval - round(shape / interval))
-                              > INTERVAL_RATIO_TOLERANCE * shape / interval):
+    if shape is not None and not _divides(interval, shape):
         raise t.error("shape_output_interval", "a multiple of simulation.output_interval "
                       f"({interval:g} s) [s]", shape)
     t.finish()
     return simulation
+
+
+def _divides(step: float, interval: float) -> bool:
+    """Whether ``interval`` is a whole multiple of ``step`` (within
+    :data:`INTERVAL_RATIO_TOLERANCE`); False for a ratio beyond a float (1e308 / 0.05)."""
+    ratio = interval / step
+    return step <= interval and math.isfinite(ratio) and \
+        abs(ratio - round(ratio)) <= INTERVAL_RATIO_TOLERANCE * ratio
 
 
 def _motion(t: TableReader, base_dir: FilePath, simulation: Simulation) -> Motion:

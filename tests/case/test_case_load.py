@@ -193,3 +193,18 @@ def test_a_cylinder_draft_from_the_mass_beyond_a_float_names_the_diameter(diamet
                   [f"floater.geometry.diameter={diameter}"])
     assert error.value.key == "floater.geometry.diameter"
     assert "finite draft > 0" in str(error.value)
+
+
+@pytest.mark.parametrize("case, override, key", [
+    ("systems/three_line_clump_buoy.toml", "simulation.shape_output_interval=1e308",
+     "simulation.shape_output_interval"),
+    ("lindahl/lindahl_r0.20_T1.25.toml", "simulation.time_step=1e-320",
+     "simulation.time_step"),
+    ("deepcwind/deepcwind_lc34.toml", "waves.omega_max=1e308", "waves.omega_max"),
+])
+def test_a_ratio_beyond_a_float_is_a_case_error(case, override, key):
+    """An interval ratio or a wave-component count that overflows a float (round(inf),
+    floor(inf) raised OverflowError with a traceback) is refused, naming the key."""
+    with pytest.raises(CaseError) as error:
+        load_case(CASES / case, [override])
+    assert error.value.key == key, str(error.value)
