@@ -4,8 +4,10 @@ A first run after an install spends most of its time compiling numba kernels
 (docs/validation/performance.md#first-run). Waste creeps in silently: a kernel compiled for a
 second argument type (an int literal beside an int, a read-only array beside a writable one), a
 private kernel called from Python (which builds its twin with the Python entry points), a
-kernel of a path the run does not take. The test runs the README's quick-start case on an
-empty numba cache, in a child process, and lists every compilation (about 10 s: it compiles).
+kernel of a path the run does not take. The tests run the README's quick-start case on an
+empty numba cache, in a child process, and list every compilation (about 10 s: it compiles);
+then once more on the same cache, which must compile nothing and say nothing of compiling
+(the one empty-cache compilation of the default run that the message check shares).
 """
 
 from __future__ import annotations
@@ -16,7 +18,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from floatmoor._numba import jit
+from floatmoor.cli.progress import COMPILING_MESSAGE
 from tests.conftest import REPO
 
 QUICK_START_CASE = REPO / "cases" / "lindahl" / "lindahl_r0.20_T1.25.toml"
@@ -51,22 +56,32 @@ with open(sys.argv[1], "w") as out:
 """
 
 
-def _quick_start_compilations(tmp_path: Path) -> tuple[int, list[list[str]]]:
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), "MPLBACKEND": "Agg",
+def _quick_start_run(folder: Path, name: str) -> tuple[int, list[list[str]], str]:
+    """The quick start on the numba cache in ``folder``: (status, compilations, stderr)."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(folder / "numba"), "MPLBACKEND": "Agg",
            "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")])}
-    record = tmp_path / "compiled.json"
-    # the quick start's case and numerics, 0.5 s simulated: compiling does not depend on it
+    record = folder / f"{name}.json"
+    # the quick start's case and numerics, 0.5 s simulated: compiling does not depend on it;
+    # not --quiet, so that the progress reporter says whether it compiles
     command = [sys.executable, "-c", _CHILD, str(record), "run", str(QUICK_START_CASE),
                "--set", "simulation.duration=0.5", "--set", "motion.ramp_duration=0.25",
-               "--quiet", "-o", str(tmp_path / "run.nc")]
+               "-o", str(folder / f"{name}.nc")]
     done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
     result = json.loads(record.read_text())
-    return result["status"], result["compiled"]
+    return result["status"], result["compiled"], done.stderr
 
 
-def test_quick_start_compiles_each_kernel_once_and_only_its_own(tmp_path):
-    status, compiled = _quick_start_compilations(tmp_path)
+@pytest.fixture(scope="module")
+def quick_start_runs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple]:
+    """The quick start run twice on one empty numba cache: "first" compiles, "again" loads
+    every kernel from the cache."""
+    folder = tmp_path_factory.mktemp("quick_start")
+    return {name: _quick_start_run(folder, name) for name in ("first", "again")}
+
+
+def test_quick_start_compiles_each_kernel_once_and_only_its_own(quick_start_runs):
+    status, compiled, _ = quick_start_runs["first"]
     assert status == 0
     ours = [c for c in compiled if c[0].startswith("floatmoor.")]
     names = [f"{module}.{kernel}" for module, kernel, _ in ours]
@@ -78,6 +93,18 @@ def test_quick_start_compiles_each_kernel_once_and_only_its_own(tmp_path):
     assert not python_entries, f"private kernels called from Python: {python_entries}"
     others = sorted({m for m, _, _ in ours} - QUICK_START_KERNEL_MODULES)
     assert not others, f"kernels of paths the quick start does not take: {others}"
+
+
+def test_first_run_says_it_compiles_and_a_cached_run_does_not(quick_start_runs):
+    """On an empty numba cache (a fresh install) the run says it compiles kernels, once; the
+    next run loads them from the cache, compiles nothing and says nothing of it."""
+    status, _, first = quick_start_runs["first"]
+    again_status, again_compiled, again = quick_start_runs["again"]
+    assert status == 0 and again_status == 0
+    assert first.count(COMPILING_MESSAGE) == 1
+    assert "left" not in first  # no estimate from the chunk that compiled
+    assert COMPILING_MESSAGE not in again
+    assert not again_compiled, f"compiled again on a warm cache: {again_compiled}"
 
 
 @jit

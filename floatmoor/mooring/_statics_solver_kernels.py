@@ -496,7 +496,9 @@ def solve_equilibrium(pos, sec_start, sec_end, sec_L, sec_EA, sec_W, sec_CB, sea
                 pos[p, 2] = seabed_z
     max_changes = MAX_CONTACT_CHANGES_PER_POINT * n_free
     changes = 0
-    it = 0
+    # 0 as an int64 variable: a literal 0 made numba compile _newton a second time, for
+    # Literal[int](0) beside int64 (docs/validation/performance.md#first-run)
+    it = int(info[INFO_ITER])
     sag = -1
     lift = -1
     while True:

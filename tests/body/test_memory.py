@@ -55,7 +55,10 @@ def test_memory_force_matches_numpy_sum(rng=np.random.default_rng(7)) -> None:
     m = 57
     weights = rng.normal(size=(m, 6, 6))
     weights[:, 5, :] = 0.0  # a DOF without memory
-    pairs = np.argwhere(np.abs(weights).max(axis=0) > 0).astype(np.int64)
+    # C order, as the body builds it: argwhere's F-ordered array compiled the kernel a
+    # second time on an empty numba cache
+    pairs = np.ascontiguousarray(np.argwhere(np.abs(weights).max(axis=0) > 0),
+                                 dtype=np.int64)
     history = rng.normal(size=(m, 6))
     for newest, filled in ((0, m), (13, m), (13, 9), (m - 1, 1)):
         out = np.zeros(6)

@@ -171,28 +171,6 @@ def test_dynamic_run_with_line_shapes(tmp_path, capsys):
     assert all(np.all(np.isfinite(ds[v].values)) for v in ds.data_vars)
 
 
-def test_first_run_says_it_compiles_and_a_cached_run_does_not(tmp_path):
-    """On an empty numba cache (a fresh install) the run says it compiles kernels, once; the
-    next run loads them from the cache and says nothing of it (~8 s: it compiles)."""
-    import os
-    import subprocess
-    import sys
-
-    from floatmoor.cli.progress import COMPILING_MESSAGE
-    from tests.conftest import REPO
-
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"),
-           "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")])}
-    command = [sys.executable, "-m", "floatmoor", "run", str(LINDAHL_CASE), *QS,
-               "--set", "simulation.duration=3.0", "-o", str(tmp_path / "a.nc")]
-    first = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
-    again = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
-    assert first.returncode == 0 and again.returncode == 0, first.stderr + again.stderr
-    assert first.stderr.count(COMPILING_MESSAGE) == 1
-    assert "left" not in first.stderr  # no estimate from the chunk that compiled
-    assert COMPILING_MESSAGE not in again.stderr
-
-
 @pytest.mark.parametrize("quiet", [True, False])
 def test_the_final_line_says_how_much_of_the_wall_time_compiled_kernels(tmp_path, capsys,
                                                                         monkeypatch, quiet):

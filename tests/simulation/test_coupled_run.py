@@ -64,19 +64,35 @@ def test_free_decay_starts_from_the_offset_at_rest() -> None:
     assert np.all(ds["wave_elevation"].values == 0.0)
 
 
-def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> None:
-    """Interrupted after a few chunks (checkpoint at every chunk), resumed, the output equals
-    an uninterrupted run's exactly; a quasi-dynamic line exercises the line state."""
+#: The interrupted runs: two quasi-dynamic lines (their state), 2 s in 5 chunks of 40 steps.
+RESUMED = ['lines.*.model="quasi-dynamic"', 'lines.line2.model="quasi-static"',
+           "simulation.duration=2.0",
+           "simulation.output_interval=0.02", "simulation.time_step=0.01",
+           "simulation.shape_output_interval=0.2",
+           'waves={kind = "regular", height = 0.04, period = 1.2}']
+
+
+@pytest.fixture(scope="module")
+def whole_resumed(tmp_path_factory):
+    """The uninterrupted run of ``RESUMED`` in chunks of 40 steps, which both interrupted
+    runs below must resume to: its dataset."""
+    import floatmoor.simulation.coupled_run as cr
+
+    out = tmp_path_factory.mktemp("whole") / "whole.nc"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(cr, "CHUNK_STEPS", 40)
+        return run_coupled(load_case(BUOY_CASE, RESUMED), output=out).dataset
+
+
+def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch,
+                                                      whole_resumed) -> None:
+    """Interrupted after a few chunks (3 of 5, checkpoint at every chunk), resumed, the output
+    equals an uninterrupted run's exactly; a quasi-dynamic line exercises the line state."""
     import floatmoor.simulation.coupled_run as cr
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
-    overrides = ['lines.*.model="quasi-dynamic"', 'lines.line2.model="quasi-static"',
-                 "simulation.duration=3.0",
-                 "simulation.output_interval=0.02", "simulation.time_step=0.01",
-                 "simulation.shape_output_interval=0.2",
-                 'waves={kind = "regular", height = 0.04, period = 1.2}']
-    case = load_case(BUOY_CASE, overrides)
-    whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
+    case = load_case(BUOY_CASE, RESUMED)
+    whole = whole_resumed
     out = tmp_path / "cut.nc"
     interrupt_run(case, out)
     partial = read_dataset(out)
@@ -90,8 +106,8 @@ def test_interrupted_run_resumes_to_identical_results(tmp_path, monkeypatch) -> 
         assert np.array_equal(resumed[name].values, whole[name].values), name
 
 
-def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path,
-                                                                        monkeypatch) -> None:
+def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path, monkeypatch,
+                                                                        whole_resumed) -> None:
     """Interrupted inside a body step of its third chunk, before the wall-clock checkpoint
     interval (here endless: only the start's is written), a run still leaves a checkpoint:
     the state at the end of its second chunk, from which the resumed run's output equals an
@@ -101,13 +117,8 @@ def test_run_interrupted_mid_step_checkpoints_its_last_consistent_state(tmp_path
 
     monkeypatch.setattr(cr, "CHUNK_STEPS", 40)
     monkeypatch.setattr(cr, "CHECKPOINT_INTERVAL_S", float("inf"))
-    overrides = ['lines.*.model="quasi-dynamic"', 'lines.line2.model="quasi-static"',
-                 "simulation.duration=2.0",
-                 "simulation.output_interval=0.02", "simulation.time_step=0.01",
-                 "simulation.shape_output_interval=0.2",
-                 'waves={kind = "regular", height = 0.04, period = 1.2}']
-    case = load_case(BUOY_CASE, overrides)
-    whole = run_coupled(case, output=tmp_path / "whole.nc").dataset
+    case = load_case(BUOY_CASE, RESUMED)
+    whole = whole_resumed
     # two memory lines, advanced twice per step: 160 calls a chunk; stop between the lines
     calls = 2 * 160 + 4 * 13 + 2
     failed = tmp_path / "failed.nc"

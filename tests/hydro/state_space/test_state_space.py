@@ -16,6 +16,7 @@ from floatmoor.hydro import radiation
 from floatmoor.hydro.database import HydroDatabaseError, read_database, stale_keys, \
     write_database
 from floatmoor.hydro.state_space import fit as database_fit
+from floatmoor.hydro.state_space import kernel_fit
 from floatmoor.hydro.state_space.fit import fit_state_space, significant_pairs, stale_reasons
 from floatmoor.hydro.state_space.kernel_fit import KERNEL_RTOL, MAX_ORDER, fit_kernel
 from floatmoor.hydro.state_space.realisation import DOFS, StateSpaceRadiation
@@ -143,11 +144,29 @@ def test_shipped_realisation_matches_its_kernel_and_the_bem(db) -> None:
     assert matrix >= -MATRIX_PASSIVITY_TOL
 
 
+#: The Hankel SVDs of the buoy refit (K samples and rows -> the factors), recorded as the
+#: refit computes them: the SVD is most of a fit's cost and does not depend on --max-order or
+#: --tolerance, so the case-file test's fit of the same kernels reuses them.
+BUOY_SVDS: dict[bytes, tuple] = {}
+
+
+def _svd_key(y: np.ndarray, rows: int) -> bytes:
+    return np.asarray(y, float).tobytes() + rows.to_bytes(8, "little")
+
+
 @pytest.fixture(scope="module")
 def buoy_refit():
     """One refit of the buoy database, shared: a fit costs 15-35 s, and the command test
-    below fits again through the CLI, which is the determinism check."""
-    return fit_state_space(read_database(BUOY_DB))
+    below fits again through the CLI (fresh SVDs), which is the determinism check."""
+    real = kernel_fit._hankel_svd
+
+    def recorded(y, rows):
+        BUOY_SVDS[_svd_key(y, rows)] = factors = real(y, rows)
+        return factors
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(kernel_fit, "_hankel_svd", recorded)
+        return fit_state_space(read_database(BUOY_DB))
 
 
 def test_refit_from_the_stored_data_meets_what_the_realisation_is_for(buoy_refit) -> None:
@@ -240,7 +259,19 @@ def test_fit_state_space_command_adds_variables_without_staling(tmp_path, capsys
     assert body.radiation == "state-space" and body.radiation_states.n_states > 0
 
 
-def test_fit_state_space_from_a_case_file_and_bad_options(tmp_path, capsys, monkeypatch) -> None:
+def test_fit_state_space_from_a_case_file_and_bad_options(tmp_path, capsys, monkeypatch,
+                                                          buoy_refit) -> None:
+    # the fit at --max-order 2 is a real one, on the refit's Hankel SVDs of the same kernels
+    # (the SVD does not depend on the order; an SVD not recorded is computed): 0.5 s, not 10
+    real = kernel_fit._hankel_svd
+    reused = []
+
+    def recorded(y, rows):
+        factors = BUOY_SVDS.get(_svd_key(y, rows))
+        reused.append(factors is not None)
+        return real(y, rows) if factors is None else tuple(a.copy() for a in factors)
+
+    monkeypatch.setattr(kernel_fit, "_hankel_svd", recorded)
     case_dir = tmp_path / "cases"
     case_dir.mkdir()
     case = case_dir / "buoy.toml"
@@ -250,6 +281,7 @@ def test_fit_state_space_from_a_case_file_and_bad_options(tmp_path, capsys, monk
     report = json.loads(capsys.readouterr().out)
     assert report["written"] is False
     assert not has_state_space(read_database(path))  # nothing written
+    assert reused and all(reused)  # the case file's database is the refit's
     assert main(["hydro", "fit-state-space", str(path), "--tolerance", "2"]) == 2
     assert "--tolerance" in capsys.readouterr().err
     assert main(["hydro", "fit-state-space", str(tmp_path / "absent.nc")]) == 2

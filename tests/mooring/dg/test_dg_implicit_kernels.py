@@ -235,13 +235,19 @@ def test_step_matches_oracle(label, kind, overrides, contact, rng) -> None:
     ik.dg_acceleration(rk, vk, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, q, qt, N,
                        np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), An)
     ff, af = np.zeros((2, 3)), np.zeros((2, 3))
+    # the anchor read-only and no friction anchors (fa=None), as the model passes them
+    # (floatmoor/mooring/dg/implicit.py): the kernel's one compiled signature, not a second
+    # one on an empty numba cache
+    fixed = anchor.copy()
+    fixed.flags.writeable = False
     status, _ = ik.dg_run_path_implicit(
-        rk, vk, acck, An, time, path, velocity, anchor, prm, ref.differentiation, ref.lift,
+        rk, vk, acck, An, time, path, velocity, fixed, prm, ref.differentiation, ref.lift,
         ref.filter, ref.weights, ip, cs, ff, af, np.zeros(2), np.zeros(2), 0,
         np.zeros((1, 1, 3)), np.zeros((1, 1)), q, qt, N, np.zeros((K + 1, 3)),
         np.zeros((K + 1, 3)), np.zeros(K), np.zeros(3), np.zeros(3), np.zeros(Np + 6),
         np.zeros(2, dtype=np.int64), r0, v0, a0, An0, A1, R, MR, np.zeros((K, Np, 3, 3)),
-        np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)), np.zeros(n), np.zeros((K, Np)))
+        np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)), np.zeros(n), np.zeros((K, Np)),
+        None)
     assert status == k.DG_OK
     for name, a, b, scale in (("r", rk, ro, np.max(np.abs(ro - r))),
                               ("v", vk, vo, np.max(np.abs(vo))), ("acc", acck, ao,
