@@ -11,7 +11,8 @@ from floatmoor.case.load import load_case
 from floatmoor.cli import main
 from floatmoor.errors import CaseError
 from floatmoor.hydro.database import read_database, write_database
-from floatmoor.hydro.state_space.storage import remove_from_dataset
+from floatmoor.hydro.state_space import fit as state_space_fit
+from floatmoor.hydro.state_space.storage import read_state_space, remove_from_dataset
 from floatmoor.io.netcdf import read_dataset
 from floatmoor.simulation.coupled_run import run_coupled
 from tests.simulation.interrupted import interrupt_run
@@ -92,10 +93,11 @@ def test_state_space_without_a_realisation_exits_2_and_writes_nothing(tmp_path, 
     assert f"(--set {STATE_SPACE})" in capsys.readouterr().err
     # once fitted, the run goes. The command's fit is the committed realisation here, which
     # spares a 15-35 s fit: the fit itself, and a run on a fresh one, are checked in
-    # tests/hydro/test_state_space.py (its refit, its heave decay, the command's own fit)
-    stored = ss.read_state_space(read_database(REPO / "hydrodb" / "cylinder_buoy.nc"))
+    # tests/hydro/state_space/test_state_space.py (its refit, its heave decay, the command's own fit)
+    stored = read_state_space(read_database(REPO / "hydrodb" / "cylinder_buoy.nc"))
     fits = []
-    monkeypatch.setattr(ss, "fit_state_space", lambda *a, **k: fits.append(1) or stored)
+    monkeypatch.setattr(state_space_fit, "fit_state_space",
+                        lambda *a, **k: fits.append(1) or stored)
     assert main(["hydro", "fit-state-space", str(tmp_path / "hydrodb" / "cylinder_buoy.nc")]) == 0
     assert fits == [1]
     capsys.readouterr()
