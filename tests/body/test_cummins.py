@@ -128,6 +128,7 @@ def test_heave_free_decay_has_the_linear_natural_period() -> None:
     assert abs(periods[0] / period - 1.0) <= DECAY_PERIOD_RTOL
 
 
+@pytest.mark.slow  # ~9 s of decay; the free-floating periods stay in the default run
 def test_body_on_quasi_static_lines_has_the_linearised_stiffness_period() -> None:
     case, ds = _setup()
     lines = [ln for ln in load_case(BUOY_CASE, ['lines.*.model="quasi-static"']).lines]

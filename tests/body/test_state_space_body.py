@@ -262,6 +262,8 @@ DEEPCWIND_DECAYS = {"surge": ([5.0, 0, 0, 0, 0, 0], 400.0, 0),
                     "pitch": ([0, 0, 0, 0, math.radians(3.0), 0], 150.0, 4)}
 
 
+@pytest.mark.slow  # ~30 s with its DeepCwind bodies; the buoy's state-space run against the
+# convolution stays in the default run (tests/simulation/test_state_space_run.py)
 @pytest.mark.parametrize("dof", ["surge", "heave", "pitch"])
 def test_deepcwind_decay_agrees_between_radiation_paths(dof, deepcwind_bodies) -> None:
     """Both paths at the step where the convolution is converged; both paths also at the

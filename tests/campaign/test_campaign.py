@@ -145,6 +145,7 @@ def test_two_local_workers_and_timeseries_give_the_same_numbers(tmp_path):
     assert serial["fairlead_tension"].dims == ("motion.radius", "motion.period", "line", "time")
 
 
+@pytest.mark.slow  # ~9 s; the cluster's sweeps and uq study against local numbers stay default
 def test_dask_cluster_gives_the_same_numbers():
     distributed = pytest.importorskip("distributed")
     design = design_from_options(["motion.radius=0.1,0.2"])

@@ -310,6 +310,7 @@ def test_a_scheduler_without_workers_fails_before_anything_runs(tmp_path) -> Non
     assert not out.exists()
 
 
+@pytest.mark.slow  # ~15 s; compare's resume locally and the sweeps on the cluster stay default
 def test_compare_runs_its_models_on_the_cluster(dask_cluster, tmp_path, monkeypatch) -> None:
     """``compare`` goes the same way: the model runs come back into the client's folder."""
     (tmp_path / "case").mkdir()

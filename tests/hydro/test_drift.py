@@ -65,6 +65,7 @@ def cylinder_kr_1_2():
     return (1.0, 2.0), _fixed_drift((1.0, 2.0))
 
 
+@pytest.mark.slow  # ~4 s of BEM, a validation against the closed form
 def test_bottom_mounted_cylinder_against_maccamy_fuchs(cylinder_kr_1_2):
     """Near field (pressure integration) and far field (capytaine's momentum route, with the
     finite-depth factor) within 2 % of the closed form at kR = 1, 2 (measured: near +1.19 %,

@@ -94,7 +94,9 @@ def test_moordyn_initialises_the_export_of_a_shipped_case(relative, tmp_path):
 
 #: The dynamic runs of the two floating-platform decks cost 12-27 s each (stiff lines, small
 #: explicit steps): slow; the shallow chain's dynamic run stays in the default run.
-_DEAR_DYNAMIC = {"oc3_hywind_lines.txt", "mhk_rm1_floating.dat"}
+#: Decks whose dynamic run is slow (seconds to tens of seconds): their quasi-static and
+#: quasi-dynamic runs, and the dynamic run of the other decks, stay in the default run.
+_DEAR_DYNAMIC = {"oc3_hywind_lines.txt", "mhk_rm1_floating.dat", "wd0050_chain.txt"}
 
 
 @pytest.mark.parametrize("name, model", [

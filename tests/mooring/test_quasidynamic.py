@@ -187,6 +187,7 @@ def test_lindahl_forced_run_through_the_command_line(tmp_path, capsys):
     assert qd["n_cycles"] == 10 and qd["mean_cycle_max"] > qs["mean_cycle_max"]
 
 
+@pytest.mark.slow  # ~5 s, a validation; the QD study's own tests stay in the default run
 def test_case_b_quasi_dynamic_is_closer_to_the_dynamic_model_than_quasi_static():
     """Paper section 4, configuration C22 (S2, D2), A3, alpha = 0.3: RMSE of the fairlead
     tension over the last cycle normalised by the initial static tension (eqs. 6, 7), and the

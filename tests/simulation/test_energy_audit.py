@@ -114,6 +114,7 @@ def test_dynamic_lines_do_not_pump_roll_and_yaw_of_the_pitching_buoy() -> None:
 SYMMETRY_ROUND_OFF = 1e-8
 
 
+@pytest.mark.slow  # ~10 s of coupled buoy; the exact-mirror test below stays in the default run
 def test_the_symmetric_buoy_keeps_sway_roll_and_yaw_at_round_off() -> None:
     """Lines 1 and 2 mirror images about the x axis, waves along +x: sway, roll and yaw stay
     at round-off through 4 s at the accuracy default (11 x p3, "auto": the lines settle on

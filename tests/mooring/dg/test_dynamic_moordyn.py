@@ -34,6 +34,7 @@ OVERRIDES = [f"motion.period={PERIOD}", f"motion.radius={RADIUS}",
              'lines.chain.model="dynamic"']
 
 
+@pytest.mark.slow  # ~7 s, a peer comparison; the MoorDyn round trips stay in the default run
 def test_fairlead_tension_history_matches_moordyn():
     case = load_case(LINDAHL_CASE, OVERRIDES)
     ds = run_forced_motion(case).dataset.sel(line="chain")
