@@ -258,6 +258,8 @@ def test_a_hydro_table_without_source_or_build_keys_says_source_imported_is_miss
     assert info.value.key == "hydro.source"
 
 
+@pytest.mark.slow  # ~12 s, two coupled runs; the imported database's own runs (still water,
+# wind) stay in the default run
 def test_a_floater_without_geometry_moves_as_the_one_with_it_when_drag_is_off(tmp_path):
     """tests/data/imported_floater/deepcwind_no_geometry.toml (no hull, database by path)
     against the shipped WAMIT case with its drag off: the same decay, bit for bit."""
