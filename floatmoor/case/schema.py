@@ -608,6 +608,17 @@ class TableMotion:
 BODY_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
 
+def _dof_period() -> Any:
+    """The ``period`` of one ``[motion.DOF]`` table (a translation's or a rotation's)."""
+    return setting("number", scale="time", unit="s", gt=0.0, doc="Period of the {table} [s].")
+
+
+def _dof_phase() -> Any:
+    """The ``phase_deg`` of one ``[motion.DOF]`` table, held in radians."""
+    return setting("number", key="phase_deg", radians=True, scale="same", unit="deg",
+                   default=0.0, doc="Phase of the {table}, x = a sin(2 pi t / T + phase) [deg].")
+
+
 @dataclass(frozen=True)
 class HarmonicTranslation:
     """A ``[motion.surge]``, ``[motion.sway]`` or ``[motion.heave]`` table: x = a sin(2 pi t /
@@ -615,11 +626,8 @@ class HarmonicTranslation:
 
     amplitude: float = setting(  #: [m]
         "number", scale="length", unit="m", ge=0.0, doc="Amplitude of the {table} [m].")
-    period: float = setting(  #: [s]
-        "number", scale="time", unit="s", gt=0.0, doc="Period of the {table} [s].")
-    phase: float = setting(  #: [rad]
-        "number", key="phase_deg", radians=True, scale="same", unit="deg", default=0.0,
-        doc="Phase of the {table}, x = a sin(2 pi t / T + phase) [deg].")
+    period: float = _dof_period()  #: [s]
+    phase: float = _dof_phase()  #: [rad]
 
 
 @dataclass(frozen=True)
@@ -631,11 +639,8 @@ class HarmonicRotation:
         "number", key="amplitude_deg", radians=True, scale="same", unit="deg", ge=0.0,
         doc="Amplitude of the {table} [deg]; rotations are given in degrees as every angle "
             "of a case file.")
-    period: float = setting(  #: [s]
-        "number", scale="time", unit="s", gt=0.0, doc="Period of the {table} [s].")
-    phase: float = setting(  #: [rad]
-        "number", key="phase_deg", radians=True, scale="same", unit="deg", default=0.0,
-        doc="Phase of the {table}, x = a sin(2 pi t / T + phase) [deg].")
+    period: float = _dof_period()  #: [s]
+    phase: float = _dof_phase()  #: [rad]
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from floatmoor.case.schema import CircularMotion, HarmonicMotion, Line, Motion, TableMotion
 
-__all__ = ["ramp", "ramp_rate", "horizontal_direction", "motion_state", "displacement",
+__all__ = ["ramp", "ramp_rate", "harmonic_state", "ramped", "horizontal_direction", "motion_state", "displacement",
            "fairlead_path", "fairlead_state", "table_state"]
 
 #: Tables whose spline coefficients are kept (:func:`table_state`): a run evaluates its table
@@ -148,17 +148,33 @@ def motion_state(motion: Motion, t: NDArray[np.float64], direction: NDArray[np.f
         dd[:, :] = (sense * motion.radius * omega * np.cos(phi))[:, None] * direction[None, :]
         dd[:, 2] -= motion.radius * omega * np.sin(phi)
     elif isinstance(motion, HarmonicMotion):
-        for axis in range(3):
-            omega = 2.0 * np.pi / motion.period[axis]
-            phase = omega * t + motion.phase[axis]
-            d[:, axis] = motion.amplitude[axis] * np.sin(phase)
-            dd[:, axis] = motion.amplitude[axis] * omega * np.cos(phase)
+        harmonic_state(motion.amplitude, motion.period, motion.phase, t, d, dd)
     elif isinstance(motion, TableMotion):
         d, dd = table_state(motion.time, motion.displacement, t)
     else:  # pragma: no cover - the loader admits no other kind
         raise TypeError(f"unknown motion {motion!r}")
-    r = ramp(t, motion.ramp_duration)[:, None]
-    dr = ramp_rate(t, motion.ramp_duration)[:, None]
+    return ramped(t, motion.ramp_duration, d, dd)
+
+
+def harmonic_state(amplitude: tuple[float, ...], period: tuple[float, ...],
+                   phase: tuple[float, ...], t: NDArray[np.float64], d: NDArray[np.float64],
+                   dd: NDArray[np.float64]) -> None:
+    """Fill column i of ``d`` and ``dd`` with a_i sin(2 pi t / T_i + phase_i) and its rate,
+    for each of the given DOFs (a fairlead's axes, a body's six DOFs: the same expressions,
+    so that a body's translations are bit-identical to a fairlead's)."""
+    for axis in range(len(amplitude)):
+        omega = 2.0 * np.pi / period[axis]
+        angle = omega * t + phase[axis]
+        d[:, axis] = amplitude[axis] * np.sin(angle)
+        dd[:, axis] = amplitude[axis] * omega * np.cos(angle)
+
+
+def ramped(t: NDArray[np.float64], ramp_duration: float, d: NDArray[np.float64],
+           dd: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A displacement ``d`` and its rate ``dd`` (time along the first axis) brought in from
+    rest by the cosine ramp: r d and r dd + r' d."""
+    r = ramp(t, ramp_duration)[:, None]
+    dr = ramp_rate(t, ramp_duration)[:, None]
     return r * d, r * dd + dr * d
 
 

@@ -51,7 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from floatmoor.case.schema import BodyHarmonicMotion, BodyMotion, BodyTableMotion, Line, Motion
-from floatmoor.motion.fairlead import fairlead_state, ramp, ramp_rate, table_state
+from floatmoor.motion.fairlead import fairlead_state, harmonic_state, ramped, table_state
 from floatmoor.rotations import angular_velocity, rotation_matrices
 
 __all__ = ["body_motion_state", "body_points_state", "prescribed_fairlead_state",
@@ -76,21 +76,13 @@ def body_motion_state(motion: BodyMotion, t: NDArray[np.float64]
     t = np.asarray(t, dtype=float)
     d = np.zeros((t.size, 6))
     dd = np.zeros((t.size, 6))
-    if isinstance(motion, BodyHarmonicMotion):
-        # the same expressions as floatmoor.motion.fairlead's harmonic motion, so that translations
-        # are bit-identical to it
-        for axis in range(6):
-            omega = 2.0 * np.pi / motion.period[axis]
-            phase = omega * t + motion.phase[axis]
-            d[:, axis] = motion.amplitude[axis] * np.sin(phase)
-            dd[:, axis] = motion.amplitude[axis] * omega * np.cos(phase)
+    if isinstance(motion, BodyHarmonicMotion):  # translations bit-identical to a fairlead's
+        harmonic_state(motion.amplitude, motion.period, motion.phase, t, d, dd)
     elif isinstance(motion, BodyTableMotion):
         d, dd = table_state(motion.time, motion.displacement, t)
     else:  # pragma: no cover - the loader admits no other kind
         raise TypeError(f"not a body motion: {motion!r}")
-    r = ramp(t, motion.ramp_duration)[:, None]
-    dr = ramp_rate(t, motion.ramp_duration)[:, None]
-    return r * d, r * dd + dr * d
+    return ramped(t, motion.ramp_duration, d, dd)
 
 
 def body_points_state(motion: BodyMotion, rest_positions: NDArray[np.float64],

@@ -35,6 +35,7 @@ from floatmoor.io.netcdf import read_attributes, read_dataset
 from floatmoor.report.compare import model_design
 from tests.campaign.test_coupled_campaign import BUOY_BASE, BUOY_ZIP
 from tests.conftest import LINDAHL_CASE, REPO
+from tests.uq.lindahl_studies import quick_study
 
 distributed = pytest.importorskip("distributed")
 
@@ -329,40 +330,6 @@ def test_compare_runs_its_models_on_the_cluster(dask_cluster, tmp_path, monkeypa
     _assert_same_run_files(Path("local"), Path("report/runs"), [f"{m}.nc" for m in models])
 
 
-#: A quick gPC study of the Lindahl chain on quasi-static lines (4 runs of 5 s): the case by
-#: a path relative to the study file, in the client's folder only.
-UQ_STUDY = """
-title = "Lindahl chain on quasi-static lines: uncertain length and motion radius"
-case = "L.toml"
-base_overrides = ['lines.chain.model="quasi-static"', "simulation.duration=5.0"]
-
-[[inputs]]
-key = "lines.chain.length"
-distribution = "uniform"
-lower = 32.9
-upper = 33.1
-
-[[inputs]]
-key = "motion.radius"
-distribution = "normal"
-mean = 0.2
-std = 0.01
-
-[method]
-kind = "quadrature"
-order = 1
-
-[[quantities]]
-name = "tension_max"
-line = "chain"
-statistic = "max"
-
-[[quantities]]
-name = "tension"
-line = "chain"
-statistic = "history"
-window = [2.5, 5.0]
-"""
 
 
 def test_uq_study_on_the_cluster_gives_the_local_numbers(dask_cluster, tmp_path,
@@ -371,7 +338,7 @@ def test_uq_study_on_the_cluster_gives_the_local_numbers(dask_cluster, tmp_path,
     statistics, Sobol indices and bands are those of a local run, bit for bit."""
     (tmp_path / "study").mkdir()
     shutil.copy(LINDAHL_CASE, tmp_path / "study" / "L.toml")
-    (tmp_path / "study" / "s.toml").write_text(UQ_STUDY, encoding="utf-8")
+    (tmp_path / "study" / "s.toml").write_text(quick_study(), encoding="utf-8")
     monkeypatch.chdir(tmp_path)
     assert main(["uq", "study/s.toml", "-o", "local", "--quiet"]) == 0
     assert main(["uq", "study/s.toml", "-o", "remote", "--quiet",
@@ -409,9 +376,8 @@ def test_uq_studies_together_share_the_cluster(dask_cluster, tmp_path, monkeypat
     monkeypatch.setattr(uq_run, "write_study_report", _summary_only)
     (tmp_path / "study").mkdir()
     shutil.copy(LINDAHL_CASE, tmp_path / "study" / "L.toml")
-    (tmp_path / "study" / "s.toml").write_text(UQ_STUDY, encoding="utf-8")
-    (tmp_path / "study" / "t.toml").write_text(UQ_STUDY.replace("32.9", "33.3").replace(
-        "33.1", "33.5"), encoding="utf-8")
+    (tmp_path / "study" / "s.toml").write_text(quick_study(), encoding="utf-8")
+    (tmp_path / "study" / "t.toml").write_text(quick_study(33.3, 33.5), encoding="utf-8")
     monkeypatch.chdir(tmp_path)
     assert main(["uq", "study/s.toml", "study/t.toml", "-o", "rs", "-o", "rt", "--quiet",
                  "--scheduler", dask_cluster.address]) == 0

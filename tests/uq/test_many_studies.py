@@ -25,41 +25,8 @@ import floatmoor.uq.run as uq_run
 from floatmoor.cli import main
 from floatmoor.io.netcdf import read_dataset
 from tests.conftest import LINDAHL_CASE
+from tests.uq.lindahl_studies import quick_study
 
-#: A quick gPC study (quadrature order 1 over two inputs: 4 runs), its chain length range
-#: set per study so that the three studies give different numbers.
-STUDY = """
-title = "Lindahl chain on quasi-static lines, lengths {lower} to {upper} m"
-case = "L.toml"
-base_overrides = ['lines.chain.model="quasi-static"', "simulation.duration=5.0"]
-
-[[inputs]]
-key = "lines.chain.length"
-distribution = "uniform"
-lower = {lower}
-upper = {upper}
-
-[[inputs]]
-key = "motion.radius"
-distribution = "normal"
-mean = 0.2
-std = 0.01
-
-[method]
-kind = "quadrature"
-order = 1
-
-[[quantities]]
-name = "tension_max"
-line = "chain"
-statistic = "max"
-
-[[quantities]]
-name = "tension"
-line = "chain"
-statistic = "history"
-window = [2.5, 5.0]
-"""
 #: (name, chain length range) of the three studies: apart, so a run's length names its study.
 RANGES = {"a": (32.9, 33.0), "b": (33.1, 33.2), "c": (32.7, 32.8)}
 #: Runs of each study (2 x 2 Gauss nodes).
@@ -84,7 +51,7 @@ def studies(tmp_path, monkeypatch) -> dict[str, str]:
     folder.mkdir()
     shutil.copy(LINDAHL_CASE, folder / "L.toml")
     for name, (lower, upper) in RANGES.items():
-        (folder / f"{name}.toml").write_text(STUDY.format(lower=lower, upper=upper),
+        (folder / f"{name}.toml").write_text(quick_study(lower, upper),
                                              encoding="utf-8")
     monkeypatch.chdir(tmp_path)
     return {name: f"study/{name}.toml" for name in RANGES}
