@@ -95,6 +95,7 @@ class ImplicitIntegrator:
         self.ip[_ik.IP_FLAG_EVENTS] = 1.0
         #: integrator state (``_implicit_kernels.CS_*``): step level, factor validity, counters
         self.cs = np.zeros(_ik.CS_N)
+        self.cs[_ik.CS_ETA] = 1.0
         self.acc = np.zeros((K, Np, 3))  #: the method's acceleration variable [m/s^2]
         self.An = np.zeros((K, Np, 3))  #: the cable's acceleration in the current state
         n = 3 * K * Np
@@ -109,6 +110,7 @@ class ImplicitIntegrator:
         """Forget the acceleration and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
+        self.cs[_ik.CS_ETA] = 1.0
 
     def run(self, r: NDArray, v: NDArray, time: NDArray, path: NDArray, velocity: NDArray,
             anchor: NDArray, prm: NDArray, element, work, fair_force: NDArray,

@@ -83,6 +83,7 @@ class SystemImplicit:
         self.ip[_ik.IP_FLAG_EVENTS] = 1.0
         #: integrator state (``_implicit_kernels.CS_*``)
         self.cs = np.zeros(_ik.CS_N)
+        self.cs[_ik.CS_ETA] = 1.0
         #: the sections' parameters with damping and contact inside the solve
         self.prm = np.ascontiguousarray(np.stack([implicit_parameters(ln.prm)
                                                   for ln in system.lines]))
@@ -113,6 +114,7 @@ class SystemImplicit:
         """Forget the accelerations and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
+        self.cs[_ik.CS_ETA] = 1.0
 
     def run(self, system: Any, time: NDArray, bpos: NDArray, bvel: NDArray, sf: NDArray,
             ef: NDArray, laid: NDArray, pp: NDArray, steps: NDArray, shape_every: int,
