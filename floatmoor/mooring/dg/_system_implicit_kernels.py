@@ -558,7 +558,7 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
                         big = d
         if not math.isfinite(total):
             return False, iterations, fresh
-        converged = _ik.newton_converged(iterations, big, previous, tol, cs)
+        converged = _ik.newton_converged(iterations, big, previous, tol, cs, True)
         if converged:
             break
         grew = big > 0.5 * previous
