@@ -98,7 +98,9 @@ CS_ITERATIONS = 7
 #: Newton's error factor eta = theta / (1 - theta) from the last measured contraction theta
 #: (:func:`newton_converged`); 0 where unknown (a new state), taken as 1
 CS_ETA = 8
-CS_SLACK_TIME = 9  #: when the fairlead end node was last seen slack [s]
+#: when the fairlead end node was last seen near slack [s]; -inf: not known (a new state,
+#: taken as near slack at its first step)
+CS_SLACK_TIME = 9
 CS_N = 10
 
 #: statuses beyond ``_kernels``' DG_*
@@ -716,8 +718,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
     level_max = int(ip[IP_LEVEL_MAX])
     EA = prm[_k.P_EA]
     e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
-    if e_start <= ip[IP_SLACK_STRAIN]:
-        cs[CS_SLACK_TIME] = time[0]
+    if e_start <= ip[IP_SLACK_STRAIN] or cs[CS_SLACK_TIME] == -math.inf:
+        cs[CS_SLACK_TIME] = time[0]  # (a state of unknown history: near slack for a window)
     smooth_tol = max(ip[IP_FORCE_TOL], ip[IP_SMOOTH_TOL])
     n_shape = 0
     for s in range(n):

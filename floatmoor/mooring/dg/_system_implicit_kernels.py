@@ -507,7 +507,7 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
     for it in range(max_iter):
         dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N, Nstar,
                    faces, slack, A1, Fp1, H)
-        if cs[_ik.CS_FACTOR_DT] != dt or grew:
+        if abs(cs[_ik.CS_FACTOR_DT] - dt) > _ik.SAME_STEP * dt or grew:
             dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef, kc,
                          cc, E, Dg, bands, boff, B, C, Spp, H, F3)
             cs[_ik.CS_FACTORISATIONS] += 1.0

@@ -118,12 +118,14 @@ class ImplicitIntegrator:
         self._fields = tuple(np.zeros((K, Np, 3)) for _ in range(7))
         #: node states (taut, seabed, submerged) the factored Jacobian was built with
         self.flags = np.zeros((K, Np))
+        self.invalidate()
 
     def invalidate(self) -> None:
         """Forget the acceleration and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
         self.cs[_ik.CS_ETA] = 0.0
+        self.cs[_ik.CS_SLACK_TIME] = -np.inf  # (unknown: near slack at the next step)
 
     def run(self, r: NDArray, v: NDArray, time: NDArray, path: NDArray, velocity: NDArray,
             anchor: NDArray, prm: NDArray, element, work, fair_force: NDArray,
