@@ -271,9 +271,10 @@ class AutoIntegration:
 
     def _spent(self, counters: NDArray[np.float64]) -> float:
         """Implicit work since the window's start."""
-        d = counters - self.counters
-        return implicit_work(d[_ik.CS_STEPS] + d[_ik.CS_REJECTED], d[_ik.CS_ITERATIONS],
-                             d[_ik.CS_FACTORISATIONS], self.nodes)
+        def d(i: int) -> float:  # (the counters only: other slots hold states, e.g. -inf)
+            return float(counters[i] - self.counters[i])
+        return implicit_work(d(_ik.CS_STEPS) + d(_ik.CS_REJECTED), d(_ik.CS_ITERATIONS),
+                             d(_ik.CS_FACTORISATIONS), self.nodes)
 
     def _go_explicit(self, time: float) -> None:
         self.switched, self.switched_at, self.switches = True, time, self.switches + 1
