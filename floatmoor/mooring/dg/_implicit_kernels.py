@@ -98,10 +98,14 @@ CS_ITERATIONS = 7
 #: Newton's error factor eta = theta / (1 - theta) from the last measured contraction theta
 #: (:func:`newton_converged`); 0 where unknown (a new state), taken as 1
 CS_ETA = 8
-#: when the fairlead end node was last seen near slack [s]; -inf: not known (a new state,
-#: taken as near slack at its first step)
+#: when the fairlead end node was last seen near slack [s]; ``SLACK_UNKNOWN``: not known (a
+#: new state, taken as near slack at its first step)
 CS_SLACK_TIME = 9
 CS_N = 10
+
+#: ``cs[CS_SLACK_TIME]`` of a state whose history is not known [s] (finite: checkpoints hold
+#: finite values only)
+SLACK_UNKNOWN = -1e300
 
 #: statuses beyond ``_kernels``' DG_*
 DG_NEWTON = 4  #: Newton did not converge at the smallest step allowed
@@ -718,7 +722,7 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
     level_max = int(ip[IP_LEVEL_MAX])
     EA = prm[_k.P_EA]
     e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
-    if e_start <= ip[IP_SLACK_STRAIN] or cs[CS_SLACK_TIME] == -math.inf:
+    if e_start <= ip[IP_SLACK_STRAIN] or cs[CS_SLACK_TIME] <= SLACK_UNKNOWN:
         cs[CS_SLACK_TIME] = time[0]  # (a state of unknown history: near slack for a window)
     smooth_tol = max(ip[IP_FORCE_TOL], ip[IP_SMOOTH_TOL])
     n_shape = 0

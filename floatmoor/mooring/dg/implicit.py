@@ -125,7 +125,7 @@ class ImplicitIntegrator:
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
         self.cs[_ik.CS_ETA] = 0.0
-        self.cs[_ik.CS_SLACK_TIME] = -np.inf  # (unknown: near slack at the next step)
+        self.cs[_ik.CS_SLACK_TIME] = _ik.SLACK_UNKNOWN  # (near slack at the next step)
 
     def run(self, r: NDArray, v: NDArray, time: NDArray, path: NDArray, velocity: NDArray,
             anchor: NDArray, prm: NDArray, element, work, fair_force: NDArray,

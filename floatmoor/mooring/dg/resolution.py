@@ -271,7 +271,7 @@ class AutoIntegration:
 
     def _spent(self, counters: NDArray[np.float64]) -> float:
         """Implicit work since the window's start."""
-        def d(i: int) -> float:  # (the counters only: other slots hold states, e.g. -inf)
+        def d(i: int) -> float:  # (the counters only: other slots hold states)
             return float(counters[i] - self.counters[i])
         return implicit_work(d(_ik.CS_STEPS) + d(_ik.CS_REJECTED), d(_ik.CS_ITERATIONS),
                              d(_ik.CS_FACTORISATIONS), self.nodes)
