@@ -33,13 +33,13 @@ of a step is estimated from the change of the acceleration variable,
 e_r = dt^2 |beta - 1/6| (a1 - a0) (Zienkiewicz & Xie 1991, Earthq. Eng. Struct. Dyn. 20,
 871-887), mapped to the fairlead force through the end node's tangent stiffness
 (|dN/dq . de/ds|). Its tolerance is the tight one of snaps while the fairlead end node is
-slack or was within the last ``IP_SNAP_WINDOW`` (a snap's load builds and rings at the pace of
-the axial wave, and its peak follows the step directly), the looser one of smooth motion
-otherwise (its local errors are damped out by the line's drag before they add up;
-docs/theory/dynamic_line.md#time-integration); a step whose force error exceeds the tolerance is redone at half the step
-(L + 1), and after ``GOOD_STEPS`` steps well inside it the step doubles again (L - 1). Snap
-loads, whose axial waves carry the force, so get the small steps they need and the rest of the
-run the steps its fairlead motion needs.
+near slack or was within the last ``IP_SNAP_WINDOW`` (a snap's peak follows the local errors
+of the steps through it directly), the looser one of smooth motion otherwise (its local
+errors are damped out by the line's drag before they add up;
+docs/theory/dynamic_line.md#time-integration). A step whose force error exceeds the tolerance
+is redone at half the step (L + 1), and after ``GOOD_STEPS`` steps well inside it the step
+doubles again (L - 1). Snap loads, whose axial waves carry the force, so get the small steps
+they need and the rest of the run the steps its fairlead motion needs.
 
 Slack elements are filtered after each step as in the explicit scheme (``_kernels``).
 
@@ -78,11 +78,12 @@ IP_FLAG_REFACTOR = 10
 #: the lines' default), 0: the error estimate alone decides (as the systems' implicit step does)
 IP_FLAG_EVENTS = 11
 #: local error of the end force allowed per step away from slack [N]: a step that starts more
-#: than ``IP_SNAP_WINDOW`` after the fairlead end node was last slack is held to the larger of
-#: this and ``IP_FORCE_TOL`` (:func:`dg_run_path_implicit`)
+#: than ``IP_SNAP_WINDOW`` after the fairlead end node was last near slack (its strain at or
+#: below ``IP_SLACK_STRAIN``) is held to the larger of this and ``IP_FORCE_TOL``, and its
+#: Newton iteration stops on its error estimate (:func:`newton_converged`)
 IP_SMOOTH_TOL = 12
 IP_SNAP_WINDOW = 13  #: [s]
-#: the fairlead end node's strain at or below which it counts as slack for ``IP_SNAP_WINDOW``
+#: the fairlead end node's strain at or below which it counts as near slack
 IP_SLACK_STRAIN = 14
 IP_N = 15
 
@@ -458,7 +459,7 @@ ETA_GROWTH = 0.8
 #: a step to end after one iteration (its factor eta is the last step's, not measured in this
 #: one). 0.3 against 1: DeepCwind lines 1 to 3 on their LC34 paths (600 s, 8 x p3) 2 % more CPU
 #: time, but fairlead-tension STD within 0.025 % of Newton iterated to its tolerance, where 1
-#: moves it by 0.14 %; 0.1 saves a third as much time (docs/validation/performance.md).
+#: moves it by 0.14 %; 0.1 saves half as much time (docs/validation/performance.md).
 FIRST_ITERATION_SHARE = 0.3
 _EPS = 2.220446049250313e-16  # the double precision unit roundoff, a measured eta's floor
 
