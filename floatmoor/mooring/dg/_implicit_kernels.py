@@ -20,7 +20,10 @@ spring-damper and friction, the drag. Newton's method uses the banded Jacobian
 (1 - alpha_m) M - (1 - alpha_f) (beta dt^2 dF/dr + gamma dt dF/dv), built from the exact
 derivatives of the DG operators (:func:`_jacobian`), LU-factored without pivoting
 (``_banded_kernels``) and reused over steps and iterations while Newton converges quickly
-(a modified Newton method); it is rebuilt when dt changes or convergence slows. The end
+(a modified Newton method); it is rebuilt when dt changes or convergence slows. Newton stops
+when the error left in its iterate, estimated from the contraction of its corrections as
+eta |dx| with eta = theta / (1 - theta) (Hairer & Wanner 1996, Solving Ordinary Differential
+Equations II, 2nd ed., section IV.8), is below its tolerance. The end
 state's A, which the next step's equation needs, is taken from the step's equation,
 (1 - alpha_f) A1 = (1 - alpha_m) a1 + alpha_m a0 - alpha_f A0, not evaluated again at the
 converged state (one evaluation a step less; the two differ by Newton's residual).
@@ -29,10 +32,14 @@ Step size: each interval between two path samples is cut into 2^L equal steps. T
 of a step is estimated from the change of the acceleration variable,
 e_r = dt^2 |beta - 1/6| (a1 - a0) (Zienkiewicz & Xie 1991, Earthq. Eng. Struct. Dyn. 20,
 871-887), mapped to the fairlead force through the end node's tangent stiffness
-(|dN/dq . de/ds|); a step whose force error exceeds the tolerance is redone at half the step
-(L + 1), and after ``GOOD_STEPS`` steps well inside it the step doubles again (L - 1). Snap
-loads, whose axial waves carry the force, so get the small steps they need and the rest of the
-run the steps its fairlead motion needs.
+(|dN/dq . de/ds|). Its tolerance is the tight one of snaps while the fairlead end node is
+near slack or was within the last ``IP_SNAP_WINDOW`` (a snap's peak follows the local errors
+of the steps through it directly), the looser one of smooth motion otherwise (its local
+errors are damped out by the line's drag before they add up;
+docs/theory/dynamic_line.md#time-integration). A step whose force error exceeds the tolerance
+is redone at half the step (L + 1), and after ``GOOD_STEPS`` steps well inside it the step
+doubles again (L - 1). Snap loads, whose axial waves carry the force, so get the small steps
+they need and the rest of the run the steps its fairlead motion needs.
 
 Slack elements are filtered after each step as in the explicit scheme (``_kernels``).
 
@@ -52,7 +59,7 @@ from floatmoor.mooring.dg._banded_kernels import band_factor
 from floatmoor.mooring.dg._friction_kernels import return_map, stick_tangent
 
 __all__ = ["IP_N", "CS_N", "dg_acceleration", "dg_jacobian", "dg_run_path_implicit",
-           "generalised_alpha"]
+           "generalised_alpha", "newton_start", "newton_converged"]
 
 # -- integrator parameters ``ip`` ------------------------------------------------------------
 IP_ALPHA_M = 0
@@ -70,7 +77,15 @@ IP_FLAG_REFACTOR = 10
 #: 1: reject a step that jumps a slack-taut transition of the fairlead (:func:`_jumped_transition`;
 #: the lines' default), 0: the error estimate alone decides (as the systems' implicit step does)
 IP_FLAG_EVENTS = 11
-IP_N = 12
+#: local error of the end force allowed per step away from slack [N]: a step that starts more
+#: than ``IP_SNAP_WINDOW`` after the fairlead end node was last near slack (its strain at or
+#: below ``IP_SLACK_STRAIN``) is held to the larger of this and ``IP_FORCE_TOL``, and its
+#: Newton iteration stops on its error estimate (:func:`newton_converged`)
+IP_SMOOTH_TOL = 12
+IP_SNAP_WINDOW = 13  #: [s]
+#: the fairlead end node's strain at or below which it counts as near slack
+IP_SLACK_STRAIN = 14
+IP_N = 15
 
 # -- integrator state ``cs`` (carried between calls and checkpointed) ------------------------
 CS_LEVEL = 0  #: current halving level L of a sample interval
@@ -81,7 +96,17 @@ CS_FACTORISATIONS = 4  #: counters (diagnostics)
 CS_STEPS = 5
 CS_REJECTED = 6
 CS_ITERATIONS = 7
-CS_N = 8
+#: Newton's error factor eta = theta / (1 - theta) from the last measured contraction theta
+#: (:func:`newton_converged`); 0 where unknown (a new state), taken as 1
+CS_ETA = 8
+#: when the fairlead end node was last seen near slack [s]; ``SLACK_UNKNOWN``: not known (a
+#: new state, taken as near slack at its first step)
+CS_SLACK_TIME = 9
+CS_N = 10
+
+#: ``cs[CS_SLACK_TIME]`` of a state whose history is not known [s] (finite: checkpoints hold
+#: finite values only)
+SLACK_UNKNOWN = -1e300
 
 #: statuses beyond ``_kernels``' DG_*
 DG_NEWTON = 4  #: Newton did not converge at the smallest step allowed
@@ -423,10 +448,55 @@ def _set_flags(r, q, N, prm, flags):
             flags[k, i] = _node_flag(r, q, N, prm, k, i)
 
 
+#: Steps whose sizes differ by less than this fraction share factors: sample times that are
+#: sums of a body step differ in their last bits (a coupled run's intervals, the probes'
+#: recorded paths), and a Newton matrix of dt (1 + 1e-9) converges as one of dt.
+SAME_STEP = 1e-9
+#: Growth of the first iteration's error factor per step, eta <- eta^0.8 (Hairer & Wanner's
+#: RADAU5): a factor measured small is trusted for a few steps only, then measured again.
+ETA_GROWTH = 0.8
+#: Share of Newton's tolerance the first iteration's estimated error eta |dx| must be within for
+#: a step to end after one iteration (its factor eta is the last step's, not measured in this
+#: one). 0.3 against 1: DeepCwind lines 1 to 3 on their LC34 paths (600 s, 8 x p3) 2 % more CPU
+#: time, but fairlead-tension STD within 0.025 % of Newton iterated to its tolerance, where 1
+#: moves it by 0.14 %; 0.1 saves half as much time (docs/validation/performance.md).
+FIRST_ITERATION_SHARE = 0.3
+_EPS = 2.220446049250313e-16  # the double precision unit roundoff, a measured eta's floor
+
+
+@jit
+def newton_start(cs):
+    """Begin a step's Newton iteration: the error factor its first iteration trusts is the
+    last measured one grown towards 1 (Hairer & Wanner's max(eta_old, uround)^0.8), so that a
+    step whose first correction is small ends after one iteration only while the contraction
+    stays as it was measured; an unknown factor (0) is taken as 1."""
+    eta = cs[CS_ETA]
+    cs[CS_ETA] = 1.0 if eta <= 0.0 else min(1.0, max(eta, _EPS) ** ETA_GROWTH)
+
+
+@jit
+def newton_converged(iterations, big, previous, tol, cs, strict):
+    """Whether Newton has converged after its iteration ``iterations`` (1, 2, ...), whose
+    largest position correction was ``big`` after ``previous`` [m]: the error left in the
+    iterate, eta |dx| with eta = theta / (1 - theta) and theta = big / previous the measured
+    contraction (kept in ``cs[CS_ETA]``), or the correction itself, is within ``tol``; the first
+    iteration, with the factor of earlier steps, within ``FIRST_ITERATION_SHARE`` of it.
+    ``strict``: the correction itself only (near a snap, whose peak moves by several per cent
+    with the error the estimate lets through)."""
+    if iterations == 1:
+        return big <= tol or (not strict and cs[CS_ETA] * big <= FIRST_ITERATION_SHARE * tol)
+    converged = big <= tol
+    if big < previous:
+        theta = big / previous
+        cs[CS_ETA] = theta / (1.0 - theta)
+        converged = converged or (not strict and cs[CS_ETA] * big <= tol)
+    return converged
+
+
 @jit
 def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D, LIFT, ip, cs,
              q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R, MR, E, Dg, band, x, flags,
-             fa=None):
+             strict, fa=None):
     """One generalised-alpha step of (r, v, acc) from t to t + dt; ``a0`` holds ``acc`` at the
     start and ``An`` the acceleration A of the start state. On success ``An`` holds A of the
     end state. The stick-spring friction's anchors ``fa`` stay where the last committed step
@@ -468,10 +538,11 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     fresh = False
     previous = math.inf
     grew = False
+    newton_start(cs)
     for it in range(max_iter):
         dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
                         A1, fa)
-        if cs[CS_FACTOR_DT] != dt or grew or (ip[IP_FLAG_REFACTOR] != 0.0
+        if abs(cs[CS_FACTOR_DT] - dt) > SAME_STEP * dt or grew or (ip[IP_FLAG_REFACTOR] != 0.0
                                                and _flags_changed(r, q, N, prm, flags)):
             _set_flags(r, q, N, prm, flags)
             dg_jacobian(r, v, q, qt, prm, D, LIFT, acoef, kc, cc, E, Dg, band, fa)
@@ -508,7 +579,7 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
                         big = d
         if not math.isfinite(total):
             return False, iterations, fresh
-        converged = big <= tol
+        converged = newton_converged(iterations, big, previous, tol, cs, strict)
         if converged:
             break
         grew = big > 0.5 * previous
@@ -652,6 +723,9 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
     level_max = int(ip[IP_LEVEL_MAX])
     EA = prm[_k.P_EA]
     e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
+    if e_start <= ip[IP_SLACK_STRAIN] or cs[CS_SLACK_TIME] <= SLACK_UNKNOWN:
+        cs[CS_SLACK_TIME] = time[0]  # (a state of unknown history: near slack for a window)
+    smooth_tol = max(ip[IP_FORCE_TOL], ip[IP_SMOOTH_TOL])
     n_shape = 0
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
@@ -674,10 +748,11 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
             _copy(v, v0)
             _copy(acc, a0)
             _copy(An, An0)
+            near_slack = t - cs[CS_SLACK_TIME] <= ip[IP_SNAP_WINDOW]
             ok, its, fresh = _ga_step(r, v, acc, a0, An, t0, t1, path[s], velocity[s],
                                       path[s + 1], velocity[s + 1], t, dt, anchor, prm, D, LIFT,
                                       ip, cs, q, qt, N, Nstar, faces, slack, fpos, fvel, A1, R,
-                                      MR, E, Dg, band, x, flags, fa)
+                                      MR, E, Dg, band, x, flags, near_slack, fa)
             if not ok and not fresh:  # factors of an older state: rebuild them and retry
                 _copy(r0, r)
                 _copy(v0, v)
@@ -687,7 +762,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                 ok, its, fresh = _ga_step(r, v, acc, a0, An, t0, t1, path[s], velocity[s],
                                           path[s + 1], velocity[s + 1], t, dt, anchor, prm, D,
                                           LIFT, ip, cs, q, qt, N, Nstar, faces, slack, fpos,
-                                          fvel, A1, R, MR, E, Dg, band, x, flags, fa)
+                                          fvel, A1, R, MR, E, Dg, band, x, flags, near_slack,
+                                          fa)
             cs[CS_ITERATIONS] += its
             err = 0.0
             if ok:
@@ -696,7 +772,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                     for i in range(Np):
                         for c in range(3):
                             R[k, i, c] = c2 * (acc[k, i, c] - a0[k, i, c])
-                err = _end_force_error(R, q, N, prm, D, LIFT) / ip[IP_FORCE_TOL]
+                tol = ip[IP_FORCE_TOL] if near_slack else smooth_tol
+                err = _end_force_error(R, q, N, prm, D, LIFT) / tol
             jumped = False
             if (ok and err <= 1.0 and ip[IP_FLAG_EVENTS] != 0.0
                     and L < min(level_max, level_min + EVENT_LEVELS)):
@@ -734,6 +811,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
             if fa is not None:  # (the force at the committed state, so An, stays the same)
                 return_map(r, fa, prm[_k.P_KS], prm[_k.P_MU] * prm[_k.P_KB], prm[_k.P_ZB])
             e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
+            if e_start <= ip[IP_SLACK_STRAIN]:
+                cs[CS_SLACK_TIME] = t + dt
             cs[CS_GOOD] = cs[CS_GOOD] + 1.0 if err < ip[IP_GROW] else 0.0
             if cs[CS_GOOD] >= GOOD_STEPS and L > level_min and m % 2 == 0:
                 L -= 1

@@ -503,10 +503,11 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
     fresh = False
     previous = math.inf
     grew = False
+    _ik.newton_start(cs)
     for it in range(max_iter):
         dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N, Nstar,
                    faces, slack, A1, Fp1, H)
-        if cs[_ik.CS_FACTOR_DT] != dt or grew:
+        if abs(cs[_ik.CS_FACTOR_DT] - dt) > _ik.SAME_STEP * dt or grew:
             dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef, kc,
                          cc, E, Dg, bands, boff, B, C, Spp, H, F3)
             cs[_ik.CS_FACTORISATIONS] += 1.0
@@ -557,7 +558,7 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
                         big = d
         if not math.isfinite(total):
             return False, iterations, fresh
-        converged = big <= tol
+        converged = _ik.newton_converged(iterations, big, previous, tol, cs, True)
         if converged:
             break
         grew = big > 0.5 * previous

@@ -58,8 +58,17 @@ class ImplicitSettings:
     """What the implicit step needs beyond the line's properties."""
 
     max_step: float  #: largest step [s]
-    force_tolerance: float  #: local error of the fairlead force allowed per step [N]
+    #: local error of the fairlead force allowed per step near slack, and of Newton's and the
+    #: slack-taut events' tests [N]
+    force_tolerance: float
     rho_infinity: float = RHO_INFINITY
+    #: local error of the fairlead force allowed per step away from slack [N] (None: as near)
+    smooth_force_tolerance: float | None = None
+    #: how long after the fairlead end node was last slack a step keeps the tolerance of
+    #: snaps [s]
+    snap_window: float = 0.0
+    #: the fairlead end node's strain at or below which it counts as slack (near a snap)
+    slack_strain: float = 0.0
 
 
 class ImplicitIntegrator:
@@ -87,6 +96,11 @@ class ImplicitIntegrator:
         self.ip[_ik.IP_NEWTON_TOL] = (NEWTON_FRACTION * settings.force_tolerance * min_spacing
                                       / axial_stiffness)
         self.ip[_ik.IP_FORCE_TOL] = settings.force_tolerance
+        self.ip[_ik.IP_SMOOTH_TOL] = (settings.force_tolerance
+                                      if settings.smooth_force_tolerance is None
+                                      else settings.smooth_force_tolerance)
+        self.ip[_ik.IP_SNAP_WINDOW] = settings.snap_window
+        self.ip[_ik.IP_SLACK_STRAIN] = settings.slack_strain
         self.ip[_ik.IP_MAX_ITER] = MAX_ITERATIONS
         self.ip[_ik.IP_DT_MAX] = settings.max_step
         self.ip[_ik.IP_LEVEL_MAX] = LEVEL_MAX
@@ -104,11 +118,14 @@ class ImplicitIntegrator:
         self._fields = tuple(np.zeros((K, Np, 3)) for _ in range(7))
         #: node states (taut, seabed, submerged) the factored Jacobian was built with
         self.flags = np.zeros((K, Np))
+        self.invalidate()
 
     def invalidate(self) -> None:
         """Forget the acceleration and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
+        self.cs[_ik.CS_ETA] = 0.0
+        self.cs[_ik.CS_SLACK_TIME] = _ik.SLACK_UNKNOWN  # (near slack at the next step)
 
     def run(self, r: NDArray, v: NDArray, time: NDArray, path: NDArray, velocity: NDArray,
             anchor: NDArray, prm: NDArray, element, work, fair_force: NDArray,

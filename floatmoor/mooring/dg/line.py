@@ -76,11 +76,32 @@ _STATUS_TEXT = {
     _ik.DG_NEWTON: "the implicit step's Newton iteration did not converge at the smallest step",
 }
 #: Share of the accepted error (``accuracy`` of the fairlead tension) given to the local error
-#: of one implicit step: the global error is the accumulation of local ones, damped by the
-#: line's drag. A quarter: DeepCwind line 2 on its LC34 path within 0.32 % (STD) of 16 x p5
-#: explicit (at 1: 0.38 %, 19 % less CPU time), the Lindahl chain's snaps (T = 1.25 s) 0.6 %
-#: above the explicit steps' mean cycle maximum (at 1/2: 1.0 %, the whole accuracy).
-IMPLICIT_ERROR_SHARE = 0.25
+#: of one implicit step in smooth motion (away from slack, below): the global error is the
+#: accumulation of local ones, damped by the line's drag. 1 against 1/4 (the one share before,
+#: now the share near slack): DeepCwind lines 1 to 3 on their LC34 paths (600 s, 8 x p3) take
+#: 36 % (lines 1 and 3) and 22 % (line 2) fewer steps, and their fairlead-tension STD and
+#: maximum move by 0.05 % at most (an earlier measurement put line 2 within 0.38 % (STD) of
+#: 16 x p5 explicit at 1, 0.32 % at 1/4).
+IMPLICIT_ERROR_SHARE = 1.0
+#: The share near slack (below), where a snap's peak follows the local errors of the steps
+#: through it directly: the Lindahl chain's snaps (T = 1.25 s) 0.6 % above the explicit steps'
+#: mean cycle maximum at 1/4, 1.0 % at 1/2 (the whole accuracy), 8 % at 1 when used throughout.
+#: Near slack Newton also iterates until its correction itself is within its tolerance
+#: (``_implicit_kernels.newton_converged``): its error estimate lets through enough to move
+#: those snaps by 3 to 11 %.
+SNAP_ERROR_SHARE = 0.25
+#: A line is near slack while its fairlead tension is below this share of its tension scale
+#: (the larger initial end tension) and for ``SNAP_WINDOW_PERIODS`` periods of its motion
+#: after: a line unloaded to a third of its pretension reaches the impulsive re-tensioning of
+#: snap loads within a cycle or two. The Lindahl chain (22.7 N at rest) falls below 6.8 N in
+#: the ramp's last cycle, before its first slack, and every cycle after: its snaps then stay
+#: within 0.75 % of the explicit steps' mean cycle maximum; at 0.1 or 0.2 that ramp cycle, and
+#: the peak that follows it, take the smooth share (+1.05 %).
+SLACK_TENSION_SHARE = 0.3
+#: Periods of the motion after the last near-slack step during which the line keeps the
+#: tolerances of snaps: the Lindahl chain's cycle maximum comes 0.85 s (0.7 periods) after
+#: its slack minimum, through a train of smaller snaps.
+SNAP_WINDOW_PERIODS = 1.0
 
 
 @dataclass(frozen=True)
@@ -173,7 +194,12 @@ class DynamicLine(PathStepper):
         if settings.time_integration != "explicit":
             self._implicit_prm = implicit_parameters(self.prm)
             self.implicit = ImplicitIntegrator(
-                K, p + 1, ImplicitSettings(self.time_step, self._force_tolerance()),
+                K, p + 1, ImplicitSettings(
+                    self.time_step, self._force_tolerance(SNAP_ERROR_SHARE),
+                    smooth_force_tolerance=self._force_tolerance(IMPLICIT_ERROR_SHARE),
+                    snap_window=self._snap_window(),
+                    slack_strain=SLACK_TENSION_SHARE * self._tension_scale()
+                    / properties.axial_stiffness),
                 properties.axial_stiffness, 0.5 * self.element_length * self.element.min_spacing)
         if settings.time_integration == "auto":
             self.auto = AutoIntegration.for_line(
@@ -225,17 +251,26 @@ class DynamicLine(PathStepper):
                                         arc_lengths=self.arc_length, solution=sol)
         return positions
 
-    def _force_tolerance(self) -> float:
+    def _force_tolerance(self, share: float) -> float:
         """The local error of the fairlead force one implicit step may make [N]: the
-        ``accuracy`` share ``IMPLICIT_ERROR_SHARE`` of the tension scale, the larger of the
-        initial end tensions (at least 1 % of the line's weight in water, for a line that
-        starts slack)."""
+        ``accuracy`` share ``share`` of the tension scale, the larger of the initial end
+        tensions (at least 1 % of the line's weight in water, for a line that starts slack)."""
+        return share * self.settings.accuracy * self._tension_scale()
+
+    def _snap_window(self) -> float:
+        """How long after its fairlead end was last near slack a line keeps the tolerances of
+        snaps [s]: ``SNAP_WINDOW_PERIODS`` periods of its motion (for ever when the motion's
+        frequency is not known)."""
+        w = self.settings.motion_frequency
+        return SNAP_WINDOW_PERIODS * 2.0 * math.pi / w if w > 0.0 else math.inf
+
+    def _tension_scale(self) -> float:
+        """The line's tension scale [N]: the larger of its initial end tensions, at least 1 %
+        of its weight in water (a line that starts slack), 1 N for a weightless unloaded one."""
         ff, af = self.end_forces()
         scale = max(float(np.linalg.norm(ff)), float(np.linalg.norm(af)),
                     0.01 * abs(self.properties.submerged_weight) * self.properties.length)
-        if not scale > 0.0:
-            scale = 1.0  # a weightless, unloaded line: any scale; Newton's tolerance follows
-        return IMPLICIT_ERROR_SHARE * self.settings.accuracy * scale
+        return scale if scale > 0.0 else 1.0
 
     def _time_step(self) -> float:
         """The time step (:meth:`CableProperties.time_step`), checked usable."""
@@ -327,6 +362,7 @@ class DynamicLine(PathStepper):
             # is stable), no error control: only the end state counts
             prm, saved = self._implicit_prm, integ.ip.copy()
             integ.ip[_ik.IP_FORCE_TOL] = np.inf
+            integ.ip[_ik.IP_SMOOTH_TOL] = np.inf
             integ.ip[_ik.IP_DT_MAX] = chunk
             integ.invalidate()
         still = np.repeat(self.fairlead[None, :], 2, axis=0)

@@ -22,7 +22,7 @@ from floatmoor.mooring.dg import _system_kernels as _s
 from floatmoor.mooring.dg.cable import IMPLICIT_MAX_STEP
 from floatmoor.mooring.dg.implicit import GROW_RATIO, LEVEL_MAX, MAX_ITERATIONS, \
     NEWTON_FRACTION, RHO_INFINITY, implicit_parameters
-from floatmoor.mooring.dg.line import IMPLICIT_ERROR_SHARE
+from floatmoor.mooring.dg.line import SNAP_ERROR_SHARE
 
 __all__ = ["SystemImplicit", "system_integration"]
 
@@ -65,7 +65,7 @@ class SystemImplicit:
             scale = 1.0  # weightless and unloaded: any scale; Newton's tolerance follows
         accuracy = min(s.settings.accuracy for s in secs)
         #: local error of the end forces allowed per step [N] (the single line's share)
-        self.force_tolerance = IMPLICIT_ERROR_SHARE * accuracy * scale
+        self.force_tolerance = SNAP_ERROR_SHARE * accuracy * scale
         spacing = min(0.5 * ln.element_length * ln.element.min_spacing
                       / ln.properties.axial_stiffness for ln in system.lines)
         am, af, beta, gamma = _ik.generalised_alpha(RHO_INFINITY)
@@ -113,6 +113,7 @@ class SystemImplicit:
         """Forget the accelerations and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
+        self.cs[_ik.CS_ETA] = 0.0
 
     def run(self, system: Any, time: NDArray, bpos: NDArray, bvel: NDArray, sf: NDArray,
             ef: NDArray, laid: NDArray, pp: NDArray, steps: NDArray, shape_every: int,

@@ -35,9 +35,13 @@ DEEPCWIND_AGREEMENT = 0.005
 #: The settled end tensions of the two integrations: each settle stops at a 1e-6 relative
 #: change per chunk, so they agree to a few times that.
 SETTLE_RTOL = 1e-5
-#: Lindahl snap case: implicit (accuracy 1 %) against explicit, mean cycle maximum (measured
-#: +0.7 %), within the accuracy asked.
-SNAP_AGREEMENT = 0.01
+#: Lindahl snap case: implicit (accuracy 1 %) against explicit, mean cycle maximum: the
+#: accuracy asked and the spread of a snap train's maxima under any change of the step pattern.
+#: Newton's tolerance times 0.9, 1 and 1.1 gives +1.29, +1.14 and +1.41 % (and +0.83 % at
+#: 0.5); the same on the steps before the smooth tolerance gave +1.11, +0.86 and +1.12 %
+#: (+1.13 %), passing the earlier 1 % bound at 1 by chance. The explicit steps themselves move
+#: by -0.3 % from cfl 0.8 to 0.4. (time_integration = "auto" steps this chain explicitly.)
+SNAP_AGREEMENT = 0.015
 #: A hanging line driven slack and snapped taut again on 50 ms steps: the snap peak of the
 #: implicit steps (accuracy 1 %) against the explicit steps on the same elements, within the
 #: accuracy asked (measured +0.73 %).
@@ -84,6 +88,9 @@ def test_second_order_in_time() -> None:
     for dt in (0.025, 0.0125, 0.00625, 0.05 / 128):
         line = _taut_line("implicit", dt)
         line.implicit.ip[ik.IP_FORCE_TOL] = np.inf  # fixed steps
+        # Newton converged far below the finest step's time error (its own tolerance follows
+        # the accuracy asked, which steps this fine exceed by far)
+        line.implicit.ip[ik.IP_NEWTON_TOL] *= 1e-4
         forces[dt] = _run(line, t, path, vel)
     ref = forces[0.05 / 128]
     errors = [np.max(np.abs(forces[dt] - ref)) for dt in (0.025, 0.0125, 0.00625)]
