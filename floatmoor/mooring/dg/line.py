@@ -259,8 +259,8 @@ class DynamicLine(PathStepper):
 
     def _snap_window(self) -> float:
         """How long after its fairlead end was last near slack a line keeps the tolerances of
-        snaps [s]: ``SNAP_WINDOW_PERIODS`` periods of its motion (for ever when the motion's
-        frequency is not known)."""
+        snaps [s]: ``SNAP_WINDOW_PERIODS`` periods of its motion; for ever when the motion's
+        frequency is not known (a line whose history is unknown then keeps them all along)."""
         w = self.settings.motion_frequency
         return SNAP_WINDOW_PERIODS * 2.0 * math.pi / w if w > 0.0 else math.inf
 
