@@ -250,12 +250,23 @@ def oracle_params(pr: CableProperties, K: int, contact: str) -> dict:
                 explicit_contact=contact == "explicit")
 
 
+def read_only(anchor: np.ndarray) -> np.ndarray:
+    """A read-only copy of ``anchor``, as the model passes it (floatmoor/mooring/dg/line.py):
+    a writable one would compile the kernels it reaches a second time on an empty numba
+    cache."""
+    fixed = anchor.copy()
+    fixed.flags.writeable = False
+    return fixed
+
+
 def kernel_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT):
     K, Np = r.shape[:2]
     q, qt, N = (np.zeros((K, Np, 3)) for _ in range(3))
     Nstar, faces, slack, dv = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), np.zeros(
         (K, Np, 3))
-    k.dg_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, dv)
+    # the anchor read-only and fa=None, as the line's kernels pass them to their helpers
+    k.dg_rhs(r, v, read_only(anchor), fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+             dv, None)
     return dv, q, N, Nstar, slack
 
 
