@@ -461,6 +461,16 @@ def kernel_damping_step(r, v, anchor, fpos, fvel, prm, ref, dt):
     return v1, taut
 
 
+#: The two tests below call the private damping kernels from Python, which compiles their
+#: Python-callable twins (~2.5 s on an empty numba cache, for these tests alone): they run in
+#: the slow set. The default run checks the same kernels (``_damping_system`` and the solve
+#: of ``_damping_solve_ends``) against the dense oracle through the system's damping step,
+#: tests/mooring/dg/test_dg_system.py::test_damping_step_with_free_points_matches_the_numpy_oracle
+#: (docs/development.md#numba-compile-time).
+_TWIN_COMPILING = pytest.mark.slow
+
+
+@_TWIN_COMPILING
 @pytest.mark.parametrize("kind", DAMPING_KINDS)
 @pytest.mark.parametrize("p", [1, 2, 3, 5, 8])
 def test_implicit_damping_step_matches_oracle(kind, p, rng) -> None:
@@ -495,6 +505,7 @@ def test_implicit_damping_step_matches_oracle(kind, p, rng) -> None:
     assert worst <= 1e-9
 
 
+@_TWIN_COMPILING
 def test_implicit_damping_dissipates(rng) -> None:
     """With the fairlead at rest the backward-Euler damping step only removes kinetic energy,
     however large dt, also when its factors are reused for other velocities. The energy norm
