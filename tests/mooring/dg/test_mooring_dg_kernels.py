@@ -403,8 +403,8 @@ def test_tension_field_matches_oracle(p: int, rng: np.random.Generator) -> None:
     r, v, anchor, fpos, fvel = make_state("surface", K, p, pr.length, rng)
     q, qt, N = (np.zeros((K, p + 1, 3)) for _ in range(3))
     Nstar, faces, slack = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K)
-    k.dg_tension_field(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, q, qt, N,
-                       Nstar, faces, slack)
+    k.dg_tension_field(r, v, read_only(anchor), fpos, fvel, prm, ref.differentiation, ref.lift,
+                       q, qt, N, Nstar, faces, slack)  # (the line's read-only anchor)
     fo = oracle.tension_field(r, v, anchor, fpos, fvel, D=ref.differentiation, LIFT=ref.lift,
                               h=par["h"], m=par["m"], EA=par["EA"], c_int=par["c_int"],
                               m_at=par["m_at"])
