@@ -295,9 +295,6 @@ def dgs_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q
                 Nstar, faces, slack, a, ue)
 
 
-_EYE3 = np.eye(3)  # unit velocities of a free point (read-only constant inside the kernels)
-
-
 @jit
 def _damping_rhs(v, avel, fvel, prm, D, LIFT, qt, faces, tng, cn, e):
     """Right-hand side C T^T Grad(v) of the damping system, the end values of Grad ``avel`` and
@@ -395,9 +392,10 @@ def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q
     moves each section's end flux by Z_j du (``_end_lift``, which enters W), so every section
     sees the same flux, the point the reaction of what it exerts, and a massless joint carries
     its sections' damping forces across. The free points joined through sections (groups,
-    ``coupling``) each solve one small dense system. Without implicit damping at any free
+    ``coupling``) each solve one small dense system. ``units`` holds the unit velocities and a
+    zero one, writable as ``pvel`` is: each helper compiles for one argument type. Without implicit damping at any free
     point this is the sections' own step (``du`` = 0), bit for bit."""
-    sact, H, hrhs, du, gpts, goff, gidx = coupling
+    sact, H, hrhs, du, gpts, goff, gidx, units = coupling
     S = sec.shape[0]
     coupled = False
     for s in range(S):
@@ -447,13 +445,13 @@ def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q
                                     for i in range(Np):
                                         for cc in range(3):
                                             Ns[k, i, cc] = 0.0
-                                _end_lift(Ns, ps, LIFT, dt, tngs, minvs, end == 0, Z, _EYE3[c])
+                                _end_lift(Ns, ps, LIFT, dt, tngs, minvs, end == 0, Z, units[c])
                                 col = resp[end, c, no:no + nn]
                                 if end == 0:
-                                    _damping_rhs(Ns, _EYE3[c], _k._ZERO3, ps, D, LIFT, qts, fcs,
+                                    _damping_rhs(Ns, units[c], units[3], ps, D, LIFT, qts, fcs,
                                                  tngs, cns, col)
                                 else:
-                                    _damping_rhs(Ns, _k._ZERO3, _EYE3[c], ps, D, LIFT, qts, fcs,
+                                    _damping_rhs(Ns, units[3], units[c], ps, D, LIFT, qts, fcs,
                                                  tngs, cns, col)
                                 band_solve(bs, nn, kl, ku, col)
                         info[s, 4] = info[s, 3]
