@@ -172,7 +172,7 @@ def dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N,
         _k._tension_field(rs, vs, ppos[sp], pvel[sp], ppos[ep], pvel[ep], ps, D, LIFT, qs,
                           _s._nodes(qt, sec, s), Ns, Nst, faces[fo:fo + K + 1],
                           slack[eo:eo + K], ps[_k.P_CINT])
-        _k._acceleration(rs, vs, ps, D, LIFT, qs, Ns, Nst, _s._nodes(A, sec, s))
+        _k._acceleration(rs, vs, ps, D, LIFT, qs, Ns, Nst, _s._nodes(A, sec, s), None)
         if kind[sp] == _s.FREE:
             for c in range(3):
                 Fp[sp, c] += Nst[0, c]
@@ -229,7 +229,8 @@ def dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef
         rs, vs = _s._nodes(r, sec, s), _s._nodes(v, sec, s)
         Es = _nodes4(E, sec, s)
         _ik.dg_jacobian(rs, vs, _s._nodes(q, sec, s), _s._nodes(qt, sec, s), ps, D, LIFT,
-                        acoef, kc, cc, Es, _nodes4(Dg, sec, s), _band(bands, boff, sec, s))
+                        acoef, kc, cc, Es, _nodes4(Dg, sec, s), _band(bands, boff, sec, s),
+                        None)  # fa as the single line passes it: one signature
         Bs, Cs = _border(B, sec, s), _border(C, sec, s)
         for i in range(Bs.shape[0]):
             for c in range(6):
@@ -240,8 +241,8 @@ def dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef
         free_s, free_e = kind[sp] == _s.FREE, kind[ep] == _s.FREE
         if not (free_s or free_e):
             continue
-        zs = _s._end_impedance(rs, ps, True)
-        ze = _s._end_impedance(rs, ps, False)
+        zs = _s._end_impedance(rs, ps, _s._AT_START)
+        ze = _s._end_impedance(rs, ps, _s._AT_END)
         # B: rows (k, i) through the divergence's nodes l = (kk, jj) whose gradient takes an
         # end position: -dcoef g_end E_l
         for k in range(K):
@@ -261,25 +262,25 @@ def dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef
                     if dcoef == 0.0:
                         continue
                     if kk == 0 and free_s:
-                        _add3(Bs, row, 0, dcoef * jac * LIFT[jj, 0], Es[kk, jj])
+                        _add3(Bs, row, _s._I0, dcoef * jac * LIFT[jj, 0], Es[kk, jj])
                     if kk == K - 1 and free_e:
-                        _add3(Bs, row, 3, -dcoef * jac * LIFT[jj, 1], Es[kk, jj])
+                        _add3(Bs, row, _s._I3, -dcoef * jac * LIFT[jj, 1], Es[kk, jj])
         for i in range(Np):  # the end faces' penalty Z (v_end - u)
             if free_s:
-                _add_eye(Bs, 3 * i, 0, -cc * jac * LIFT[i, 0] * zs)
+                _add_eye(Bs, 3 * i, _s._I0, -cc * jac * LIFT[i, 0] * zs)
             if free_e:
-                _add_eye(Bs, 3 * ((K - 1) * Np + i), 3, -cc * jac * LIFT[i, 1] * ze)
+                _add_eye(Bs, 3 * ((K - 1) * Np + i), _s._I3, -cc * jac * LIFT[i, 1] * ze)
         # C (transposed) and Spp: the start point's force N*_0 = N(0, 0) + Z (v(0, 0) - u_s),
         # the end point's -N*_K = -N(K-1, Np-1) - Z (u_e - v(K-1, Np-1))
         if free_s:
             so = 3 * fslot[sp]
             E0 = Es[0, 0]
             for mm in range(Np):
-                g = _gcoef(K, Np, D, LIFT, jac, 0, 0, mm)
+                g = _gcoef(K, Np, D, LIFT, jac, _s._I0, _s._I0, mm)
                 for a in range(3):
                     for b in range(3):
                         Cs[3 * mm + b, a] -= g * E0[a, b]
-            _add_eye_t(Cs, 0, 0, -cc * zs)
+            _add_eye_t(Cs, _s._I0, _s._I0, -cc * zs)
             _add3(Spp, so, so, jac * LIFT[0, 0], E0)
             _add_eye(Spp, so, so, cc * zs)
             if K == 1 and free_e:
@@ -298,7 +299,7 @@ def dgi_jacobian(r, v, x, u, sec, prm, ops, kind, pprm, env, fslot, q, qt, acoef
                 for a in range(3):
                     for b in range(3):
                         Cs[3 * (base - 1) + b, 3 + a] += g * El[a, b]
-            _add_eye_t(Cs, 3 * (base + Np - 1), 3, -cc * ze)
+            _add_eye_t(Cs, 3 * (base + Np - 1), _s._I3, -cc * ze)
             _add3(Spp, eo, eo, jac * LIFT[Np - 1, 1], El)
             _add_eye(Spp, eo, eo, cc * ze)
             if K == 1 and free_s:
@@ -726,7 +727,7 @@ def dgi_run_path(r, v, x, u, time, bpos, bvel, sec, prm, rprm, ops, kind, body, 
     if events and n > 1:
         _end_strains(r, v, x, u, sec, prm, ops, kind, body, time[0], time[1], bpos[0], bvel[0],
                      bpos[1], bvel[1], time[0], ppos, pvel, strain0)
-    n_shape = 0
+    n_shape = _s._I0  # (an int64 from the start: one signature of dgs_record_shape)
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
             _s.dgs_record_shape(r, N, shape_r, shape_t, n_shape)

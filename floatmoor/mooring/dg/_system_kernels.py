@@ -97,6 +97,16 @@ E_ZB = 6  #: seabed elevation [m]
 E_VC = 7  #: slip speed of the seabed friction [m/s]
 N_ENV = 8
 
+# -- typed constants for kernel arguments ----------------------------------------------------
+# A Python literal passed to a kernel (``True``, ``0``) compiles that kernel once more for its
+# value, beside the bool or int64 it gets elsewhere; these typed values keep one signature
+# (docs/development.md#numba-compile-time).
+_AT_START = np.bool_(True)  #: ``start`` of a section's start
+_AT_END = np.bool_(False)  #: ``start`` of a section's end
+_STAGES = (np.int64(0), np.int64(1), np.int64(2))  #: the SSP-RK3 stages
+_I0 = np.int64(0)  #: a zero index or count
+_I3 = np.int64(3)  #: the column offset of a section's end point in its border blocks
+
 #: statuses beyond ``_kernels``': a free point is not finite
 DGS_POINT = 10
 
@@ -234,12 +244,12 @@ def _system_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Z
                           Ns, Nstar[fo:fo + K + 1], faces[fo:fo + K + 1], slack[eo:eo + K],
                           cint)
         if kind[sp] == FREE:
-            Z = _end_impedance(rs, ps, True)
+            Z = _end_impedance(rs, ps, _AT_START)
             Zs[sp] += Z
             for c in range(3):
                 G[sp, c] += Ns[0, 0, c] + Z * vs[0, 0, c]
         if kind[ep] == FREE:
-            Z = _end_impedance(rs, ps, False)
+            Z = _end_impedance(rs, ps, _AT_END)
             Zs[ep] += Z
             for c in range(3):
                 G[ep, c] += -Ns[K - 1, Np - 1, c] + Z * vs[K - 1, Np - 1, c]
@@ -258,14 +268,15 @@ def _system_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Z
         Nst = Nstar[fo:fo + K + 1]
         sp, ep = sec[s, S_START], sec[s, S_END]
         if kind[sp] == FREE:
-            Z = _end_impedance(rs, ps, True)
+            Z = _end_impedance(rs, ps, _AT_START)
             for c in range(3):
                 Nst[0, c] = Ns[0, 0, c] + Z * (vs[0, 0, c] - pvel[sp, c])
         if kind[ep] == FREE:
-            Z = _end_impedance(rs, ps, False)
+            Z = _end_impedance(rs, ps, _AT_END)
             for c in range(3):
                 Nst[K, c] = Ns[K - 1, Np - 1, c] + Z * (pvel[ep, c] - vs[K - 1, Np - 1, c])
-        _k._acceleration(rs, vs, ps, D, LIFT, _nodes(q, sec, s), Ns, Nst, _nodes(a, sec, s))
+        _k._acceleration(rs, vs, ps, D, LIFT, _nodes(q, sec, s), Ns, Nst, _nodes(a, sec, s),
+                         None)  # fa as the single line passes it: one signature
 
 
 @jit
@@ -282,9 +293,6 @@ def dgs_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q
                 pvel[p, c] = u[p, c]
     _system_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q, qt, N,
                 Nstar, faces, slack, a, ue)
-
-
-_EYE3 = np.eye(3)  # unit velocities of a free point (read-only constant inside the kernels)
 
 
 @jit
@@ -384,9 +392,10 @@ def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q
     moves each section's end flux by Z_j du (``_end_lift``, which enters W), so every section
     sees the same flux, the point the reaction of what it exerts, and a massless joint carries
     its sections' damping forces across. The free points joined through sections (groups,
-    ``coupling``) each solve one small dense system. Without implicit damping at any free
+    ``coupling``) each solve one small dense system. ``units`` holds the unit velocities and a
+    zero one, writable as ``pvel`` is: each helper compiles for one argument type. Without implicit damping at any free
     point this is the sections' own step (``du`` = 0), bit for bit."""
-    sact, H, hrhs, du, gpts, goff, gidx = coupling
+    sact, H, hrhs, du, gpts, goff, gidx, units = coupling
     S = sec.shape[0]
     coupled = False
     for s in range(S):
@@ -436,13 +445,13 @@ def _damping_phase(r, v, u, dt, sec, prm, ops, kind, pprm, env, x, ppos, pvel, q
                                     for i in range(Np):
                                         for cc in range(3):
                                             Ns[k, i, cc] = 0.0
-                                _end_lift(Ns, ps, LIFT, dt, tngs, minvs, end == 0, Z, _EYE3[c])
+                                _end_lift(Ns, ps, LIFT, dt, tngs, minvs, end == 0, Z, units[c])
                                 col = resp[end, c, no:no + nn]
                                 if end == 0:
-                                    _damping_rhs(Ns, _EYE3[c], _k._ZERO3, ps, D, LIFT, qts, fcs,
+                                    _damping_rhs(Ns, units[c], units[3], ps, D, LIFT, qts, fcs,
                                                  tngs, cns, col)
                                 else:
-                                    _damping_rhs(Ns, _k._ZERO3, _EYE3[c], ps, D, LIFT, qts, fcs,
+                                    _damping_rhs(Ns, units[3], units[c], ps, D, LIFT, qts, fcs,
                                                  tngs, cns, col)
                                 band_solve(bs, nn, kl, ku, col)
                         info[s, 4] = info[s, 3]
@@ -568,7 +577,7 @@ def _system_step(r, v, x, u, t, dt, t0, t1, bp0, bw0, bp1, bw1, sec, prm, ops, k
     for b in range(bp0.shape[0]):
         _k._hermite_derivatives(t0, t1, bp0[b], bw0[b], bp1[b], bw1[b], t, bcd[b])
     # stage 1
-    _prescribed(kind, body, bcd, 0, dt, x, u, ppos, pvel)
+    _prescribed(kind, body, bcd, _STAGES[0], dt, x, u, ppos, pvel)
     _system_rhs(r, v, x, u, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q, qt, N,
                 Nstar, faces, slack, a, ue)
     for i in range(n):
@@ -585,7 +594,7 @@ def _system_step(r, v, x, u, t, dt, t0, t1, bp0, bw0, bp1, bw1, sec, prm, ops, k
                 x1[p, c] = x[p, c]
                 u1[p, c] = u[p, c]
     # stage 2
-    _prescribed(kind, body, bcd, 1, dt, x1, u1, ppos, pvel)
+    _prescribed(kind, body, bcd, _STAGES[1], dt, x1, u1, ppos, pvel)
     _system_rhs(r1, v1, x1, u1, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q, qt,
                 N, Nstar, faces, slack, a, ue)
     for i in range(n):
@@ -602,7 +611,7 @@ def _system_step(r, v, x, u, t, dt, t0, t1, bp0, bw0, bp1, bw1, sec, prm, ops, k
                 x2[p, c] = x[p, c]
                 u2[p, c] = u[p, c]
     # stage 3
-    _prescribed(kind, body, bcd, 2, dt, x2, u2, ppos, pvel)
+    _prescribed(kind, body, bcd, _STAGES[2], dt, x2, u2, ppos, pvel)
     _system_rhs(r2, v2, x2, u2, dt, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q, qt,
                 N, Nstar, faces, slack, a, ue)
     third, two_thirds = 1.0 / 3.0, 2.0 / 3.0
@@ -766,12 +775,12 @@ def dgs_record(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, G, Zs, q,
                               _nodes(q, sec, s), _nodes(qt, sec, s), Ns, Nstar[fo:fo + K + 1],
                               faces[fo:fo + K + 1], slack[eo:eo + K], ps[_k.P_CINT])
             if kind[sp] == FREE:
-                Z = _end_impedance(rs, ps, True)
+                Z = _end_impedance(rs, ps, _AT_START)
                 Zs[sp] += Z
                 for c in range(3):
                     G[sp, c] += Ns[0, 0, c] + Z * vs[0, 0, c]
             if kind[ep] == FREE:
-                Z = _end_impedance(rs, ps, False)
+                Z = _end_impedance(rs, ps, _AT_END)
                 Zs[ep] += Z
                 for c in range(3):
                     G[ep, c] += -Ns[K - 1, Np - 1, c] + Z * vs[K - 1, Np - 1, c]
@@ -854,7 +863,7 @@ def dgs_run_path(r, v, x, u, time, bpos, bvel, sec, prm, ops, kind, body, pprm, 
         for c in range(3):
             point_pos[0, p, c] = ppos[p, c]
     steps[0] = 0.0
-    n_shape = 0
+    n_shape = _I0  # (an int64 from the start: one signature of dgs_record_shape)
     for s in range(n):
         if shape_every > 0 and s % shape_every == 0:
             dgs_record_shape(r, N, shape_r, shape_t, n_shape)

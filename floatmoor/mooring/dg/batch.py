@@ -75,6 +75,7 @@ class _Discretisation:
         #: an implicit line's state and acceleration at the start of the step
         self.r_start, self.v_start, self.a_start = (np.zeros(shape) for _ in range(3))
         self.anchors = np.array([lines[j].anchor for j in members], dtype=float).reshape(m, 3)
+        self.anchors.flags.writeable = False  # as each line's anchor: one kernel signature
         self.prm = np.array([lines[j].prm for j in members], dtype=float)
         self.element = first.element
         K, Np = first.r.shape[0], first.r.shape[1]

@@ -694,10 +694,12 @@ class _SystemWorkspace:
         gpts, goff, gidx = free_point_groups(sec, kind)
         m3 = 3 * int(np.max(np.diff(goff), initial=1))
         # scratch of the free points' damping step: active sections, the group's dense
-        # system and right-hand side, velocity changes; and the groups (points, offsets,
-        # (group, slot) of every point)
+        # system and right-hand side, velocity changes; the groups (points, offsets,
+        # (group, slot) of every point); the unit velocities and a zero one (rows 0-2, 3),
+        # writable as the points' velocities are, so that the kernels they are passed to
+        # compile once (docs/development.md#numba-compile-time)
         self.coupling = (np.zeros(S), np.zeros((m3, m3)), np.zeros(m3), np.zeros((P, 3)),
-                         gpts, goff, gidx)
+                         gpts, goff, gidx, np.vstack([np.eye(3), np.zeros((1, 3))]))
 
 
 def free_point_groups(sec: NDArray[np.int64], kind: NDArray[np.int64]

@@ -291,6 +291,7 @@ def test_batch_end_forces_match_the_oracle(c_int: float) -> None:
     work = [np.zeros((K, p + 1, 3)) for _ in range(3)] + [np.zeros((K + 1, 3)),
                                                           np.zeros((K + 1, 3)), np.zeros(K)]
     ff, af, laid = np.zeros((m, 3)), np.zeros((m, 3)), np.zeros(m)
+    anchors.flags.writeable = False  # as the batch holds them: the kernel's one signature
     dg_end_forces_batch(r, v, anchors, ends, fvel, prm, ops.D, ops.LIFT, ops.weights, *work,
                         ff, af, laid)
     for line in range(m):

@@ -13,7 +13,8 @@ from floatmoor.mooring.dg import _kernels as k
 from floatmoor.mooring.dg.reference import reference_element
 from tests.oracles import dg_numpy as oracle
 from tests.oracles import friction_numpy as friction_oracle
-from tests.mooring.dg.test_mooring_dg_kernels import make_properties, make_state, oracle_params
+from tests.mooring.dg.test_mooring_dg_kernels import (make_properties, make_state, oracle_params,
+                                                    read_only)
 
 
 pytestmark = pytest.mark.oracle
@@ -103,8 +104,8 @@ def test_rhs_with_stick_spring_matches_oracle(rng) -> None:
         [np.cos(angle), np.sin(angle)], axis=-1)
     q, qt, N = (np.zeros((K, p + 1, 3)) for _ in range(3))
     dv = np.zeros((K, p + 1, 3))
-    k.dg_rhs(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, q, qt, N,
-             np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), dv, fa)
+    k.dg_rhs(r, v, read_only(anchor), fpos, fvel, prm, ref.differentiation, ref.lift, q, qt,
+             N, np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), dv, fa)
     par = oracle_params(pr, K, "implicit")
     par.update(mu=0.0)
     a_ref, fl = oracle.rhs(r, v, anchor, fpos, fvel, D=ref.differentiation, LIFT=ref.lift,

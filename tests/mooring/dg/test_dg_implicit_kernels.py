@@ -69,14 +69,22 @@ def _implicit_prm(pr, K: int, p: int) -> np.ndarray:
     return implicit_parameters(pr.packed(settings, pr.length / K))
 
 
+def _read_only(anchor: np.ndarray) -> np.ndarray:
+    """A read-only copy of ``anchor``, as the model passes it (floatmoor/mooring/dg/line.py):
+    a writable one would compile the kernels a second time on an empty numba cache."""
+    fixed = anchor.copy()
+    fixed.flags.writeable = False
+    return fixed
+
+
 def _force(r, v, anchor, fpos, fvel, prm, D, LIFT, fa=None):
     """F = M_eff A, the force per length the Jacobian differentiates (``fa``: the
     stick-spring friction's anchors)."""
     K, Np = r.shape[:2]
     q, qt, N, a, out = (np.zeros((K, Np, 3)) for _ in range(5))
     Nstar, faces, slack = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K)
-    ik.dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, a,
-                       fa)
+    ik.dg_acceleration(r, v, _read_only(anchor), fpos, fvel, prm, D, LIFT, q, qt, N, Nstar,
+                       faces, slack, a, fa)
     ik._mass_times(r, q, prm, a, out)
     return out, q, qt
 
@@ -118,7 +126,7 @@ def test_jacobian_matches_central_differences(label, kind, overrides, contact, p
         kc, cc = (0.0, 1.0) if which == "v" else (1.0, 0.0)
         prm = _implicit_prm(pr if which == "v" else still, K, p)
         _, q, qt = _force(r, vv, anchor, fpos, fv, prm, D, LIFT)
-        ik.dg_jacobian(r, vv, q, qt, prm, D, LIFT, 0.0, kc, cc, E, Dg, band)
+        ik.dg_jacobian(r, vv, q, qt, prm, D, LIFT, 0.0, kc, cc, E, Dg, band, None)
         J = _dense(band, Np)
         num = np.zeros((n, n))
         x0 = (vv if which == "v" else r).reshape(-1)
@@ -180,7 +188,7 @@ def test_jacobian_with_stick_spring_matches_central_differences(p, rng) -> None:
     print(f"stick spring p={p}: {err:.1e}")
     assert err <= JACOBIAN_RTOL, err
     # without the anchors' tangent the same matrix is off by the stick stiffness
-    ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 0.0, 1.0, 0.0, E, Dg, band)
+    ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 0.0, 1.0, 0.0, E, Dg, band, None)
     assert np.max(np.abs(_dense(band, Np) - num)) / np.max(np.abs(num)) > 100 * JACOBIAN_RTOL
 
 
@@ -231,15 +239,14 @@ def test_step_matches_oracle(label, kind, overrides, contact, rng) -> None:
     rk, vk, An = r.copy(), v.copy(), np.zeros_like(r)
     w = [np.zeros((K, Np, 3)) for _ in range(11)]
     q, qt, N, r0, v0, a0, An0, A1, R, MR, acck = w
-    # the state's own acceleration A, as the oracle starts from
-    ik.dg_acceleration(rk, vk, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, q, qt, N,
-                       np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), An)
-    ff, af = np.zeros((2, 3)), np.zeros((2, 3))
     # the anchor read-only and no friction anchors (fa=None), as the model passes them
-    # (floatmoor/mooring/dg/implicit.py): the kernel's one compiled signature, not a second
+    # (floatmoor/mooring/dg/implicit.py): the kernels' one compiled signature, not a second
     # one on an empty numba cache
-    fixed = anchor.copy()
-    fixed.flags.writeable = False
+    fixed = _read_only(anchor)
+    # the state's own acceleration A, as the oracle starts from
+    ik.dg_acceleration(rk, vk, fixed, fpos, fvel, prm, ref.differentiation, ref.lift, q, qt, N,
+                       np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), An, None)
+    ff, af = np.zeros((2, 3)), np.zeros((2, 3))
     status, _ = ik.dg_run_path_implicit(
         rk, vk, acck, An, time, path, velocity, fixed, prm, ref.differentiation, ref.lift,
         ref.filter, ref.weights, ip, cs, ff, af, np.zeros(2), np.zeros(2), 0,
@@ -297,6 +304,7 @@ def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator)
     prm = _implicit_prm(pr, K, p)
     ref = reference_element(p)
     r, v, anchor, fpos, fvel = make_state("taut", K, p, pr.length, rng)
+    anchor = _read_only(anchor)  # and fa=None below: the model's signature
     v *= 0.1
     time = np.array([0.0, dt])
     path, velocity = np.array([fpos, fpos + dt * fvel]), np.array([fvel, fvel])
@@ -317,7 +325,7 @@ def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator)
     cs[ik.CS_ACC_VALID] = 1.0  # the step starts from a zero acceleration variable
     fields = (q, qt, N, np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K))
     ik.dg_acceleration(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, *fields,
-                       An)
+                       An, None)
     start = An.copy()
     status, _ = ik.dg_run_path_implicit(
         r, v, acc, An, time, path, velocity, anchor, prm, ref.differentiation, ref.lift,
@@ -325,7 +333,7 @@ def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator)
         np.zeros(2), 0, np.zeros((1, 1, 3)), np.zeros((1, 1)), *fields, np.zeros(3),
         path[1].copy(), np.zeros(Np + 6), np.zeros(2, dtype=np.int64), r0, v0, a0, An0, A1, R,
         MR, np.zeros((K, Np, 3, 3)), np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)),
-        np.zeros(n), np.zeros((K, Np)))
+        np.zeros(n), np.zeros((K, Np)), None)
     assert status == k.DG_OK and cs[ik.CS_STEPS] == 1.0 and cs[ik.CS_ITERATIONS] == 1.0
     terms = ((1.0 - am) * acc, (1.0 - af) * An, af * start)
     residual = terms[0] - terms[1] - terms[2]
@@ -334,7 +342,7 @@ def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator)
     # and it is the end state's own acceleration to within Newton's last correction
     exact = np.zeros_like(An)
     ik.dg_acceleration(r, v, anchor, path[1], fvel, prm, ref.differentiation, ref.lift, *fields,
-                       exact)
+                       exact, None)
     assert np.max(np.abs(An - exact)) <= 1e-2 * np.max(np.abs(exact))
 
 
@@ -354,7 +362,7 @@ def test_newton_solve_on_the_dg_profile_is_the_band_solve(p, rng) -> None:
     _, q, qt = _force(r, v, anchor, fpos, fvel, prm, D, LIFT)
     band = np.zeros((n, 9 * Np + 2))
     ik.dg_jacobian(r, v, q, qt, prm, D, LIFT, 1.0, 1e-4, 1e-2, np.zeros((K, Np, 3, 3)),
-                   np.zeros((K, Np, 3, 3)), band)
+                   np.zeros((K, Np, 3, 3)), band, None)
     dense = _dense(band, Np)
     assert band_factor(band, n, kl, ku) == -1
     b = rng.normal(size=n)

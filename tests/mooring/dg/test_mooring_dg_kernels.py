@@ -250,12 +250,23 @@ def oracle_params(pr: CableProperties, K: int, contact: str) -> dict:
                 explicit_contact=contact == "explicit")
 
 
+def read_only(anchor: np.ndarray) -> np.ndarray:
+    """A read-only copy of ``anchor``, as the model passes it (floatmoor/mooring/dg/line.py):
+    a writable one would compile the kernels it reaches a second time on an empty numba
+    cache."""
+    fixed = anchor.copy()
+    fixed.flags.writeable = False
+    return fixed
+
+
 def kernel_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT):
     K, Np = r.shape[:2]
     q, qt, N = (np.zeros((K, Np, 3)) for _ in range(3))
     Nstar, faces, slack, dv = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K), np.zeros(
         (K, Np, 3))
-    k.dg_rhs(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack, dv)
+    # the anchor read-only and fa=None, as the line's kernels pass them to their helpers
+    k.dg_rhs(r, v, read_only(anchor), fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
+             dv, None)
     return dv, q, N, Nstar, slack
 
 
@@ -392,8 +403,8 @@ def test_tension_field_matches_oracle(p: int, rng: np.random.Generator) -> None:
     r, v, anchor, fpos, fvel = make_state("surface", K, p, pr.length, rng)
     q, qt, N = (np.zeros((K, p + 1, 3)) for _ in range(3))
     Nstar, faces, slack = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K)
-    k.dg_tension_field(r, v, anchor, fpos, fvel, prm, ref.differentiation, ref.lift, q, qt, N,
-                       Nstar, faces, slack)
+    k.dg_tension_field(r, v, read_only(anchor), fpos, fvel, prm, ref.differentiation, ref.lift,
+                       q, qt, N, Nstar, faces, slack)  # (the line's read-only anchor)
     fo = oracle.tension_field(r, v, anchor, fpos, fvel, D=ref.differentiation, LIFT=ref.lift,
                               h=par["h"], m=par["m"], EA=par["EA"], c_int=par["c_int"],
                               m_at=par["m_at"])
@@ -450,6 +461,16 @@ def kernel_damping_step(r, v, anchor, fpos, fvel, prm, ref, dt):
     return v1, taut
 
 
+#: The two tests below call the private damping kernels from Python, which compiles their
+#: Python-callable twins (~2.5 s on an empty numba cache, for these tests alone): they run in
+#: the slow set. The default run checks the same kernels (``_damping_system`` and the solve
+#: of ``_damping_solve_ends``) against the dense oracle through the system's damping step,
+#: tests/mooring/dg/test_dg_system.py::test_damping_step_with_free_points_matches_the_numpy_oracle
+#: (docs/development.md#numba-compile-time).
+_TWIN_COMPILING = pytest.mark.slow
+
+
+@_TWIN_COMPILING
 @pytest.mark.parametrize("kind", DAMPING_KINDS)
 @pytest.mark.parametrize("p", [1, 2, 3, 5, 8])
 def test_implicit_damping_step_matches_oracle(kind, p, rng) -> None:
@@ -484,6 +505,7 @@ def test_implicit_damping_step_matches_oracle(kind, p, rng) -> None:
     assert worst <= 1e-9
 
 
+@_TWIN_COMPILING
 def test_implicit_damping_dissipates(rng) -> None:
     """With the fairlead at rest the backward-Euler damping step only removes kinetic energy,
     however large dt, also when its factors are reused for other velocities. The energy norm
