@@ -45,6 +45,12 @@ from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg import _system_kernels as _s
 from floatmoor.mooring.dg._banded_kernels import band_factor, band_solve
 
+#: Newton's stopping test of a system step: the correction itself, throughout (a system has
+#: one force tolerance and no snap window; ``_implicit_kernels.newton_converged``). Typed, not
+#: the literal True, which would compile the test once more
+#: (docs/development.md#numba-compile-time).
+_STRICT = np.bool_(True)
+
 __all__ = ["dgi_forces", "dgi_jacobian", "dgi_solve", "dgi_run_path", "dense_factor",
            "dense_solve"]
 
@@ -559,7 +565,7 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
                         big = d
         if not math.isfinite(total):
             return False, iterations, fresh
-        converged = _ik.newton_converged(iterations, big, previous, tol, cs, True)
+        converged = _ik.newton_converged(iterations, big, previous, tol, cs, _STRICT)
         if converged:
             break
         grew = big > 0.5 * previous
