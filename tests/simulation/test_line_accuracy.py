@@ -247,5 +247,7 @@ def test_the_buoy_at_the_rules_numerics_is_stopped_by_its_check():
     case = load_case(BUOY, ['lines.*.dynamic.elements="auto"', 'lines.*.dynamic.order="auto"',
                             'lines.*.dynamic.time_integration="explicit"',
                             "simulation.duration=24.5"])
-    with pytest.raises(la.LineSensitivityError, match="line 'line1'.* too sensitive"):
+    # lines 1 and 2 are mirror images, apart by round-off, which the snapping chaos amplifies:
+    # which of them the stop names first depends on the last bits of the steps (line 2 now)
+    with pytest.raises(la.LineSensitivityError, match="line 'line[12]'.* too sensitive"):
         run_coupled(case)

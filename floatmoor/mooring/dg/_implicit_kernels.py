@@ -20,10 +20,10 @@ spring-damper and friction, the drag. Newton's method uses the banded Jacobian
 (1 - alpha_m) M - (1 - alpha_f) (beta dt^2 dF/dr + gamma dt dF/dv), built from the exact
 derivatives of the DG operators (:func:`_jacobian`), LU-factored without pivoting
 (``_banded_kernels``) and reused over steps and iterations while Newton converges quickly
-(a modified Newton method); it is rebuilt when dt changes or convergence slows. Newton stops
-when the error left in its iterate, estimated from the contraction of its corrections as
-eta |dx| with eta = theta / (1 - theta) (Hairer & Wanner 1996, Solving Ordinary Differential
-Equations II, 2nd ed., section IV.8), is below its tolerance. The end
+(a modified Newton method); it is rebuilt when dt changes or convergence slows. Away from
+slack Newton stops when the error left in its iterate, estimated from the contraction of its
+corrections as eta |dx| with eta = theta / (1 - theta) (Hairer & Wanner 1996, Solving
+Ordinary Differential Equations II, 2nd ed., section IV.8), is below its tolerance. The end
 state's A, which the next step's equation needs, is taken from the step's equation,
 (1 - alpha_f) A1 = (1 - alpha_m) a1 + alpha_m a0 - alpha_f A0, not evaluated again at the
 converged state (one evaluation a step less; the two differ by Newton's residual).
@@ -59,7 +59,7 @@ from floatmoor.mooring.dg._banded_kernels import band_factor
 from floatmoor.mooring.dg._friction_kernels import return_map, stick_tangent
 
 __all__ = ["IP_N", "CS_N", "dg_acceleration", "dg_jacobian", "dg_run_path_implicit",
-           "generalised_alpha", "newton_start", "newton_converged"]
+           "generalised_alpha", "newton_converged"]
 
 # -- integrator parameters ``ip`` ------------------------------------------------------------
 IP_ALPHA_M = 0
@@ -96,13 +96,10 @@ CS_FACTORISATIONS = 4  #: counters (diagnostics)
 CS_STEPS = 5
 CS_REJECTED = 6
 CS_ITERATIONS = 7
-#: Newton's error factor eta = theta / (1 - theta) from the last measured contraction theta
-#: (:func:`newton_converged`); 0 where unknown (a new state), taken as 1
-CS_ETA = 8
 #: when the fairlead end node was last seen near slack [s]; ``SLACK_UNKNOWN``: not known (a
 #: new state, taken as near slack at its first step)
-CS_SLACK_TIME = 9
-CS_N = 10
+CS_SLACK_TIME = 8
+CS_N = 9
 
 #: ``cs[CS_SLACK_TIME]`` of a state whose history is not known [s] (finite: checkpoints hold
 #: finite values only)
@@ -452,45 +449,24 @@ def _set_flags(r, q, N, prm, flags):
 #: sums of a body step differ in their last bits (a coupled run's intervals, the probes'
 #: recorded paths), and a Newton matrix of dt (1 + 1e-9) converges as one of dt.
 SAME_STEP = 1e-9
-#: Growth of the first iteration's error factor per step, eta <- eta^0.8 (Hairer & Wanner's
-#: RADAU5): a factor measured small is trusted for a few steps only, then measured again.
-ETA_GROWTH = 0.8
-#: Share of Newton's tolerance the first iteration's estimated error eta |dx| must be within for
-#: a step to end after one iteration (its factor eta is the last step's, not measured in this
-#: one). 0.3 against 1: DeepCwind lines 1 to 3 on their LC34 paths (600 s, 8 x p3) 2 % more CPU
-#: time, but fairlead-tension STD within 0.025 % of Newton iterated to its tolerance, where 1
-#: moves it by 0.14 %; 0.1 saves half as much time (docs/validation/performance.md).
-FIRST_ITERATION_SHARE = 0.3
-_EPS = 2.220446049250313e-16  # the double precision unit roundoff, a measured eta's floor
-
-
 @jit
-def newton_start(cs):
-    """Begin a step's Newton iteration: the error factor its first iteration trusts is the
-    last measured one grown towards 1 (Hairer & Wanner's max(eta_old, uround)^0.8), so that a
-    step whose first correction is small ends after one iteration only while the contraction
-    stays as it was measured; an unknown factor (0) is taken as 1."""
-    eta = cs[CS_ETA]
-    cs[CS_ETA] = 1.0 if eta <= 0.0 else min(1.0, max(eta, _EPS) ** ETA_GROWTH)
-
-
-@jit
-def newton_converged(iterations, big, previous, tol, cs, strict):
+def newton_converged(iterations, big, previous, tol, strict):
     """Whether Newton has converged after its iteration ``iterations`` (1, 2, ...), whose
-    largest position correction was ``big`` after ``previous`` [m]: the error left in the
+    largest position correction was ``big`` after ``previous`` [m]: the correction is within
+    ``tol``, or, from the second iteration on and unless ``strict``, the error left in the
     iterate, eta |dx| with eta = theta / (1 - theta) and theta = big / previous the measured
-    contraction (kept in ``cs[CS_ETA]``), or the correction itself, is within ``tol``; the first
-    iteration, with the factor of earlier steps, within ``FIRST_ITERATION_SHARE`` of it.
-    ``strict``: the correction itself only (near a snap, whose peak moves by several per cent
-    with the error the estimate lets through)."""
-    if iterations == 1:
-        return big <= tol or (not strict and cs[CS_ETA] * big <= FIRST_ITERATION_SHARE * tol)
-    converged = big <= tol
-    if big < previous:
-        theta = big / previous
-        cs[CS_ETA] = theta / (1.0 - theta)
-        converged = converged or (not strict and cs[CS_ETA] * big <= tol)
-    return converged
+    contraction (Hairer & Wanner 1996, section IV.8). ``strict``: the correction only (near a
+    snap, whose peak moves by several per cent with the error the estimate lets through).
+    The first iteration is never ended on an estimate: trusting the last step's eta there
+    (Hairer & Wanner's RADAU5) saved 4 to 8 % more on the DeepCwind lines, but made the
+    moored buoy's two mirror-image lines take different steps within 2 s, apart by round-off
+    before (docs/validation/performance.md)."""
+    if big <= tol:
+        return True
+    if strict or iterations < 2 or not big < previous:
+        return False
+    theta = big / previous
+    return theta / (1.0 - theta) * big <= tol
 
 
 @jit
@@ -538,7 +514,6 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
     fresh = False
     previous = math.inf
     grew = False
-    newton_start(cs)
     for it in range(max_iter):
         dg_acceleration(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
                         A1, fa)
@@ -579,7 +554,7 @@ def _ga_step(r, v, acc, a0, An, t0s, t1s, p0, w0, p1, w1, t, dt, anchor, prm, D,
                         big = d
         if not math.isfinite(total):
             return False, iterations, fresh
-        converged = newton_converged(iterations, big, previous, tol, cs, strict)
+        converged = newton_converged(iterations, big, previous, tol, strict)
         if converged:
             break
         grew = big > 0.5 * previous

@@ -510,7 +510,6 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
     fresh = False
     previous = math.inf
     grew = False
-    _ik.newton_start(cs)
     for it in range(max_iter):
         dgi_forces(r, v, x, u, sec, prm, ops, kind, pprm, env, ppos, pvel, q, qt, N, Nstar,
                    faces, slack, A1, Fp1, H)
@@ -565,7 +564,7 @@ def _gai_step(r, v, x, u, st, nw, pw, t0s, t1s, bp0, bw0, bp1, bw1, t, dt, sec, 
                         big = d
         if not math.isfinite(total):
             return False, iterations, fresh
-        converged = _ik.newton_converged(iterations, big, previous, tol, cs, _STRICT)
+        converged = _ik.newton_converged(iterations, big, previous, tol, _STRICT)
         if converged:
             break
         grew = big > 0.5 * previous

@@ -124,7 +124,6 @@ class ImplicitIntegrator:
         """Forget the acceleration and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
-        self.cs[_ik.CS_ETA] = 0.0
         self.cs[_ik.CS_SLACK_TIME] = _ik.SLACK_UNKNOWN  # (near slack at the next step)
 
     def run(self, r: NDArray, v: NDArray, time: NDArray, path: NDArray, velocity: NDArray,

@@ -78,17 +78,17 @@ _STATUS_TEXT = {
 #: Share of the accepted error (``accuracy`` of the fairlead tension) given to the local error
 #: of one implicit step in smooth motion (away from slack, below): the global error is the
 #: accumulation of local ones, damped by the line's drag. 1 against 1/4 (the one share before,
-#: now the share near slack): DeepCwind lines 1 to 3 on their LC34 paths (600 s, 8 x p3) take
-#: 36 % (lines 1 and 3) and 22 % (line 2) fewer steps, and their fairlead-tension STD and
-#: maximum move by 0.05 % at most (an earlier measurement put line 2 within 0.38 % (STD) of
-#: 16 x p5 explicit at 1, 0.32 % at 1/4).
+#: now the share near slack), with Newton's error estimate: DeepCwind lines 1 to 3 on their
+#: LC34 paths (600 s, 8 x p3) take 36 % (lines 1 and 3) and 24 % (line 2) fewer steps, and
+#: their fairlead-tension STD and maximum move by 0.05 % at most (an earlier measurement put
+#: line 2 within 0.38 % (STD) of 16 x p5 explicit at 1, 0.32 % at 1/4).
 IMPLICIT_ERROR_SHARE = 1.0
 #: The share near slack (below), where a snap's peak follows the local errors of the steps
 #: through it directly: the Lindahl chain's snaps (T = 1.25 s) 0.6 % above the explicit steps'
 #: mean cycle maximum at 1/4, 1.0 % at 1/2 (the whole accuracy), 8 % at 1 when used throughout.
 #: Near slack Newton also iterates until its correction itself is within its tolerance
 #: (``_implicit_kernels.newton_converged``): its error estimate lets through enough to move
-#: those snaps by 3 to 11 %.
+#: those snaps by 3 %.
 SNAP_ERROR_SHARE = 0.25
 #: A line is near slack while its fairlead tension is below this share of its tension scale
 #: (the larger initial end tension) and for ``SNAP_WINDOW_PERIODS`` periods of its motion

@@ -113,7 +113,6 @@ class SystemImplicit:
         """Forget the accelerations and the factors (the state was replaced)."""
         self.cs[_ik.CS_ACC_VALID] = 0.0
         self.cs[_ik.CS_FACTOR_DT] = 0.0
-        self.cs[_ik.CS_ETA] = 0.0
 
     def run(self, system: Any, time: NDArray, bpos: NDArray, bvel: NDArray, sf: NDArray,
             ef: NDArray, laid: NDArray, pp: NDArray, steps: NDArray, shape_every: int,
