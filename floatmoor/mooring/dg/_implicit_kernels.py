@@ -449,6 +449,8 @@ def _set_flags(r, q, N, prm, flags):
 #: sums of a body step differ in their last bits (a coupled run's intervals, the probes'
 #: recorded paths), and a Newton matrix of dt (1 + 1e-9) converges as one of dt.
 SAME_STEP = 1e-9
+
+
 @jit
 def newton_converged(iterations, big, previous, tol, strict):
     """Whether Newton has converged after its iteration ``iterations`` (1, 2, ...), whose
@@ -457,10 +459,9 @@ def newton_converged(iterations, big, previous, tol, strict):
     iterate, eta |dx| with eta = theta / (1 - theta) and theta = big / previous the measured
     contraction (Hairer & Wanner 1996, section IV.8). ``strict``: the correction only (near a
     snap, whose peak moves by several per cent with the error the estimate lets through).
-    The first iteration is never ended on an estimate: trusting the last step's eta there
-    (Hairer & Wanner's RADAU5) saved 4 to 8 % more on the DeepCwind lines, but made the
-    moored buoy's two mirror-image lines take different steps within 2 s, apart by round-off
-    before (docs/validation/performance.md)."""
+    The first iteration is never ended on an estimate: the last step's eta, which RADAU5
+    trusts there, lets two mirror-image lines take different steps
+    (docs/validation/performance.md)."""
     if big <= tol:
         return True
     if strict or iterations < 2 or not big < previous:

@@ -85,7 +85,8 @@ _STATUS_TEXT = {
 IMPLICIT_ERROR_SHARE = 1.0
 #: The share near slack (below), where a snap's peak follows the local errors of the steps
 #: through it directly: the Lindahl chain's snaps (T = 1.25 s) 0.6 % above the explicit steps'
-#: mean cycle maximum at 1/4, 1.0 % at 1/2 (the whole accuracy), 8 % at 1 when used throughout.
+#: mean cycle maximum at 1/4, 1.0 % at 1/2 (the whole accuracy), 8.8 % at 1 used throughout
+#: with Newton's error estimate.
 #: Near slack Newton also iterates until its correction itself is within its tolerance
 #: (``_implicit_kernels.newton_converged``): its error estimate lets through enough to move
 #: those snaps by 3 %.
@@ -94,9 +95,11 @@ SNAP_ERROR_SHARE = 0.25
 #: (the larger initial end tension) and for ``SNAP_WINDOW_PERIODS`` periods of its motion
 #: after: a line unloaded to a third of its pretension reaches the impulsive re-tensioning of
 #: snap loads within a cycle or two. The Lindahl chain (22.7 N at rest) falls below 6.8 N in
-#: the ramp's last cycle, before its first slack, and every cycle after: its snaps then stay
-#: within 0.75 % of the explicit steps' mean cycle maximum; at 0.1 or 0.2 that ramp cycle, and
-#: the peak that follows it, take the smooth share (+1.05 %).
+#: the ramp's cycle before its first slack (1.8 s in) and every cycle after. Its snap train's
+#: mean cycle maximum, which moves by a few tenths of a per cent with any change of the step
+#: pattern, came out on average 1.17 % above the explicit steps' at 0.3 and 1.28 % at 0.1
+#: (four perturbations of Newton's tolerance each, measured with a first-iteration Newton
+#: test since withdrawn; docs/validation/performance.md).
 SLACK_TENSION_SHARE = 0.3
 #: Periods of the motion after the last near-slack step during which the line keeps the
 #: tolerances of snaps: the Lindahl chain's cycle maximum comes 0.85 s (0.7 periods) after
@@ -194,13 +197,8 @@ class DynamicLine(PathStepper):
         if settings.time_integration != "explicit":
             self._implicit_prm = implicit_parameters(self.prm)
             self.implicit = ImplicitIntegrator(
-                K, p + 1, ImplicitSettings(
-                    self.time_step, self._force_tolerance(SNAP_ERROR_SHARE),
-                    smooth_force_tolerance=self._force_tolerance(IMPLICIT_ERROR_SHARE),
-                    snap_window=self._snap_window(),
-                    slack_strain=SLACK_TENSION_SHARE * self._tension_scale()
-                    / properties.axial_stiffness),
-                properties.axial_stiffness, 0.5 * self.element_length * self.element.min_spacing)
+                K, p + 1, self._implicit_settings(), properties.axial_stiffness,
+                0.5 * self.element_length * self.element.min_spacing)
         if settings.time_integration == "auto":
             self.auto = AutoIntegration.for_line(
                 settings.motion_frequency,
@@ -251,26 +249,26 @@ class DynamicLine(PathStepper):
                                         arc_lengths=self.arc_length, solution=sol)
         return positions
 
-    def _force_tolerance(self, share: float) -> float:
-        """The local error of the fairlead force one implicit step may make [N]: the
-        ``accuracy`` share ``share`` of the tension scale, the larger of the initial end
-        tensions (at least 1 % of the line's weight in water, for a line that starts slack)."""
-        return share * self.settings.accuracy * self._tension_scale()
-
-    def _snap_window(self) -> float:
-        """How long after its fairlead end was last near slack a line keeps the tolerances of
-        snaps [s]: ``SNAP_WINDOW_PERIODS`` periods of its motion; for ever when the motion's
-        frequency is not known (a line whose history is unknown then keeps them all along)."""
-        w = self.settings.motion_frequency
-        return SNAP_WINDOW_PERIODS * 2.0 * math.pi / w if w > 0.0 else math.inf
-
-    def _tension_scale(self) -> float:
-        """The line's tension scale [N]: the larger of its initial end tensions, at least 1 %
-        of its weight in water (a line that starts slack), 1 N for a weightless unloaded one."""
+    def _implicit_settings(self) -> ImplicitSettings:
+        """The implicit step's bounds from the line's tension scale (the larger of its initial
+        end tensions, at least 1 % of its weight in water for a line that starts slack, 1 N for
+        a weightless unloaded one): the local error of the fairlead force one step may make
+        [N], the ``accuracy`` share ``SNAP_ERROR_SHARE`` of the scale near slack and
+        ``IMPLICIT_ERROR_SHARE`` away from it; the strain below ``SLACK_TENSION_SHARE`` of the
+        scale; and the snap window, ``SNAP_WINDOW_PERIODS`` periods of the motion (for ever
+        when its frequency is not known: a line whose history is unknown then keeps the snap
+        tolerances all along)."""
         ff, af = self.end_forces()
         scale = max(float(np.linalg.norm(ff)), float(np.linalg.norm(af)),
                     0.01 * abs(self.properties.submerged_weight) * self.properties.length)
-        return scale if scale > 0.0 else 1.0
+        scale = scale if scale > 0.0 else 1.0
+        accuracy = self.settings.accuracy
+        w = self.settings.motion_frequency
+        return ImplicitSettings(
+            self.time_step, SNAP_ERROR_SHARE * accuracy * scale,
+            smooth_force_tolerance=IMPLICIT_ERROR_SHARE * accuracy * scale,
+            snap_window=SNAP_WINDOW_PERIODS * 2.0 * math.pi / w if w > 0.0 else math.inf,
+            slack_strain=SLACK_TENSION_SHARE * scale / self.properties.axial_stiffness)
 
     def _time_step(self) -> float:
         """The time step (:meth:`CableProperties.time_step`), checked usable."""
