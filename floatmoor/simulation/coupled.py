@@ -50,6 +50,7 @@ from floatmoor.mooring.dg.line import DynamicLine
 from floatmoor.mooring.quasidynamic import QuasiDynamicLine
 from floatmoor.mooring.quasistatic import QuasiStaticLine
 from floatmoor.mooring.stepping import PathStepper
+from floatmoor.simulation._coupling_kernels import batched_mooring_force
 from floatmoor.simulation.groups import GroupSamples, SystemGroup, system_groups
 
 __all__ = ["MooredBody", "equilibrium", "line_force_quasi_static"]
@@ -195,6 +196,12 @@ class MooredBody:
         #: samples of a step (work arrays)
         n = len(self.lines)
         self._pos, self._vel = np.zeros((n, 3)), np.zeros((n, 3))
+        self._stage_ff, self._stage_af = np.zeros((n, 3)), np.zeros((n, 3))
+        #: whether every line is a dynamic line of the batch, in order, of one discretisation
+        #: (:meth:`_batched_force`), and the batch's end-force inputs at the step's end and
+        #: middle
+        self._all_batched = False
+        self._stage_arguments: tuple[tuple, tuple] = ((), ())
         self._samples = tuple(np.zeros((0, 3)) for _ in range(4))
         self._batch_arms = np.zeros((0, 3))
         #: laid length of each line at its last evaluation [m]
@@ -246,6 +253,11 @@ class MooredBody:
                            if m is not None and m.has_memory and not m.batched]
         self._batch_arms = np.ascontiguousarray(self.arms[self._batch_index])
         self._samples = tuple(np.zeros((len(dynamic), 3)) for _ in range(4))
+        self._all_batched = (self._solo and dynamic == list(range(len(self.lines)))
+                             and self._batch.end_force_arguments(False) is not None)
+        if self._all_batched:
+            self._stage_arguments = (self._batch.end_force_arguments(False),
+                                     self._batch.end_force_arguments(True))
 
     def dashpot_number(self) -> float:
         """Z dt / M of the body on its dynamic lines in their current state: the body step
@@ -370,6 +382,8 @@ class MooredBody:
                       ) -> NDArray[np.float64]:
         """The 6-DOF force of every line on the body at (x, v): the independent lines' at
         their fairleads, the groups' at their body points."""
+        if self._all_batched:  # every line dynamic: no per-line work, no allocation
+            return self._batched_force(x, v)
         ff, _ = self.line_forces(x, v)
         if self._solo:
             return generalised_force(x, ff, self.arms)
@@ -378,6 +392,17 @@ class MooredBody:
         for group, arms, sample in zip(self.groups, self.group_arms, self.group_samples(x, v)):
             f = f + generalised_force(x, group.body_forces(sample), arms)
         return f
+
+    def _batched_force(self, x: NDArray[np.float64], v: NDArray[np.float64]
+                       ) -> NDArray[np.float64]:
+        """:meth:`mooring_force` when every line is a dynamic line of the batch, in order:
+        the same values, through the work arrays (a body step asks for it four times)."""
+        out = np.empty(6)
+        batched_mooring_force(np.ascontiguousarray(x, dtype=float),
+                              np.ascontiguousarray(v, dtype=float), self.arms, self.centre,
+                              self._pos, self._vel, *self._stage_arguments[self._at_mid],
+                              self._stage_ff, self._stage_af, out)
+        return out
 
     def _advance_memory_lines(self, time: float, x: NDArray, v: NDArray) -> None:
         """Advance the groups and the quasi-dynamic lines to ``time``, the fairleads moving to

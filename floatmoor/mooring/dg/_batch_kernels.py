@@ -1,17 +1,20 @@
 """Numba kernels of several dynamic lines at once (:mod:`floatmoor.mooring.dg.batch`): the end
 forces of every line of one discretisation in one call, as each line's
 ``DynamicLine.end_forces_moving`` computes them (``_kernels._record_ends``: the tension field and
-the end fluxes), and a line's state at the middle of a body step interpolated in time from its
-states at both ends (docs/theory/floater.md#coupling-scheme)."""
+the end fluxes), a line's state at the middle of a body step interpolated in time from its
+states at both ends (docs/theory/floater.md#coupling-scheme), and the implicit lines of one
+discretisation advanced over a body step in one call (a call from Python costs about as much
+as a line's implicit step: docs/validation/performance.md)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from floatmoor._numba import jit
-from floatmoor.mooring.dg._kernels import _ZERO3, _record_ends
+from floatmoor.mooring.dg._implicit_kernels import CS_ACC_VALID, dg_run_path_implicit
+from floatmoor.mooring.dg._kernels import _ZERO3, DG_OK, _record_ends
 
-__all__ = ["dg_end_forces_batch", "hermite_middle"]
+__all__ = ["dg_end_forces_batch", "hermite_middle", "dg_advance_implicit_batch"]
 
 
 @jit
@@ -55,3 +58,49 @@ def hermite_middle(r0: np.ndarray, v0: np.ndarray, a0: np.ndarray, r1: np.ndarra
                 else:
                     r_mid[k, i, c] = 0.5 * sr + 0.125 * h * dv
                     v_mid[k, i, c] = 1.5 * dr / h - 0.25 * sv
+
+
+@jit
+def dg_advance_implicit_batch(active, time, path, velocity, r, v, acc, An, anchors, prm, D,
+                              LIFT, F, weights, ip, cs, fair_force, anch_force, laid, steps,
+                              shape_every, shape_r, shape_t, q, qt, N, Nstar, faces, slack, fpos,
+                              fvel, tmp, where, fields, blocks, band, x, flags, r_start, v_start,
+                              a_start, r_mid, v_mid, quintic, failure):
+    """Advance each line l with ``active[l]`` of one discretisation over its one sample
+    interval ``time[l]`` (2,) along ``path[l]``, ``velocity[l]`` (2, 3): one
+    ``_implicit_kernels.dg_run_path_implicit`` call on its state ``r[l]``, ``v[l]``, ``acc[l]``,
+    ``An[l]``, its parameters ``prm[l]``, ``ip[l]``, ``cs[l]`` and factors ``band[l]``,
+    ``flags[l]`` (outputs ``fair_force[l]`` ... ``steps[l]``), no friction anchors; then its
+    state at the interval's middle from both ends (:func:`hermite_middle`, the quintic with
+    ``quintic`` when the start's acceleration was known) into ``r_mid[l]``, ``v_mid[l]``.
+    ``q`` ... ``where``, ``fields`` (7, K, Np, 3), ``blocks`` (2, K, Np, 3, 3) and ``x`` are one
+    line's work arrays, reused line after line.
+
+    ``failure`` (3,) gets (line, status, sample) of the first line that fails (the lines after
+    it are not advanced; ``where`` holds its element and node), status ``DG_OK`` otherwise."""
+    failure[0], failure[1], failure[2] = -1, DG_OK, 0
+    for line in range(active.shape[0]):
+        if not active[line]:
+            continue
+        quintic_here = quintic and cs[line, CS_ACC_VALID] != 0.0
+        rs, vs, a_s, rl, vl = r_start[line], v_start[line], a_start[line], r[line], v[line]
+        Al = An[line]
+        for k in range(rl.shape[0]):
+            for i in range(rl.shape[1]):
+                for c in range(3):
+                    rs[k, i, c] = rl[k, i, c]
+                    vs[k, i, c] = vl[k, i, c]
+                    if quintic_here:
+                        a_s[k, i, c] = Al[k, i, c]
+        status, index = dg_run_path_implicit(
+            rl, vl, acc[line], Al, time[line], path[line], velocity[line], anchors[line],
+            prm[line], D, LIFT, F, weights, ip[line], cs[line], fair_force[line],
+            anch_force[line], laid[line], steps[line], shape_every, shape_r, shape_t, q, qt, N,
+            Nstar, faces, slack, fpos, fvel, tmp, where, fields[0], fields[1], fields[2],
+            fields[3], fields[4], fields[5], fields[6], blocks[0], blocks[1], band[line], x,
+            flags[line], None)
+        if status != DG_OK:
+            failure[0], failure[1], failure[2] = line, status, index
+            return
+        hermite_middle(rs, vs, a_s, rl, vl, Al, time[line, 1] - time[line, 0], quintic_here,
+                       r_mid[line], v_mid[line])

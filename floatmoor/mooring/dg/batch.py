@@ -27,7 +27,10 @@ operations, ``_batch_kernels.dg_end_forces_batch``).
   tests/simulation/test_coupling_stability.py damps a kick as the exact middle state does up to
   Z dt / M = 0.3, poorly at 0.6 and grows from 0.7, where the exact state is stable to
   2.785, and the moored buoy blows up at 0.48; the coupled run keeps its lines on the two
-  samples beyond 0.1 (``simulation.coupled.ONE_INTERVAL_LIMIT``).
+  samples beyond 0.1 (``simulation.coupled.ONE_INTERVAL_LIMIT``). The implicit lines of one
+  discretisation (without the stick-spring friction's anchors) take their one interval in one
+  kernel call (``_batch_kernels.dg_advance_implicit_batch``), their integrators' states stacked:
+  a call from Python costs about what a line's implicit step does.
 """
 
 from __future__ import annotations
@@ -39,7 +42,8 @@ from numpy.typing import NDArray
 
 from floatmoor.mooring.dg import _implicit_kernels as _ik
 from floatmoor.mooring.dg import _kernels as _k
-from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch, hermite_middle
+from floatmoor.mooring.dg._batch_kernels import (dg_advance_implicit_batch,
+                                                 dg_end_forces_batch, hermite_middle)
 from floatmoor.mooring.dg.line import DynamicLine
 
 __all__ = ["DynamicLineBatch", "MIDDLE_QUINTIC"]
@@ -53,6 +57,11 @@ __all__ = ["DynamicLineBatch", "MIDDLE_QUINTIC"]
 #: carries the axial waves the generalised-alpha step does not resolve (and damps): it is not
 #: the slope of the velocities the steps produce, which the cubic curve follows.
 MIDDLE_QUINTIC = False
+
+
+#: the implicit integrator's arrays that carry its state from step to step: stacked per
+#: discretisation, for the batch kernel (``_batch_kernels.dg_advance_implicit_batch``)
+_STACKED = ("acc", "An", "cs", "ip", "band", "flags")
 
 
 class _Discretisation:
@@ -85,6 +94,28 @@ class _Discretisation:
         self.fair_now, self.fair_mid = np.zeros((m, 3)), np.zeros((m, 3))
         self.fvel = np.zeros((m, 3))
         self.ff, self.af, self.laid = np.zeros((m, 3)), np.zeros((m, 3)), np.zeros(m)
+        #: each line's one sample interval [t, t + dt] of an implicit advance: its kernel
+        #: arguments (time, path, velocity, then the outputs: forces, laid length, steps)
+        self.ends = (np.zeros((m, 2)), np.zeros((m, 2, 3)), np.zeros((m, 2, 3)),
+                     np.zeros((m, 2, 3)), np.zeros((m, 2, 3)), np.zeros((m, 2)),
+                     np.zeros((m, 2)))
+        #: which lines the batch kernel advances (implicit, no stick-spring friction anchors:
+        #: :meth:`bind`), and which of them it advances this step
+        self.batchable = np.zeros(m, dtype=bool)
+        self.active = np.zeros(m, dtype=bool)
+        #: the implicit integrators' state, stacked (each integrator's arrays are views)
+        n = 3 * K * Np
+        self.acc, self.An = np.zeros(shape), np.zeros(shape)
+        self.cs, self.ip = np.zeros((m, _ik.CS_N)), np.zeros((m, _ik.IP_N))
+        self.band, self.flags = np.zeros((m, n, 9 * Np + 2)), np.zeros((m, K, Np))
+        self.iprm = np.zeros_like(self.prm)
+        #: one line's work arrays of the implicit kernel, reused line after line
+        self.fpos, self.fvel_one = np.zeros(3), np.zeros(3)
+        self.tmp, self.where = np.zeros(max(Np, 6)), np.zeros(2, dtype=np.int64)
+        self.fields, self.blocks = np.zeros((7, K, Np, 3)), np.zeros((2, K, Np, 3, 3))
+        self.x = np.zeros(n)
+        self.no_shape_r, self.no_shape_t = np.zeros((1, 1, 3)), np.zeros((1, 1))
+        self.failure = np.zeros(3, dtype=np.int64)
         self.bind(lines)
 
     def bind(self, lines: Sequence[DynamicLine]) -> None:
@@ -99,6 +130,18 @@ class _Discretisation:
                 self.v[row] = line.v
                 line.v = self.v[row]
             self.fair_now[row] = line.fairlead
+            integ = line.implicit
+            self.batchable[row] = integ is not None and line.friction_anchors_in_use() is None
+            if not self.batchable[row]:
+                continue
+            for name in _STACKED:
+                stacked, own = getattr(self, name), getattr(integ, name)
+                if own.base is not stacked:
+                    stacked[row] = own
+                    setattr(integ, name, stacked[row])
+            if line.implicit_prm.base is not self.iprm:
+                self.iprm[row] = line.implicit_prm
+                line.implicit_prm = self.iprm[row]
 
 
 class DynamicLineBatch:
@@ -121,6 +164,10 @@ class DynamicLineBatch:
         self._laid, self._steps = np.zeros((n, 3)), np.zeros((n, 3))
         #: laid length of each line at the end of its last advance [m]
         self.laid_length = np.zeros(n)
+        #: whether the implicit lines of one discretisation are advanced in one kernel call
+        #: (``_batch_kernels.dg_advance_implicit_batch``); False: one call per line
+        #: (:meth:`_advance_implicit`), the same steps to the last bit
+        self.batch_kernel = True
         #: which lines may step implicitly over the body step as one interval (the coupling's
         #: owner clears those whose body answers them too fast: module docstring)
         self.one_interval = np.ones(n, dtype=bool)
@@ -128,6 +175,10 @@ class DynamicLineBatch:
         for j, line in enumerate(self.lines):
             shapes.setdefault(line.r.shape, []).append(j)
         self._groups = [_Discretisation(self.lines, members) for members in shapes.values()]
+        #: the one group, when it holds every line in order (:meth:`end_forces` then writes
+        #: straight into its outputs)
+        self._whole = (self._groups[0] if len(self._groups) == 1
+                       and self._groups[0].members == list(range(n)) else None)
         #: where each line sits: its group and row there
         self._where = [(g, row) for g in self._groups for row in range(len(g.members))]
         self._where.sort(key=lambda gr: gr[0].members[gr[1]])
@@ -136,11 +187,9 @@ class DynamicLineBatch:
                   self._steps)
         self._calls = [tuple(tuple(a[j, first:first + 2] for a in arrays) for first in (0, 1))
                        for j in range(n)]
-        #: an implicit line's one sample interval [t, t + dt]: its kernel arguments (views)
-        ends = (np.zeros((n, 2)), np.zeros((n, 2, 3)), np.zeros((n, 2, 3)),
-                np.zeros((n, 2, 3)), np.zeros((n, 2, 3)), np.zeros((n, 2)), np.zeros((n, 2)))
-        self._ends = ends
-        self._end_calls = [tuple(a[j] for a in ends) for j in range(n)]
+        #: an implicit line's one sample interval [t, t + dt]: its kernel arguments (views of
+        #: its discretisation's)
+        self._end_calls = [tuple(a[row] for a in g.ends) for g, row in self._where]
 
     def sync(self) -> None:
         """Take the lines' states and fairleads again (after they were restored in place or
@@ -167,9 +216,21 @@ class DynamicLineBatch:
         P[:, 1], P[:, 2] = pos_mid, pos_end
         U[:, 1], U[:, 2] = vel_mid, vel_end
         ff, af, lb, st = self._ff, self._af, self._laid, self._steps
+        for g in self._groups:
+            te, pe, ue = g.ends[:3]
+            te[:, 1] = t_end
+            pe[:, 1] = pos_end[g.rows]
+            ue[:, 1] = vel_end[g.rows]
         for j, line in enumerate(self.lines):
             g, row = self._where[j]
             implicit = line.plain_steps_until(t_end)
+            if implicit and self.one_interval[j] and g.batchable[row] and self.batch_kernel:
+                g.active[row] = True  # (advanced below, with its discretisation's others)
+                te, pe, ue = g.ends[:3]
+                te[row, 0] = line.time
+                pe[row, 0] = line.fairlead
+                ue[row, 0] = line.fairlead_velocity
+                continue
             if implicit is None:  # an "auto" window may end: solve_path decides there
                 line.solve_path(T[j, 1:2], P[j, 1:2], U[j, 1:2], ff[j, 1:2], af[j, 1:2],
                                 lb[j, 1:2], st[j, 1:2])
@@ -199,18 +260,51 @@ class DynamicLineBatch:
             g.fair_mid[row] = P[j, 1]
             g.fair_now[row] = P[j, 2]
             self.laid_length[j] = lb[j, 2]
+        for g in self._groups:
+            if g.active.any():
+                self._advance_batched(g, t_end)
+
+    def _advance_batched(self, g: _Discretisation, t_end: float) -> None:
+        """The lines of ``g`` marked active, stepping implicitly from their times to
+        ``t_end`` as one sample interval, in one kernel call (as :meth:`_advance_implicit`
+        line by line: the same steps to the last bit)."""
+        el = g.element
+        te, pe, ue, fe, ae, le, se = g.ends
+        dg_advance_implicit_batch(
+            g.active, te, pe, ue, g.r, g.v, g.acc, g.An, g.anchors, g.iprm,
+            el.differentiation, el.lift, el.filter, el.weights, g.ip, g.cs, fe, ae, le, se, 0,
+            g.no_shape_r, g.no_shape_t, g.q, g.qt, g.N, g.Nstar, g.faces, g.slack, g.fpos,
+            g.fvel_one, g.tmp, g.where, g.fields, g.blocks, g.band, g.x, g.flags, g.r_start,
+            g.v_start, g.a_start, g.r_mid, g.v_mid, MIDDLE_QUINTIC, g.failure)
+        failed = int(g.failure[0])
+        for row, j in enumerate(g.members):
+            if not g.active[row]:
+                continue
+            line = self.lines[j]
+            if row == failed:
+                g.active[:] = False
+                line.failed_index = 0
+                raise line.unstable(int(g.failure[1]), float(te[row, g.failure[2]]), g.where)
+            line.failed_index = -1
+            line.time = float(t_end)
+            line.fairlead[:] = pe[row, 1]
+            line.fairlead_velocity[:] = ue[row, 1]
+            g.fair_mid[row] = self._path[j, 1]
+            g.fair_now[row] = pe[row, 1]
+            self.laid_length[j] = le[row, 1]
+        g.active[:] = False
 
     def _advance_implicit(self, j: int, line: DynamicLine, g: _Discretisation, row: int,
                           t_end: float, pos_end: NDArray[np.float64],
                           vel_end: NDArray[np.float64]) -> None:
         """Line ``j`` (row ``row`` of ``g``) stepping implicitly: from its time to ``t_end``
         as one sample interval, its state at the middle interpolated (module docstring)."""
-        T, P, U, ff, af, lb, st = self._ends
+        T, P, U, ff, af, lb, st = g.ends
         integ = line.implicit
         t0 = line.time
-        T[j, 0], T[j, 1] = t0, t_end
-        P[j, 0], P[j, 1] = line.fairlead, pos_end
-        U[j, 0], U[j, 1] = line.fairlead_velocity, vel_end
+        T[row, 0], T[row, 1] = t0, t_end
+        P[row, 0], P[row, 1] = line.fairlead, pos_end
+        U[row, 0], U[row, 1] = line.fairlead_velocity, vel_end
         g.r_start[row] = line.r
         g.v_start[row] = line.v
         # the state's acceleration at the start: kept by the integrator between calls (the
@@ -221,7 +315,7 @@ class DynamicLineBatch:
         status, index = line.run_kernel(True, *self._end_calls[j])
         if status != _k.DG_OK:
             line.failed_index = 0
-            raise line.unstable(status, float(T[j, index]))
+            raise line.unstable(status, float(T[row, index]))
         line.failed_index = -1
         hermite_middle(g.r_start[row], g.v_start[row], g.a_start[row], line.r, line.v,
                        integ.An, t_end - t0, quintic, g.r_mid[row], g.v_mid[row])
@@ -230,7 +324,22 @@ class DynamicLineBatch:
         line.fairlead_velocity[:] = vel_end
         g.fair_mid[row] = self._path[j, 1]
         g.fair_now[row] = pos_end
-        self.laid_length[j] = lb[j, 1]
+        self.laid_length[j] = lb[row, 1]
+
+    def end_force_arguments(self, mid: bool) -> tuple[NDArray[np.float64], ...] | None:
+        """The inputs of ``_batch_kernels.dg_end_forces_batch`` for every line at once but the
+        fairlead velocities and the outputs (r, v, anchors, fairleads, parameters, the
+        element's matrices and weights, the work arrays, then the laid lengths' output),
+        in the current state (``mid`` False) or the middle sample's (True), when the lines
+        are one discretisation in order (None otherwise); arrays the batch updates in
+        place."""
+        g = self._whole
+        if g is None:
+            return None
+        el = g.element
+        return (g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
+                g.fair_mid if mid else g.fair_now, g.prm, el.differentiation, el.lift,
+                el.weights, g.q, g.qt, g.N, g.Nstar, g.faces, g.slack, g.laid)
 
     def end_forces(self, fairlead_velocity: NDArray[np.float64], mid: bool,
                    fairlead_force: NDArray[np.float64], anchor_force: NDArray[np.float64]
@@ -239,6 +348,14 @@ class DynamicLineBatch:
         last :meth:`advance` kept at the middle sample (``mid`` True), its fairlead moving at
         ``fairlead_velocity`` (n, 3): ``DynamicLine.end_forces_moving``'s values, into
         ``fairlead_force`` and ``anchor_force`` (n, 3)."""
+        if self._whole is not None:  # one discretisation, the lines in order: no copies
+            g = self._whole
+            el = g.element
+            dg_end_forces_batch(g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
+                                g.fair_mid if mid else g.fair_now, fairlead_velocity, g.prm,
+                                el.differentiation, el.lift, el.weights, g.q, g.qt, g.N,
+                                g.Nstar, g.faces, g.slack, fairlead_force, anchor_force, g.laid)
+            return
         for g in self._groups:
             g.fvel[:] = fairlead_velocity[g.rows]
             el = g.element

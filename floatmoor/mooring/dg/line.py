@@ -195,7 +195,9 @@ class DynamicLine(PathStepper):
         self.auto: AutoIntegration | None = None
         self._settling = False
         if settings.time_integration != "explicit":
-            self._implicit_prm = implicit_parameters(self.prm)
+            #: the kernels' parameter vector of the implicit steps (contact and damping in
+            #: the implicit solve)
+            self.implicit_prm = implicit_parameters(self.prm)
             self.implicit = ImplicitIntegrator(
                 K, p + 1, self._implicit_settings(), properties.axial_stiffness,
                 0.5 * self.element_length * self.element.min_spacing)
@@ -358,7 +360,7 @@ class DynamicLine(PathStepper):
             prm = self.prm
         else:  # one step a chunk (the relaxation is inside the implicit solve, so any step
             # is stable), no error control: only the end state counts
-            prm, saved = self._implicit_prm, integ.ip.copy()
+            prm, saved = self.implicit_prm, integ.ip.copy()
             integ.ip[_ik.IP_FORCE_TOL] = np.inf
             integ.ip[_ik.IP_SMOOTH_TOL] = np.inf
             integ.ip[_ik.IP_DT_MAX] = chunk
@@ -515,15 +517,15 @@ class DynamicLine(PathStepper):
         w = self._work
         if implicit:
             return self.implicit.run(
-                self.r, self.v, t, x, u, self.anchor, self._implicit_prm, self.element, w,
-                ff, af, lb, st, every, shapes_r, shapes_t, self._anchors_for_kernels())
+                self.r, self.v, t, x, u, self.anchor, self.implicit_prm, self.element, w,
+                ff, af, lb, st, every, shapes_r, shapes_t, self.friction_anchors_in_use())
         return _k.dg_run_path(
             self.r, self.v, t, x, u, self.anchor, self.prm,
             self.element.differentiation, self.element.lift, self.element.filter,
             self.element.weights, self._explicit_step(), ff, af, lb, st,
             every, shapes_r, shapes_t, w.stages, w.q, w.qt, w.N, w.Nstar, w.faces,
             w.slack, w.fpos, w.fvel, w.tmp, w.boundary, w.where,
-            w.damping if self._implicit_damping() else None, self._anchors_for_kernels())
+            w.damping if self._implicit_damping() else None, self.friction_anchors_in_use())
 
     def plain_steps_until(self, t_end: float) -> bool | None:
         """Whether the steps from now to ``t_end`` [s] are implicit, when :meth:`run_kernel`
@@ -539,17 +541,19 @@ class DynamicLine(PathStepper):
             return None
         return implicit
 
-    def unstable(self, status: int, time: float) -> SolverError:
+    def unstable(self, status: int, time: float,
+                 where: NDArray[np.int64] | None = None) -> SolverError:
         """The error of a kernel's failing ``status`` at ``time`` [s] (the element and node
-        in the workspace's ``where``), naming the line, the arc length and the step."""
-        w = self._work
-        k, i = int(w.where[0]), int(w.where[1])
+        in ``where``, by default the workspace's), naming the line, the arc length and the
+        step."""
+        where = self._work.where if where is None else where
+        k, i = int(where[0]), int(where[1])
         s = self.arc_length[k * (self.settings.order + 1) + i]
         return SolverError(f"line '{self.name}' (dynamic): {_STATUS_TEXT[status]} at arc "
                            f"length s = {s:.4g} m, t = {time:.6g} s; the solution "
                            f"went unstable ({self._step_text()})")
 
-    def _anchors_for_kernels(self) -> NDArray[np.float64] | None:
+    def friction_anchors_in_use(self) -> NDArray[np.float64] | None:
         """The friction anchors with the stick-spring law, None with the Coulomb law (whose
         kernels then compile without the friction kernels:
         docs/validation/performance.md#first-run)."""

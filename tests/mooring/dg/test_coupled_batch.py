@@ -179,6 +179,7 @@ def test_implicit_middle_state_is_interpolated(monkeypatch: pytest.MonkeyPatch) 
 
     monkeypatch.setattr(DynamicLineBatch, "_advance_implicit", checked)
     system, steps = _system(MooredBody)
+    system.moored._batch.batch_kernel = False  # (one call per line, checked above)
     for _ in range(steps):
         system.moored.step()
     e = np.array(errors)
@@ -186,6 +187,48 @@ def test_implicit_middle_state_is_interpolated(monkeypatch: pytest.MonkeyPatch) 
     scale = e[:, 2].max()
     assert e[:, 0].max() < MIDDLE_RTOL * scale
     assert e[:, 1].max() > 10.0 * MIDDLE_RTOL * scale  # (the end state would fail)
+
+
+@pytest.mark.parametrize("extra, batched", [
+    ([], 1),  # an explicit line beside an implicit one of its discretisation
+    (['lines.line1.dynamic.time_integration="implicit"'], 2),
+    (['seabed.friction_model="stick_spring"'], 0)])  # (its anchors: one call per line)
+def test_batch_kernel_gives_the_bits_of_one_call_per_line(extra: list[str],
+                                                          batched: int) -> None:
+    """The implicit lines of one discretisation advanced in one kernel call
+    (``_batch_kernels.dg_advance_implicit_batch``) take the steps of one kernel call per line
+    (:meth:`DynamicLineBatch._advance_implicit`, itself checked above): every stage's forces,
+    the body, the lines' states, laid lengths and integrator states to the last bit."""
+    a, steps = _system(MooredBody, OVERRIDES + extra)
+    b, _ = _system(MooredBody, OVERRIDES + extra)
+    b.moored._batch.batch_kernel = False
+    batch = a.moored._batch
+    counts: list[int] = []
+    advance = batch._advance_batched
+    batch._advance_batched = (  # type: ignore[method-assign]
+        lambda g, t_end: counts.append(int(g.active.sum())) or advance(g, t_end))
+    # (the counters of the settle: a line settled before, its shape reused, counted none)
+    start = [[m.implicit.cs.copy() for m in s.moored.models if m.implicit is not None]
+             for s in (a, b)]
+    stages_a: list[NDArray] = []
+    stages_b: list[NDArray] = []
+    _observed(a.moored, stages_a)
+    _observed(b.moored, stages_b)
+    for _ in range(steps):
+        a.moored.step()
+        b.moored.step()
+    assert (max(counts) if counts else 0) == batched
+    assert np.array_equal(np.array(stages_a), np.array(stages_b))
+    assert np.array_equal(a.moored.body.x, b.moored.body.x)
+    for ma, mb in zip(a.moored.models, b.moored.models):
+        assert np.array_equal(ma.r, mb.r) and np.array_equal(ma.v, mb.v)
+        assert ma.time == mb.time and np.array_equal(ma.fairlead, mb.fairlead)
+        if ma.implicit is not None:
+            sa, sb = ma.implicit.state_arrays(), mb.implicit.state_arrays()
+            sa["implicit_cs"] = sa["implicit_cs"] - start[0].pop(0)
+            sb["implicit_cs"] = sb["implicit_cs"] - start[1].pop(0)
+            assert all(np.array_equal(sa[k], sb[k]) for k in sa)
+    assert np.array_equal(a.moored.laid_length, b.moored.laid_length)
 
 
 @pytest.mark.parametrize("z", [0.08, 2.0])
@@ -301,3 +344,35 @@ def test_batch_end_forces_match_the_oracle(c_int: float) -> None:
         assert np.allclose(ff[line], -f.Nstar[-1], rtol=0.0, atol=ORACLE_RTOL * scale)
         assert np.allclose(af[line], f.Nstar[0], rtol=0.0, atol=ORACLE_RTOL * scale)
     assert np.all(laid == 0.0)
+
+
+def test_batched_mooring_force_composes_its_kernels() -> None:
+    """The stage kernel of a run whose lines are all dynamic is the three kernels it composes,
+    called one after the other, to the last bit (each has its own NumPy oracle)."""
+    from floatmoor.body._kinematics_kernels import generalised_force_into, points_state_into
+    from floatmoor.simulation._coupling_kernels import batched_mooring_force
+
+    system, steps = _system(MooredBody, EXPLICIT[:-1] + ["lines.line3.dynamic.elements=4"])
+    moored = system.moored
+    assert moored._all_batched
+    for _ in range(3):
+        moored.step()
+    rng = np.random.default_rng(11)
+    x, v = 0.01 * rng.normal(size=6), 0.1 * rng.normal(size=6)
+    for mid in (False, True):
+        moored._at_mid = mid
+        force = moored.mooring_force(x, v)
+        args = moored._batch.end_force_arguments(mid)
+        pos, vel = np.zeros((3, 3)), np.zeros((3, 3))
+        ff, af, out = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(6)
+        points_state_into(x, v, moored.arms, moored.centre, pos, vel)
+        r, rv, anchors, fpos, prm, D, LIFT, weights, *work, laid = args
+        dg_end_forces_batch(r, rv, anchors, fpos, vel, prm, D, LIFT, weights, *work, ff, af,
+                            laid)
+        generalised_force_into(x, ff, moored.arms, out)
+        assert np.array_equal(force, out)
+        # and the general path (line by line through line_forces) gives the same bits
+        moored._all_batched = False
+        assert np.array_equal(moored.mooring_force(x, v), out)
+        moored._all_batched = True
+    assert np.abs(out).max() > 0.1
