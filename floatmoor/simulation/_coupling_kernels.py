@@ -20,16 +20,14 @@ def batched_mooring_force(x: np.ndarray, v: np.ndarray, arms: np.ndarray, centre
                           positions: np.ndarray, velocities: np.ndarray, r: np.ndarray,
                           rv: np.ndarray, anchors: np.ndarray, fpos: np.ndarray,
                           prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray,
-                          weights: np.ndarray, q: np.ndarray, qt: np.ndarray, N: np.ndarray,
-                          Nstar: np.ndarray, faces: np.ndarray, slack: np.ndarray,
-                          laid: np.ndarray, fair_out: np.ndarray, anch_out: np.ndarray,
-                          out: np.ndarray) -> None:
+                          weights: np.ndarray, laid: np.ndarray, fair_out: np.ndarray,
+                          anch_out: np.ndarray, out: np.ndarray) -> None:
     """The 6-DOF force ``out`` of the lines on the body in state (x, v): the fairleads'
     positions and velocities (``points_state_into``, into ``positions`` and ``velocities``),
     the lines' end forces in their states ``r``, ``rv`` with their fairleads at ``fpos`` moving
     at those velocities (``dg_end_forces_batch``, into ``fair_out``, ``anch_out`` and
     ``laid``), and the fairlead forces' generalised force (``generalised_force_into``)."""
     points_state_into(x, v, arms, centre, positions, velocities)
-    dg_end_forces_batch(r, rv, anchors, fpos, velocities, prm, D, LIFT, weights, q, qt, N, Nstar,
-                        faces, slack, fair_out, anch_out, laid)
+    dg_end_forces_batch(r, rv, anchors, fpos, velocities, prm, D, LIFT, weights, fair_out,
+                        anch_out, laid)
     generalised_force_into(x, fair_out, arms, out)

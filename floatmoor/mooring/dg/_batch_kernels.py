@@ -1,18 +1,22 @@
 """Numba kernels of several dynamic lines at once (:mod:`floatmoor.mooring.dg.batch`): the end
-forces of every line of one discretisation in one call, as each line's
-``DynamicLine.end_forces_moving`` computes them (``_kernels._record_ends``: the tension field and
-the end fluxes), a line's state at the middle of a body step interpolated in time from its
-states at both ends (docs/theory/floater.md#coupling-scheme), and the implicit lines of one
+forces of every line of one discretisation in one call, the values each line's
+``DynamicLine.end_forces_moving`` computes (``_kernels._record_ends``: the tension field and the
+end fluxes) from the end nodes alone, a line's state at the middle of a body step interpolated
+in time from its states at both ends (docs/theory/floater.md#coupling-scheme), and the
+implicit lines of one
 discretisation advanced over a body step in one call (a call from Python costs about as much
 as a line's implicit step: docs/validation/performance.md)."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from floatmoor._numba import jit
+from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg._implicit_kernels import CS_ACC_VALID, dg_run_path_implicit
-from floatmoor.mooring.dg._kernels import _ZERO3, DG_OK, _record_ends
+from floatmoor.mooring.dg._kernels import _ZERO3, DG_OK
 
 __all__ = ["dg_end_forces_batch", "hermite_middle", "dg_advance_implicit_batch"]
 
@@ -20,18 +24,91 @@ __all__ = ["dg_end_forces_batch", "hermite_middle", "dg_advance_implicit_batch"]
 @jit
 def dg_end_forces_batch(r: np.ndarray, v: np.ndarray, anchors: np.ndarray, fpos: np.ndarray,
                         fvel: np.ndarray, prm: np.ndarray, D: np.ndarray, LIFT: np.ndarray,
-                        weights: np.ndarray, q: np.ndarray, qt: np.ndarray, N: np.ndarray,
-                        Nstar: np.ndarray, faces: np.ndarray, slack: np.ndarray,
-                        fair_out: np.ndarray, anch_out: np.ndarray, laid: np.ndarray) -> None:
+                        weights: np.ndarray, fair_out: np.ndarray, anch_out: np.ndarray,
+                        laid: np.ndarray) -> None:
     """End forces of lines l = 0 .. n-1 of one discretisation, each in its state r[l], v[l]
     ((n, K, Np, 3)) with its fairlead at fpos[l] moving at fvel[l] ((n, 3)), anchor anchors[l]
     and parameters prm[l] ((n, N_PRM)): the forces on the fairleads and anchors into
-    ``fair_out`` and ``anch_out`` (n, 3) and the laid lengths into ``laid`` (n,). ``q`` ...
-    ``slack`` are one line's work arrays (``_Workspace``), reused line after line."""
+    ``fair_out`` and ``anch_out`` (n, 3) and the laid lengths into ``laid`` (n,); the values
+    of ``_kernels._record_ends``, which computes the whole tension field for them, from the
+    two end nodes' tensions alone (:func:`_end_forces`)."""
     for line in range(r.shape[0]):
-        laid[line] = _record_ends(r[line], v[line], anchors[line], _ZERO3, fpos[line],
-                                  fvel[line], prm[line], D, LIFT, q, qt, N, Nstar, faces, slack,
-                                  weights, fair_out[line], anch_out[line])
+        laid[line] = _end_forces(r[line], v[line], anchors[line], fpos[line], fvel[line],
+                                 prm[line], D, LIFT, weights, fair_out[line], anch_out[line])
+
+
+@jit
+def _node_gradient(u, left, right, D, LIFT, jac, k, i):
+    """(x, y, z) of ``_kernels._gradient``'s derivative of u at node i of element k, alone:
+    the same operations in the same order, so the same bits."""
+    K, Np = u.shape[0], u.shape[1]
+    if k == 0:
+        lx, ly, lz = left[0], left[1], left[2]
+    else:
+        lx, ly, lz = u[k - 1, Np - 1, 0], u[k - 1, Np - 1, 1], u[k - 1, Np - 1, 2]
+    if k == K - 1:
+        rx, ry, rz = right[0], right[1], right[2]
+    else:
+        rx, ry, rz = u[k, Np - 1, 0], u[k, Np - 1, 1], u[k, Np - 1, 2]
+    jlx, jly, jlz = lx - u[k, 0, 0], ly - u[k, 0, 1], lz - u[k, 0, 2]
+    jrx, jry, jrz = rx - u[k, Np - 1, 0], ry - u[k, Np - 1, 1], rz - u[k, Np - 1, 2]
+    ax, ay, az = 0.0, 0.0, 0.0
+    for j in range(Np):
+        d = D[i, j]
+        ax += d * u[k, j, 0]
+        ay += d * u[k, j, 1]
+        az += d * u[k, j, 2]
+    l0, l1 = LIFT[i, 0], LIFT[i, 1]
+    return (jac * (ax - l0 * jlx + l1 * jrx), jac * (ay - l0 * jly + l1 * jry),
+            jac * (az - l0 * jlz + l1 * jrz))
+
+
+@jit
+def _node_tension(r, v, anchor, avel, fpos, fvel, D, LIFT, jac, EA, cint, k, i):
+    """(x, y, z) of ``_kernels._tension_field``'s axial force N at node i of element k,
+    alone (the same operations in the same order)."""
+    qx, qy, qz = _node_gradient(r, anchor, fpos, D, LIFT, jac, k, i)
+    ql = math.sqrt(qx ** 2 + qy ** 2 + qz ** 2)
+    eps = ql - 1.0
+    T = 0.0
+    if eps > 0.0:
+        T = EA * eps
+        if cint > 0.0:
+            tx, ty, tz = _node_gradient(v, avel, fvel, D, LIFT, jac, k, i)
+            deps = (qx * tx + qy * ty + qz * tz) / ql
+            T += cint * deps
+            if T < 0.0:
+                T = 0.0
+    scale = T / ql if ql > 0.0 else 0.0
+    return scale * qx, scale * qy, scale * qz
+
+
+@jit
+def _end_forces(r, v, anchor, fpos, fvel, prm, D, LIFT, weights, fair_out, anch_out):
+    """``_kernels._record_ends`` of a fixed anchor (its fluxes N* at the two ends, the laid
+    length) from the end nodes' tensions: the fluxes at the ends need no other node."""
+    K, Np = r.shape[0], r.shape[1]
+    jac = 2.0 / prm[_k.P_H]
+    EA, cint = prm[_k.P_EA], prm[_k.P_CINT]
+    m, c_wave = prm[_k.P_M], prm[_k.P_C]
+    first = np.int64(0)  # (a typed index: a literal would compile the kernel once more)
+    n0 = _node_tension(r, v, anchor, _ZERO3, fpos, fvel, D, LIFT, jac, EA, cint, first, first)
+    sub = 1.0 if r[0, 0, 2] < 0.0 else 0.0
+    Z = (m + sub * prm[_k.P_MAT]) * c_wave
+    for c in range(3):
+        anch_out[c] = n0[c] + Z * (v[0, 0, c] - _ZERO3[c])
+    n1 = _node_tension(r, v, anchor, _ZERO3, fpos, fvel, D, LIFT, jac, EA, cint, K - 1, Np - 1)
+    sub = 1.0 if r[K - 1, Np - 1, 2] < 0.0 else 0.0
+    Z = (m + sub * prm[_k.P_MAT]) * c_wave
+    for c in range(3):
+        fair_out[c] = -(n1[c] + Z * (fvel[c] - v[K - 1, Np - 1, c]))
+    laid = 0.0
+    threshold = prm[_k.P_ZB] + 0.1 * prm[_k.P_D]
+    for k in range(K):
+        for i in range(Np):
+            if r[k, i, 2] <= threshold:
+                laid += 0.5 * prm[_k.P_H] * weights[i]
+    return laid
 
 
 @jit

@@ -329,7 +329,7 @@ class DynamicLineBatch:
     def end_force_arguments(self, mid: bool) -> tuple[NDArray[np.float64], ...] | None:
         """The inputs of ``_batch_kernels.dg_end_forces_batch`` for every line at once but the
         fairlead velocities and the outputs (r, v, anchors, fairleads, parameters, the
-        element's matrices and weights, the work arrays, then the laid lengths' output),
+        element's matrices and weights, then the laid lengths' output),
         in the current state (``mid`` False) or the middle sample's (True), when the lines
         are one discretisation in order (None otherwise); arrays the batch updates in
         place."""
@@ -339,7 +339,7 @@ class DynamicLineBatch:
         el = g.element
         return (g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
                 g.fair_mid if mid else g.fair_now, g.prm, el.differentiation, el.lift,
-                el.weights, g.q, g.qt, g.N, g.Nstar, g.faces, g.slack, g.laid)
+                el.weights, g.laid)
 
     def end_forces(self, fairlead_velocity: NDArray[np.float64], mid: bool,
                    fairlead_force: NDArray[np.float64], anchor_force: NDArray[np.float64]
@@ -353,15 +353,14 @@ class DynamicLineBatch:
             el = g.element
             dg_end_forces_batch(g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
                                 g.fair_mid if mid else g.fair_now, fairlead_velocity, g.prm,
-                                el.differentiation, el.lift, el.weights, g.q, g.qt, g.N,
-                                g.Nstar, g.faces, g.slack, fairlead_force, anchor_force, g.laid)
+                                el.differentiation, el.lift, el.weights, fairlead_force,
+                                anchor_force, g.laid)
             return
         for g in self._groups:
             g.fvel[:] = fairlead_velocity[g.rows]
             el = g.element
             dg_end_forces_batch(g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
                                 g.fair_mid if mid else g.fair_now, g.fvel, g.prm,
-                                el.differentiation, el.lift, el.weights, g.q, g.qt, g.N,
-                                g.Nstar, g.faces, g.slack, g.ff, g.af, g.laid)
+                                el.differentiation, el.lift, el.weights, g.ff, g.af, g.laid)
             fairlead_force[g.rows] = g.ff
             anchor_force[g.rows] = g.af

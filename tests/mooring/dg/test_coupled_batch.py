@@ -18,6 +18,7 @@ from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg._batch_kernels import dg_end_forces_batch, hermite_middle
 from floatmoor.mooring.dg.batch import DynamicLineBatch
 from floatmoor.mooring.dg.line import DynamicLine
+from floatmoor.mooring.dg.reference import reference_element
 from floatmoor.simulation.assembly import assemble
 from floatmoor.simulation.coupled import ONE_INTERVAL_LIMIT, MooredBody
 from floatmoor.simulation.coupled_run import settings_from_case
@@ -135,7 +136,7 @@ def _fairlead_force(batch: DynamicLineBatch, j: int, r: NDArray, v: NDArray,
     ff, af, laid = np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1)
     dg_end_forces_batch(r[None], v[None], g.anchors[row:row + 1], fairlead[None],
                         np.zeros((1, 3)), g.prm[row:row + 1], el.differentiation, el.lift,
-                        el.weights, g.q, g.qt, g.N, g.Nstar, g.faces, g.slack, ff, af, laid)
+                        el.weights, ff, af, laid)
     return ff[0]
 
 
@@ -331,12 +332,10 @@ def test_batch_end_forces_match_the_oracle(c_int: float) -> None:
     prm[:, _k.P_M], prm[:, _k.P_EA], prm[:, _k.P_CINT], prm[:, _k.P_H] = mass, EA, c_int, h
     prm[:, _k.P_C] = np.sqrt(EA / mass)
     prm[:, _k.P_ZB] = -1e9  # (no node on the seabed)
-    work = [np.zeros((K, p + 1, 3)) for _ in range(3)] + [np.zeros((K + 1, 3)),
-                                                          np.zeros((K + 1, 3)), np.zeros(K)]
     ff, af, laid = np.zeros((m, 3)), np.zeros((m, 3)), np.zeros(m)
     anchors.flags.writeable = False  # as the batch holds them: the kernel's one signature
-    dg_end_forces_batch(r, v, anchors, ends, fvel, prm, ops.D, ops.LIFT, ops.weights, *work,
-                        ff, af, laid)
+    dg_end_forces_batch(r, v, anchors, ends, fvel, prm, ops.D, ops.LIFT, ops.weights, ff, af,
+                        laid)
     for line in range(m):
         f = oracle.tension_field(r[line], v[line], anchors[line], ends[line], fvel[line],
                                  D=ops.D, LIFT=ops.LIFT, h=h, m=mass, EA=EA, c_int=c_int)
@@ -366,9 +365,8 @@ def test_batched_mooring_force_composes_its_kernels() -> None:
         pos, vel = np.zeros((3, 3)), np.zeros((3, 3))
         ff, af, out = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros(6)
         points_state_into(x, v, moored.arms, moored.centre, pos, vel)
-        r, rv, anchors, fpos, prm, D, LIFT, weights, *work, laid = args
-        dg_end_forces_batch(r, rv, anchors, fpos, vel, prm, D, LIFT, weights, *work, ff, af,
-                            laid)
+        r, rv, anchors, fpos, prm, D, LIFT, weights, laid = args
+        dg_end_forces_batch(r, rv, anchors, fpos, vel, prm, D, LIFT, weights, ff, af, laid)
         generalised_force_into(x, ff, moored.arms, out)
         assert np.array_equal(force, out)
         # and the general path (line by line through line_forces) gives the same bits
@@ -376,3 +374,41 @@ def test_batched_mooring_force_composes_its_kernels() -> None:
         assert np.array_equal(moored.mooring_force(x, v), out)
         moored._all_batched = True
     assert np.abs(out).max() > 0.1
+
+
+@pytest.mark.parametrize("K", [1, 2, 4])
+@pytest.mark.parametrize("c_int", [0.0, 50.0])
+def test_batch_end_forces_are_the_tension_fields_bits(K: int, c_int: float) -> None:
+    """The end forces from the end nodes alone are the fluxes of the whole tension field
+    (``dg_tension_field``), to the last bit: taut and slack ends, in and out of the water,
+    one element and several, with and without the internal damping."""
+    rng = np.random.default_rng(7 + K)
+    p, m = 3, 6
+    ops = reference_element(p)
+    h, EA, mass = 2.0, 1.0e5, 1.5
+    anchors = rng.normal(size=(m, 3))
+    stretch = np.array([1.02, 0.97, 1.02, 0.97, 1.001, 1.05])  # (slack where < 1)
+    ends = anchors + np.array([1.0, 0.1, 0.4]) * h * K
+    s = (np.arange(K)[:, None] + 0.5 * (ops.nodes[None, :] + 1.0)).reshape(-1) / K
+    r = np.array([a + f * np.outer(s, e - a) for a, e, f in zip(anchors, ends, stretch)])
+    r = r.reshape(m, K, p + 1, 3) + 1e-3 * rng.normal(size=(m, K, p + 1, 3))
+    r[::2, ..., 2] -= 3.0 * h * K  # (submerged: the added mass in the impedance)
+    v = rng.normal(size=r.shape)
+    fvel = rng.normal(size=(m, 3))
+    prm = np.zeros((m, _k.N_PRM))
+    prm[:, _k.P_M], prm[:, _k.P_EA], prm[:, _k.P_CINT], prm[:, _k.P_H] = mass, EA, c_int, h
+    prm[:, _k.P_C], prm[:, _k.P_MAT] = np.sqrt(EA / mass), 0.3
+    prm[:, _k.P_ZB], prm[:, _k.P_D] = np.median(r[..., 2]), 0.01  # (half the nodes laid)
+    ff, af, laid = np.zeros((m, 3)), np.zeros((m, 3)), np.zeros(m)
+    anchors.flags.writeable = False
+    dg_end_forces_batch(r, v, anchors, ends, fvel, prm, ops.differentiation, ops.lift,
+                        ops.weights, ff, af, laid)
+    for line in range(m):
+        q, qt, N = (np.zeros((K, p + 1, 3)) for _ in range(3))
+        Nstar, faces, slack = np.zeros((K + 1, 3)), np.zeros((K + 1, 3)), np.zeros(K)
+        _k.dg_tension_field(r[line], v[line], anchors[line], ends[line], fvel[line], prm[line],
+                            ops.differentiation, ops.lift, q, qt, N, Nstar, faces, slack)
+        assert np.array_equal(ff[line], -Nstar[K]) and np.array_equal(af[line], Nstar[0])
+        on_bed = r[line, ..., 2] <= prm[line, _k.P_ZB] + 0.1 * prm[line, _k.P_D]
+        assert laid[line] == pytest.approx(0.5 * h * (on_bed * ops.weights).sum(), rel=1e-12)
+    assert 0.0 < laid.sum() < m * K * h
