@@ -142,12 +142,13 @@ def dg_advance_implicit_batch(active, time, path, velocity, r, v, acc, An, ancho
                               LIFT, F, weights, ip, cs, fair_force, anch_force, laid, steps,
                               shape_every, shape_r, shape_t, q, qt, N, Nstar, faces, slack, fpos,
                               fvel, tmp, where, fields, blocks, band, x, flags, r_start, v_start,
-                              a_start, r_mid, v_mid, quintic, failure):
+                              a_start, r_mid, v_mid, quintic, record_first, failure):
     """Advance each line l with ``active[l]`` of one discretisation over its one sample
     interval ``time[l]`` (2,) along ``path[l]``, ``velocity[l]`` (2, 3): one
     ``_implicit_kernels.dg_run_path_implicit`` call on its state ``r[l]``, ``v[l]``, ``acc[l]``,
     ``An[l]``, its parameters ``prm[l]``, ``ip[l]``, ``cs[l]`` and factors ``band[l]``,
-    ``flags[l]`` (outputs ``fair_force[l]`` ... ``steps[l]``), no friction anchors; then its
+    ``flags[l]`` (outputs ``fair_force[l]`` ... ``steps[l]``; the first sample's with
+    ``record_first``), no friction anchors; then its
     state at the interval's middle from both ends (:func:`hermite_middle`, the quintic with
     ``quintic`` when the start's acceleration was known) into ``r_mid[l]``, ``v_mid[l]``.
     ``q`` ... ``where``, ``fields`` (7, K, Np, 3), ``blocks`` (2, K, Np, 3, 3) and ``x`` are one
@@ -175,7 +176,7 @@ def dg_advance_implicit_batch(active, time, path, velocity, r, v, acc, An, ancho
             anch_force[line], laid[line], steps[line], shape_every, shape_r, shape_t, q, qt, N,
             Nstar, faces, slack, fpos, fvel, tmp, where, fields[0], fields[1], fields[2],
             fields[3], fields[4], fields[5], fields[6], blocks[0], blocks[1], band[line], x,
-            flags[line], None)
+            flags[line], record_first, None)
         if status != DG_OK:
             failure[0], failure[1], failure[2] = line, status, index
             return

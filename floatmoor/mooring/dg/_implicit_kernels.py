@@ -671,10 +671,12 @@ def _copy(src, dst):
 def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LIFT, F, weights,
                          ip, cs, fair_force, anch_force, laid, steps, shape_every, shape_r,
                          shape_t, q, qt, N, Nstar, faces, slack, fpos, fvel, tmp, where, r0, v0,
-                         a0, An0, A1, R, MR, E, Dg, band, x, flags, fa=None):
+                         a0, An0, A1, R, MR, E, Dg, band, x, flags, record_first, fa=None):
     """Advance the line along a fairlead path with the generalised-alpha method, recording its
     end forces at every sample (the implicit counterpart of ``_kernels.dg_run_path``, same
-    outputs; ``steps`` gets the number of steps taken in each interval).
+    outputs; ``steps`` gets the number of steps taken in each interval); at the first sample
+    (the current state) only with ``record_first`` or shapes to record (a caller that has them
+    already: the coupled runs' batch kernel).
 
     ``acc`` is the acceleration variable of the method and ``An`` the acceleration A of the
     state; both are computed from the state first when ``cs[CS_ACC_VALID]`` is 0. ``prm`` must
@@ -704,8 +706,9 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                         An, fa)
         _copy(An, acc)
         cs[CS_ACC_VALID] = 1.0
-    laid[0] = _k._record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces, slack,
-                         weights, fair_force[0], anch_force[0])
+    if record_first or shape_every > 0:  # (a shape takes the tension field of the record)
+        laid[0] = _k._record(r, v, anchor, fpos, fvel, prm, D, LIFT, q, qt, N, Nstar, faces,
+                             slack, weights, fair_force[0], anch_force[0])
     steps[0] = 0.0
     err_coef = abs(ip[IP_BETA] - 1.0 / 6.0)
     dt_max = ip[IP_DT_MAX]
@@ -764,9 +767,11 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                 tol = ip[IP_FORCE_TOL] if near_slack else smooth_tol
                 err = _end_force_error(R, q, N, prm, D, LIFT) / tol
             jumped = False
+            strain_known = False
             if (ok and err <= 1.0 and ip[IP_FLAG_EVENTS] != 0.0
                     and L < min(level_max, level_min + EVENT_LEVELS)):
                 e_end, s_end = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
+                strain_known = True
                 jumped = _jumped_transition(e_start, s_start, e_end, s_end, dt, EA,
                                             ip[IP_FORCE_TOL])
             if not ok or jumped or (err > 1.0 and L < level_max):
@@ -788,8 +793,8 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
             cs[CS_STEPS] += 1.0
             if its > SLOW_ITERATIONS:
                 cs[CS_FACTOR_DT] = 0.0
+            filtered = False
             if prm[_k.P_FILTER] != 0.0:
-                filtered = False
                 for k in range(K):
                     if slack[k] != 0.0:
                         filtered = True
@@ -799,7 +804,10 @@ def dg_run_path_implicit(r, v, acc, An, time, path, velocity, anchor, prm, D, LI
                                     faces, slack, An, fa)
             if fa is not None:  # (the force at the committed state, so An, stays the same)
                 return_map(r, fa, prm[_k.P_KS], prm[_k.P_MU] * prm[_k.P_KB], prm[_k.P_ZB])
-            e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
+            if strain_known and not filtered:  # (the same state: the events' values)
+                e_start, s_start = e_end, s_end
+            else:
+                e_start, s_start = _fairlead_strain(r, v, anchor, fpos, fvel, prm, D, LIFT)
             if e_start <= ip[IP_SLACK_STRAIN]:
                 cs[CS_SLACK_TIME] = t + dt
             cs[CS_GOOD] = cs[CS_GOOD] + 1.0 if err < ip[IP_GROW] else 0.0

@@ -35,6 +35,7 @@ operations, ``_batch_kernels.dg_end_forces_batch``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -59,6 +60,9 @@ __all__ = ["DynamicLineBatch", "MIDDLE_QUINTIC"]
 MIDDLE_QUINTIC = False
 
 
+#: the batch kernel skips the end forces of the interval's first sample (the state the last
+#: advance ended in: the stages take theirs from ``end_forces``)
+_NO_FIRST_RECORD = np.bool_(False)
 #: the implicit integrator's arrays that carry its state from step to step: stacked per
 #: discretisation, for the batch kernel (``_batch_kernels.dg_advance_implicit_batch``)
 _STACKED = ("acc", "An", "cs", "ip", "band", "flags")
@@ -168,6 +172,9 @@ class DynamicLineBatch:
         #: (``_batch_kernels.dg_advance_implicit_batch``); False: one call per line
         #: (:meth:`_advance_implicit`), the same steps to the last bit
         self.batch_kernel = True
+        #: the time before which every line takes the batch kernel's step as the last step
+        #: did (:meth:`_advance_all`); -inf: the next step looks at each line
+        self._plain_until = -math.inf
         #: which lines may step implicitly over the body step as one interval (the coupling's
         #: owner clears those whose body answers them too fast: module docstring)
         self.one_interval = np.ones(n, dtype=bool)
@@ -194,6 +201,7 @@ class DynamicLineBatch:
     def sync(self) -> None:
         """Take the lines' states and fairleads again (after they were restored in place or
         replaced)."""
+        self._plain_until = -math.inf
         for g in self._groups:
             g.bind(self.lines)
 
@@ -211,6 +219,9 @@ class DynamicLineBatch:
         SolverError
             As :meth:`DynamicLine.solve_path` (the line, time and quantity).
         """
+        if t_end < self._plain_until:  # every line as the last step: one kernel call
+            self._advance_all(t_end, pos_mid, pos_end, vel_end)
+            return
         T, P, U = self._time, self._path, self._velocity
         T[:, 1], T[:, 2] = t_mid, t_end
         P[:, 1], P[:, 2] = pos_mid, pos_end
@@ -260,14 +271,51 @@ class DynamicLineBatch:
             g.fair_mid[row] = P[j, 1]
             g.fair_now[row] = P[j, 2]
             self.laid_length[j] = lb[j, 2]
+        whole = self._whole
+        batched = whole is not None and bool(whole.active.all())
         for g in self._groups:
             if g.active.any():
                 self._advance_batched(g, t_end)
+        # the next steps may take every line in one call while they stay implicit and no
+        # "auto" decision is due (lines in the batch kernel's interval ends, as they are now)
+        self._plain_until = (min(line.plain_until() for line in self.lines) if batched
+                             else -math.inf)
+
+    def _advance_all(self, t_end: float, pos_mid: NDArray[np.float64],
+                     pos_end: NDArray[np.float64], vel_end: NDArray[np.float64]) -> None:
+        """:meth:`advance` when the last step took every line (one discretisation, in order)
+        through the batch kernel and none may leave it before ``t_end``: the intervals start
+        where the last ones ended, and the bookkeeping is done on whole arrays."""
+        g = self._whole
+        te, pe, ue, fe, ae, le, se = g.ends
+        te[:, 0], pe[:, 0], ue[:, 0] = te[:, 1], pe[:, 1], ue[:, 1]
+        te[:, 1], pe[:, 1], ue[:, 1] = t_end, pos_end, vel_end
+        g.active[:] = True
+        self._run_batch_kernel(g)
+        if g.failure[0] >= 0:
+            self._plain_until = -math.inf
+            self._commit_batched(g, t_end)  # (raises)
+        t_end = float(t_end)
+        for j, line in enumerate(self.lines):
+            line.time = t_end
+            line.fairlead[:] = pos_end[j]
+            line.fairlead_velocity[:] = vel_end[j]
+        g.fair_mid[:] = pos_mid
+        g.fair_now[:] = pos_end
+        self.laid_length[:] = le[:, 1]
+        g.active[:] = False
 
     def _advance_batched(self, g: _Discretisation, t_end: float) -> None:
         """The lines of ``g`` marked active, stepping implicitly from their times to
         ``t_end`` as one sample interval, in one kernel call (as :meth:`_advance_implicit`
         line by line: the same steps to the last bit)."""
+        self._run_batch_kernel(g)
+        self._commit_batched(g, t_end)
+
+    @staticmethod
+    def _run_batch_kernel(g: _Discretisation) -> None:
+        """``_batch_kernels.dg_advance_implicit_batch`` on the lines of ``g`` marked active,
+        over their intervals in ``g.ends`` (the first failure in ``g.failure``)."""
         el = g.element
         te, pe, ue, fe, ae, le, se = g.ends
         dg_advance_implicit_batch(
@@ -275,7 +323,13 @@ class DynamicLineBatch:
             el.differentiation, el.lift, el.filter, el.weights, g.ip, g.cs, fe, ae, le, se, 0,
             g.no_shape_r, g.no_shape_t, g.q, g.qt, g.N, g.Nstar, g.faces, g.slack, g.fpos,
             g.fvel_one, g.tmp, g.where, g.fields, g.blocks, g.band, g.x, g.flags, g.r_start,
-            g.v_start, g.a_start, g.r_mid, g.v_mid, MIDDLE_QUINTIC, g.failure)
+            g.v_start, g.a_start, g.r_mid, g.v_mid, MIDDLE_QUINTIC, _NO_FIRST_RECORD,
+            g.failure)
+
+    def _commit_batched(self, g: _Discretisation, t_end: float) -> None:
+        """After :meth:`_run_batch_kernel`: each active line's time, fairlead and laid length,
+        or the error of the line that failed (the lines before it committed)."""
+        te, pe, ue, le = g.ends[0], g.ends[1], g.ends[2], g.ends[5]
         failed = int(g.failure[0])
         for row, j in enumerate(g.members):
             if not g.active[row]:

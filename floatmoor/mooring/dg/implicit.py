@@ -71,6 +71,10 @@ class ImplicitSettings:
     slack_strain: float = 0.0
 
 
+#: the kernel records the first sample (the current state) too, as ``solve_path`` asks
+_RECORD_FIRST = np.bool_(True)
+
+
 class ImplicitIntegrator:
     """Generalised-alpha stepping of one DG line (shapes (K, Np, 3) of its state).
 
@@ -140,7 +144,7 @@ class ImplicitIntegrator:
             element.differentiation, element.lift, element.filter, element.weights, self.ip,
             self.cs, fair_force, anch_force, laid, steps, shape_every, shape_r, shape_t, w.q,
             w.qt, w.N, w.Nstar, w.faces, w.slack, w.fpos, w.fvel, w.tmp, w.where, r0, v0, a0,
-            An0, A1, R, MR, E, Dg, self.band, self._x, self.flags, fa)
+            An0, A1, R, MR, E, Dg, self.band, self._x, self.flags, _RECORD_FIRST, fa)
 
     def state_arrays(self) -> dict[str, NDArray]:
         """The integrator's state for a checkpoint: its acceleration variable, the state's

@@ -532,14 +532,23 @@ class DynamicLine(PathStepper):
         may take them with no ``"auto"`` decision on the way (no window of it ends by
         ``t_end``: :meth:`solve_path` would run them in one segment and not switch); None
         when a window ends (only :meth:`solve_path` decides there)."""
-        implicit = self._stepping_implicit()
+        return self._stepping_implicit() if t_end < self._decisions_from() else None
+
+    def plain_until(self) -> float:
+        """The time [s] before which :meth:`plain_steps_until` is True: the steps implicit and
+        no ``"auto"`` decision on the way (-inf when the steps are explicit)."""
+        return self._decisions_from() if self._stepping_implicit() else -math.inf
+
+    def _decisions_from(self) -> float:
+        """The time [s] from which only :meth:`solve_path` may step the line: its next
+        ``"auto"`` decision (inf without one; -inf before the first)."""
         auto = self.auto
         if auto is None or self._settling:
-            return implicit
+            return math.inf
         # (explicit windows end in decisions too: a probe may start implicit steps there)
-        if auto.counters is None or not t_end < auto.next_check() - 1e-9 * auto.window:
-            return None
-        return implicit
+        if auto.counters is None:
+            return -math.inf
+        return auto.next_check() - 1e-9 * auto.window
 
     def unstable(self, status: int, time: float,
                  where: NDArray[np.int64] | None = None) -> SolverError:

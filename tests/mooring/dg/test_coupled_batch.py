@@ -193,6 +193,10 @@ def test_implicit_middle_state_is_interpolated(monkeypatch: pytest.MonkeyPatch) 
 @pytest.mark.parametrize("extra, batched", [
     ([], 1),  # an explicit line beside an implicit one of its discretisation
     (['lines.line1.dynamic.time_integration="implicit"'], 2),
+    # one discretisation, all implicit: after the first step, the whole-batch path
+    (['lines.*.dynamic.time_integration="implicit"', "lines.line3.dynamic.elements=4"], 3),
+    # the same, "auto": the whole-batch path between its decisions
+    (['lines.*.dynamic.time_integration="auto"', "lines.line3.dynamic.elements=4"], 3),
     (['seabed.friction_model="stick_spring"'], 0)])  # (its anchors: one call per line)
 def test_batch_kernel_gives_the_bits_of_one_call_per_line(extra: list[str],
                                                           batched: int) -> None:
@@ -205,9 +209,13 @@ def test_batch_kernel_gives_the_bits_of_one_call_per_line(extra: list[str],
     b.moored._batch.batch_kernel = False
     batch = a.moored._batch
     counts: list[int] = []
-    advance = batch._advance_batched
-    batch._advance_batched = (  # type: ignore[method-assign]
-        lambda g, t_end: counts.append(int(g.active.sum())) or advance(g, t_end))
+    wholes: list[float] = []
+    run = batch._run_batch_kernel
+    batch._run_batch_kernel = (  # type: ignore[method-assign]
+        lambda g: counts.append(int(g.active.sum())) or run(g))
+    advance_all = batch._advance_all
+    batch._advance_all = (  # type: ignore[method-assign]
+        lambda t_end, *a: wholes.append(t_end) or advance_all(t_end, *a))
     # (the counters of the settle: a line settled before, its shape reused, counted none)
     start = [[m.implicit.cs.copy() for m in s.moored.models if m.implicit is not None]
              for s in (a, b)]
@@ -219,6 +227,10 @@ def test_batch_kernel_gives_the_bits_of_one_call_per_line(extra: list[str],
         a.moored.step()
         b.moored.step()
     assert (max(counts) if counts else 0) == batched
+    if "auto" in str(extra):
+        assert 0 < len(wholes) < steps - 2
+    else:
+        assert len(wholes) == (steps - 1 if batched == 3 else 0)
     assert np.array_equal(np.array(stages_a), np.array(stages_b))
     assert np.array_equal(a.moored.body.x, b.moored.body.x)
     for ma, mb in zip(a.moored.models, b.moored.models):

@@ -254,7 +254,7 @@ def test_step_matches_oracle(label, kind, overrides, contact, rng) -> None:
         np.zeros((K + 1, 3)), np.zeros(K), np.zeros(3), np.zeros(3), np.zeros(Np + 6),
         np.zeros(2, dtype=np.int64), r0, v0, a0, An0, A1, R, MR, np.zeros((K, Np, 3, 3)),
         np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)), np.zeros(n), np.zeros((K, Np)),
-        None)
+        True, None)
     assert status == k.DG_OK
     for name, a, b, scale in (("r", rk, ro, np.max(np.abs(ro - r))),
                               ("v", vk, vo, np.max(np.abs(vo))), ("acc", acck, ao,
@@ -333,7 +333,7 @@ def test_step_carries_the_acceleration_of_its_equation(rng: np.random.Generator)
         np.zeros(2), 0, np.zeros((1, 1, 3)), np.zeros((1, 1)), *fields, np.zeros(3),
         path[1].copy(), np.zeros(Np + 6), np.zeros(2, dtype=np.int64), r0, v0, a0, An0, A1, R,
         MR, np.zeros((K, Np, 3, 3)), np.zeros((K, Np, 3, 3)), np.zeros((n, 9 * Np + 2)),
-        np.zeros(n), np.zeros((K, Np)), None)
+        np.zeros(n), np.zeros((K, Np)), True, None)
     assert status == k.DG_OK and cs[ik.CS_STEPS] == 1.0 and cs[ik.CS_ITERATIONS] == 1.0
     terms = ((1.0 - am) * acc, (1.0 - af) * An, af * start)
     residual = terms[0] - terms[1] - terms[2]
