@@ -6,6 +6,8 @@ interpolated in time close to the one its steps reach there."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from numpy.typing import NDArray
@@ -325,6 +327,28 @@ def test_a_failing_line_fails_as_before(line: int) -> None:
     else:
         assert messages[0] == messages[1].replace("t = 0.005 s", "t = 0.01 s")
         assert "t = 0.01 s" in messages[0]
+
+
+def test_a_failing_line_in_the_whole_batch_step() -> None:
+    """Every line implicit and of one discretisation: a line whose state is not finite stops
+    the step taken in one call for all with the error of one call per line (the line, the
+    quantity, the arc length and the time)."""
+    extra = ['lines.*.dynamic.time_integration="implicit"', "lines.line3.dynamic.elements=4"]
+    messages = []
+    for batch_kernel in (True, False):
+        system, _ = _system(MooredBody, OVERRIDES + extra)
+        moored = system.moored
+        moored._batch.batch_kernel = batch_kernel
+        for _ in range(2):
+            moored.step()
+        assert (moored._batch._plain_until == np.inf) == batch_kernel
+        moored.models[1].v[1, 2, 0] = np.nan
+        with pytest.raises(SolverError) as err:
+            moored.step()
+        # (without the rejected steps' count: a line settled before counted none in its settle)
+        messages.append(re.sub(r"\d+ rejected", "", str(err.value)))
+        assert moored._batch._plain_until == -np.inf  # (each line looked at again)
+    assert messages[0] == messages[1] and "line 'line2' (dynamic)" in messages[0]
 
 
 @pytest.mark.parametrize("c_int", [0.0, 50.0])
