@@ -16,7 +16,7 @@ import numpy as np
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
 from floatmoor.mooring.dg._implicit_kernels import CS_ACC_VALID, dg_run_path_implicit
-from floatmoor.mooring.dg._kernels import _ZERO3, DG_OK
+from floatmoor.mooring.dg._kernels import _ZERO3, DG_OK, _node_derivative
 
 __all__ = ["dg_end_forces_batch", "hermite_middle", "dg_advance_implicit_batch"]
 
@@ -50,17 +50,9 @@ def _node_gradient(u, left, right, D, LIFT, jac, k, i):
         rx, ry, rz = right[0], right[1], right[2]
     else:
         rx, ry, rz = u[k, Np - 1, 0], u[k, Np - 1, 1], u[k, Np - 1, 2]
-    jlx, jly, jlz = lx - u[k, 0, 0], ly - u[k, 0, 1], lz - u[k, 0, 2]
-    jrx, jry, jrz = rx - u[k, Np - 1, 0], ry - u[k, Np - 1, 1], rz - u[k, Np - 1, 2]
-    ax, ay, az = 0.0, 0.0, 0.0
-    for j in range(Np):
-        d = D[i, j]
-        ax += d * u[k, j, 0]
-        ay += d * u[k, j, 1]
-        az += d * u[k, j, 2]
-    l0, l1 = LIFT[i, 0], LIFT[i, 1]
-    return (jac * (ax - l0 * jlx + l1 * jrx), jac * (ay - l0 * jly + l1 * jry),
-            jac * (az - l0 * jlz + l1 * jrz))
+    return _node_derivative(u, k, i, D, LIFT, jac, lx - u[k, 0, 0], ly - u[k, 0, 1],
+                            lz - u[k, 0, 2], rx - u[k, Np - 1, 0], ry - u[k, Np - 1, 1],
+                            rz - u[k, Np - 1, 2])
 
 
 @jit
