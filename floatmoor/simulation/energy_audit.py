@@ -117,8 +117,10 @@ def audit_step(moored: MooredBody) -> StepAudit:
     """Advance ``moored`` by one body step (:meth:`MooredBody.step`) and return the energy
     balance of each of its dynamic lines over the step (module docstring).
 
-    The stage forces are those the body's step takes (``MooredBody.line_forces``, observed
-    for the step's duration); the step itself is unchanged.
+    The stage forces are those the body's step takes (each stage's ``MooredBody.mooring_force``
+    observed for the step's duration, its fairlead forces evaluated again by
+    ``MooredBody.line_forces``, which gives the same bits without changing a state); the step
+    itself is unchanged.
     """
     models = moored.models
     dynamic = [m is not None and m.resolves_dynamics for m in models]
@@ -126,29 +128,21 @@ def audit_step(moored: MooredBody) -> StepAudit:
     d0 = [line_dissipation_rate(m) if d else 0.0 for m, d in zip(models, dynamic)]
     stages: list[tuple[NDArray[np.float64], NDArray[np.float64]]] = []
     body_power: list[NDArray[np.float64]] = []
-    original = moored.line_forces
     original_mooring = moored.mooring_force
-
-    def observed(x: NDArray[np.float64], v: NDArray[np.float64] | None = None
-                 ) -> tuple[NDArray, NDArray]:
-        ff, af = original(x, v)
-        if v is not None:
-            _, vel = points_state(x, v, moored.arms, moored.centre)
-            stages.append((ff.copy(), vel))
-        return ff, af
 
     def observed_mooring(x: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray:
         f = original_mooring(x, v)
         body_power.append(f * v)
+        ff, _ = moored.line_forces(x, v)
+        _, vel = points_state(x, v, moored.arms, moored.centre)
+        stages.append((ff.copy(), vel))
         return f
 
     dt = moored.body.dt
-    moored.line_forces = observed  # type: ignore[method-assign]
     moored.mooring_force = observed_mooring  # type: ignore[method-assign]
     try:
         moored.step()
     finally:
-        del moored.line_forces
         del moored.mooring_force
     if len(stages) != len(_RK4_WEIGHTS) or len(body_power) != len(_RK4_WEIGHTS):
         raise RuntimeError(f"the audit expects the {len(_RK4_WEIGHTS)} stages of an RK4 step, "

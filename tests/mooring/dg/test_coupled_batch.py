@@ -96,15 +96,18 @@ def _system(scheme: type[MooredBody], overrides: list[str] = OVERRIDES):
 
 
 def _observed(moored: MooredBody, stages: list[NDArray]) -> None:
-    """Record every stage's fairlead and anchor forces into ``stages``."""
-    original = moored.line_forces
+    """Record every stage's 6-DOF mooring force and its fairlead and anchor forces (those of
+    ``line_forces`` at the stage's state: a run whose lines are all dynamic takes the stage's
+    force without it) into ``stages``."""
+    original = moored.mooring_force
 
-    def observed(x: NDArray, v: NDArray | None = None) -> tuple[NDArray, NDArray]:
-        ff, af = original(x, v)
-        stages.append(np.concatenate((ff, af)))
-        return ff, af
+    def observed(x: NDArray, v: NDArray) -> NDArray:
+        f = original(x, v)
+        ff, af = moored.line_forces(x, v)
+        stages.append(np.concatenate((f[None, :3], f[None, 3:], ff, af)))
+        return f
 
-    moored.line_forces = observed  # type: ignore[method-assign]
+    moored.mooring_force = observed  # type: ignore[method-assign]
 
 
 def test_explicit_lines_give_the_forces_of_two_advances() -> None:
@@ -229,6 +232,7 @@ def test_batch_kernel_gives_the_bits_of_one_call_per_line(extra: list[str],
         a.moored.step()
         b.moored.step()
     assert (max(counts) if counts else 0) == batched
+    assert len(stages_a) == len(stages_b) == 4 * steps
     if "auto" in str(extra):
         assert 0 < len(wholes) < steps - 2
     else:
