@@ -3,9 +3,8 @@ forces of every line of one discretisation in one call, the values each line's
 ``DynamicLine.end_forces_moving`` computes (``_kernels._record_ends``: the tension field and the
 end fluxes) from the end nodes alone, a line's state at the middle of a body step interpolated
 in time from its states at both ends (docs/theory/floater.md#coupling-scheme), and the
-implicit lines of one
-discretisation advanced over a body step in one call (a call from Python costs about as much
-as a line's implicit step: docs/validation/performance.md)."""
+implicit lines of one discretisation advanced over a body step in one call (a call from Python
+costs about as much as a line's implicit step: docs/validation/performance.md)."""
 
 from __future__ import annotations
 
@@ -15,7 +14,7 @@ import numpy as np
 
 from floatmoor._numba import jit
 from floatmoor.mooring.dg import _kernels as _k
-from floatmoor.mooring.dg._implicit_kernels import CS_ACC_VALID, dg_run_path_implicit
+from floatmoor.mooring.dg._implicit_kernels import CS_ACC_VALID, _copy, dg_run_path_implicit
 from floatmoor.mooring.dg._kernels import _ZERO3, DG_OK, _node_derivative
 
 __all__ = ["dg_end_forces_batch", "hermite_middle", "dg_advance_implicit_batch"]
@@ -88,7 +87,7 @@ def _end_forces(r, v, anchor, fpos, fvel, prm, D, LIFT, weights, fair_out, anch_
     sub = 1.0 if r[0, 0, 2] < 0.0 else 0.0
     Z = (m + sub * prm[_k.P_MAT]) * c_wave
     for c in range(3):
-        anch_out[c] = n0[c] + Z * (v[0, 0, c] - _ZERO3[c])
+        anch_out[c] = n0[c] + Z * v[0, 0, c]  # (the anchor at rest: v - 0.0 is v)
     n1 = _node_tension(r, v, anchor, _ZERO3, fpos, fvel, D, LIFT, jac, EA, cint, K - 1, Np - 1)
     sub = 1.0 if r[K - 1, Np - 1, 2] < 0.0 else 0.0
     Z = (m + sub * prm[_k.P_MAT]) * c_wave
@@ -155,13 +154,10 @@ def dg_advance_implicit_batch(active, time, path, velocity, r, v, acc, An, ancho
         quintic_here = quintic and cs[line, CS_ACC_VALID] != 0.0
         rs, vs, a_s, rl, vl = r_start[line], v_start[line], a_start[line], r[line], v[line]
         Al = An[line]
-        for k in range(rl.shape[0]):
-            for i in range(rl.shape[1]):
-                for c in range(3):
-                    rs[k, i, c] = rl[k, i, c]
-                    vs[k, i, c] = vl[k, i, c]
-                    if quintic_here:
-                        a_s[k, i, c] = Al[k, i, c]
+        _copy(rl, rs)
+        _copy(vl, vs)
+        if quintic_here:
+            _copy(Al, a_s)
         status, index = dg_run_path_implicit(
             rl, vl, acc[line], Al, time[line], path[line], velocity[line], anchors[line],
             prm[line], D, LIFT, F, weights, ip[line], cs[line], fair_force[line],

@@ -182,8 +182,8 @@ class DynamicLineBatch:
         for j, line in enumerate(self.lines):
             shapes.setdefault(line.r.shape, []).append(j)
         self._groups = [_Discretisation(self.lines, members) for members in shapes.values()]
-        #: the one group, when it holds every line in order (:meth:`end_forces` then writes
-        #: straight into its outputs)
+        #: the one group, when it holds every line in order (:meth:`end_force_arguments`,
+        #: :meth:`_advance_all`)
         self._whole = (self._groups[0] if len(self._groups) == 1
                        and self._groups[0].members == list(range(n)) else None)
         #: where each line sits: its group and row there
@@ -329,7 +329,6 @@ class DynamicLineBatch:
     def _commit_batched(self, g: _Discretisation, t_end: float) -> None:
         """After :meth:`_run_batch_kernel`: each active line's time, fairlead and laid length,
         or the error of the line that failed (the lines before it committed)."""
-        te, pe, ue, le = g.ends[0], g.ends[1], g.ends[2], g.ends[5]
         failed = int(g.failure[0])
         for row, j in enumerate(g.members):
             if not g.active[row]:
@@ -338,22 +337,30 @@ class DynamicLineBatch:
             if row == failed:
                 g.active[:] = False
                 line.failed_index = 0
-                raise line.unstable(int(g.failure[1]), float(te[row, g.failure[2]]), g.where)
-            line.failed_index = -1
-            line.time = float(t_end)
-            line.fairlead[:] = pe[row, 1]
-            line.fairlead_velocity[:] = ue[row, 1]
-            g.fair_mid[row] = self._path[j, 1]
-            g.fair_now[row] = pe[row, 1]
-            self.laid_length[j] = le[row, 1]
+                raise line.unstable(int(g.failure[1]), float(g.ends[0][row, g.failure[2]]),
+                                    g.where)
+            self._commit(j, line, g, row, t_end)
         g.active[:] = False
+
+    def _commit(self, j: int, line: DynamicLine, g: _Discretisation, row: int,
+                t_end: float) -> None:
+        """Line ``j`` (row ``row`` of ``g``) advanced over its interval in ``g.ends`` to
+        ``t_end``: its time, fairlead, middle and end samples and laid length."""
+        pe, ue, le = g.ends[1], g.ends[2], g.ends[5]
+        line.failed_index = -1
+        line.time = float(t_end)
+        line.fairlead[:] = pe[row, 1]
+        line.fairlead_velocity[:] = ue[row, 1]
+        g.fair_mid[row] = self._path[j, 1]
+        g.fair_now[row] = pe[row, 1]
+        self.laid_length[j] = le[row, 1]
 
     def _advance_implicit(self, j: int, line: DynamicLine, g: _Discretisation, row: int,
                           t_end: float, pos_end: NDArray[np.float64],
                           vel_end: NDArray[np.float64]) -> None:
         """Line ``j`` (row ``row`` of ``g``) stepping implicitly: from its time to ``t_end``
         as one sample interval, its state at the middle interpolated (module docstring)."""
-        T, P, U, ff, af, lb, st = g.ends
+        T, P, U = g.ends[:3]
         integ = line.implicit
         t0 = line.time
         T[row, 0], T[row, 1] = t0, t_end
@@ -370,15 +377,9 @@ class DynamicLineBatch:
         if status != _k.DG_OK:
             line.failed_index = 0
             raise line.unstable(status, float(T[row, index]))
-        line.failed_index = -1
         hermite_middle(g.r_start[row], g.v_start[row], g.a_start[row], line.r, line.v,
                        integ.An, t_end - t0, quintic, g.r_mid[row], g.v_mid[row])
-        line.time = float(t_end)
-        line.fairlead[:] = pos_end
-        line.fairlead_velocity[:] = vel_end
-        g.fair_mid[row] = self._path[j, 1]
-        g.fair_now[row] = pos_end
-        self.laid_length[j] = lb[row, 1]
+        self._commit(j, line, g, row, t_end)
 
     def end_force_arguments(self, mid: bool) -> tuple[NDArray[np.float64], ...] | None:
         """The inputs of ``_batch_kernels.dg_end_forces_batch`` for every line at once but the
@@ -402,14 +403,6 @@ class DynamicLineBatch:
         last :meth:`advance` kept at the middle sample (``mid`` True), its fairlead moving at
         ``fairlead_velocity`` (n, 3): ``DynamicLine.end_forces_moving``'s values, into
         ``fairlead_force`` and ``anchor_force`` (n, 3)."""
-        if self._whole is not None:  # one discretisation, the lines in order: no copies
-            g = self._whole
-            el = g.element
-            dg_end_forces_batch(g.r_mid if mid else g.r, g.v_mid if mid else g.v, g.anchors,
-                                g.fair_mid if mid else g.fair_now, fairlead_velocity, g.prm,
-                                el.differentiation, el.lift, el.weights, fairlead_force,
-                                anchor_force, g.laid)
-            return
         for g in self._groups:
             g.fvel[:] = fairlead_velocity[g.rows]
             el = g.element
